@@ -1,0 +1,108 @@
+#pragma once
+// The freeform document, format version 1 (specified in docs/format.md).
+//
+//   {"format": "freeform", "version": 1,
+//    "objects": [{"name": "c", "type": "bezier_curve", "points": [[0,0],[1,2],[3,2],[4,0]]}, ...],
+//    "editor": {...}}
+//
+// The reader is strict: an unknown type or field, a wrong array shape, a non-integer degree or a
+// number that is not finite is a freeform::Error naming the source, the object and the field.
+// The document holds plain data (points in double, dimension known at run time); the geometry
+// classes are built from it by the code that uses an object (see io/objects.h).
+
+#include <Eigen/Core>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "freeform/io/file.h"
+
+namespace freeform {
+
+/// Points are the columns of a dim x count matrix (dim 2 or 3).
+using PointColumns = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
+
+struct BezierCurveData {
+    PointColumns points; // dim x (degree + 1)
+};
+
+struct BezierSplineData {
+    int degree = 3;
+    bool closed = false;
+    PointColumns points;          // dim x (L*degree + 1) open, dim x (L*degree) closed
+    std::vector<double> intervals; // L lengths; empty means all 1
+};
+
+struct DeBoorSplineData {
+    int degree = 3;
+    std::string end = "open";      // "open" | "clamped" | "closed"
+    PointColumns points;           // de Boor points
+    std::vector<double> intervals; // empty means all 1
+};
+
+struct BezierSurfaceData {
+    std::array<int, 2> degree{};   // (m, n)
+    PointColumns points;           // 3 x (m+1)(n+1), index i*(n+1) + j
+};
+
+struct DeBoorSurfaceData {
+    std::array<int, 2> degree{3, 3};
+    std::array<std::string, 2> end{"open", "open"};
+    int rows = 0, cols = 0;        // grid size: rows along u, cols along v
+    PointColumns points;           // 3 x rows*cols, index i*cols + j
+};
+
+struct LatticeData {
+    std::array<int, 3> degree{};   // (l, m, n)
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity(); // columns S, T, U
+    PointColumns points;           // 3 x (l+1)(m+1)(n+1), index i*(m+1)*(n+1) + j*(n+1) + k
+    std::string outside = "clamp"; // "keep" | "clamp" | "extrapolate"
+};
+
+struct SubdivisionSurfaceData {
+    std::string mesh;                      // path of a mesh file (relative to the document), or empty
+    PointColumns vertices;                 // 3 x V when given inline
+    std::vector<std::vector<int>> faces;   // inline faces (vertex indices)
+    std::string scheme = "catmark";        // "catmark" | "loop"
+};
+
+using ObjectData = std::variant<BezierCurveData, BezierSplineData, DeBoorSplineData, BezierSurfaceData,
+                                DeBoorSurfaceData, LatticeData, SubdivisionSurfaceData>;
+
+struct DocumentObject {
+    std::string name;
+    ObjectData data;
+    std::string editor; // the object's "editor" member as JSON text (display settings), or empty
+};
+
+struct Document {
+    std::vector<DocumentObject> objects;
+    std::string editor; // the document's "editor" member as JSON text (camera, display), or empty
+    std::string source; // where it was read from, for messages
+
+    /// The object called name; throws Error listing the names when there is none.
+    const DocumentObject& object(const std::string& name) const;
+    DocumentObject* find(const std::string& name);
+    const DocumentObject* find(const std::string& name) const;
+};
+
+/// The "type" string of an object ("bezier_curve", ...).
+std::string objectType(const ObjectData& data);
+
+/// Parses a document from JSON text; sourceName is used in error messages.
+Document parseDocument(const std::string& text, const std::string& sourceName = "document");
+
+/// Reads and parses a file; Error when it cannot be read or parsed.
+Document readDocument(const std::string& path);
+
+/// The document as JSON text (numbers in shortest round-trip form, two-space indentation).
+std::string formatDocument(const Document& document);
+
+/// Writes the document to path atomically (temporary file in the same folder, then rename).
+void writeDocument(const Document& document, const std::string& path);
+
+} // namespace freeform

@@ -1,0 +1,12 @@
+// Explicit instantiations: template errors surface when the library builds, not in a user's code.
+
+#include "freeform/curve/bezier_curve.h"
+
+namespace freeform {
+template class BezierCurve<float, 2>;
+template class BezierCurve<float, 3>;
+template class BezierCurve<double, 2>;
+template class BezierCurve<double, 3>;
+template class BezierCurve<long double, 2>;
+template class BezierCurve<long double, 3>;
+} // namespace freeform

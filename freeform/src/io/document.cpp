@@ -1,0 +1,465 @@
+// Reading and writing the v1 document (docs/format.md). Strict: every member is checked for
+// presence, type, shape and finiteness, and every message names the source, the object and the
+// field.
+
+#include "freeform/io/document.h"
+
+#include <Eigen/LU>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "freeform/core/error.h"
+#include "freeform/io/file.h"
+
+namespace freeform {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+/// Context for messages: "source: object \"name\": field \"points\"".
+struct Where {
+    std::string source;
+    std::string object;
+
+    [[noreturn]] void fail(const std::string& field, const std::string& message) const
+    {
+        std::string where = source + ": ";
+        if (!object.empty()) where += object + ": ";
+        if (!field.empty()) where += "field \"" + field + "\": ";
+        throw Error(where + message);
+    }
+};
+
+std::string typeName(const Json& j)
+{
+    return j.is_number() ? "a number" : j.is_string() ? "a string" : j.is_array() ? "an array"
+         : j.is_object() ? "an object" : j.is_boolean() ? "a boolean" : "null";
+}
+
+const Json& member(const Json& obj, const char* key, const Where& w)
+{
+    const auto it = obj.find(key);
+    if (it == obj.end()) w.fail(key, "is missing");
+    return *it;
+}
+
+double number(const Json& j, const std::string& field, const Where& w)
+{
+    if (!j.is_number()) w.fail(field, "expected a number, found " + typeName(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) w.fail(field, "number is not finite");
+    return v;
+}
+
+int integer(const Json& j, const std::string& field, const Where& w)
+{
+    if (!j.is_number_integer()) w.fail(field, "expected an integer, found " + typeName(j));
+    const auto v = j.get<long long>();
+    if (v < -1000000000LL || v > 1000000000LL) w.fail(field, "integer out of range");
+    return static_cast<int>(v);
+}
+
+std::string string(const Json& j, const std::string& field, const Where& w)
+{
+    if (!j.is_string()) w.fail(field, "expected a string, found " + typeName(j));
+    return j.get<std::string>();
+}
+
+std::string oneOf(const Json& j, const std::string& field, std::initializer_list<const char*> allowed,
+                  const Where& w)
+{
+    const std::string v = string(j, field, w);
+    std::string list;
+    for (const char* a : allowed) {
+        if (v == a) return v;
+        list += std::string(list.empty() ? "" : ", ") + "\"" + a + "\"";
+    }
+    w.fail(field, "\"" + v + "\" is not one of " + list);
+}
+
+/// A list of points (arrays of dim numbers); dim 0 means "any of 2 or 3, the same for all".
+PointColumns pointList(const Json& j, const std::string& field, int dim, const Where& w)
+{
+    if (!j.is_array()) w.fail(field, "expected an array of points, found " + typeName(j));
+    if (j.empty()) w.fail(field, "has no points");
+    PointColumns out;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const Json& p = j[i];
+        const std::string f = field + "[" + std::to_string(i) + "]";
+        if (!p.is_array()) w.fail(f, "expected a point (an array of numbers), found " + typeName(p));
+        if (i == 0) {
+            if (dim == 0) {
+                if (p.size() != 2 && p.size() != 3)
+                    w.fail(f, "a point has 2 or 3 coordinates, found " + std::to_string(p.size()));
+                dim = static_cast<int>(p.size());
+            }
+            out.resize(dim, static_cast<Eigen::Index>(j.size()));
+        }
+        if (static_cast<int>(p.size()) != dim)
+            w.fail(f, "expected " + std::to_string(dim) + " coordinates, found " + std::to_string(p.size()));
+        for (int k = 0; k < dim; ++k)
+            out(k, static_cast<Eigen::Index>(i)) = number(p[k], f + "[" + std::to_string(k) + "]", w);
+    }
+    return out;
+}
+
+std::vector<double> positiveList(const Json& j, const std::string& field, const Where& w)
+{
+    if (!j.is_array()) w.fail(field, "expected an array of numbers, found " + typeName(j));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const double v = number(j[i], field + "[" + std::to_string(i) + "]", w);
+        if (!(v > 0)) w.fail(field + "[" + std::to_string(i) + "]", "interval length must be positive");
+        out.push_back(v);
+    }
+    return out;
+}
+
+template <std::size_t N>
+std::array<int, N> degreeArray(const Json& j, const Where& w)
+{
+    if (!j.is_array() || j.size() != N)
+        w.fail("degree", "expected an array of " + std::to_string(N) + " integers");
+    std::array<int, N> out{};
+    for (std::size_t i = 0; i < N; ++i) {
+        out[i] = integer(j[i], "degree[" + std::to_string(i) + "]", w);
+        if (out[i] < 1 || out[i] > 67) w.fail("degree[" + std::to_string(i) + "]", "must be in 1..67");
+    }
+    return out;
+}
+
+/// Rejects members of obj not in allowed.
+void onlyKnown(const Json& obj, std::initializer_list<const char*> allowed, const Where& w)
+{
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+        bool ok = false;
+        for (const char* a : allowed) ok = ok || it.key() == a;
+        if (!ok) w.fail(it.key(), "unknown field");
+    }
+}
+
+/// A grid of points [[p, p, ...], ...] (rows x cols), 3D.
+PointColumns pointGrid(const Json& j, int& rows, int& cols, const Where& w)
+{
+    if (!j.is_array() || j.empty()) w.fail("points", "expected a non-empty array of rows of points");
+    rows = static_cast<int>(j.size());
+    cols = -1;
+    PointColumns out;
+    for (int r = 0; r < rows; ++r) {
+        const std::string f = "points[" + std::to_string(r) + "]";
+        const PointColumns row = pointList(j[r], f, 3, w);
+        if (cols < 0) {
+            cols = static_cast<int>(row.cols());
+            out.resize(3, rows * cols);
+        } else if (row.cols() != cols) {
+            w.fail(f, "has " + std::to_string(row.cols()) + " points, row 0 has " + std::to_string(cols));
+        }
+        out.middleCols(r * cols, cols) = row;
+    }
+    return out;
+}
+
+ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
+{
+    if (type == "bezier_curve") {
+        onlyKnown(obj, {"name", "type", "points", "editor"}, w);
+        BezierCurveData d;
+        d.points = pointList(member(obj, "points", w), "points", 0, w);
+        if (d.points.cols() - 1 > 67) w.fail("points", "degree above the maximum 67");
+        return d;
+    }
+    if (type == "bezier_spline") {
+        onlyKnown(obj, {"name", "type", "degree", "closed", "points", "intervals", "editor"}, w);
+        BezierSplineData d;
+        d.degree = integer(member(obj, "degree", w), "degree", w);
+        if (d.degree < 1 || d.degree > 67) w.fail("degree", "must be in 1..67");
+        if (obj.contains("closed")) {
+            if (!obj["closed"].is_boolean()) w.fail("closed", "expected true or false");
+            d.closed = obj["closed"].get<bool>();
+        }
+        d.points = pointList(member(obj, "points", w), "points", 0, w);
+        const long count = static_cast<long>(d.points.cols());
+        const long segments = d.closed ? count / d.degree : (count - 1) / d.degree;
+        const bool fits = d.closed ? (count % d.degree == 0 && segments >= 1)
+                                   : ((count - 1) % d.degree == 0 && segments >= 1);
+        if (!fits) {
+            w.fail("points", std::to_string(count) + " points do not fit degree " + std::to_string(d.degree) +
+                                 (d.closed ? ": a closed spline of L segments has L*degree points"
+                                           : ": an open spline of L segments has L*degree + 1 points"));
+        }
+        if (obj.contains("intervals")) {
+            d.intervals = positiveList(obj["intervals"], "intervals", w);
+            if (static_cast<long>(d.intervals.size()) != segments)
+                w.fail("intervals", "has " + std::to_string(d.intervals.size()) + " lengths for " +
+                                        std::to_string(segments) + " segments");
+        }
+        return d;
+    }
+    if (type == "deboor_spline") {
+        onlyKnown(obj, {"name", "type", "degree", "end", "points", "intervals", "editor"}, w);
+        DeBoorSplineData d;
+        d.degree = integer(member(obj, "degree", w), "degree", w);
+        if (d.degree != 3) w.fail("degree", "de Boor splines are cubic: degree must be 3");
+        d.end = oneOf(member(obj, "end", w), "end", {"open", "clamped", "closed"}, w);
+        d.points = pointList(member(obj, "points", w), "points", 0, w);
+        if (obj.contains("intervals")) d.intervals = positiveList(obj["intervals"], "intervals", w);
+        return d;
+    }
+    if (type == "bezier_surface") {
+        onlyKnown(obj, {"name", "type", "degree", "points", "editor"}, w);
+        BezierSurfaceData d;
+        d.degree = degreeArray<2>(member(obj, "degree", w), w);
+        int rows = 0, cols = 0;
+        d.points = pointGrid(member(obj, "points", w), rows, cols, w);
+        if (rows != d.degree[0] + 1 || cols != d.degree[1] + 1)
+            w.fail("points", "grid is " + std::to_string(rows) + " x " + std::to_string(cols) + ", degree [" +
+                                 std::to_string(d.degree[0]) + ", " + std::to_string(d.degree[1]) + "] needs " +
+                                 std::to_string(d.degree[0] + 1) + " x " + std::to_string(d.degree[1] + 1));
+        return d;
+    }
+    if (type == "deboor_surface") {
+        onlyKnown(obj, {"name", "type", "degree", "end", "points", "editor"}, w);
+        DeBoorSurfaceData d;
+        d.degree = degreeArray<2>(member(obj, "degree", w), w);
+        if (d.degree[0] != 3 || d.degree[1] != 3) w.fail("degree", "de Boor surfaces are bicubic: degree must be [3, 3]");
+        const Json& end = member(obj, "end", w);
+        if (!end.is_array() || end.size() != 2) w.fail("end", "expected an array of two end conditions");
+        for (int i = 0; i < 2; ++i)
+            d.end[i] = oneOf(end[i], "end[" + std::to_string(i) + "]", {"open", "clamped", "closed"}, w);
+        d.points = pointGrid(member(obj, "points", w), d.rows, d.cols, w);
+        return d;
+    }
+    if (type == "lattice") {
+        onlyKnown(obj, {"name", "type", "degree", "origin", "axes", "points", "outside", "editor"}, w);
+        LatticeData d;
+        d.degree = degreeArray<3>(member(obj, "degree", w), w);
+        d.origin = pointList(Json::array({member(obj, "origin", w)}), "origin", 3, w).col(0);
+        const PointColumns axes = pointList(member(obj, "axes", w), "axes", 3, w);
+        if (axes.cols() != 3) w.fail("axes", "expected three edge vectors S, T, U");
+        d.axes = axes;
+        if (std::abs(d.axes.determinant()) <= 1e-300) w.fail("axes", "edge vectors are linearly dependent");
+        d.points = pointList(member(obj, "points", w), "points", 3, w);
+        const long expected = static_cast<long>(d.degree[0] + 1) * (d.degree[1] + 1) * (d.degree[2] + 1);
+        if (d.points.cols() != expected)
+            w.fail("points", "has " + std::to_string(d.points.cols()) + " points, degree needs " + std::to_string(expected));
+        if (obj.contains("outside"))
+            d.outside = oneOf(obj["outside"], "outside", {"keep", "clamp", "extrapolate"}, w);
+        return d;
+    }
+    if (type == "subdivision_surface") {
+        onlyKnown(obj, {"name", "type", "mesh", "vertices", "faces", "scheme", "editor"}, w);
+        SubdivisionSurfaceData d;
+        if (obj.contains("scheme")) d.scheme = oneOf(obj["scheme"], "scheme", {"catmark", "loop"}, w);
+        if (obj.contains("mesh")) {
+            if (obj.contains("vertices") || obj.contains("faces"))
+                w.fail("mesh", "give either a mesh file or inline vertices and faces, not both");
+            d.mesh = string(obj["mesh"], "mesh", w);
+            return d;
+        }
+        d.vertices = pointList(member(obj, "vertices", w), "vertices", 3, w);
+        const Json& faces = member(obj, "faces", w);
+        if (!faces.is_array() || faces.empty()) w.fail("faces", "expected a non-empty array of faces");
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            const std::string field = "faces[" + std::to_string(f) + "]";
+            if (!faces[f].is_array() || faces[f].size() < 3) w.fail(field, "a face needs at least 3 vertex indices");
+            std::vector<int> face;
+            for (std::size_t k = 0; k < faces[f].size(); ++k) {
+                const int v = integer(faces[f][k], field, w);
+                if (v < 0 || v >= d.vertices.cols())
+                    w.fail(field, "vertex index " + std::to_string(v) + " is out of range 0.." +
+                                      std::to_string(d.vertices.cols() - 1));
+                face.push_back(v);
+            }
+            d.faces.push_back(std::move(face));
+        }
+        return d;
+    }
+    w.fail("type", "unknown object type \"" + type +
+                       "\" (known: bezier_curve, bezier_spline, deboor_spline, bezier_surface, "
+                       "deboor_surface, lattice, subdivision_surface)");
+}
+
+Json pointsJson(const PointColumns& p)
+{
+    Json arr = Json::array();
+    for (Eigen::Index i = 0; i < p.cols(); ++i) {
+        Json q = Json::array();
+        for (Eigen::Index k = 0; k < p.rows(); ++k) q.push_back(p(k, i));
+        arr.push_back(std::move(q));
+    }
+    return arr;
+}
+
+Json gridJson(const PointColumns& p, int rows, int cols)
+{
+    Json arr = Json::array();
+    for (int r = 0; r < rows; ++r) arr.push_back(pointsJson(p.middleCols(r * cols, cols)));
+    return arr;
+}
+
+struct ObjectWriter {
+    Json& j;
+    void operator()(const BezierCurveData& d) const { j["points"] = pointsJson(d.points); }
+    void operator()(const BezierSplineData& d) const
+    {
+        j["degree"] = d.degree;
+        j["closed"] = d.closed;
+        j["points"] = pointsJson(d.points);
+        if (!d.intervals.empty()) j["intervals"] = d.intervals;
+    }
+    void operator()(const DeBoorSplineData& d) const
+    {
+        j["degree"] = d.degree;
+        j["end"] = d.end;
+        j["points"] = pointsJson(d.points);
+        if (!d.intervals.empty()) j["intervals"] = d.intervals;
+    }
+    void operator()(const BezierSurfaceData& d) const
+    {
+        j["degree"] = d.degree;
+        j["points"] = gridJson(d.points, d.degree[0] + 1, d.degree[1] + 1);
+    }
+    void operator()(const DeBoorSurfaceData& d) const
+    {
+        j["degree"] = d.degree;
+        j["end"] = d.end;
+        j["points"] = gridJson(d.points, d.rows, d.cols);
+    }
+    void operator()(const LatticeData& d) const
+    {
+        j["degree"] = d.degree;
+        j["origin"] = pointsJson(d.origin)[0];
+        j["axes"] = pointsJson(d.axes);
+        j["points"] = pointsJson(d.points);
+        j["outside"] = d.outside;
+    }
+    void operator()(const SubdivisionSurfaceData& d) const
+    {
+        if (!d.mesh.empty()) {
+            j["mesh"] = d.mesh;
+        } else {
+            j["vertices"] = pointsJson(d.vertices);
+            j["faces"] = d.faces;
+        }
+        j["scheme"] = d.scheme;
+    }
+};
+
+} // namespace
+
+std::string objectType(const ObjectData& data)
+{
+    static const char* const names[] = {"bezier_curve",   "bezier_spline", "deboor_spline",      "bezier_surface",
+                                        "deboor_surface", "lattice",       "subdivision_surface"};
+    static_assert(std::variant_size_v<ObjectData> == std::size(names));
+    return names[data.index()];
+}
+
+const DocumentObject& Document::object(const std::string& name) const
+{
+    if (const DocumentObject* o = find(name)) return *o;
+    std::string names;
+    for (const auto& o : objects) names += (names.empty() ? "" : ", ") + o.name;
+    throw Error(source + ": no object named \"" + name + "\"" +
+                (names.empty() ? std::string(" (the document has no objects)") : " (objects: " + names + ")"));
+}
+
+DocumentObject* Document::find(const std::string& name)
+{
+    for (auto& o : objects)
+        if (o.name == name) return &o;
+    return nullptr;
+}
+
+const DocumentObject* Document::find(const std::string& name) const
+{
+    return const_cast<Document*>(this)->find(name);
+}
+
+Document parseDocument(const std::string& text, const std::string& sourceName)
+{
+    Json root;
+    try {
+        root = Json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // e.byte is the offset; turn it into a line number for the message.
+        std::size_t line = 1;
+        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte, text.size()); ++i) line += text[i] == '\n';
+        throw Error(sourceName + ": line " + std::to_string(line) + ": not valid JSON");
+    } catch (const nlohmann::json::exception& e) {
+        // Out-of-range numbers (1e999) are the only other parse failure.
+        std::string what = e.what();
+        what = what.substr(what.find(']') + 2);
+        throw Error(sourceName + ": a number is out of range (" + what + ")");
+    }
+    const Where top{sourceName, ""};
+    if (!root.is_object()) top.fail("", "expected a JSON object at the top level, found " + typeName(root));
+    onlyKnown(root, {"format", "version", "objects", "editor"}, top);
+    if (string(member(root, "format", top), "format", top) != "freeform")
+        top.fail("format", "expected \"freeform\"");
+    const int version = integer(member(root, "version", top), "version", top);
+    if (version != 1) top.fail("version", "version " + std::to_string(version) + " is not supported (this library reads 1)");
+    const Json& objects = member(root, "objects", top);
+    if (!objects.is_array()) top.fail("objects", "expected an array, found " + typeName(objects));
+
+    Document doc;
+    doc.source = sourceName;
+    if (root.contains("editor")) {
+        if (!root["editor"].is_object()) top.fail("editor", "expected an object");
+        doc.editor = root["editor"].dump();
+    }
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        const Json& obj = objects[i];
+        Where w{sourceName, "object " + std::to_string(i)};
+        if (!obj.is_object()) w.fail("", "expected a JSON object, found " + typeName(obj));
+        const std::string name = string(member(obj, "name", w), "name", w);
+        if (name.empty()) w.fail("name", "is empty");
+        w.object = "object \"" + name + "\"";
+        if (!names.insert(name).second) w.fail("name", "the name is used by an earlier object");
+        const std::string type = string(member(obj, "type", w), "type", w);
+        DocumentObject o{name, parseObject(obj, type, w), {}};
+        if (obj.contains("editor")) {
+            if (!obj["editor"].is_object()) w.fail("editor", "expected an object");
+            o.editor = obj["editor"].dump();
+        }
+        doc.objects.push_back(std::move(o));
+    }
+    return doc;
+}
+
+Document readDocument(const std::string& path)
+{
+    return parseDocument(readFile(path), path);
+}
+
+std::string formatDocument(const Document& document)
+{
+    Json root;
+    root["format"] = "freeform";
+    root["version"] = 1;
+    root["objects"] = Json::array();
+    for (const auto& o : document.objects) {
+        Json j;
+        j["name"] = o.name;
+        j["type"] = objectType(o.data);
+        std::visit(ObjectWriter{j}, o.data);
+        if (!o.editor.empty()) j["editor"] = Json::parse(o.editor);
+        root["objects"].push_back(std::move(j));
+    }
+    if (!document.editor.empty()) root["editor"] = Json::parse(document.editor);
+    return root.dump(2) + "\n";
+}
+
+void writeDocument(const Document& document, const std::string& path)
+{
+    writeFileAtomically(path, formatDocument(document));
+}
+
+} // namespace freeform

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Sets up, builds and runs every test: the README's test command, and what CI runs.
+#
+#   1. installs missing Debian packages (scripts/install-deps.sh, idempotent);
+#   2. builds everything in build/ with warnings as errors and runs all tests (unit, cli, render);
+#   3. builds again in build-asan/ with AddressSanitizer + UndefinedBehaviorSanitizer and runs
+#      the tests once more.
+# Render tests need an X display: when there is none, the whole run goes under xvfb-run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ -z "${FREEFORM_UNDER_XVFB:-}" ]; then
+  scripts/install-deps.sh
+fi
+if [ -z "${DISPLAY:-}" ] && [ -z "${FREEFORM_UNDER_XVFB:-}" ] && command -v xvfb-run >/dev/null; then
+  export FREEFORM_UNDER_XVFB=1
+  exec xvfb-run -a -s "-screen 0 1280x800x24" "$0" "$@"
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+
+echo "== build (Release, -Werror)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFREEFORM_WARNINGS_AS_ERRORS=ON >/dev/null
+cmake --build build -j "$jobs"
+echo "== tests"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+if [ "${FREEFORM_SKIP_SANITIZERS:-}" != "1" ]; then
+  echo "== build (AddressSanitizer + UndefinedBehaviorSanitizer)"
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFREEFORM_SANITIZE=ON -DFREEFORM_WARNINGS_AS_ERRORS=ON \
+        -DFREEFORM_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build build-asan -j "$jobs"
+  echo "== tests under sanitizers"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build-asan --output-on-failure -j "$jobs"
+fi
+echo "== all tests passed"
