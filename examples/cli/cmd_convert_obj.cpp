@@ -1,0 +1,6 @@
+// Placeholder until the obj conversion lands (replaced by its implementation).
+#include "command.h"
+#include "freeform/core/error.h"
+namespace freeform::cli {
+int convertObjFreeform(const Args&) { throw Error("convert: this conversion is not available in this build"); }
+} // namespace freeform::cli
