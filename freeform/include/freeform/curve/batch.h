@@ -11,11 +11,14 @@
 // (monomial) Horner scheme has no such bound: its coefficients alternate and grow like 2^n, which
 // is why Open CASCADE's cached evaluator loses digits at high degree and this path does not.
 //
-// Parameters are processed in blocks of 8 lanes in structure-of-arrays form so the compiler
-// vectorises across parameters; for float and double in 2D and 3D the library ships clones for
-// x86-64-v3 (AVX2 + FMA) and the baseline, chosen at load time from the CPU (no -march=native).
+// For float and double, parameters are processed in blocks of one 256-bit register (4 doubles or 8
+// floats) written with GCC vector extensions, so every statement is one SIMD operation across
+// parameters; the library ships clones for x86-64-v3 (AVX2 + FMA) and the baseline, chosen at load
+// time from the CPU (no -march=native). Other scalar types (long double) run the same scheme one
+// parameter at a time.
 
 #include <cstddef>
+#include <type_traits>
 
 #include "freeform/core/bernstein.h"
 
@@ -23,50 +26,85 @@ namespace freeform {
 
 namespace detail {
 
-inline constexpr int kBatchLanes = 8;
+/// One block of W parameters (SoA): out[d][w] = f(t[w]). Written with GCC vector extensions, so
+/// each statement is one SIMD operation over the W lanes (two or four machine vectors).
+template <typename Scalar, int Dim, int W>
+inline __attribute__((always_inline)) void bezierBatchBlock(const Scalar* cbf, const Scalar* cbr, int n,
+                                                            const Scalar* t, Scalar (*out)[W])
+{
+    typedef Scalar Lanes __attribute__((vector_size(W * sizeof(Scalar))));
+    Lanes tv;
+    __builtin_memcpy(&tv, t, sizeof(Lanes));
+    const Lanes one = tv * Scalar(0) + Scalar(1);
+    const Lanes uv = one - tv;
+    const auto mirrored = tv > Scalar(0.5);          // lanes that run the reversed Horner scheme
+    const Lanes lo = mirrored ? uv : tv;              // min(t, 1-t)
+    const Lanes hi = mirrored ? tv : uv;              // max(t, 1-t) >= 1/2, never 0
+    const Lanes s = lo / hi;
+    Lanes base = hi, scale = one;
+    for (int e = n; e > 0; e >>= 1) { // hi^n by repeated squaring
+        if (e & 1) scale *= base;
+        base *= base;
+    }
+    // Horner in s over the coefficients in the lane's own order: forward where t <= 1/2
+    // (s = t/(1-t)), reversed where t > 1/2 (s = (1-t)/t).
+    Lanes acc[Dim];
+    for (int d = 0; d < Dim; ++d) {
+        const Lanes f = one * cbf[n * Dim + d], r = one * cbr[n * Dim + d];
+        acc[d] = mirrored ? r : f;
+    }
+    for (int i = n - 1; i >= 0; --i) {
+        for (int d = 0; d < Dim; ++d) {
+            const Lanes f = one * cbf[i * Dim + d], r = one * cbr[i * Dim + d];
+            acc[d] = acc[d] * s + (mirrored ? r : f);
+        }
+    }
+    for (int d = 0; d < Dim; ++d) {
+        const Lanes v = acc[d] * scale;
+        __builtin_memcpy(out[d], &v, sizeof(Lanes));
+    }
+}
+
+/// The same for one parameter, in plain scalar code (long double and other scalar types).
+template <typename Scalar, int Dim>
+inline void bezierBatchOne(const Scalar* cbf, const Scalar* cbr, int n, Scalar t, Scalar* out)
+{
+    const bool mirrored = t > Scalar(0.5);
+    const Scalar u = Scalar(1) - t;
+    const Scalar s = mirrored ? u / t : t / u;
+    const Scalar scale = powInt(mirrored ? t : u, n);
+    const Scalar* c = mirrored ? cbr : cbf;
+    for (int d = 0; d < Dim; ++d) {
+        Scalar acc = c[n * Dim + d];
+        for (int i = n - 1; i >= 0; --i) acc = acc * s + c[i * Dim + d];
+        out[d] = acc * scale;
+    }
+}
 
 /// ctrl: Dim x (n+1) column-major control points; ts: count parameters; out: Dim x count.
 template <typename Scalar, int Dim>
 inline __attribute__((always_inline)) void bezierBatchKernel(const Scalar* ctrl, int n, const Scalar* ts,
                                                              std::size_t count, Scalar* out)
 {
-    constexpr int W = kBatchLanes;
-    // Scaled coefficients C(n,i) b_i, coordinate-major so lanes read one scalar each.
-    Scalar cb[(kMaxDegree + 1) * Dim];
+    // Scaled coefficients C(n,i) b_i, forward and reversed (cbr[i] = cbf[n-i]).
+    Scalar cbf[(kMaxDegree + 1) * Dim], cbr[(kMaxDegree + 1) * Dim];
     for (int i = 0; i <= n; ++i)
-        for (int d = 0; d < Dim; ++d) cb[i * Dim + d] = Scalar(binomial(n, i)) * ctrl[i * Dim + d];
-
-    std::size_t start = 0;
-    while (start < count) {
-        const std::size_t lanes = (count - start < std::size_t(W)) ? count - start : std::size_t(W);
-        Scalar t[W], s[W], scale[W], acc[Dim][W];
-        bool mirrored[W];
-        for (int w = 0; w < W; ++w) t[w] = ts[start + (std::size_t(w) < lanes ? std::size_t(w) : 0)];
-        for (int w = 0; w < W; ++w) {
-            const Scalar u = Scalar(1) - t[w];
-            mirrored[w] = t[w] > Scalar(0.5);
-            const Scalar num = mirrored[w] ? u : t[w];
-            const Scalar den = mirrored[w] ? t[w] : u;
-            s[w] = num / den;
-            // den^n by repeated squaring, lane-wise.
-            Scalar base = den, result = Scalar(1);
-            for (int e = n; e > 0; e >>= 1) {
-                if (e & 1) result *= base;
-                base *= base;
-            }
-            scale[w] = result;
+        for (int d = 0; d < Dim; ++d) {
+            cbf[i * Dim + d] = Scalar(binomial(n, i)) * ctrl[i * Dim + d];
+            cbr[(n - i) * Dim + d] = cbf[i * Dim + d];
         }
-        for (int d = 0; d < Dim; ++d)
-            for (int w = 0; w < W; ++w) acc[d][w] = mirrored[w] ? cb[d] : cb[n * Dim + d];
-        for (int i = n - 1; i >= 0; --i) {
-            const Scalar* fwd = cb + i * Dim;
-            const Scalar* rev = cb + (n - i) * Dim;
-            for (int d = 0; d < Dim; ++d)
-                for (int w = 0; w < W; ++w) acc[d][w] = acc[d][w] * s[w] + (mirrored[w] ? rev[d] : fwd[d]);
+    if constexpr (!(std::is_same_v<Scalar, float> || std::is_same_v<Scalar, double>)) {
+        for (std::size_t j = 0; j < count; ++j) bezierBatchOne<Scalar, Dim>(cbf, cbr, n, ts[j], out + j * Dim);
+    } else {
+        constexpr int W = int(32 / sizeof(Scalar)); // one 256-bit register of lanes
+        Scalar block[Dim][W];
+        std::size_t start = 0;
+        for (; start + W <= count; start += W) {
+            bezierBatchBlock<Scalar, Dim, W>(cbf, cbr, n, ts + start, block);
+            for (int w = 0; w < W; ++w)
+                for (int d = 0; d < Dim; ++d) out[(start + std::size_t(w)) * Dim + d] = block[d][w];
         }
-        for (std::size_t w = 0; w < lanes; ++w)
-            for (int d = 0; d < Dim; ++d) out[(start + w) * Dim + d] = acc[d][w] * scale[w];
-        start += lanes;
+        for (; start < count; ++start) bezierBatchOne<Scalar, Dim>(cbf, cbr, n, ts[start], out + start * Dim);
     }
 }
 
