@@ -12,6 +12,12 @@
 #include <random>
 #include <vector>
 
+#ifdef FREEFORM_BENCH_OCCT
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#endif
+
 namespace {
 
 using Curve = freeform::BezierCurve<double, 3>;
@@ -78,7 +84,7 @@ void BM_Batch(benchmark::State& state)
     finish(state);
 }
 
-// Peer: the plain Bernstein loop (binomial * t^i * (1-t)^(n-i) with std::pow), arrays of doubles.
+// Peer: the plain Bernstein loop: powers of t forwards, of (1-t) backwards, then the sum.
 void BM_PeerPlainBernstein(benchmark::State& state)
 {
     const int n = static_cast<int>(state.range(0));
@@ -91,9 +97,14 @@ void BM_PeerPlainBernstein(benchmark::State& state)
     for (auto _ : state) {
         for (std::size_t j = 0; j < kCount; ++j) {
             const double t = ts[j];
+            double basis[freeform::kMaxDegree + 1];
+            double power = 1;
+            for (int i = 0; i <= n; ++i, power *= t) basis[i] = binom[i] * power;
+            power = 1;
+            for (int i = n; i >= 0; --i, power *= 1 - t) basis[i] *= power;
             double x = 0, y = 0, z = 0;
             for (int i = 0; i <= n; ++i) {
-                const double b = binom[i] * std::pow(t, i) * std::pow(1 - t, n - i);
+                const double b = basis[i];
                 x += b * pts[3 * i];
                 y += b * pts[3 * i + 1];
                 z += b * pts[3 * i + 2];
@@ -133,6 +144,60 @@ void BM_PeerPlainDeCasteljau(benchmark::State& state)
     }
     finish(state);
 }
+
+#ifdef FREEFORM_BENCH_OCCT
+Handle(Geom_BezierCurve) occtCurve(const Curve& c)
+{
+    TColgp_Array1OfPnt poles(1, c.degree() + 1);
+    for (int i = 0; i <= c.degree(); ++i) {
+        const auto p = c.controlPoint(i);
+        poles.SetValue(i + 1, gp_Pnt(p.x(), p.y(), p.z()));
+    }
+    return new Geom_BezierCurve(poles);
+}
+
+// Peer: Open CASCADE's Geom_BezierCurve::D0.
+void BM_PeerOcctBezierD0(benchmark::State& state)
+{
+    const Handle(Geom_BezierCurve) curve = occtCurve(makeCurve(static_cast<int>(state.range(0))));
+    const auto& ts = parameters();
+    std::vector<double> out(3 * kCount);
+    for (auto _ : state) {
+        gp_Pnt p;
+        for (std::size_t j = 0; j < kCount; ++j) {
+            curve->D0(ts[j], p);
+            out[3 * j] = p.X();
+            out[3 * j + 1] = p.Y();
+            out[3 * j + 2] = p.Z();
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    finish(state);
+}
+
+// Peer: Open CASCADE's cached evaluator GeomAdaptor_Curve::D0 (Horner on a power-basis copy).
+void BM_PeerOcctAdaptorD0(benchmark::State& state)
+{
+    const GeomAdaptor_Curve adaptor(occtCurve(makeCurve(static_cast<int>(state.range(0)))));
+    const auto& ts = parameters();
+    std::vector<double> out(3 * kCount);
+    for (auto _ : state) {
+        gp_Pnt p;
+        for (std::size_t j = 0; j < kCount; ++j) {
+            adaptor.D0(ts[j], p);
+            out[3 * j] = p.X();
+            out[3 * j + 1] = p.Y();
+            out[3 * j + 2] = p.Z();
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    finish(state);
+}
+BENCHMARK(BM_PeerOcctBezierD0)->Arg(3)->Arg(7)->Arg(15)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PeerOcctAdaptorD0)->Arg(3)->Arg(7)->Arg(15)->Unit(benchmark::kMillisecond);
+#endif
 
 } // namespace
 

@@ -1,6 +1,55 @@
-// Placeholder until the obj conversion lands (replaced by its implementation).
+// freeform convert between a document and OBJ free-form geometry (cstype bezier), by extension:
+//   DOC.json -o OUT.obj   Bézier curves, open Bézier splines and Bézier surfaces to OBJ
+//   IN.obj   -o OUT.json  the OBJ's free-form Bézier elements to a document
+
+#include <filesystem>
+
 #include "command.h"
 #include "freeform/core/error.h"
+#include "freeform/io/obj_freeform.h"
+
 namespace freeform::cli {
-int convertObjFreeform(const Args&) { throw Error("convert: this conversion is not available in this build"); }
+
+namespace {
+std::string lowerExtension(const std::string& path)
+{
+    std::string e = std::filesystem::path(path).extension().string();
+    for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+} // namespace
+
+int convertObjFreeform(const Args& args)
+{
+    args.expectPositional(1, "the input file (freeform convert IN -o OUT)");
+    const std::string input = args.positional()[0];
+    const std::string output = args.required("output");
+    const std::string in = lowerExtension(input), out = lowerExtension(output);
+    Json result;
+    if (in == ".json" && out == ".obj") {
+        const Document doc = readDocument(input);
+        const std::string name = args.get("object").value_or("");
+        writeObjFreeform(doc, output, name);
+        Json names = Json::array();
+        for (const DocumentObject& o : doc.objects)
+            if (name.empty() || o.name == name) names.push_back(o.name);
+        result["output"] = output;
+        result["objects"] = std::move(names);
+    } else if (in == ".obj" && out == ".json") {
+        if (args.has("object")) throw UsageError("option --object applies to a document input");
+        const Document doc = readObjFreeform(input);
+        if (doc.objects.empty()) throw Error(input + ": no free-form Bézier curves or surfaces (cstype bezier) found");
+        writeDocument(doc, output);
+        Json names = Json::array();
+        for (const DocumentObject& o : doc.objects) names.push_back(o.name);
+        result["output"] = output;
+        result["objects"] = std::move(names);
+    } else {
+        throw UsageError("convert without --to goes from .json to .obj or from .obj to .json (got " +
+                         (in.empty() ? std::string("no extension") : in) + " to " + (out.empty() ? std::string("no extension") : out) + ")");
+    }
+    printJson(result);
+    return 0;
+}
+
 } // namespace freeform::cli

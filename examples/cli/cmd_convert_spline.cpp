@@ -1,6 +1,81 @@
-// Placeholder until the spline conversion lands (replaced by its implementation).
+// freeform convert --to bezier_spline|deboor_spline: between the Bézier and the de Boor form of a
+// spline in a document (the A-frame and its inverse, curve/aframe.h). The output is the input
+// document with the object replaced by its other form (same name, same editor settings).
+
 #include "command.h"
 #include "freeform/core/error.h"
+#include "spline_object.h"
+
 namespace freeform::cli {
-int convertSpline(const Args&) { throw Error("convert: this conversion is not available in this build"); }
+namespace {
+
+template <int Dim>
+ObjectData toBezier(const Document& doc, const DocumentObject& object)
+{
+    const BezierSpline<double, Dim> spline = splineFromObject<Dim>(doc, object);
+    BezierSplineData out;
+    out.degree = 3;
+    out.closed = spline.closed();
+    out.points = spline.controlPoints();
+    out.intervals = std::get<DeBoorSplineData>(object.data).intervals;
+    return out;
+}
+
+template <int Dim>
+ObjectData toDeBoor(const Document& doc, const DocumentObject& object)
+{
+    const auto& data = std::get<BezierSplineData>(object.data);
+    if (data.degree != 3)
+        throw Error(doc.source + ": object \"" + object.name + "\": de Boor points need a cubic spline, this one has degree " +
+                    std::to_string(data.degree));
+    const BezierSpline<double, Dim> spline = splineFromObject<Dim>(doc, object);
+    const EndCondition end = spline.closed() ? EndCondition::Closed : EndCondition::Clamped;
+    DeBoorSplineData out;
+    out.degree = 3;
+    out.end = toString(end);
+    try {
+        out.points = spline.deBoorPoints(end);
+    } catch (const Error& e) {
+        throw Error(doc.source + ": object \"" + object.name + "\": " + e.what());
+    }
+    out.intervals = data.intervals;
+    return out;
+}
+
+} // namespace
+
+int convertSpline(const Args& args)
+{
+    args.expectPositional(1, "the document (freeform convert DOC.json --object NAME --to FORM -o OUT.json)");
+    const std::string name = args.required("object");
+    const std::string to = args.required("to");
+    const std::string output = args.required("output");
+    if (to != "bezier_spline" && to != "deboor_spline")
+        throw UsageError("option --to: \"" + to + "\" is not one of bezier_spline, deboor_spline");
+    Document doc = readDocument(args.positional()[0]);
+    const DocumentObject& object = doc.object(name);
+    const int dim = splineDimension(doc, object);
+    const std::string from = objectType(object.data);
+    if (from == to) throw Error(doc.source + ": object \"" + name + "\" is already a " + to);
+    ObjectData converted = to == "bezier_spline" ? (dim == 2 ? toBezier<2>(doc, object) : toBezier<3>(doc, object))
+                                                 : (dim == 2 ? toDeBoor<2>(doc, object) : toDeBoor<3>(doc, object));
+    DocumentObject* target = doc.find(name);
+    target->data = std::move(converted);
+    writeDocument(doc, output);
+
+    Json out;
+    out["object"] = name;
+    out["from"] = from;
+    out["to"] = to;
+    out["output"] = output;
+    if (const auto* d = std::get_if<DeBoorSplineData>(&target->data)) {
+        out["end"] = d->end;
+        out["points"] = d->points.cols();
+    } else {
+        out["points"] = std::get<BezierSplineData>(target->data).points.cols();
+    }
+    printJson(out);
+    return 0;
+}
+
 } // namespace freeform::cli

@@ -208,7 +208,21 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         if (d.degree != 3) w.fail("degree", "de Boor splines are cubic: degree must be 3");
         d.end = oneOf(member(obj, "end", w), "end", {"open", "clamped", "closed"}, w);
         d.points = pointList(member(obj, "points", w), "points", 0, w);
-        if (obj.contains("intervals")) d.intervals = positiveList(obj["intervals"], "intervals", w);
+        // Open and clamped: L = count - 3 segments (at least 4 points); closed: L = count (at least 3).
+        const bool closed = d.end == "closed";
+        const long count = static_cast<long>(d.points.cols());
+        const long minimum = closed ? 3 : 4;
+        if (count < minimum)
+            w.fail("points", std::to_string(count) + " de Boor points are too few for end \"" + d.end +
+                                 "\" (needs at least " + std::to_string(minimum) + ")");
+        const long segments = closed ? count : count - 3;
+        if (obj.contains("intervals")) {
+            d.intervals = positiveList(obj["intervals"], "intervals", w);
+            if (static_cast<long>(d.intervals.size()) != segments)
+                w.fail("intervals", "has " + std::to_string(d.intervals.size()) + " lengths for " +
+                                        std::to_string(segments) + " segments (" + std::to_string(count) +
+                                        " de Boor points, end \"" + d.end + "\")");
+        }
         return d;
     }
     if (type == "bezier_surface") {
@@ -233,6 +247,14 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         for (int i = 0; i < 2; ++i)
             d.end[i] = oneOf(end[i], "end[" + std::to_string(i) + "]", {"open", "clamped", "closed"}, w);
         d.points = pointGrid(member(obj, "points", w), d.rows, d.cols, w);
+        // The A-frame needs 4 de Boor points per direction (open, clamped), 3 when closed.
+        const int need[2] = {d.end[0] == "closed" ? 3 : 4, d.end[1] == "closed" ? 3 : 4};
+        if (d.rows < need[0])
+            w.fail("points", std::to_string(d.rows) + " rows are too few for end condition \"" + d.end[0] +
+                                 "\" in u (needs at least " + std::to_string(need[0]) + ")");
+        if (d.cols < need[1])
+            w.fail("points", std::to_string(d.cols) + " points per row are too few for end condition \"" + d.end[1] +
+                                 "\" in v (needs at least " + std::to_string(need[1]) + ")");
         return d;
     }
     if (type == "lattice") {

@@ -1,0 +1,407 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "freeform/io/file.h"
+#include "freeform/io/mesh_io.h"
+#include "freeform/surface/patch_complex.h"
+#include "freeform/tessellate/tessellate.h"
+#include "scene/json_read.h"
+
+namespace freeform::editor {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lowerExtension(const std::string& path)
+{
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+bool isMeshFile(const std::string& ext)
+{
+    return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".off" || ext == ".gltf" || ext == ".glb";
+}
+
+/// Six times the signed volume enclosed by a triangle mesh (positive when its triangles face out).
+double signedVolume6(const PolygonMesh& mesh)
+{
+    double sum = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        for (int k = 1; k + 1 < mesh.faceSize(f); ++k)
+            sum += mesh.positions.col(v[0]).dot(mesh.positions.col(v[k]).cross(mesh.positions.col(v[k + 1])));
+    }
+    return sum;
+}
+
+/// One bezier_surface object per patch of a .bpt file. Patch files do not agree on orientation
+/// (teapot.bpt's f_u x f_v points inwards): when the complex encloses a negative volume, every
+/// patch is transposed (u and v swapped) so that the normals point out.
+std::vector<DocumentObject> bptObjects(const std::string& path)
+{
+    PatchComplex complex = readBpt(path);
+    if (signedVolume6(tessellateUniform(complex, 4, 4)) < 0)
+        for (Patch& patch : complex.patches) patch = patch.transposed();
+    std::vector<DocumentObject> objects;
+    for (std::size_t i = 0; i < complex.patches.size(); ++i) {
+        const auto& patch = complex.patches[i];
+        BezierSurfaceData d;
+        d.degree = {patch.degreeU(), patch.degreeV()};
+        d.points = patch.controlPoints();
+        char name[32];
+        std::snprintf(name, sizeof name, "patch_%02zu", i);
+        objects.push_back({name, d, ""});
+    }
+    return objects;
+}
+
+/// Revisions are unique across all scenes, so a drawer never mistakes a new item for an old one.
+int nextRevision()
+{
+    static int counter = 0;
+    return ++counter;
+}
+
+} // namespace
+
+Scene::Scene() = default;
+
+Scene Scene::load(const std::string& path, double aspect)
+{
+    Scene scene;
+    const std::string ext = lowerExtension(path);
+    if (ext == ".bpt") {
+        scene.document_.objects = bptObjects(path);
+        scene.document_.source = path;
+    } else if (isMeshFile(ext)) {
+        scene.document_.source = path;
+        scene.addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
+    } else {
+        scene.document_ = readDocument(path);
+        scene.path_ = path;
+    }
+    // The editor member: camera, display, imported meshes. Errors name the file.
+    bool hasCamera = false;
+    if (!scene.document_.editor.empty()) {
+        try {
+            const Json e = Json::parse(scene.document_.editor);
+            for (const auto& [key, value] : e.items())
+                if (key != "camera" && key != "display" && key != "meshes") json::fail("editor." + key, "unknown field");
+            if (e.contains("camera")) {
+                scene.camera = Camera::fromJson(e["camera"]);
+                hasCamera = true;
+            }
+            if (e.contains("display")) scene.display = DisplaySettings::fromJson(e["display"]);
+            if (e.contains("meshes")) {
+                const Json& meshes = e["meshes"];
+                if (!meshes.is_array()) json::fail("editor.meshes", "expected an array");
+                for (std::size_t i = 0; i < meshes.size(); ++i) {
+                    const std::string mp = "editor.meshes[" + std::to_string(i) + "]";
+                    const Json& m = meshes[i];
+                    json::requireObject(m, mp);
+                    if (!m.contains("name") || !m["name"].is_string()) json::fail(mp + ".name", "expected a string");
+                    if (!m.contains("path") || !m["path"].is_string()) json::fail(mp + ".path", "expected a string");
+                    for (const auto& [key, value] : m.items())
+                        if (key != "name" && key != "path" && key != "editor") json::fail(mp + "." + key, "unknown field");
+                    scene.addMeshItem(m["name"].get<std::string>(), m["path"].get<std::string>());
+                    if (m.contains("editor")) scene.items_.back().settings = ObjectSettings::fromJson(m["editor"], mp + ".editor");
+                }
+            }
+        } catch (const Error& e) {
+            throw Error(path + ": " + e.what());
+        }
+    }
+    // Object settings.
+    std::vector<SceneItem> meshes(scene.items_.begin(), scene.items_.end());
+    scene.rebuildItems();
+    scene.items_.insert(scene.items_.end(), meshes.begin(), meshes.end());
+    for (std::size_t i = 0; i < scene.document_.objects.size(); ++i) {
+        const DocumentObject& o = scene.document_.objects[i];
+        if (o.editor.empty()) continue;
+        try {
+            scene.items_[i].settings = ObjectSettings::fromJson(Json::parse(o.editor), "object \"" + o.name + "\".editor");
+        } catch (const Error& e) {
+            throw Error(path + ": " + e.what());
+        }
+    }
+    // Mesh files are read now, so that an unreadable one fails the load.
+    scene.updateGeometry();
+    for (const SceneItem& item : scene.items_)
+        if (item.kind == SceneItem::Kind::ImportedMesh && !item.geometry.error.empty()) throw Error(item.geometry.error);
+    if (!hasCamera) {
+        const Eigen::AlignedBox3d box = scene.bounds();
+        scene.camera.setView("iso");
+        scene.camera.fit(box, aspect);
+    }
+    scene.modified_ = scene.path_.empty() && scene.itemCount() > 0; // imported content is unsaved
+    return scene;
+}
+
+void Scene::rebuildItems()
+{
+    std::vector<SceneItem> items;
+    for (const DocumentObject& o : document_.objects) {
+        SceneItem item;
+        item.kind = SceneItem::Kind::DocumentObject;
+        item.name = o.name;
+        item.type = objectType(o.data);
+        items.push_back(std::move(item));
+    }
+    items_ = std::move(items);
+}
+
+void Scene::addMeshItem(const std::string& name, const std::string& path)
+{
+    SceneItem item;
+    item.kind = SceneItem::Kind::ImportedMesh;
+    item.name = uniqueName(name);
+    item.type = "mesh";
+    item.meshPath = path;
+    items_.push_back(std::move(item));
+}
+
+std::string Scene::uniqueName(const std::string& base, const std::vector<SceneItem>& pending) const
+{
+    std::set<std::string> used;
+    for (const SceneItem& i : items_) used.insert(i.name);
+    for (const SceneItem& i : pending) used.insert(i.name);
+    for (const DocumentObject& o : document_.objects) used.insert(o.name);
+    const std::string stem = base.empty() ? "object" : base;
+    if (!used.count(stem)) return stem;
+    for (int k = 2;; ++k) {
+        const std::string candidate = stem + "_" + std::to_string(k);
+        if (!used.count(candidate)) return candidate;
+    }
+}
+
+std::string Scene::resolve(const std::string& meshPath) const
+{
+    const fs::path p(meshPath);
+    if (p.is_absolute() || path_.empty()) return meshPath;
+    return (fs::path(path_).parent_path() / p).string();
+}
+
+Document Scene::toDocument() const
+{
+    Document doc = document_;
+    for (std::size_t i = 0; i < doc.objects.size(); ++i) {
+        const ObjectSettings& s = items_[i].settings;
+        doc.objects[i].editor = s.isDefault() ? std::string() : s.toJson().dump();
+    }
+    Json e;
+    e["camera"] = camera.toJson();
+    e["display"] = display.toJson();
+    Json meshes = Json::array();
+    for (const SceneItem& item : items_) {
+        if (item.kind != SceneItem::Kind::ImportedMesh) continue;
+        Json m;
+        m["name"] = item.name;
+        m["path"] = item.meshPath;
+        if (!item.settings.isDefault()) m["editor"] = item.settings.toJson();
+        meshes.push_back(std::move(m));
+    }
+    if (!meshes.empty()) e["meshes"] = std::move(meshes);
+    doc.editor = e.dump();
+    return doc;
+}
+
+void Scene::save(const std::string& path)
+{
+    // Mesh paths are stored relative to the document when they lie beside or below it.
+    const std::string oldPath = path_;
+    std::vector<std::string> oldMeshPaths;
+    for (SceneItem& item : items_) {
+        if (item.kind != SceneItem::Kind::ImportedMesh) continue;
+        oldMeshPaths.push_back(item.meshPath);
+        const fs::path absolute = fs::absolute(resolve(item.meshPath));
+        const fs::path base = fs::absolute(path).parent_path();
+        const fs::path relative = absolute.lexically_relative(base);
+        item.meshPath = (!relative.empty() && *relative.begin() != "..") ? relative.generic_string() : absolute.string();
+    }
+    try {
+        path_ = path;
+        writeDocument(toDocument(), path);
+    } catch (...) {
+        path_ = oldPath;
+        std::size_t k = 0;
+        for (SceneItem& item : items_)
+            if (item.kind == SceneItem::Kind::ImportedMesh) item.meshPath = oldMeshPaths[k++];
+        throw;
+    }
+    document_.source = path;
+    modified_ = false;
+}
+
+void Scene::importFile(const std::string& path)
+{
+    const std::string ext = lowerExtension(path);
+    if (ext == ".bpt") {
+        std::vector<DocumentObject> objects = bptObjects(path);
+        const std::string stem = fs::path(path).stem().string();
+        std::vector<SceneItem> added;
+        Document next = document_;
+        for (DocumentObject& o : objects) {
+            o.name = uniqueName(stem + "_" + o.name, added);
+            next.objects.push_back(o);
+            SceneItem item;
+            item.name = o.name;
+            item.type = objectType(o.data);
+            added.push_back(std::move(item));
+        }
+        const auto documentItems = static_cast<std::ptrdiff_t>(document_.objects.size());
+        document_ = std::move(next);
+        items_.insert(items_.begin() + documentItems, added.begin(), added.end());
+    } else if (isMeshFile(ext)) {
+        ItemGeometry g = buildMeshGeometry(path); // reads it now: Error leaves the scene as it was
+        addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
+        items_.back().geometry = std::move(g);
+        items_.back().geometryDirty = false;
+        items_.back().revision = nextRevision();
+    } else {
+        throw Error(path + ": cannot import this kind of file (.bpt or a mesh: .obj .ply .stl .off .gltf .glb)");
+    }
+    modified_ = true;
+}
+
+PolygonMesh Scene::mergedMesh()
+{
+    updateGeometry();
+    PolygonMesh out;
+    std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> positions, normals;
+    Eigen::Index total = 0;
+    for (const SceneItem& item : items_)
+        if (item.settings.visible && item.geometry.surface) total += item.geometry.surface->positions.cols();
+    out.positions.resize(3, total);
+    out.normals.resize(3, total);
+    Eigen::Index offset = 0;
+    for (const SceneItem& item : items_) {
+        if (!item.settings.visible || !item.geometry.surface) continue;
+        const PolygonMesh& m = *item.geometry.surface;
+        out.positions.middleCols(offset, m.positions.cols()) = m.positions;
+        out.normals.middleCols(offset, m.normals.cols()) = m.normals;
+        for (int f = 0; f < m.faceCount(); ++f) {
+            std::vector<int> face(m.face(f), m.face(f) + m.faceSize(f));
+            for (int& v : face) v += static_cast<int>(offset);
+            out.addFace(face.begin(), face.end());
+        }
+        offset += m.positions.cols();
+    }
+    return out;
+}
+
+void Scene::exportMesh(const std::string& path)
+{
+    const PolygonMesh mesh = mergedMesh();
+    if (mesh.faceCount() == 0) throw Error("export: the scene has no visible surfaces or meshes");
+    writePolygonMesh(mesh, path);
+}
+
+const DocumentObject& Scene::object(int i) const
+{
+    if (item(i).kind != SceneItem::Kind::DocumentObject) throw Error("\"" + item(i).name + "\" is a mesh, not a document object");
+    return document_.objects.at(static_cast<std::size_t>(i));
+}
+
+void Scene::replaceObject(int i, const DocumentObject& object)
+{
+    const DocumentObject& old = this->object(i);
+    if (object.name != old.name) throw Error("replaceObject: the name must stay \"" + old.name + "\"");
+    // Validate through the strict reader: a document of this one object must parse.
+    Document single;
+    single.objects.push_back(object);
+    Document checked = parseDocument(formatDocument(single), "object \"" + object.name + "\"");
+    document_.objects[static_cast<std::size_t>(i)].data = std::move(checked.objects.front().data);
+    items_[static_cast<std::size_t>(i)].geometryDirty = true;
+    modified_ = true;
+}
+
+void Scene::setControlPoint(int i, int k, const Eigen::Vector3d& p)
+{
+    DocumentObject o = object(i);
+    std::visit(
+        [&](auto& d) {
+            using T = std::decay_t<decltype(d)>;
+            PointColumns* points = nullptr;
+            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) points = &d.vertices;
+            else points = &d.points;
+            if (k < 0 || k >= points->cols())
+                throw Error("\"" + o.name + "\" has no control point " + std::to_string(k));
+            for (Eigen::Index r = 0; r < points->rows(); ++r) (*points)(r, k) = p[r];
+        },
+        o.data);
+    replaceObject(i, o);
+}
+
+void Scene::setSettings(int i, const ObjectSettings& settings)
+{
+    SceneItem& it = item(i);
+    if (it.settings == settings) return;
+    const bool geometry = !(it.settings.tessellation == settings.tessellation);
+    it.settings = settings;
+    if (geometry && it.kind == SceneItem::Kind::DocumentObject) it.geometryDirty = true;
+    modified_ = true;
+}
+
+void Scene::setScalars(int i, std::vector<float> scalars)
+{
+    SceneItem& it = item(i);
+    const long vertices = it.geometry.surface ? it.geometry.surface->vertexCount() : 0;
+    if (!scalars.empty() && static_cast<long>(scalars.size()) != vertices)
+        throw Error("\"" + it.name + "\": " + std::to_string(scalars.size()) + " scalars for " + std::to_string(vertices) + " vertices");
+    it.scalars = std::move(scalars);
+    it.revision = nextRevision();
+}
+
+void Scene::remove(int i)
+{
+    if (item(i).kind == SceneItem::Kind::DocumentObject)
+        document_.objects.erase(document_.objects.begin() + i);
+    items_.erase(items_.begin() + i);
+    modified_ = true;
+}
+
+void Scene::invalidateGeometry()
+{
+    for (SceneItem& item : items_)
+        if (item.kind == SceneItem::Kind::DocumentObject) item.geometryDirty = true;
+}
+
+void Scene::updateGeometry()
+{
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+        SceneItem& item = items_[i];
+        if (!item.geometryDirty) continue;
+        if (item.kind == SceneItem::Kind::DocumentObject) {
+            item.geometry = buildGeometry(document_.objects[i].data, item.settings, display.tolerance);
+        } else {
+            try {
+                item.geometry = buildMeshGeometry(resolve(item.meshPath));
+            } catch (const Error& e) {
+                item.geometry = ItemGeometry{};
+                item.geometry.error = e.what();
+            }
+        }
+        if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
+            item.scalars.clear();
+        item.geometryDirty = false;
+        item.revision = nextRevision();
+    }
+}
+
+Eigen::AlignedBox3d Scene::bounds() const
+{
+    Eigen::AlignedBox3d box;
+    box.setEmpty();
+    for (const SceneItem& item : items_)
+        if (item.settings.visible && !item.geometry.bounds.isEmpty()) box.extend(item.geometry.bounds);
+    if (box.isEmpty()) box = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
+    return box;
+}
+
+} // namespace freeform::editor

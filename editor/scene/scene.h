@@ -1,0 +1,125 @@
+#pragma once
+// The scene: a freeform Document (the truth, saved as it is) plus, per object, the settings and the
+// derived geometry the renderer draws. Imported meshes are scene items too; the document records
+// them by file path in its "editor" member, so saving never loses them.
+//
+// Invariants: items_ holds one item per document object, in document order, followed by the
+// imported meshes; every change to the document goes through replaceObject / setControlPoint /
+// add* / remove (the one path that marks an item dirty and the scene modified, and the place where
+// undo records will hook in). Derived geometry is rebuilt lazily by updateGeometry() for dirty
+// items only. Loading is all or nothing: a file that cannot be read throws Error and leaves the
+// scene untouched (load() builds a new Scene; the caller swaps it in).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "freeform/io/document.h"
+#include "freeform/mesh/polygon_mesh.h"
+#include "render/render_types.h"
+#include "scene/camera.h"
+#include "scene/settings.h"
+
+namespace freeform::editor {
+
+/// What the renderer draws for one item, derived from the document.
+struct ItemGeometry {
+    std::optional<PolygonMesh> surface;   // triangles with per-vertex normals
+    Eigen::Matrix<double, 3, Eigen::Dynamic> curve;  // polyline points (3 x P), may be empty
+    bool curveClosed = false;
+    std::vector<std::pair<int, int>> netEdges;       // control net / polygon edges into netPoints
+    Eigen::Matrix<double, 3, Eigen::Dynamic> netPoints; // control points (3 x N; 2D padded with z = 0)
+    Eigen::AlignedBox3d bounds;
+    std::string error;                    // set when the geometry could not be built
+};
+
+struct SceneItem {
+    enum class Kind { DocumentObject, ImportedMesh };
+    Kind kind = Kind::DocumentObject;
+    std::string name;
+    std::string type;                     // document type, or "mesh"
+    std::string meshPath;                 // imported mesh: the file as given in the document
+    ObjectSettings settings;
+    ItemGeometry geometry;
+    bool geometryDirty = true;            // the CPU geometry must be rebuilt
+    int revision = 0;                     // bumped with every rebuild (the GPU copy compares it)
+    std::vector<float> scalars;           // per-vertex scalars of the surface (colour map), or empty
+};
+
+class Scene {
+public:
+    Scene();
+
+    /// Reads a document (.json), a patch file (.bpt: one bezier_surface per patch) or a mesh in any
+    /// format the library reads, with the camera and display settings saved in a document (or a
+    /// view fitted to the geometry otherwise). Error when the file cannot be read: nothing changes.
+    static Scene load(const std::string& path, double aspect = 4.0 / 3.0);
+
+    /// Writes the document with the editor's settings to path atomically and remembers the path.
+    void save(const std::string& path);
+    /// The document as it would be saved (objects, object settings, camera, display, meshes).
+    Document toDocument() const;
+    std::string text() const { return formatDocument(toDocument()); }
+
+    /// Adds the patches of a .bpt file or a mesh file to this scene (Error: nothing changes).
+    void importFile(const std::string& path);
+    /// The tessellation of every visible surface and mesh, merged, written by extension (.obj ...).
+    void exportMesh(const std::string& path);
+    PolygonMesh mergedMesh();
+
+    const Document& document() const { return document_; }
+    const std::string& path() const { return path_; }
+    bool modified() const { return modified_; }
+    void markSaved() { modified_ = false; }
+
+    int itemCount() const { return static_cast<int>(items_.size()); }
+    SceneItem& item(int i) { return items_.at(static_cast<std::size_t>(i)); }
+    const SceneItem& item(int i) const { return items_.at(static_cast<std::size_t>(i)); }
+    /// The document object behind item i (Error for an imported mesh).
+    const DocumentObject& object(int i) const;
+
+    /// Replaces the document object behind item i (same name) after validating it through the
+    /// document reader; Error (nothing changes) when the new object is invalid.
+    void replaceObject(int i, const DocumentObject& object);
+    /// Moves control point k of item i (2D objects ignore z). Error when invalid.
+    void setControlPoint(int i, int k, const Eigen::Vector3d& p);
+    void setSettings(int i, const ObjectSettings& settings);
+    /// Per-vertex scalars on item i's surface (size = its vertex count, or empty).
+    void setScalars(int i, std::vector<float> scalars);
+    void remove(int i);
+
+    /// Rebuilds the geometry of dirty items (tessellation, sampling).
+    void updateGeometry();
+    /// The bounding box of the visible items (updateGeometry first); a unit box when empty.
+    Eigen::AlignedBox3d bounds() const;
+
+    Camera camera;
+    DisplaySettings display;
+    /// Marks the settings (camera, display) as changed, i.e. the file as unsaved.
+    void touch() { modified_ = true; }
+    /// Marks all geometry dirty (e.g. after the tessellation tolerance changed).
+    void invalidateGeometry();
+
+private:
+    void rebuildItems();
+    void addMeshItem(const std::string& name, const std::string& path);
+    std::string uniqueName(const std::string& base, const std::vector<SceneItem>& pending = {}) const;
+    std::string resolve(const std::string& meshPath) const;
+
+    Document document_;
+    std::vector<SceneItem> items_;
+    std::string path_;
+    bool modified_ = false;
+};
+
+/// Builds the geometry of a document object (tolerance: adaptive sampling in world units).
+ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance);
+/// Reads a mesh file and makes sure it has triangles and per-vertex normals.
+ItemGeometry buildMeshGeometry(const std::string& path);
+/// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.
+PolygonMesh withNormals(PolygonMesh mesh);
+
+} // namespace freeform::editor

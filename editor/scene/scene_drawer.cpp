@@ -1,0 +1,246 @@
+#include "scene/scene_drawer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace freeform::editor {
+
+namespace {
+
+const Vec3f kCurveColor(0.95f, 0.8f, 0.25f);
+const Vec3f kNetColor(0.62f, 0.64f, 0.68f);
+const Vec3f kPointColor(0.95f, 0.55f, 0.2f);
+const Vec3f kSelectedNet(1.0f, 1.0f, 1.0f);
+const Vec3f kSelectedPoint(1.0f, 0.9f, 0.3f);
+const Vec3f kNormalColor(0.3f, 0.85f, 0.95f);
+
+MeshData meshData(const PolygonMesh& mesh, const std::vector<float>& scalars)
+{
+    MeshData d;
+    d.positions = mesh.positions.cast<float>();
+    d.normals = mesh.normals.cast<float>();
+    d.triangles.reserve(static_cast<std::size_t>(mesh.faceCount()) * 3);
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (int k = 0; k < 3; ++k) d.triangles.push_back(static_cast<std::uint32_t>(mesh.face(f)[k]));
+    d.scalars = scalars;
+    return d;
+}
+
+/// A line segment list of `segments` pairs.
+class LineBuilder {
+public:
+    void add(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Vec3f& color)
+    {
+        points_.push_back(a.cast<float>());
+        points_.push_back(b.cast<float>());
+        colors_.push_back(color);
+        colors_.push_back(color);
+    }
+    LineData data() const
+    {
+        LineData d;
+        d.positions.resize(3, static_cast<Eigen::Index>(points_.size()));
+        d.colors.resize(3, static_cast<Eigen::Index>(points_.size()));
+        for (std::size_t i = 0; i < points_.size(); ++i) {
+            d.positions.col(static_cast<Eigen::Index>(i)) = points_[i];
+            d.colors.col(static_cast<Eigen::Index>(i)) = colors_[i];
+        }
+        return d;
+    }
+
+private:
+    std::vector<Vec3f> points_, colors_;
+};
+
+/// 1, 2 or 5 times a power of ten, the nearest at or above x.
+double niceStep(double x)
+{
+    const double p = std::pow(10.0, std::floor(std::log10(x)));
+    for (double m : {1.0, 2.0, 5.0, 10.0})
+        if (m * p >= x) return m * p;
+    return 10 * p;
+}
+
+} // namespace
+
+SceneDrawer::~SceneDrawer()
+{
+    clear();
+}
+
+void SceneDrawer::clear()
+{
+    for (auto& [name, gpu] : gpu_) releaseAll(gpu);
+    gpu_.clear();
+    for (BufferHandle* h : {&grid_, &axes_})
+        if (*h) renderer_.release(*h), *h = {};
+    gridScale_ = 0;
+}
+
+void SceneDrawer::releaseAll(Gpu& gpu)
+{
+    for (BufferHandle* h : {&gpu.mesh, &gpu.curve, &gpu.net, &gpu.points, &gpu.normals})
+        if (*h) renderer_.release(*h), *h = {};
+}
+
+FrameInfo SceneDrawer::frameInfo(const Scene& scene, int width, int height)
+{
+    FrameInfo f;
+    f.width = std::max(width, 1);
+    f.height = std::max(height, 1);
+    const Eigen::AlignedBox3d box = scene.bounds();
+    // The grid reaches a little beyond the scene; keep it inside the clipping range too.
+    const double radius = 0.5 * box.diagonal().norm() * 1.6 + 1e-9;
+    double near = 0, far = 0;
+    scene.camera.clipPlanes(box.center(), radius, near, far);
+    f.view = scene.camera.viewMatrix().cast<float>();
+    f.projection = scene.camera.projectionMatrix(double(f.width) / double(f.height), near, far).cast<float>();
+    f.background = scene.display.background;
+    return f;
+}
+
+void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double normalLength)
+{
+    const ItemGeometry& g = item.geometry;
+    const bool geometryChanged = gpu.revision != item.revision;
+    if (geometryChanged) {
+        if (g.surface && g.surface->faceCount() > 0) {
+            gpu.mesh = renderer_.uploadMesh(gpu.mesh, meshData(*g.surface, item.scalars));
+            gpu.triangles = g.surface->faceCount();
+        } else if (gpu.mesh) {
+            renderer_.release(gpu.mesh);
+            gpu.mesh = {};
+            gpu.triangles = 0;
+        }
+        LineBuilder curve;
+        for (Eigen::Index i = 0; i + 1 < g.curve.cols(); ++i) curve.add(g.curve.col(i), g.curve.col(i + 1), kCurveColor);
+        gpu.curve = renderer_.uploadLines(gpu.curve, curve.data());
+    }
+    if (geometryChanged || gpu.selected != selected) {
+        LineBuilder net;
+        for (const auto& [a, b] : g.netEdges) net.add(g.netPoints.col(a), g.netPoints.col(b), selected ? kSelectedNet : kNetColor);
+        gpu.net = renderer_.uploadLines(gpu.net, net.data());
+        PointData points;
+        points.positions = g.netPoints.cast<float>();
+        points.colors.resize(3, g.netPoints.cols());
+        points.colors.colwise() = selected ? kSelectedPoint : kPointColor;
+        gpu.points = renderer_.uploadPoints(gpu.points, points);
+    }
+    if (geometryChanged || gpu.normalLength != normalLength) {
+        LineBuilder normals;
+        if (g.surface && g.surface->normals.cols() == g.surface->positions.cols())
+            for (Eigen::Index i = 0; i < g.surface->positions.cols(); ++i)
+                normals.add(g.surface->positions.col(i), g.surface->positions.col(i) + normalLength * g.surface->normals.col(i),
+                            kNormalColor);
+        gpu.normals = renderer_.uploadLines(gpu.normals, normals.data());
+    }
+    gpu.revision = item.revision;
+    gpu.selected = selected;
+    gpu.normalLength = normalLength;
+}
+
+long SceneDrawer::draw(Scene& scene, int width, int height, int selected)
+{
+    scene.updateGeometry();
+    const DisplaySettings& d = scene.display;
+    const FrameInfo frame = frameInfo(scene, width, height);
+    const Eigen::AlignedBox3d box = scene.bounds();
+    const double diameter = box.diagonal().norm();
+
+    // Lights in eye space: the headlight at the eye, the others carried by the view matrix.
+    EyeLights lights;
+    if (d.headlight) {
+        lights.positions.push_back(Vec3f::Zero());
+        lights.colors.push_back(d.headlightColor);
+    }
+    for (const PointLight& l : d.lights) {
+        if (!l.enabled || static_cast<int>(lights.positions.size()) >= kMaxLights) continue;
+        lights.positions.push_back((frame.view * l.position.homogeneous()).head<3>());
+        lights.colors.push_back(l.color);
+    }
+
+    // Upload what changed; forget items that are gone.
+    std::set<std::string> present;
+    for (int i = 0; i < scene.itemCount(); ++i) {
+        const SceneItem& item = scene.item(i);
+        present.insert(item.name);
+        upload(item, gpu_[item.name], i == selected, d.normalLength * diameter);
+    }
+    for (auto it = gpu_.begin(); it != gpu_.end();) {
+        if (present.count(it->first)) {
+            ++it;
+        } else {
+            releaseAll(it->second);
+            it = gpu_.erase(it);
+        }
+    }
+
+    // Ground grid in the plane z = 0 and the axes, sized to the scene.
+    const double extent = std::max({std::abs(box.min().x()), std::abs(box.max().x()), std::abs(box.min().y()),
+                                    std::abs(box.max().y()), 0.5 * diameter, 1e-6});
+    if (!grid_ || gridScale_ != extent) {
+        const double step = niceStep(extent / 8);
+        const int lines = static_cast<int>(std::ceil(extent / step));
+        const double reach = lines * step;
+        LineBuilder grid;
+        const Vec3f minor(0.3f, 0.31f, 0.33f);
+        for (int k = -lines; k <= lines; ++k) {
+            const double t = k * step;
+            grid.add({t, -reach, 0}, {t, reach, 0}, k == 0 ? Vec3f(0.4f, 0.4f, 0.42f) : minor);
+            grid.add({-reach, t, 0}, {reach, t, 0}, k == 0 ? Vec3f(0.4f, 0.4f, 0.42f) : minor);
+        }
+        LineBuilder axes;
+        axes.add({0, 0, 0}, {reach, 0, 0}, Vec3f(0.9f, 0.25f, 0.25f));
+        axes.add({0, 0, 0}, {0, reach, 0}, Vec3f(0.3f, 0.85f, 0.3f));
+        axes.add({0, 0, 0}, {0, 0, reach}, Vec3f(0.3f, 0.45f, 0.95f));
+        grid_ = renderer_.uploadLines(grid_, grid.data());
+        axes_ = renderer_.uploadLines(axes_, axes.data());
+        gridScale_ = extent;
+    }
+
+    renderer_.resizeTarget(frame.width, frame.height, d.samples);
+    renderer_.beginFrame(frame, lights);
+    const Mat4f identity = Mat4f::Identity();
+    if (d.grid) renderer_.drawLines(grid_, identity);
+    if (d.axes) renderer_.drawLines(axes_, identity);
+
+    long triangles = 0;
+    for (int i = 0; i < scene.itemCount(); ++i) {
+        const SceneItem& item = scene.item(i);
+        if (!item.settings.visible) continue;
+        const Gpu& gpu = gpu_[item.name];
+        if (gpu.mesh) {
+            SurfaceStyle style;
+            style.shading = d.shading;
+            style.specular = d.specular;
+            style.material = item.settings.ownMaterial ? item.settings.material : d.material;
+            style.backColor = d.backColor;
+            style.wireframe = d.wireframe;
+            style.flipNormals = d.flipNormals;
+            style.analysis = d.analysis;
+            style.stripes = d.stripes;
+            if (!item.scalars.empty()) {
+                const auto [lo, hi] = std::minmax_element(item.scalars.begin(), item.scalars.end());
+                style.scalarMin = *lo;
+                style.scalarMax = *hi;
+            }
+            renderer_.drawMesh(gpu.mesh, identity, style);
+            triangles += gpu.triangles;
+        }
+        renderer_.drawLines(gpu.curve, identity);
+        if (d.normals && gpu.normals) renderer_.drawLines(gpu.normals, identity);
+    }
+    // Control structures on top of the surfaces they steer.
+    for (int i = 0; i < scene.itemCount(); ++i) {
+        const SceneItem& item = scene.item(i);
+        if (!item.settings.visible) continue;
+        const Gpu& gpu = gpu_[item.name];
+        if (d.controlNets || i == selected) renderer_.drawLines(gpu.net, identity, false);
+        if (d.controlPoints || i == selected) renderer_.drawPoints(gpu.points, identity, d.pointSize);
+    }
+    renderer_.endFrame();
+    return triangles;
+}
+
+} // namespace freeform::editor

@@ -1,0 +1,49 @@
+#pragma once
+// Draws a Scene through the Renderer interface: uploads each item's geometry when its revision
+// changed (and only then), builds the frame's camera and lights, and issues the draw calls for
+// surfaces, curves, control nets and points, normals, the ground grid and the axes.
+
+#include <map>
+#include <string>
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace freeform::editor {
+
+class SceneDrawer {
+public:
+    explicit SceneDrawer(Renderer& renderer) : renderer_(renderer) {}
+    ~SceneDrawer();
+    SceneDrawer(const SceneDrawer&) = delete;
+    SceneDrawer& operator=(const SceneDrawer&) = delete;
+
+    /// The camera matrices for a viewport of this size (near/far planes from the scene bounds).
+    static FrameInfo frameInfo(const Scene& scene, int width, int height);
+
+    /// Draws the whole scene into the renderer's target (updateGeometry first). `selected` is the
+    /// highlighted item or -1. Returns the number of triangles drawn.
+    long draw(Scene& scene, int width, int height, int selected = -1);
+
+    /// Forgets every GPU buffer (after the scene was replaced).
+    void clear();
+
+private:
+    struct Gpu {
+        int revision = -1;
+        BufferHandle mesh, curve, net, points, normals;
+        std::size_t scalarCount = 0;
+        bool selected = false;
+        double normalLength = 0;
+        long triangles = 0;
+    };
+    void upload(const SceneItem& item, Gpu& gpu, bool selected, double normalLength);
+    void releaseAll(Gpu& gpu);
+
+    Renderer& renderer_;
+    std::map<std::string, Gpu> gpu_;        // by item name (unique within a scene)
+    BufferHandle grid_, axes_;
+    double gridScale_ = 0;
+};
+
+} // namespace freeform::editor

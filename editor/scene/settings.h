@@ -1,0 +1,68 @@
+#pragma once
+// Display settings of the whole view and per-object settings, with their JSON form (the "display"
+// member of the document's "editor" object and each object's own "editor" member; docs/format.md).
+// Plain data: the UI edits them, the scene draws with them, the document saves them.
+
+#include <string>
+#include <vector>
+
+#include "render/render_types.h"
+#include "scene/camera.h"
+
+namespace freeform::editor {
+
+struct DisplaySettings {
+    Shading shading = Shading::Phong;
+    SpecularModel specular = SpecularModel::Phong;
+    Material material;                 // surfaces without a material of their own
+    Vec3f backColor{0.35f, 0.45f, 0.75f};
+    bool wireframe = false;
+    bool flipNormals = false;
+    SurfaceAnalysis analysis = SurfaceAnalysis::None;
+    float stripes = 12.0f;
+    bool controlNets = false;          // of every object (the selected one always shows its own)
+    bool controlPoints = false;
+    bool normals = false;
+    float normalLength = 0.03f;        // fraction of the scene's diameter
+    bool grid = true;
+    bool axes = true;
+    float pointSize = 7.0f;            // control point discs, pixels
+    bool headlight = true;
+    Vec3f headlightColor{0.55f, 0.55f, 0.55f};
+    std::vector<PointLight> lights{{Vec3f(6, -8, 10), Vec3f(0.45f, 0.45f, 0.45f), true},
+                                   {Vec3f(-8, 4, 3), Vec3f(0.2f, 0.2f, 0.25f), true}};
+    Vec3f background{0.19f, 0.2f, 0.22f};
+    int samples = 4;                   // multisampling (0: off)
+    double tolerance = 1e-3;           // adaptive tessellation of surfaces and curves (world units)
+
+    Json toJson() const;
+    static DisplaySettings fromJson(const Json& json);
+    bool operator==(const DisplaySettings&) const = default;
+};
+
+/// How a surface object is turned into triangles.
+struct Tessellation {
+    enum class Mode { Adaptive, Uniform } mode = Mode::Adaptive;
+    double tolerance = 0;              // 0: the display setting
+    int segments = 8;                  // per patch side, uniform mode
+    bool flip = false;                 // reverse the orientation (triangles and normals)
+    bool operator==(const Tessellation&) const = default;
+};
+
+struct ObjectSettings {
+    bool visible = true;
+    bool ownMaterial = false;          // use `material` rather than the display default
+    Material material;
+    Tessellation tessellation;
+
+    bool isDefault() const { return *this == ObjectSettings{}; }
+    Json toJson() const;
+    /// path names the object in messages ("object \"spout\".editor").
+    static ObjectSettings fromJson(const Json& json, const std::string& path);
+    bool operator==(const ObjectSettings&) const = default;
+};
+
+Json materialToJson(const Material& m);
+Material materialFromJson(const Json& json, const std::string& path);
+
+} // namespace freeform::editor

@@ -1,0 +1,437 @@
+#include "ui/ui.h"
+
+#include <imgui.h>
+
+#include <cstdio>
+#include <cstring>
+
+namespace freeform::editor {
+
+namespace {
+
+constexpr float kPanelWidth = 290.0f;
+
+/// Height of the main menu bar (the panels start below it).
+float menuHeight()
+{
+    return ImGui::GetFrameHeight();
+}
+
+/// ImGui 1.86 maps its named keys to the backend's key codes.
+bool keyPressed(ImGuiKey key)
+{
+    return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key));
+}
+
+bool colorEdit(const char* label, Vec3f& c)
+{
+    return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float);
+}
+
+bool materialEditor(Material& m)
+{
+    bool changed = false;
+    changed |= colorEdit("ambient", m.ambient);
+    changed |= colorEdit("diffuse", m.diffuse);
+    changed |= colorEdit("specular", m.specular);
+    changed |= ImGui::SliderFloat("shininess", &m.shininess, 1.0f, 500.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+    return changed;
+}
+
+void openPathDialog(UiState& s, UiState::PathDialog which, const std::string& initial)
+{
+    s.pathDialog = which;
+    std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
+}
+
+void mainMenu(Scene& scene, UiState& s, UiActions& actions)
+{
+    if (!ImGui::BeginMainMenuBar()) return;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
+        if (ImGui::MenuItem("Open...", "Ctrl+O")) openPathDialog(s, UiState::PathDialog::Open, scene.path());
+        if (ImGui::BeginMenu("Open recent", !actions.recentFiles().empty())) {
+            for (const std::string& path : actions.recentFiles())
+                if (ImGui::MenuItem(path.c_str())) actions.open(path);
+            ImGui::EndMenu();
+        }
+        if (ImGui::MenuItem("Save", "Ctrl+S")) {
+            if (scene.path().empty()) openPathDialog(s, UiState::PathDialog::SaveAs, "scene.json");
+            else actions.save();
+        }
+        if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
+            openPathDialog(s, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
+        ImGui::Separator();
+        if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) openPathDialog(s, UiState::PathDialog::Import, "");
+        if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) openPathDialog(s, UiState::PathDialog::Export, "scene.obj");
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        DisplaySettings& d = scene.display;
+        int shading = static_cast<int>(d.shading);
+        if (ImGui::RadioButton("flat", &shading, 0) | ImGui::RadioButton("Gouraud", &shading, 1) |
+            ImGui::RadioButton("Phong", &shading, 2)) {
+            d.shading = static_cast<Shading>(shading);
+            scene.touch();
+        }
+        ImGui::Separator();
+        for (const char* v : {"front", "back", "left", "right", "top", "bottom", "iso"})
+            if (ImGui::MenuItem(v)) actions.setView(v);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Fit all", "Home")) actions.fit(false);
+        if (ImGui::MenuItem("Fit selection", "F", false, s.selected >= 0)) actions.fit(true);
+        bool ortho = scene.camera.projection == Projection::Orthographic;
+        if (ImGui::MenuItem("Orthographic", "5", &ortho)) {
+            scene.camera.projection = ortho ? Projection::Orthographic : Projection::Perspective;
+            scene.touch();
+        }
+        bool arcball = scene.camera.orbit == OrbitMode::Arcball;
+        if (ImGui::MenuItem("Arcball orbit", nullptr, &arcball)) {
+            scene.camera.orbit = arcball ? OrbitMode::Arcball : OrbitMode::Turntable;
+            scene.touch();
+        }
+        ImGui::MenuItem("Display panel", nullptr, &s.showDisplay);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Help")) {
+        ImGui::MenuItem("Controls", "F1", &s.showHelp);
+        ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    const std::string title = (scene.path().empty() ? std::string("untitled") : scene.path()) + (scene.modified() ? " *" : "");
+    ImGui::TextUnformatted(title.c_str());
+    char stats[96];
+    std::snprintf(stats, sizeof stats, "   %ld triangles   %.1f ms", s.triangles, s.frameMs);
+    ImGui::TextDisabled("%s", stats);
+    ImGui::EndMainMenuBar();
+}
+
+void outliner(Scene& scene, UiState& s)
+{
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 8, vp->Pos.y + menuHeight() + 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth - 60, 260), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Scene")) {
+        for (int i = 0; i < scene.itemCount(); ++i) {
+            SceneItem& item = scene.item(i);
+            ImGui::PushID(i);
+            bool visible = item.settings.visible;
+            if (ImGui::Checkbox("##visible", &visible)) {
+                ObjectSettings settings = item.settings;
+                settings.visible = visible;
+                scene.setSettings(i, settings);
+            }
+            ImGui::SameLine();
+            const std::string label = item.name + "  (" + item.type + ")" + (item.geometry.error.empty() ? "" : "  !");
+            if (ImGui::Selectable(label.c_str(), s.selected == i)) s.selected = (s.selected == i) ? -1 : i;
+            if (!item.geometry.error.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", item.geometry.error.c_str());
+            ImGui::PopID();
+        }
+        if (scene.itemCount() == 0) ImGui::TextDisabled("empty: open or import a file, or drop one here");
+    }
+    ImGui::End();
+}
+
+/// Editable control points of a document object (one row per point).
+void controlPointTable(Scene& scene, int index, UiState& s)
+{
+    const DocumentObject& object = scene.object(index);
+    const PointColumns* points = std::visit(
+        [](const auto& d) -> const PointColumns* {
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return &d.vertices;
+            else return &d.points;
+        },
+        object.data);
+    const int dim = static_cast<int>(points->rows());
+    const int count = static_cast<int>(points->cols());
+    if (!ImGui::CollapsingHeader(("control points (" + std::to_string(count) + ")").c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::BeginChild("points", ImVec2(0, 220), true);
+    ImGuiListClipper clipper;
+    clipper.Begin(count);
+    while (clipper.Step()) {
+        for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
+            double value[3] = {0, 0, 0};
+            for (int r = 0; r < dim; ++r) value[r] = (*points)(r, k);
+            ImGui::PushID(k);
+            const std::string label = std::to_string(k);
+            if (ImGui::InputScalarN(label.c_str(), ImGuiDataType_Double, value, dim, nullptr, nullptr, "%.6g",
+                                    ImGuiInputTextFlags_EnterReturnsTrue)) {
+                try {
+                    scene.setControlPoint(index, k, Eigen::Vector3d(value[0], value[1], value[2]));
+                } catch (const Error& e) {
+                    s.error = e.what();
+                }
+            }
+            ImGui::PopID();
+        }
+    }
+    ImGui::EndChild();
+}
+
+void properties(Scene& scene, UiState& s)
+{
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - kPanelWidth - 8, vp->Pos.y + menuHeight() + 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 420), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Properties")) {
+        if (s.selected < 0 || s.selected >= scene.itemCount()) {
+            ImGui::TextDisabled("select an object in the Scene panel");
+        } else {
+            SceneItem& item = scene.item(s.selected);
+            ImGui::Text("%s", item.name.c_str());
+            ImGui::TextDisabled("%s", item.type.c_str());
+            ObjectSettings settings = item.settings;
+            bool changed = ImGui::Checkbox("visible", &settings.visible);
+            if (item.kind == SceneItem::Kind::DocumentObject) {
+                std::visit(
+                    [](const auto& d) {
+                        using T = std::decay_t<decltype(d)>;
+                        if constexpr (std::is_same_v<T, BezierCurveData>) ImGui::Text("degree %d, %dD", int(d.points.cols()) - 1, int(d.points.rows()));
+                        else if constexpr (std::is_same_v<T, BezierSplineData>) ImGui::Text("degree %d, %s", d.degree, d.closed ? "closed" : "open");
+                        else if constexpr (std::is_same_v<T, DeBoorSplineData>) ImGui::Text("degree %d, end %s", d.degree, d.end.c_str());
+                        else if constexpr (std::is_same_v<T, BezierSurfaceData> || std::is_same_v<T, DeBoorSurfaceData>) ImGui::Text("degree %d x %d", d.degree[0], d.degree[1]);
+                        else if constexpr (std::is_same_v<T, LatticeData>) ImGui::Text("degree %d x %d x %d", d.degree[0], d.degree[1], d.degree[2]);
+                        else ImGui::Text("scheme %s", d.scheme.c_str());
+                    },
+                    scene.object(s.selected).data);
+            }
+            if (item.geometry.surface) {
+                ImGui::Text("%d vertices, %d triangles", item.geometry.surface->vertexCount(), item.geometry.surface->faceCount());
+                if (item.kind == SceneItem::Kind::DocumentObject &&
+                    ImGui::CollapsingHeader("tessellation", ImGuiTreeNodeFlags_DefaultOpen)) {
+                    int mode = static_cast<int>(settings.tessellation.mode);
+                    changed |= ImGui::Combo("mode", &mode, "adaptive\0uniform\0");
+                    settings.tessellation.mode = static_cast<Tessellation::Mode>(mode);
+                    if (settings.tessellation.mode == Tessellation::Mode::Adaptive) {
+                        double t = settings.tessellation.tolerance > 0 ? settings.tessellation.tolerance : scene.display.tolerance;
+                        const double lo = 1e-6, hi = 1.0;
+                        if (ImGui::SliderScalar("tolerance", ImGuiDataType_Double, &t, &lo, &hi, "%.2e", ImGuiSliderFlags_Logarithmic)) {
+                            settings.tessellation.tolerance = t;
+                            changed = true;
+                        }
+                    } else {
+                        changed |= ImGui::SliderInt("segments", &settings.tessellation.segments, 1, 200);
+                    }
+                    changed |= ImGui::Checkbox("reverse orientation", &settings.tessellation.flip);
+                }
+                if (ImGui::CollapsingHeader("material")) {
+                    changed |= ImGui::Checkbox("own material", &settings.ownMaterial);
+                    if (settings.ownMaterial) changed |= materialEditor(settings.material);
+                }
+            }
+            if (changed) scene.setSettings(s.selected, settings);
+            if (!item.geometry.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", item.geometry.error.c_str());
+            if (item.kind == SceneItem::Kind::DocumentObject) controlPointTable(scene, s.selected, s);
+            else ImGui::TextWrapped("file: %s", item.meshPath.c_str());
+        }
+    }
+    ImGui::End();
+}
+
+void displayPanel(Scene& scene, UiState& s)
+{
+    if (!s.showDisplay) return;
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 8, vp->Pos.y + menuHeight() + 276), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth - 60, vp->Size.y - menuHeight() - 290), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Display", &s.showDisplay)) {
+        DisplaySettings d = scene.display;
+        int shading = static_cast<int>(d.shading);
+        ImGui::Combo("shading", &shading, "flat\0Gouraud\0Phong\0");
+        d.shading = static_cast<Shading>(shading);
+        int specular = static_cast<int>(d.specular);
+        ImGui::Combo("specular", &specular, "Phong (v.r)\0Blinn-Phong (n.h)\0");
+        d.specular = static_cast<SpecularModel>(specular);
+        int analysis = static_cast<int>(d.analysis);
+        ImGui::Combo("analysis", &analysis, "none\0reflection lines\0scalar map\0");
+        d.analysis = static_cast<SurfaceAnalysis>(analysis);
+        if (d.analysis == SurfaceAnalysis::ReflectionLines) ImGui::SliderFloat("stripes", &d.stripes, 2.0f, 60.0f, "%.0f");
+        ImGui::Checkbox("wireframe", &d.wireframe);
+        ImGui::SameLine();
+        ImGui::Checkbox("flip normals", &d.flipNormals);
+        ImGui::Checkbox("nets", &d.controlNets);
+        ImGui::SameLine();
+        ImGui::Checkbox("points", &d.controlPoints);
+        ImGui::SameLine();
+        ImGui::Checkbox("normals", &d.normals);
+        ImGui::Checkbox("grid", &d.grid);
+        ImGui::SameLine();
+        ImGui::Checkbox("axes", &d.axes);
+        if (d.normals) ImGui::SliderFloat("normal length", &d.normalLength, 0.001f, 0.2f, "%.3f", ImGuiSliderFlags_Logarithmic);
+        ImGui::SliderFloat("point size", &d.pointSize, 2.0f, 20.0f, "%.0f px");
+        const double lo = 1e-6, hi = 1.0;
+        ImGui::SliderScalar("tolerance", ImGuiDataType_Double, &d.tolerance, &lo, &hi, "%.2e", ImGuiSliderFlags_Logarithmic);
+        if (ImGui::CollapsingHeader("material")) materialEditor(d.material);
+        if (ImGui::CollapsingHeader("back faces, background")) {
+            colorEdit("back faces", d.backColor);
+            colorEdit("background", d.background);
+        }
+        if (ImGui::CollapsingHeader("lights", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::Checkbox("headlight", &d.headlight);
+            if (d.headlight) colorEdit("headlight colour", d.headlightColor);
+            for (std::size_t i = 0; i < d.lights.size(); ++i) {
+                ImGui::PushID(static_cast<int>(i));
+                ImGui::Separator();
+                ImGui::Checkbox("on", &d.lights[i].enabled);
+                ImGui::SameLine();
+                ImGui::Text("light %zu", i + 1);
+                ImGui::SameLine();
+                const bool removeIt = ImGui::SmallButton("remove");
+                ImGui::DragFloat3("position", d.lights[i].position.data(), 0.05f);
+                colorEdit("colour", d.lights[i].color);
+                ImGui::PopID();
+                if (removeIt) {
+                    d.lights.erase(d.lights.begin() + static_cast<std::ptrdiff_t>(i));
+                    break;
+                }
+            }
+            if (static_cast<int>(d.lights.size()) < kMaxLights - 1 && ImGui::Button("add light"))
+                d.lights.push_back(PointLight{Vec3f(5, 5, 5), Vec3f(0.3f, 0.3f, 0.3f), true});
+        }
+        if (!(d == scene.display)) {
+            const bool retessellate = d.tolerance != scene.display.tolerance;
+            scene.display = d;
+            scene.touch();
+            if (retessellate) scene.invalidateGeometry();
+        }
+    }
+    ImGui::End();
+}
+
+void pathDialog(Scene& scene, UiState& s, UiActions& actions)
+{
+    if (s.pathDialog == UiState::PathDialog::None) return;
+    const char* titles[] = {"", "Open", "Save as", "Import", "Export OBJ"};
+    const char* title = titles[static_cast<int>(s.pathDialog)];
+    if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+    if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("path (or drop a file on the window):");
+        ImGui::SetNextItemWidth(480);
+        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+        const bool enter = ImGui::InputText("##path", s.pathBuffer, sizeof s.pathBuffer, ImGuiInputTextFlags_EnterReturnsTrue);
+        if (s.pathDialog == UiState::PathDialog::Open && !actions.recentFiles().empty()) {
+            ImGui::TextDisabled("recent:");
+            for (const std::string& path : actions.recentFiles())
+                if (ImGui::Selectable(path.c_str())) std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", path.c_str());
+        }
+        const bool ok = ImGui::Button("OK") || enter;
+        ImGui::SameLine();
+        const bool cancel = ImGui::Button("Cancel") || keyPressed(ImGuiKey_Escape);
+        if (ok && std::strlen(s.pathBuffer) > 0) {
+            const std::string path = s.pathBuffer;
+            const UiState::PathDialog which = s.pathDialog;
+            s.pathDialog = UiState::PathDialog::None;
+            ImGui::CloseCurrentPopup();
+            if (which == UiState::PathDialog::Open) actions.open(path);
+            else if (which == UiState::PathDialog::SaveAs) actions.saveAs(path);
+            else if (which == UiState::PathDialog::Import) actions.importFile(path);
+            else actions.exportMesh(path);
+        } else if (cancel) {
+            s.pathDialog = UiState::PathDialog::None;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+    (void)scene;
+}
+
+bool unsavedDialog(Scene& scene, UiState& s, UiActions& actions)
+{
+    if (s.pending == PendingAction::None) return false;
+    const char* title = "Unsaved changes";
+    if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+    bool proceed = false;
+    if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("%s has unsaved changes.", scene.path().empty() ? "The document" : scene.path().c_str());
+        if (ImGui::Button("Save")) {
+            const bool saved = scene.path().empty() ? false : actions.save();
+            if (scene.path().empty()) s.error = "the document has no file yet: use File > Save as first";
+            proceed = saved;
+            ImGui::CloseCurrentPopup();
+            if (!saved) s.pending = PendingAction::None;
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Discard changes")) {
+            proceed = true;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel") || keyPressed(ImGuiKey_Escape)) {
+            s.pending = PendingAction::None;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+    return proceed;
+}
+
+void errorDialog(UiState& s)
+{
+    if (s.error.empty()) return;
+    const char* title = "Error";
+    if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+    if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::PushTextWrapPos(560);
+        ImGui::TextUnformatted(s.error.c_str());
+        ImGui::PopTextWrapPos();
+        ImGui::TextDisabled("The open document was not changed.");
+        if (ImGui::Button("OK") || keyPressed(ImGuiKey_Enter) || keyPressed(ImGuiKey_Escape)) {
+            s.error.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+}
+
+void helpWindow(UiState& s)
+{
+    if (!s.showHelp) return;
+    ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Controls", &s.showHelp)) ImGui::TextUnformatted(controlsHelp());
+    ImGui::End();
+}
+
+} // namespace
+
+const char* controlsHelp()
+{
+    return "Mouse (in the view)\n"
+           "  left drag            orbit (turntable or arcball: View menu)\n"
+           "  middle drag,\n"
+           "  shift + left drag    pan\n"
+           "  wheel                zoom towards the cursor\n"
+           "Keys\n"
+           "  1 / Ctrl+1           front / back view\n"
+           "  3 / Ctrl+3           right / left view\n"
+           "  7 / Ctrl+7           top / bottom view\n"
+           "  9                    isometric view\n"
+           "  5                    perspective <-> orthographic\n"
+           "  Home / F             fit all / fit the selection\n"
+           "  Z                    next shading mode (flat, Gouraud, Phong)\n"
+           "  W                    wireframe overlay on / off\n"
+           "  R                    reflection lines on / off\n"
+           "  Ctrl+N, Ctrl+O       new, open\n"
+           "  Ctrl+S, Ctrl+Shift+S save, save as\n"
+           "  Ctrl+I, Ctrl+E       import mesh or .bpt, export OBJ\n"
+           "  Ctrl+Q               quit\n"
+           "  F1                   this help\n"
+           "Files can also be dropped on the window: documents open, meshes and .bpt files are imported.\n";
+}
+
+bool drawUi(Scene& scene, UiState& state, UiActions& actions)
+{
+    mainMenu(scene, state, actions);
+    outliner(scene, state);
+    properties(scene, state);
+    displayPanel(scene, state);
+    helpWindow(state);
+    pathDialog(scene, state, actions);
+    const bool proceed = unsavedDialog(scene, state, actions);
+    errorDialog(state);
+    return proceed;
+}
+
+} // namespace freeform::editor

@@ -1,0 +1,55 @@
+#pragma once
+// The ImGui panels: main menu, scene outliner, properties of the selected item, display settings
+// (shading, material, lights, overlays, analysis), dialogs (open/save/import/export by path, unsaved
+// changes, errors, help). The panels edit the Scene directly through its methods and ask the app
+// for everything that touches files or the window through UiActions.
+
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace freeform::editor {
+
+/// What the panels ask of the application.
+class UiActions {
+public:
+    virtual ~UiActions() = default;
+    virtual void newDocument() = 0;                       // asks first when there are unsaved changes
+    virtual void open(const std::string& path) = 0;       // idem
+    virtual bool save() = 0;                              // false (with an error shown) on failure
+    virtual bool saveAs(const std::string& path) = 0;
+    virtual void importFile(const std::string& path) = 0;
+    virtual void exportMesh(const std::string& path) = 0;
+    virtual void quit() = 0;                              // asks first
+    virtual void fit(bool selectionOnly) = 0;
+    virtual void setView(const std::string& name) = 0;
+    virtual const std::vector<std::string>& recentFiles() const = 0;
+};
+
+enum class PendingAction { None, New, Open, Quit };
+
+/// State of the panels that is not part of the document.
+struct UiState {
+    int selected = -1;
+    std::string error;                // shown in a modal until dismissed
+    PendingAction pending = PendingAction::None; // waits for the unsaved-changes answer
+    std::string pendingPath;
+    bool showDisplay = true;
+    bool showHelp = false;
+    double frameMs = 0;               // last frame time, for the status line
+    long triangles = 0;
+    // Path dialog: which action it serves and the text being edited.
+    enum class PathDialog { None, Open, SaveAs, Import, Export } pathDialog = PathDialog::None;
+    char pathBuffer[1024] = {};
+};
+
+/// Builds every panel for this frame (between ImGui::NewFrame and ImGui::Render). Returns true
+/// when the user resolved a pending action with "Discard" or after a successful "Save": the
+/// caller then carries it out.
+bool drawUi(Scene& scene, UiState& state, UiActions& actions);
+
+/// The keyboard and mouse help, shown in the Help window and in docs/editor.md.
+const char* controlsHelp();
+
+} // namespace freeform::editor

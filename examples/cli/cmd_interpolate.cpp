@@ -1,0 +1,174 @@
+// freeform interpolate: the C2 cubic spline through points (curve/interpolation.h), written as a
+// document with one bezier_spline object named "interpolant".
+
+#include <cmath>
+
+#include "command.h"
+#include "freeform/core/error.h"
+#include "freeform/curve/interpolation.h"
+#include "freeform/io/file.h"
+
+namespace freeform::cli {
+namespace {
+
+struct PointsFile {
+    PointColumns points;
+    std::vector<double> params;
+};
+
+/// POINTS.json: {"points": [[x, y(, z)], ...], "params": [...]} (params optional), strictly.
+PointsFile readPointsFile(const std::string& path)
+{
+    const std::string text = readFile(path);
+    Json root;
+    try {
+        root = Json::parse(text);
+    } catch (const nlohmann::json::exception&) {
+        throw Error(path + ": not valid JSON");
+    }
+    if (!root.is_object()) throw Error(path + ": expected a JSON object {\"points\": [...]}");
+    for (auto it = root.begin(); it != root.end(); ++it)
+        if (it.key() != "points" && it.key() != "params") throw Error(path + ": field \"" + it.key() + "\": unknown field");
+    if (!root.contains("points")) throw Error(path + ": field \"points\": is missing");
+    const Json& pts = root["points"];
+    if (!pts.is_array() || pts.empty()) throw Error(path + ": field \"points\": expected a non-empty array of points");
+    PointsFile out;
+    int dim = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const std::string field = path + ": field \"points[" + std::to_string(i) + "]\": ";
+        const Json& p = pts[i];
+        if (!p.is_array()) throw Error(field + "expected a point (an array of numbers)");
+        if (i == 0) {
+            if (p.size() != 2 && p.size() != 3) throw Error(field + "a point has 2 or 3 coordinates");
+            dim = static_cast<int>(p.size());
+            out.points.resize(dim, static_cast<Eigen::Index>(pts.size()));
+        }
+        if (static_cast<int>(p.size()) != dim)
+            throw Error(field + "expected " + std::to_string(dim) + " coordinates, found " + std::to_string(p.size()));
+        for (int k = 0; k < dim; ++k) {
+            if (!p[k].is_number() || !std::isfinite(p[k].get<double>())) throw Error(field + "expected finite numbers");
+            out.points(k, static_cast<Eigen::Index>(i)) = p[k].get<double>();
+        }
+    }
+    if (root.contains("params")) {
+        const Json& u = root["params"];
+        if (!u.is_array()) throw Error(path + ": field \"params\": expected an array of numbers");
+        for (std::size_t i = 0; i < u.size(); ++i) {
+            if (!u[i].is_number() || !std::isfinite(u[i].get<double>()))
+                throw Error(path + ": field \"params[" + std::to_string(i) + "]\": expected a finite number");
+            out.params.push_back(u[i].get<double>());
+        }
+    }
+    return out;
+}
+
+template <int Dim>
+BezierSplineData interpolate(const PointsFile& in, InterpolationOptions<double, Dim> opt,
+                             const std::vector<double>& start, const std::vector<double>& end,
+                             const std::string& source)
+{
+    if (opt.end == InterpolationEnd::Clamped) {
+        if (start.size() != Dim || end.size() != Dim)
+            throw UsageError("options --start-derivative and --end-derivative: expected " + std::to_string(Dim) +
+                             " numbers each for " + std::to_string(Dim) + "D points");
+        for (int k = 0; k < Dim; ++k) {
+            opt.startDerivative[k] = start[k];
+            opt.endDerivative[k] = end[k];
+        }
+    }
+    opt.params = in.params;
+    BezierSpline<double, Dim> spline = [&] {
+        try {
+            return interpolateCubic<double, Dim>(PointMatrix<double, Dim>(in.points), opt);
+        } catch (const Error& e) {
+            throw Error(source + ": " + e.what());
+        }
+    }();
+    BezierSplineData data;
+    data.degree = 3;
+    data.closed = spline.closed();
+    data.points = spline.controlPoints();
+    data.intervals = spline.intervals();
+    return data;
+}
+
+int runInterpolate(const std::vector<std::string>& argv)
+{
+    const Args args(argv, {"output", "end", "param", "start-derivative", "end-derivative"}, {});
+    args.expectPositional(1, "the points file (freeform interpolate POINTS.json -o OUT.json)");
+    const std::string output = args.required("output");
+    InterpolationOptions<double, 3> base;
+    try {
+        base.end = parseInterpolationEnd(args.get("end").value_or("natural"), "option --end");
+        base.parametrization = parseParametrization(args.get("param").value_or("chord"), "option --param");
+    } catch (const Error& e) {
+        throw UsageError(e.what());
+    }
+    const bool clamped = base.end == InterpolationEnd::Clamped;
+    const bool hasStart = args.has("start-derivative"), hasEnd = args.has("end-derivative");
+    if (clamped && !(hasStart && hasEnd))
+        throw UsageError("--end clamped needs --start-derivative and --end-derivative");
+    if (!clamped && (hasStart || hasEnd))
+        throw UsageError("--start-derivative and --end-derivative go with --end clamped only");
+    std::vector<double> start, end;
+    if (clamped) {
+        start = parseNumberList(*args.get("start-derivative"), "--start-derivative", 0);
+        end = parseNumberList(*args.get("end-derivative"), "--end-derivative", 0);
+    }
+
+    const std::string source = args.positional()[0];
+    const PointsFile in = readPointsFile(source);
+    if (!in.params.empty() && args.has("param"))
+        throw UsageError("give the parameters either in the points file (\"params\") or by --param, not both");
+
+    BezierSplineData data;
+    if (in.points.rows() == 2) {
+        InterpolationOptions<double, 2> opt;
+        opt.end = base.end;
+        opt.parametrization = base.parametrization;
+        data = interpolate<2>(in, opt, start, end, source);
+    } else {
+        data = interpolate<3>(in, base, start, end, source);
+    }
+    Document doc;
+    doc.objects.push_back({"interpolant", data, {}});
+    writeDocument(doc, output);
+
+    Json out;
+    out["object"] = "interpolant";
+    out["output"] = output;
+    out["points"] = in.points.cols();
+    out["segments"] = data.intervals.size();
+    out["end"] = toString(base.end);
+    out["param"] = in.params.empty() ? toString(base.parametrization) : std::string("given");
+    printJson(out);
+    return 0;
+}
+
+const RegisterCommand reg({"interpolate", "C2 cubic spline through points (natural, clamped, periodic ends)",
+                           "usage: freeform interpolate POINTS.json -o OUT.json [--end natural|clamped|periodic]\n"
+                           "         [--param uniform|chord|centripetal]\n"
+                           "         [--start-derivative x,y[,z] --end-derivative x,y[,z]]\n"
+                           "\n"
+                           "POINTS.json is {\"points\": [[x, y(, z)], ...]} with optionally \"params\": [...], the\n"
+                           "parameter values (strictly increasing; for periodic one more than there are distinct\n"
+                           "points: where the curve returns to the first point). Writes a document with one\n"
+                           "bezier_spline object \"interpolant\" whose intervals are the parameter gaps.\n"
+                           "\n"
+                           "  -o, --output F          the document to write (atomically)\n"
+                           "  --end E                 natural (default): zero second derivative at both ends;\n"
+                           "                          clamped: the end derivatives are given; periodic: a closed\n"
+                           "                          spline, C2 at the first point too (a last point equal to the\n"
+                           "                          first is dropped)\n"
+                           "  --param P               chord (default), uniform or centripetal (square root of the\n"
+                           "                          chord); not together with \"params\" in the file\n"
+                           "  --start-derivative V    f' at the first point (with --end clamped), comma-separated\n"
+                           "  --end-derivative V      f' at the last point (with --end clamped)\n"
+                           "\n"
+                           "Output: {\"object\": \"interpolant\", \"output\": F, \"points\": N, \"segments\": L,\n"
+                           "\"end\": E, \"param\": P or \"given\"}.\n"
+                           "Exit status: 0 ok, 1 bad input, 2 bad usage.\n",
+                           runInterpolate});
+
+} // namespace
+} // namespace freeform::cli

@@ -1,0 +1,346 @@
+// OBJ free-form Bézier geometry (see io/obj_freeform.h and docs/surfaces.md).
+
+#include "freeform/io/obj_freeform.h"
+
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "freeform/core/bernstein.h"
+#include "freeform/core/error.h"
+#include "freeform/io/file.h"
+
+namespace freeform {
+
+namespace {
+
+struct Element {
+    bool surface = false;
+    int line = 0;
+    std::string name;
+    int du = 0, dv = -1;
+    std::vector<int> indices; // 0-based
+    std::vector<double> parmU, parmV;
+};
+
+class ObjReader {
+public:
+    ObjReader(const std::string& source) : source_(source) {}
+
+    [[noreturn]] void fail(int line, const std::string& message) const
+    {
+        throw Error(source_ + std::string(": line ") + std::to_string(line) + ": " + message);
+    }
+
+    double number(const std::string& text, int line) const
+    {
+        double v = 0;
+        const char* first = text.data();
+        const char* last = first + text.size();
+        if (first != last && *first == '+') ++first;
+        const auto [ptr, ec] = std::from_chars(first, last, v);
+        if (ec == std::errc::result_out_of_range) fail(line, "\"" + text + "\" is out of range");
+        if (ec != std::errc() || ptr != last || !std::isfinite(v)) fail(line, "\"" + text + "\" is not a finite number");
+        return v;
+    }
+
+    int integer(const std::string& text, int line) const
+    {
+        int v = 0;
+        const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || ptr != text.data() + text.size()) fail(line, "\"" + text + "\" is not an integer");
+        return v;
+    }
+
+    /// A vertex reference "i", "i/t", "i/t/n" or "i//n" (1-based, negative: relative).
+    int vertexIndex(const std::string& text, int line) const
+    {
+        const int i = integer(text.substr(0, text.find('/')), line);
+        const int count = static_cast<int>(vertices_.size());
+        const int resolved = i > 0 ? i - 1 : count + i;
+        if (i == 0 || resolved < 0 || resolved >= count)
+            fail(line, std::string("vertex index ") + std::to_string(i) + std::string(" is out of range (") + std::to_string(count) + " vertices so far)");
+        return resolved;
+    }
+
+    Document parse(const std::string& text)
+    {
+        std::istringstream in(text);
+        std::string raw;
+        int number = 0;
+        while (std::getline(in, raw)) {
+            ++number;
+            const int line = number;
+            // Continuation lines end with a backslash.
+            while (!raw.empty() && (raw.back() == '\\' || raw.back() == '\r')) {
+                if (raw.back() == '\r') {
+                    raw.pop_back();
+                    continue;
+                }
+                raw.pop_back();
+                std::string next;
+                if (!std::getline(in, next)) break;
+                ++number;
+                raw += ' ' + next;
+            }
+            const auto hash = raw.find('#');
+            if (hash != std::string::npos) raw.erase(hash);
+            std::istringstream words(raw);
+            std::vector<std::string> t;
+            for (std::string w; words >> w;) t.push_back(w);
+            if (!t.empty()) statement(t, line);
+        }
+        if (open_) fail(open_->line, std::string(open_->surface ? "surf" : "curv") + " element has no \"end\"");
+        Document doc;
+        doc.source = source_;
+        doc.objects = std::move(objects_);
+        return doc;
+    }
+
+private:
+    void statement(const std::vector<std::string>& t, int line)
+    {
+        const std::string& key = t[0];
+        if (key == "v") {
+            if (t.size() < 4 || t.size() > 7) fail(line, "a vertex needs 3 coordinates (x y z [w])");
+            vertices_.emplace_back(number(t[1], line), number(t[2], line), number(t[3], line));
+            for (std::size_t k = 4; k < t.size(); ++k) number(t[k], line);
+        } else if (key == "o" || key == "g") {
+            if (t.size() >= 2) name_ = t[1];
+        } else if (key == "cstype") {
+            if (t.size() == 3 && t[1] == "rat") fail(line, "rational curves and surfaces (cstype rat) are not supported");
+            if (t.size() != 2) fail(line, "expected \"cstype bezier\"");
+            if (t[1] != "bezier") fail(line, "curve type \"" + t[1] + "\" is not supported (only bezier)");
+            cstype_ = true;
+        } else if (key == "deg") {
+            if (t.size() != 2 && t.size() != 3) fail(line, "expected \"deg du\" or \"deg du dv\"");
+            du_ = integer(t[1], line);
+            dv_ = t.size() == 3 ? integer(t[2], line) : -1;
+            for (std::size_t k = 1; k < t.size(); ++k) {
+                const int d = k == 1 ? du_ : dv_;
+                if (d < 1 || d > kMaxDegree)
+                    fail(line, std::string("degree ") + std::to_string(d) + std::string(" is outside 1..") + std::to_string(kMaxDegree));
+            }
+        } else if (key == "curv" || key == "surf") {
+            if (open_) fail(line, key + std::string(" inside the element of line ") + std::to_string(open_->line) + " (missing \"end\")");
+            if (!cstype_) fail(line, key + " before \"cstype bezier\"");
+            if (du_ < 1) fail(line, key + " before \"deg\"");
+            const bool surface = key == "surf";
+            if (surface && dv_ < 1) fail(line, "surf needs two degrees (\"deg du dv\")");
+            const std::size_t params = surface ? 4 : 2;
+            if (t.size() < params + 2) fail(line, key + ": expected the parameter range and at least two control points");
+            for (std::size_t k = 1; k <= params; ++k) number(t[k], line);
+            Element e;
+            e.surface = surface;
+            e.line = line;
+            e.du = du_;
+            e.dv = dv_;
+            for (std::size_t k = params + 1; k < t.size(); ++k) e.indices.push_back(vertexIndex(t[k], line));
+            e.name = nextName(surface);
+            open_ = std::move(e);
+        } else if (key == "parm") {
+            if (!open_) fail(line, "parm outside a curv or surf element");
+            if (t.size() < 4 || (t[1] != "u" && t[1] != "v")) fail(line, "expected \"parm u|v p0 p1 ...\"");
+            std::vector<double>& p = t[1] == "u" ? open_->parmU : open_->parmV;
+            p.clear();
+            for (std::size_t k = 2; k < t.size(); ++k) {
+                p.push_back(number(t[k], line));
+                if (p.size() > 1 && !(p.back() > p[p.size() - 2])) fail(line, "parm values must increase");
+            }
+        } else if (key == "end") {
+            if (!open_) fail(line, "end without a curv or surf element");
+            finish(*open_, line);
+            open_.reset();
+        } else if (key == "trim" || key == "hole" || key == "scrv" || key == "sp") {
+            fail(line, "trimming and special curves (" + key + ") are not supported");
+        } else if (key == "bmat" || key == "step" || key == "curv2" || key == "con") {
+            fail(line, "\"" + key + "\" is not supported (Bézier curves and surfaces only)");
+        } else if (key == "vt" || key == "vn" || key == "vp" || key == "f" || key == "l" || key == "p" || key == "s" ||
+                   key == "usemtl" || key == "mtllib" || key == "ctech" || key == "stech" || key == "mg" ||
+                   key == "lod" || key == "bevel" || key == "c_interp" || key == "d_interp" || key == "shadow_obj" ||
+                   key == "trace_obj") {
+            // Polygonal data and display attributes: not free-form geometry, skipped.
+        } else {
+            fail(line, "unknown statement \"" + key + "\"");
+        }
+    }
+
+    std::string nextName(bool surface)
+    {
+        std::string base = name_;
+        if (base.empty()) base = std::string(surface ? "surface" : "curve") + std::to_string(++(surface ? surfaces_ : curves_));
+        const int used = ++usedNames_[base];
+        return used == 1 ? base : base + std::string("_") + std::to_string(used);
+    }
+
+    void finish(const Element& e, int line)
+    {
+        const int count = static_cast<int>(e.indices.size());
+        auto pointsOf = [&](int k) { return vertices_[static_cast<std::size_t>(e.indices[static_cast<std::size_t>(k)])]; };
+        DocumentObject object;
+        object.name = e.name;
+        if (!e.surface) {
+            if (!e.parmV.empty()) fail(line, "a curve has no parm v");
+            const int d = e.du;
+            if (count < d + 1 || (count - 1) % d != 0)
+                fail(e.line, std::to_string(count) + std::string(" control points do not fit degree ") + std::to_string(d) +
+                                 " (a Bézier curve of L segments has L*degree + 1)");
+            const int segments = (count - 1) / d;
+            if (!e.parmU.empty() && static_cast<int>(e.parmU.size()) != segments + 1)
+                fail(line, std::string("parm u has ") + std::to_string(e.parmU.size()) + std::string(" values, ") + std::to_string(segments) +
+                               std::string(" segments need ") + std::to_string(segments + 1));
+            PointColumns pts(3, count);
+            for (int k = 0; k < count; ++k) pts.col(k) = pointsOf(k);
+            if (segments == 1) {
+                object.data = BezierCurveData{std::move(pts)};
+            } else {
+                BezierSplineData s;
+                s.degree = d;
+                s.closed = false;
+                s.points = std::move(pts);
+                bool unit = true;
+                std::vector<double> h;
+                for (std::size_t k = 1; k < e.parmU.size(); ++k) {
+                    h.push_back(e.parmU[k] - e.parmU[k - 1]);
+                    unit = unit && h.back() == 1.0;
+                }
+                if (!unit) s.intervals = std::move(h);
+                object.data = std::move(s);
+            }
+        } else {
+            const int m = e.du, n = e.dv;
+            const int expected = (m + 1) * (n + 1);
+            if (count != expected) {
+                const bool piecewise = count > expected;
+                fail(e.line, std::to_string(count) + std::string(" control points do not fit degree (") + std::to_string(m) + ", " +
+                                 std::to_string(n) + std::string("), which needs ") + std::to_string(expected) +
+                                 (piecewise ? " (piecewise surfaces are not supported: one patch per surf)" : ""));
+            }
+            for (const auto* p : {&e.parmU, &e.parmV})
+                if (!p->empty() && p->size() != 2) fail(line, "a single Bézier patch has two parm values per direction");
+            BezierSurfaceData s;
+            s.degree = {m, n};
+            s.points.resize(3, expected);
+            for (int k = 0; k < count; ++k) {
+                const int i = k % (m + 1), j = k / (m + 1);
+                s.points.col(i * (n + 1) + j) = pointsOf(k);
+            }
+            object.data = std::move(s);
+        }
+        objects_.push_back(std::move(object));
+    }
+
+    std::string source_;
+    std::vector<Eigen::Vector3d> vertices_;
+    std::vector<DocumentObject> objects_;
+    std::optional<Element> open_;
+    std::string name_;
+    std::map<std::string, int> usedNames_;
+    int curves_ = 0, surfaces_ = 0;
+    bool cstype_ = false;
+    int du_ = 0, dv_ = -1;
+};
+
+std::string formatNumber(double v)
+{
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+void writeVertices(std::string& out, const PointColumns& pts)
+{
+    for (Eigen::Index k = 0; k < pts.cols(); ++k) {
+        out += "v";
+        for (int c = 0; c < 3; ++c) {
+            out += ' ';
+            out += formatNumber(c < pts.rows() ? pts(c, k) : 0.0);
+        }
+        out += "\n";
+    }
+}
+
+} // namespace
+
+Document parseObjFreeform(const std::string& text, const std::string& source)
+{
+    return ObjReader(source).parse(text);
+}
+
+Document readObjFreeform(const std::string& path)
+{
+    return parseObjFreeform(readFile(path), path);
+}
+
+std::string formatObjFreeform(const Document& document, const std::string& objectName)
+{
+    std::string out = "# OBJ free-form geometry written by freeform (cstype bezier)\n";
+    long base = 0; // vertices written so far
+    bool any = false;
+    for (const DocumentObject& o : document.objects) {
+        if (!objectName.empty() && o.name != objectName) continue;
+        any = true;
+        const std::string where = document.source + ": object \"" + o.name + "\"";
+        if (o.name.empty() || o.name.find_first_of(" \t\r\n#") != std::string::npos)
+            throw Error(where + ": the name cannot be written as an OBJ object name (no spaces or #)");
+        auto refs = [&](long count) {
+            std::string r;
+            for (long k = 1; k <= count; ++k) {
+                r += ' ';
+                r += std::to_string(base + k);
+            }
+            return r;
+        };
+        if (const auto* c = std::get_if<BezierCurveData>(&o.data)) {
+            const long count = c->points.cols();
+            out += "o " + o.name + "\n";
+            writeVertices(out, c->points);
+            out += std::string("cstype bezier\ndeg ") + std::to_string(count - 1) + "\ncurv 0 1" + refs(count) + "\nparm u 0 1\nend\n";
+            base += count;
+        } else if (const auto* s = std::get_if<BezierSplineData>(&o.data)) {
+            if (s->closed)
+                throw Error(where + ": a closed bezier_spline has no OBJ free-form form (OBJ Bézier curves are open)");
+            const long count = s->points.cols();
+            const long segments = (count - 1) / s->degree;
+            std::string parm = "parm u 0";
+            double t = 0;
+            for (long k = 0; k < segments; ++k) {
+                t += s->intervals.empty() ? 1.0 : s->intervals[static_cast<std::size_t>(k)];
+                parm += ' ';
+                parm += formatNumber(t);
+            }
+            out += "o " + o.name + "\n";
+            writeVertices(out, s->points);
+            out += std::string("cstype bezier\ndeg ") + std::to_string(s->degree) + std::string("\ncurv 0 ") + formatNumber(t) + refs(count) + "\n" +
+                   parm + "\nend\n";
+            base += count;
+        } else if (const auto* p = std::get_if<BezierSurfaceData>(&o.data)) {
+            const int m = p->degree[0], n = p->degree[1];
+            // u varies fastest: reference k is point (k mod (m+1), k div (m+1)).
+            PointColumns ordered(3, (m + 1) * (n + 1));
+            for (int j = 0; j <= n; ++j)
+                for (int i = 0; i <= m; ++i) ordered.col(j * (m + 1) + i) = p->points.col(i * (n + 1) + j);
+            out += "o " + o.name + "\n";
+            writeVertices(out, ordered);
+            out += std::string("cstype bezier\ndeg ") + std::to_string(m) + std::string(" ") + std::to_string(n) + "\nsurf 0 1 0 1" +
+                   refs(ordered.cols()) + "\nparm u 0 1\nparm v 0 1\nend\n";
+            base += ordered.cols();
+        } else {
+            throw Error(where + ": type " + objectType(o.data) +
+                        " has no OBJ free-form form (bezier_curve, open bezier_spline and bezier_surface do)");
+        }
+    }
+    if (!objectName.empty() && !any) document.object(objectName); // throws, listing the names
+    return out;
+}
+
+void writeObjFreeform(const Document& document, const std::string& path, const std::string& objectName)
+{
+    const std::string text = formatObjFreeform(document, objectName);
+    writeFileAtomically(path, text);
+}
+
+} // namespace freeform
