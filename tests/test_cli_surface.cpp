@@ -31,7 +31,16 @@ std::string surfaceDoc()
     std::string grid = "[";
     for (int r = 0; r < 4; ++r) {
         grid += r ? ",[" : "[";
-        for (int c = 0; c < 4; ++c) grid += (c ? "," : "") + std::string("[") + std::to_string(r) + "," + std::to_string(c) + "," + std::to_string(r * r) + "]";
+        for (int c = 0; c < 4; ++c) {
+            if (c) grid += ',';
+            grid += '[';
+            grid += std::to_string(r);
+            grid += ',';
+            grid += std::to_string(c);
+            grid += ',';
+            grid += std::to_string(r * r);
+            grid += ']';
+        }
         grid += "]";
     }
     grid += "]";
