@@ -1,5 +1,6 @@
-// Deformation of points and meshes, the det J certificate, exact curve composition and direct
-// manipulation (volume/deform.h). The batched kernel is in ffd_binding.cpp.
+// Deformation of points and meshes, the det J certificate, exact composition of curves and patches
+// with the lattice, and direct manipulation (volume/deform.h). The batched kernel is in
+// ffd_binding.cpp.
 
 #include "freeform/volume/deform.h"
 
@@ -7,8 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include "freeform/core/polynomial.h"
 
 namespace freeform {
 
@@ -302,61 +301,97 @@ Certificate certify(const Lattice& lattice, double strength, int maxDepth)
 
 namespace {
 
-using Poly = std::vector<double>;
-using VecPoly = std::vector<Eigen::Vector3d>;
-
-/// Raises a Bernstein polynomial of degree c.size()-1 to degree `target`.
-Poly elevateTo(Poly c, int target)
+/// The tensor polynomial with all coefficients 1 (the constant 1) of the given degrees: multiplying
+/// by it is exact degree elevation.
+Tensor ones(std::array<int, 3> degree)
 {
-    while (static_cast<int>(c.size()) - 1 < target) {
-        const int n = static_cast<int>(c.size()) - 1;
-        Poly e(static_cast<std::size_t>(n + 2));
-        e[0] = c[0];
-        e[static_cast<std::size_t>(n + 1)] = c[static_cast<std::size_t>(n)];
-        for (int i = 1; i <= n; ++i) {
-            const double a = double(i) / double(n + 1);
-            e[static_cast<std::size_t>(i)] = a * c[static_cast<std::size_t>(i - 1)] + (1 - a) * c[static_cast<std::size_t>(i)];
-        }
-        c = std::move(e);
-    }
-    return c;
+    Tensor t(degree);
+    std::fill(t.c.begin(), t.c.end(), 1.0L);
+    return t;
 }
 
-/// B_0..B_deg of degree `deg` composed with the polynomial x(tau) (coefficients c): each of
-/// degree deg * (c.size() - 1).
-std::vector<Poly> composedBasis(int deg, const Poly& x)
+/// B_0..B_deg of degree `deg` composed with the polynomial x (a tensor polynomial over the curve's
+/// or patch's domain): C(deg, i) x^i (1 - x)^(deg - i), each of `deg` times the degrees of x.
+std::vector<Tensor> composedBasis(int deg, const Tensor& x)
 {
-    Poly oneMinus(x.size());
-    for (std::size_t r = 0; r < x.size(); ++r) oneMinus[r] = 1.0 - x[r];
-    std::vector<Poly> powX{Poly{1.0}}, powY{Poly{1.0}};
+    Tensor oneMinus = x;
+    for (auto& c : oneMinus.c) c = 1.0L - c;
+    std::vector<Tensor> powX{ones({0, 0, 0})}, powY{ones({0, 0, 0})};
     for (int e = 1; e <= deg; ++e) {
-        powX.push_back(bernsteinPolyProduct(powX.back(), x));
-        powY.push_back(bernsteinPolyProduct(powY.back(), oneMinus));
+        powX.push_back(product(powX.back(), x));
+        powY.push_back(product(powY.back(), oneMinus));
     }
-    std::vector<Poly> basis;
+    std::vector<Tensor> basis;
     for (int i = 0; i <= deg; ++i) {
-        Poly b = bernsteinPolyProduct(powX[static_cast<std::size_t>(i)], powY[static_cast<std::size_t>(deg - i)]);
-        for (double& v : b) v *= double(binomial(deg, i));
+        Tensor b = product(powX[static_cast<std::size_t>(i)], powY[static_cast<std::size_t>(deg - i)]);
+        const long double c = lbinom(deg, i);
+        for (auto& v : b.c) v *= c;
         basis.push_back(std::move(b));
     }
     return basis;
 }
 
-/// sum_r a_r(tau) v_r(tau) with scalar polynomials a_r (all one degree) and vector polynomials v_r
-/// (all one degree).
-VecPoly productSum(const std::vector<Poly>& a, const std::vector<VecPoly>& v)
+/// The geometry with Bernstein control points `points` (3 x count, world coordinates, tensor
+/// index of degrees `domain`) pushed through the lattice polynomial: x + w sum B_ijk(s,t,u) d_ijk
+/// as a tensor polynomial of degrees domain * (l+m+n), coordinates in x, y, z.
+std::array<Tensor, 3> compose(const Lattice& lattice, const Eigen::Matrix<double, 3, Eigen::Dynamic>& points,
+                              std::array<int, 3> domain, double strength)
 {
-    VecPoly out;
-    for (std::size_t r = 0; r < a.size(); ++r) {
-        for (int x = 0; x < 3; ++x) {
-            Poly coord(v[r].size());
-            for (std::size_t i = 0; i < v[r].size(); ++i) coord[i] = v[r][i][x];
-            const Poly p = bernsteinPolyProduct(a[r], coord);
-            if (out.empty()) out.assign(p.size(), Eigen::Vector3d::Zero());
-            for (std::size_t i = 0; i < p.size(); ++i) out[i][x] += p[i];
+    // The lattice coordinates of the geometry: an affine image, so of the same degrees.
+    Tensor stu[3] = {Tensor(domain), Tensor(domain), Tensor(domain)};
+    Tensor world[3] = {Tensor(domain), Tensor(domain), Tensor(domain)};
+    for (Eigen::Index r = 0; r < points.cols(); ++r) {
+        const Eigen::Vector3d x = points.col(r);
+        const Eigen::Vector3d c = lattice.toLattice(x);
+        for (int a = 0; a < 3; ++a) {
+            stu[a].c[static_cast<std::size_t>(r)] = c[a];
+            world[a].c[static_cast<std::size_t>(r)] = x[a];
         }
     }
-    return out;
+    const int l = lattice.degree(0), m = lattice.degree(1), n = lattice.degree(2);
+    const auto bs = composedBasis(l, stu[0]), bt = composedBasis(m, stu[1]), bu = composedBasis(n, stu[2]);
+
+    // Displacement sum_i Bs_i (sum_j Bt_j (sum_k Bu_k w d_ijk)): the inner sum is a linear
+    // combination (one degree), the outer two are Bernstein products.
+    const auto& disp = lattice.displacements();
+    std::array<Tensor, 3> total;
+    for (int i = 0; i <= l; ++i) {
+        Tensor perI[3];
+        for (int j = 0; j <= m; ++j) {
+            Tensor g[3] = {Tensor(bu[0].deg), Tensor(bu[0].deg), Tensor(bu[0].deg)};
+            for (int k = 0; k <= n; ++k) {
+                const Eigen::Vector3d d = strength * disp.col(lattice.index(i, j, k));
+                for (int a = 0; a < 3; ++a)
+                    if (d[a] != 0) addScaled(g[a], bu[static_cast<std::size_t>(k)], static_cast<long double>(d[a]));
+            }
+            for (int a = 0; a < 3; ++a) {
+                Tensor t = product(bt[static_cast<std::size_t>(j)], g[a]);
+                if (j == 0) perI[a] = std::move(t);
+                else addScaled(perI[a], t, 1.0L);
+            }
+        }
+        for (int a = 0; a < 3; ++a) {
+            Tensor t = product(bs[static_cast<std::size_t>(i)], perI[a]);
+            if (i == 0) total[static_cast<std::size_t>(a)] = std::move(t);
+            else addScaled(total[static_cast<std::size_t>(a)], t, 1.0L);
+        }
+    }
+
+    // Plus the geometry itself, elevated to the same degrees (a product with the constant 1).
+    const int sum = l + m + n;
+    const Tensor one = ones({domain[0] * (sum - 1), domain[1] * (sum - 1), domain[2] * (sum - 1)});
+    for (int a = 0; a < 3; ++a) addScaled(total[static_cast<std::size_t>(a)], product(world[a], one), 1.0L);
+    return total;
+}
+
+/// The coordinates of `t` as the columns of a 3 x count matrix (tensor index order).
+Eigen::Matrix<double, 3, Eigen::Dynamic> columns(const std::array<Tensor, 3>& t)
+{
+    Eigen::Matrix<double, 3, Eigen::Dynamic> points(3, static_cast<Eigen::Index>(t[0].c.size()));
+    for (int a = 0; a < 3; ++a)
+        for (std::size_t r = 0; r < t[0].c.size(); ++r)
+            points(a, static_cast<Eigen::Index>(r)) = static_cast<double>(t[static_cast<std::size_t>(a)].c[r]);
+    return points;
 }
 
 } // namespace
@@ -364,46 +399,25 @@ VecPoly productSum(const std::vector<Poly>& a, const std::vector<VecPoly>& v)
 BezierCurve<double, 3> deformCurve(const Lattice& lattice, const BezierCurve<double, 3>& curve, double strength)
 {
     const int d = curve.degree();
-    const int l = lattice.degree(0), m = lattice.degree(1), n = lattice.degree(2);
-    const int degree = d * (l + m + n);
+    const int degree = d * (lattice.degree(0) + lattice.degree(1) + lattice.degree(2));
     if (degree > kMaxDegree)
         throw Error("deformCurve: the deformed curve would have degree " + std::to_string(degree) + " (d (l+m+n)), above " +
                     std::to_string(kMaxDegree));
-    if (d == 0) {
-        return BezierCurve<double, 3>(Eigen::Matrix<double, 3, Eigen::Dynamic>(
-            lattice.map(lattice.toLattice(curve.controlPoint(0)), strength).point));
-    }
-    // Lattice coordinates of the curve: an affine image, so again of degree d.
-    Poly sc[3];
-    for (int x = 0; x < 3; ++x) sc[x].resize(static_cast<std::size_t>(d + 1));
-    for (int r = 0; r <= d; ++r) {
-        const Eigen::Vector3d stu = lattice.toLattice(curve.controlPoint(r));
-        for (int x = 0; x < 3; ++x) sc[x][static_cast<std::size_t>(r)] = stu[x];
-    }
-    const auto bs = composedBasis(l, sc[0]), bt = composedBasis(m, sc[1]), bu = composedBasis(n, sc[2]);
-    const auto& disp = lattice.displacements();
-    std::vector<VecPoly> perI;
-    for (int i = 0; i <= l; ++i) {
-        std::vector<VecPoly> perJ;
-        for (int j = 0; j <= m; ++j) {
-            VecPoly g(bu[0].size(), Eigen::Vector3d::Zero());
-            for (int k = 0; k <= n; ++k) {
-                const Eigen::Vector3d c = strength * disp.col(lattice.index(i, j, k));
-                for (std::size_t r = 0; r < g.size(); ++r) g[r] += bu[static_cast<std::size_t>(k)][r] * c;
-            }
-            perJ.push_back(std::move(g));
-        }
-        perI.push_back(productSum(bt, perJ));
-    }
-    const VecPoly disp3 = productSum(bs, perI);
-    Eigen::Matrix<double, 3, Eigen::Dynamic> points(3, degree + 1);
-    for (int x = 0; x < 3; ++x) {
-        Poly c(static_cast<std::size_t>(d + 1));
-        for (int r = 0; r <= d; ++r) c[static_cast<std::size_t>(r)] = curve.controlPoints()(x, r);
-        const Poly e = elevateTo(c, degree);
-        for (int r = 0; r <= degree; ++r) points(x, r) = e[static_cast<std::size_t>(r)] + disp3[static_cast<std::size_t>(r)][x];
-    }
-    return BezierCurve<double, 3>(std::move(points));
+    if (!std::isfinite(strength)) throw Error("deformCurve: strength is not finite");
+    return BezierCurve<double, 3>(columns(compose(lattice, curve.controlPoints(), {d, 0, 0}, strength)));
+}
+
+BezierSurface<double, 3> deformSurface(const Lattice& lattice, const BezierSurface<double, 3>& surface, double strength)
+{
+    const int p = surface.degreeU(), q = surface.degreeV();
+    const int sum = lattice.degree(0) + lattice.degree(1) + lattice.degree(2);
+    const int degreeU = p * sum, degreeV = q * sum;
+    if (degreeU > kMaxDegree || degreeV > kMaxDegree)
+        throw Error("deformSurface: the deformed patch would have degrees (" + std::to_string(degreeU) + ", " +
+                    std::to_string(degreeV) + ") ((p (l+m+n), q (l+m+n))), above " + std::to_string(kMaxDegree));
+    if (!std::isfinite(strength)) throw Error("deformSurface: strength is not finite");
+    // Tensor index (i, j, 0) = i*(q+1) + j: the patch's own column order.
+    return BezierSurface<double, 3>(degreeU, degreeV, columns(compose(lattice, surface.controlPoints(), {p, q, 0}, strength)));
 }
 
 // ------------------------------------------------------------------------ direct manipulation

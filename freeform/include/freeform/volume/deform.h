@@ -21,6 +21,7 @@
 
 #include "freeform/curve/bezier_curve.h"
 #include "freeform/mesh/polygon_mesh.h"
+#include "freeform/surface/bezier_surface.h"
 #include "freeform/volume/lattice.h"
 
 namespace freeform {
@@ -151,10 +152,22 @@ Certificate certify(const Lattice& lattice, double strength = 1, int maxDepth = 
 // ------------------------------------------------------------------------ exact composition
 
 /// The curve pushed through the lattice's polynomial, exactly: a Bézier curve of degree
-/// d (l+m+n) (composition by Bernstein products). It equals point-wise deformation wherever the
-/// curve lies in the lattice box, and everywhere under the extrapolate policy.
+/// d (l+m+n) (composition by Bernstein products in long double, as deformSurface). It equals
+/// point-wise deformation wherever the curve lies in the lattice box (for example when its control
+/// points do), and everywhere under the extrapolate policy. Error when the degree would exceed
+/// kMaxDegree or the strength is not finite.
 BezierCurve<double, 3> deformCurve(const Lattice& lattice, const BezierCurve<double, 3>& curve,
                                    double strength = 1);
+
+/// The patch pushed through the lattice's polynomial, exactly: a Bézier patch of degrees
+/// (p (l+m+n), q (l+m+n)) for a patch of degrees (p, q), by composition (the lattice coordinates of
+/// the patch are a tensor polynomial of degrees (p, q); the composed Bernstein functions and their
+/// products with the displacements are formed by the Bernstein product formula in long double).
+/// It equals point-wise deformation wherever the patch lies in the lattice box (for example when
+/// its control points do), and everywhere under the extrapolate policy. Error when a degree would
+/// exceed kMaxDegree or the strength is not finite.
+BezierSurface<double, 3> deformSurface(const Lattice& lattice, const BezierSurface<double, 3>& surface,
+                                       double strength = 1);
 
 // ------------------------------------------------------------------------ direct manipulation
 
