@@ -2,6 +2,8 @@
 // spline in a document (the A-frame and its inverse, curve/aframe.h). The output is the input
 // document with the object replaced by its other form (same name, same editor settings).
 
+#include <optional>
+
 #include "command.h"
 #include "freeform/core/error.h"
 #include "spline_object.h"
@@ -21,15 +23,22 @@ ObjectData toBezier(const Document& doc, const DocumentObject& object)
     return out;
 }
 
+/// The de Boor form under `requested` (default: closed for a closed spline, clamped for an open
+/// one). An open spline has de Boor points under open and clamped ends alike (both describe every
+/// open C2 cubic spline, with different phantom knots); closed needs a closed spline.
 template <int Dim>
-ObjectData toDeBoor(const Document& doc, const DocumentObject& object)
+ObjectData toDeBoor(const Document& doc, const DocumentObject& object, std::optional<EndCondition> requested)
 {
     const auto& data = std::get<BezierSplineData>(object.data);
     if (data.degree != 3)
         throw Error(doc.source + ": object \"" + object.name + "\": de Boor points need a cubic spline, this one has degree " +
                     std::to_string(data.degree));
     const BezierSpline<double, Dim> spline = splineFromObject<Dim>(doc, object);
-    const EndCondition end = spline.closed() ? EndCondition::Closed : EndCondition::Clamped;
+    const EndCondition end = requested ? *requested : spline.closed() ? EndCondition::Closed : EndCondition::Clamped;
+    if ((end == EndCondition::Closed) != spline.closed())
+        throw Error(doc.source + ": object \"" + object.name + "\": " + (spline.closed() ? "a closed" : "an open") +
+                    " spline has no de Boor points with end condition " + toString(end) +
+                    (spline.closed() ? " (use --end closed)" : " (use --end open or --end clamped)"));
     DeBoorSplineData out;
     out.degree = 3;
     out.end = toString(end);
@@ -52,13 +61,20 @@ int convertSpline(const Args& args)
     const std::string output = args.required("output");
     if (to != "bezier_spline" && to != "deboor_spline")
         throw UsageError("option --to: \"" + to + "\" is not one of bezier_spline, deboor_spline");
+    std::optional<EndCondition> end;
+    if (const auto e = args.get("end")) {
+        if (to != "deboor_spline") throw UsageError("option --end: goes with --to deboor_spline only");
+        if (*e != "open" && *e != "clamped" && *e != "closed")
+            throw UsageError("option --end: \"" + *e + "\" is not one of open, clamped, closed");
+        end = parseEndCondition(*e, "--end");
+    }
     Document doc = readDocument(args.positional()[0]);
     const DocumentObject& object = doc.object(name);
     const int dim = splineDimension(doc, object);
     const std::string from = objectType(object.data);
     if (from == to) throw Error(doc.source + ": object \"" + name + "\" is already a " + to);
     ObjectData converted = to == "bezier_spline" ? (dim == 2 ? toBezier<2>(doc, object) : toBezier<3>(doc, object))
-                                                 : (dim == 2 ? toDeBoor<2>(doc, object) : toDeBoor<3>(doc, object));
+                                                 : (dim == 2 ? toDeBoor<2>(doc, object, end) : toDeBoor<3>(doc, object, end));
     DocumentObject* target = doc.find(name);
     target->data = std::move(converted);
     writeDocument(doc, output);
