@@ -275,9 +275,34 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         return d;
     }
     if (type == "subdivision_surface") {
-        onlyKnown(obj, {"name", "type", "mesh", "vertices", "faces", "scheme", "editor"}, w);
+        onlyKnown(obj, {"name", "type", "mesh", "vertices", "faces", "scheme", "creases", "corners", "boundary", "editor"}, w);
         SubdivisionSurfaceData d;
         if (obj.contains("scheme")) d.scheme = oneOf(obj["scheme"], "scheme", {"catmark", "loop"}, w);
+        if (obj.contains("boundary"))
+            d.boundary = oneOf(obj["boundary"], "boundary", {"edge_only", "edge_and_corner", "none"}, w);
+        // creases [[v0, v1, sharpness], ...] and corners [[v, sharpness], ...]: integer vertex indices
+        // (checked against the cage when the surface is built), sharpness finite and >= 0.
+        auto sharpList = [&](const char* field, std::size_t ints, auto& out) {
+            if (!obj.contains(field)) return;
+            const Json& list = obj[field];
+            if (!list.is_array()) w.fail(field, "expected an array, found " + typeName(list));
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                const std::string f = std::string(field) + "[" + std::to_string(i) + "]";
+                if (!list[i].is_array() || list[i].size() != ints + 1)
+                    w.fail(f, "expected " + std::to_string(ints) + " vertex indices and a sharpness");
+                typename std::decay_t<decltype(out)>::value_type item{};
+                for (std::size_t k = 0; k < ints; ++k) {
+                    const int v = integer(list[i][k], f, w);
+                    if (v < 0) w.fail(f, "vertex index " + std::to_string(v) + " is negative");
+                    item[k] = v;
+                }
+                item[ints] = number(list[i][ints], f, w);
+                if (item[ints] < 0) w.fail(f, "sharpness must be >= 0");
+                out.push_back(item);
+            }
+        };
+        sharpList("creases", 2, d.creases);
+        sharpList("corners", 1, d.corners);
         if (obj.contains("mesh")) {
             if (obj.contains("vertices") || obj.contains("faces"))
                 w.fail("mesh", "give either a mesh file or inline vertices and faces, not both");
@@ -370,6 +395,18 @@ struct ObjectWriter {
             j["faces"] = d.faces;
         }
         j["scheme"] = d.scheme;
+        if (!d.creases.empty()) {
+            Json list = Json::array();
+            for (const auto& c : d.creases)
+                list.push_back(Json::array({static_cast<int>(c[0]), static_cast<int>(c[1]), c[2]}));
+            j["creases"] = std::move(list);
+        }
+        if (!d.corners.empty()) {
+            Json list = Json::array();
+            for (const auto& c : d.corners) list.push_back(Json::array({static_cast<int>(c[0]), c[1]}));
+            j["corners"] = std::move(list);
+        }
+        if (d.boundary != "edge_only") j["boundary"] = d.boundary;
     }
 };
 

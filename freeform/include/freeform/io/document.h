@@ -68,6 +68,9 @@ struct SubdivisionSurfaceData {
     PointColumns vertices;                 // 3 x V when given inline
     std::vector<std::vector<int>> faces;   // inline faces (vertex indices)
     std::string scheme = "catmark";        // "catmark" | "loop"
+    std::vector<std::array<double, 3>> creases; // [v0, v1, sharpness] (vertex indices as integers)
+    std::vector<std::array<double, 2>> corners; // [v, sharpness]
+    std::string boundary = "edge_only";    // "edge_only" | "edge_and_corner" | "none"
 };
 
 using ObjectData = std::variant<BezierCurveData, BezierSplineData, DeBoorSplineData, BezierSurfaceData,

@@ -1,0 +1,108 @@
+// Limit-surface tessellation of a 10,000-face cage at 8 x 8 segments per face, two routes in one
+// run: OpenSubdiv (Bfr::Surface per face, SubdivisionSurface::tessellate: evaluation of position
+// and first derivatives, shared edge points) and the Bézier route for the regular faces (the
+// tensor-product A-frame of each face's 4 x 4 de Boor points, then the library's patch
+// tessellation, tessellate/tessellate.h). The cage is a 100 x 100 torus-shaped quad grid with a
+// bumpy radius: every vertex has valence 4, so every face is regular and both routes cover the
+// same surface. Also the set-up cost (cage validation, OpenSubdiv topology, one Bfr::Surface per
+// face). Figures: docs/performance.md.
+//
+//   build/bin/bench_subdivision --benchmark_min_time=1
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "freeform/subdivision/subdivision_surface.h"
+#include "freeform/tessellate/tessellate.h"
+
+namespace {
+
+constexpr int kMajor = 100, kMinor = 100, kLevel = 8;
+
+freeform::SubdivisionCage torusCage()
+{
+    freeform::SubdivisionCage cage;
+    cage.mesh.positions.resize(3, kMajor * kMinor);
+    const double pi = 3.14159265358979323846;
+    for (int i = 0; i < kMajor; ++i)
+        for (int j = 0; j < kMinor; ++j) {
+            const double a = 2 * pi * i / kMajor, b = 2 * pi * j / kMinor;
+            const double r = 1 + 0.05 * std::sin(7 * a) * std::cos(5 * b);
+            const double rr = 3 + r * std::cos(b);
+            cage.mesh.positions.col(i * kMinor + j) = Eigen::Vector3d(rr * std::cos(a), rr * std::sin(a), r * std::sin(b));
+        }
+    auto idx = [](int i, int j) { return (i % kMajor) * kMinor + (j % kMinor); };
+    for (int i = 0; i < kMajor; ++i)
+        for (int j = 0; j < kMinor; ++j) cage.mesh.addFace({idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)});
+    return cage;
+}
+
+const freeform::SubdivisionSurface& surface()
+{
+    static const freeform::SubdivisionSurface s(torusCage(), freeform::SubdivisionScheme::Catmark);
+    return s;
+}
+
+void counters(benchmark::State& state, const freeform::PolygonMesh& mesh)
+{
+    state.counters["triangles"] = static_cast<double>(mesh.faceCount());
+    state.counters["vertices"] = static_cast<double>(mesh.vertexCount());
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * kMajor * kMinor);
+}
+
+void BM_OpenSubdivTessellate(benchmark::State& state)
+{
+    const auto& s = surface();
+    freeform::SubdivisionTessellationOptions o;
+    o.level = kLevel;
+    freeform::PolygonMesh mesh;
+    for (auto _ : state) {
+        mesh = s.tessellate(o);
+        benchmark::DoNotOptimize(mesh.positions.data());
+    }
+    counters(state, mesh);
+}
+BENCHMARK(BM_OpenSubdivTessellate)->Unit(benchmark::kMillisecond);
+
+void BM_BezierRouteTessellate(benchmark::State& state)
+{
+    const auto& s = surface();
+    freeform::PolygonMesh mesh;
+    std::size_t patches = 0;
+    for (auto _ : state) {
+        const freeform::PatchComplex complex = s.regularBezierPatches(); // A-frame, face by face
+        mesh = freeform::tessellateUniform(complex, kLevel, kLevel);
+        patches = complex.patches.size();
+        benchmark::DoNotOptimize(mesh.positions.data());
+    }
+    if (patches != static_cast<std::size_t>(kMajor * kMinor)) state.SkipWithError("not every face is regular");
+    counters(state, mesh);
+}
+BENCHMARK(BM_BezierRouteTessellate)->Unit(benchmark::kMillisecond);
+
+void BM_BezierRouteConversionOnly(benchmark::State& state)
+{
+    const auto& s = surface();
+    for (auto _ : state) {
+        const freeform::PatchComplex complex = s.regularBezierPatches();
+        benchmark::DoNotOptimize(complex.patches.data());
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * kMajor * kMinor);
+}
+BENCHMARK(BM_BezierRouteConversionOnly)->Unit(benchmark::kMillisecond);
+
+void BM_OpenSubdivSetUp(benchmark::State& state)
+{
+    const freeform::SubdivisionCage cage = torusCage();
+    for (auto _ : state) {
+        const freeform::SubdivisionSurface s(cage, freeform::SubdivisionScheme::Catmark);
+        benchmark::DoNotOptimize(&s);
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * kMajor * kMinor);
+}
+BENCHMARK(BM_OpenSubdivSetUp)->Unit(benchmark::kMillisecond);
+
+} // namespace
+
+BENCHMARK_MAIN();

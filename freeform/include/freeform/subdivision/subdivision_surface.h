@@ -1,0 +1,189 @@
+#pragma once
+// SubdivisionSurface: the Catmull-Clark or Loop limit surface of a polygon cage, evaluated through
+// OpenSubdiv's Bfr (the library links OpenSubdiv privately; no OpenSubdiv header is included here).
+//
+// Guarantees: the cage is validated once, in the constructor (validateCage: indices in range, at
+// least three distinct vertices per face, a manifold and consistently oriented cage, all triangles
+// for Loop, creases on existing edges, sharpness finite and >= 0), and every Error names the face,
+// edge or vertex. Afterwards everything is const: one Bfr::Surface per face is built up front (the
+// per-face cache), and evaluation, tessellation and the Bézier conversion read it without further
+// setup. withPositions() keeps that topology and only recomputes the patch points, so moving cage
+// vertices (the editor, a deformation) does not rebuild it. A face has a limit surface unless the
+// boundary interpolation is None and the face touches the boundary (hasLimitSurface()).
+//
+// Face parameterisation (OpenSubdiv's, Bfr::Parameterization): a quad's (u, v) is the unit square
+// with (0,0) at face corner 0, (1,0) at corner 1, (1,1) at corner 2, (0,1) at corner 3, so u runs
+// along the first edge and v along the last edge backwards; a triangle (Loop) has u, v >= 0,
+// u + v <= 1 with corners (0,0), (1,0), (0,1); any other polygon under Catmull-Clark is split into
+// quad sub-faces (Bfr's QUAD_SUBFACES). The normal is (f_u x f_v)/|f_u x f_v|: outward for a cage
+// whose faces run counter-clockwise seen from outside. The math (the regular-face tie to bicubic
+// Bézier patches, cage deformation) is in docs/subdivision.md.
+
+#include <Eigen/Core>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "freeform/io/document.h"
+#include "freeform/mesh/polygon_mesh.h"
+#include "freeform/surface/patch_complex.h"
+#include "freeform/volume/deform.h"
+#include "freeform/volume/lattice.h"
+
+namespace freeform {
+
+enum class SubdivisionScheme { Catmark, Loop };
+/// "catmark" | "loop"; Error naming `what` otherwise.
+SubdivisionScheme parseSubdivisionScheme(const std::string& text, const std::string& what);
+std::string toString(SubdivisionScheme scheme);
+
+/// How the boundary is treated (OpenSubdiv's vertex boundary interpolation):
+///   None          - boundary faces have no limit surface (the cage's boundary ring is a frame);
+///   EdgeOnly      - boundary edges are infinitely sharp creases (the default);
+///   EdgeAndCorner - as EdgeOnly, and boundary vertices with one face are sharp corners.
+enum class BoundaryInterpolation { None, EdgeOnly, EdgeAndCorner };
+/// "none" | "edge_only" | "edge_and_corner"; Error naming `what` otherwise.
+BoundaryInterpolation parseBoundaryInterpolation(const std::string& text, const std::string& what);
+std::string toString(BoundaryInterpolation boundary);
+
+/// OpenSubdiv's infinite sharpness (Sdc::Crease::SHARPNESS_INFINITE): a crease or corner of this
+/// sharpness or more stays sharp at every level.
+constexpr double kInfiniteSharpness = 10.0;
+
+/// Sharpness of the cage edge between vertices v0 and v1 (either order).
+struct EdgeCrease {
+    int v0 = 0, v1 = 0;
+    double sharpness = 0;
+};
+
+/// Sharpness of a cage vertex.
+struct VertexCorner {
+    int vertex = 0;
+    double sharpness = 0;
+};
+
+/// A control cage: the polygon mesh and its creases.
+struct SubdivisionCage {
+    PolygonMesh mesh;
+    std::vector<EdgeCrease> creases;
+    std::vector<VertexCorner> corners;
+};
+
+/// Loop when every face is a triangle, Catmark otherwise.
+SubdivisionScheme defaultScheme(const PolygonMesh& mesh);
+
+/// Throws Error naming `what` and the face / edge / vertex when the cage is not usable (see the
+/// header comment).
+void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const std::string& what = "cage");
+
+/// Reads a cage from any mesh file the library reads (io/mesh_io.h). In OBJ files the crease tags
+/// of OpenSubdiv's shape format are read too, with 0-based vertex indices:
+///   t crease 2/1 V0 V1 SHARPNESS      (several pairs: 2k/k V0 V1 V2 V3 ... S1 .. Sk, or 2k/1: one S)
+///   t corner 1/1 V SHARPNESS          (likewise k/k or k/1)
+/// Other tags are an Error naming the line. MeshFile keeps `t` lines verbatim, so a cage deformed
+/// with `freeform ffd` keeps its creases.
+SubdivisionCage readCage(const std::string& path);
+
+/// Parses the `t` lines of an OBJ text into the cage's creases and corners (see readCage).
+void parseCreaseTags(const std::string& objText, const std::string& source, SubdivisionCage& cage);
+
+/// Position, first partial derivatives and unit normal of the limit surface at a point.
+struct LimitPoint {
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d du = Eigen::Vector3d::Zero();
+    Eigen::Vector3d dv = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero(); ///< zero only where f_u x f_v vanishes
+};
+
+struct SubdivisionTessellationOptions {
+    /// Segments per face edge in uniform mode (tolerance 0), at least 1.
+    int level = 8;
+    /// > 0: adaptive; each face gets the fewest segments whose error estimate is at most this
+    /// (regular faces: the certified bound of their Bézier patch; other faces: the same formula with
+    /// second derivatives sampled inside the face on the limit surface, an estimate); a shared edge
+    /// gets the larger count of its two faces.
+    double tolerance = 0;
+    int maxLevel = 256;
+};
+
+struct SubdivisionTessellationReport {
+    std::vector<int> rates; ///< per face: segments chosen for the face (0: no limit surface)
+    int regularFaces = 0;   ///< faces whose rate came from the certified Bézier bound (adaptive)
+};
+
+class SubdivisionSurface {
+public:
+    /// Validates the cage (Error) and builds the topology and one Bfr::Surface per face.
+    SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme scheme,
+                       BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly);
+    ~SubdivisionSurface();
+    SubdivisionSurface(const SubdivisionSurface&);
+    SubdivisionSurface& operator=(const SubdivisionSurface&);
+    SubdivisionSurface(SubdivisionSurface&&) noexcept;
+    SubdivisionSurface& operator=(SubdivisionSurface&&) noexcept;
+
+    const SubdivisionCage& cage() const;
+    SubdivisionScheme scheme() const;
+    BoundaryInterpolation boundary() const;
+    int faceCount() const;
+
+    /// Whether the face has a limit surface (see the header comment).
+    bool hasLimitSurface(int face) const;
+    /// Whether OpenSubdiv represents the face's limit surface as one regular patch.
+    bool isRegularPatch(int face) const;
+    /// Whether (u, v) lies in the face's parameter domain (see the header comment).
+    bool inDomain(int face, double u, double v) const;
+
+    /// The limit surface at (u, v) of a face. Error when the face is out of range, has no limit
+    /// surface or (u, v) is outside its domain.
+    LimitPoint evaluate(int face, double u, double v) const;
+
+    /// The 16 cage vertices around a regular Catmull-Clark face: a quad whose four corners are
+    /// interior vertices with four quads each, no crease or sharp corner touching the 4 x 4 points.
+    /// Index r * 4 + c, r along u (corner 0 -> corner 1), c along v (corner 0 -> corner 3); corner 0
+    /// is (1, 1). Empty for any other face and for Loop. Found from the cage's topology alone.
+    std::optional<std::array<int, 16>> regularNeighbourhood(int face) const;
+
+    /// The bicubic Bézier patch of a regular face (tensor-product A-frame of its 4 x 4 de Boor
+    /// points, uniform knots), in the face's (u, v). Empty when the face is not regular.
+    std::optional<Patch> bezierPatch(int face) const;
+
+    /// The patches of every regular face, and (when faces is not null) which face each came from.
+    PatchComplex regularBezierPatches(std::vector<int>* faces = nullptr) const;
+
+    /// The limit surface as a triangle mesh with analytic unit normals: one vertex per cage vertex
+    /// (its limit point), the points inside a cage edge shared by its faces, so the mesh is closed
+    /// when the cage is. Error on bad options.
+    PolygonMesh tessellate(const SubdivisionTessellationOptions& options = {},
+                           SubdivisionTessellationReport* report = nullptr) const;
+
+    /// The same cage topology and creases with new vertex positions (3 x V); Error on a wrong
+    /// shape or a non-finite value.
+    SubdivisionSurface withPositions(const Eigen::Matrix<double, 3, Eigen::Dynamic>& positions) const;
+
+private:
+    struct Topology;
+    std::shared_ptr<const Topology> topology_;
+    SubdivisionCage cage_;
+    std::vector<double> patchPoints_; // all faces' patch points, xyz, at topology offsets
+};
+
+/// The cage of a document's subdivision_surface object: the mesh file (a relative path is taken
+/// relative to documentDirectory; OBJ crease tags are read) or the inline vertices and faces, then
+/// the object's own creases and corners appended. Error prefixed with `what`.
+SubdivisionCage cageFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                             const std::string& what);
+
+/// The surface of a document's subdivision_surface object (cageFromData, its scheme and boundary).
+SubdivisionSurface surfaceFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                                   const std::string& what);
+
+/// The cage with its vertices moved through the lattice (deformPoints); faces and creases kept.
+/// The limit surface of the deformed cage equals the deformed limit surface only when the
+/// deformation is affine (docs/subdivision.md).
+SubdivisionCage deformCage(const SubdivisionCage& cage, const Lattice& lattice, const DeformOptions& options = {});
+
+} // namespace freeform

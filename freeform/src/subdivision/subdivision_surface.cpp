@@ -1,0 +1,646 @@
+// SubdivisionSurface through OpenSubdiv's Bfr (docs/subdivision.md): the cage adapter
+// (Far::TopologyDescriptor with creases and corners), one Bfr::Surface per face, limit evaluation,
+// the watertight tessellation (Bfr::Tessellation patterns, points on shared cage edges made once),
+// and the tie to the Bézier core (regular faces through the tensor-product A-frame).
+
+#include "freeform/subdivision/subdivision_surface.h"
+
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
+#include <opensubdiv/bfr/tessellation.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <sstream>
+#include <unordered_map>
+
+#include "freeform/io/file.h"
+#include "freeform/io/mesh_io.h"
+#include "freeform/mesh/topology.h"
+#include "freeform/tessellate/tessellate.h"
+
+namespace freeform {
+
+namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+
+namespace {
+
+std::uint64_t edgeKey(int a, int b)
+{
+    const auto lo = static_cast<std::uint32_t>(std::min(a, b)), hi = static_cast<std::uint32_t>(std::max(a, b));
+    return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
+std::uint64_t directedKey(int a, int b)
+{
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+std::string edgeName(int a, int b) { return "edge " + std::to_string(a) + "-" + std::to_string(b); }
+
+bool validSharpness(double s) { return std::isfinite(s) && s >= 0; }
+
+} // namespace
+
+SubdivisionScheme parseSubdivisionScheme(const std::string& text, const std::string& what)
+{
+    if (text == "catmark") return SubdivisionScheme::Catmark;
+    if (text == "loop") return SubdivisionScheme::Loop;
+    throw Error(what + ": \"" + text + "\" is not one of catmark, loop");
+}
+
+std::string toString(SubdivisionScheme scheme) { return scheme == SubdivisionScheme::Loop ? "loop" : "catmark"; }
+
+BoundaryInterpolation parseBoundaryInterpolation(const std::string& text, const std::string& what)
+{
+    if (text == "none") return BoundaryInterpolation::None;
+    if (text == "edge_only") return BoundaryInterpolation::EdgeOnly;
+    if (text == "edge_and_corner") return BoundaryInterpolation::EdgeAndCorner;
+    throw Error(what + ": \"" + text + "\" is not one of none, edge_only, edge_and_corner");
+}
+
+std::string toString(BoundaryInterpolation boundary)
+{
+    switch (boundary) {
+    case BoundaryInterpolation::None: return "none";
+    case BoundaryInterpolation::EdgeAndCorner: return "edge_and_corner";
+    default: return "edge_only";
+    }
+}
+
+SubdivisionScheme defaultScheme(const PolygonMesh& mesh)
+{
+    return mesh.faceCount() > 0 && mesh.isTriangleMesh() ? SubdivisionScheme::Loop : SubdivisionScheme::Catmark;
+}
+
+void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const std::string& what)
+{
+    const PolygonMesh& mesh = cage.mesh;
+    mesh.validate(what); // index range, >= 3 corners, no repeated vertex, finite positions
+    if (mesh.faceCount() == 0) throw Error(what + ": has no faces");
+    if (scheme == SubdivisionScheme::Loop)
+        for (int f = 0; f < mesh.faceCount(); ++f)
+            if (mesh.faceSize(f) != 3)
+                throw Error(what + ": face " + std::to_string(f) + " has " + std::to_string(mesh.faceSize(f)) +
+                            " vertices; the Loop scheme needs triangles (use catmark)");
+
+    // Every directed edge once (consistent orientation), every edge in at most two faces.
+    std::unordered_map<std::uint64_t, int> directed;
+    std::unordered_map<std::uint64_t, int> undirected;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int n = mesh.faceSize(f);
+        for (int k = 0; k < n; ++k) {
+            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % n];
+            const auto [it, fresh] = directed.emplace(directedKey(a, b), f);
+            if (!fresh)
+                throw Error(what + ": " + edgeName(a, b) + " runs the same way in faces " + std::to_string(it->second) +
+                            " and " + std::to_string(f) + " (inconsistent orientation or a non-manifold edge)");
+            if (++undirected[edgeKey(a, b)] > 2)
+                throw Error(what + ": " + edgeName(a, b) + " has more than two faces (face " + std::to_string(f) +
+                            " is the third): the cage is not manifold");
+        }
+    }
+    const MeshReport report = meshReport(mesh);
+    if (!report.nonManifoldVertices.empty()) {
+        const auto& v = report.nonManifoldVertices.front();
+        throw Error(what + ": vertex " + std::to_string(v.vertex) + " joins " + std::to_string(v.fanCount) +
+                    " separate fans of faces: the cage is not manifold");
+    }
+    const int vertices = mesh.vertexCount();
+    for (std::size_t i = 0; i < cage.creases.size(); ++i) {
+        const EdgeCrease& c = cage.creases[i];
+        const std::string name = what + ": crease " + std::to_string(i) + " (" + edgeName(c.v0, c.v1) + ")";
+        if (c.v0 < 0 || c.v0 >= vertices || c.v1 < 0 || c.v1 >= vertices)
+            throw Error(name + ": vertex index out of range 0.." + std::to_string(vertices - 1));
+        if (!undirected.count(edgeKey(c.v0, c.v1))) throw Error(name + ": the cage has no such edge");
+        if (!validSharpness(c.sharpness)) throw Error(name + ": sharpness must be finite and >= 0");
+    }
+    for (std::size_t i = 0; i < cage.corners.size(); ++i) {
+        const VertexCorner& c = cage.corners[i];
+        const std::string name = what + ": corner " + std::to_string(i) + " (vertex " + std::to_string(c.vertex) + ")";
+        if (c.vertex < 0 || c.vertex >= vertices)
+            throw Error(name + ": vertex index out of range 0.." + std::to_string(vertices - 1));
+        if (!validSharpness(c.sharpness)) throw Error(name + ": sharpness must be finite and >= 0");
+    }
+}
+
+// ------------------------------------------------------------------------ crease tags in OBJ
+
+void parseCreaseTags(const std::string& objText, const std::string& source, SubdivisionCage& cage)
+{
+    std::istringstream in(objText);
+    std::string line;
+    int lineNumber = 0;
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        std::istringstream tokens(line);
+        std::string key;
+        if (!(tokens >> key) || key != "t") continue;
+        const std::string where = source + ":" + std::to_string(lineNumber);
+        std::string name, counts;
+        if (!(tokens >> name >> counts)) throw Error(where + ": a tag needs a name and counts (t crease 2/1 V0 V1 S)");
+        if (name != "crease" && name != "corner")
+            throw Error(where + ": tag \"" + name + "\" is not supported (crease, corner)");
+        // "INTS/FLOATS" or "INTS/FLOATS/0" (no string arguments).
+        std::vector<int> n;
+        std::size_t start = 0;
+        bool ok = true;
+        while (ok && start <= counts.size()) {
+            const std::size_t slash = std::min(counts.find('/', start), counts.size());
+            const std::string part = counts.substr(start, slash - start);
+            ok = !part.empty() && part.size() < 7 && part.find_first_not_of("0123456789") == std::string::npos;
+            if (ok) n.push_back(std::stoi(part));
+            start = slash + 1;
+        }
+        if (!ok || n.size() < 2 || n.size() > 3 || (n.size() == 3 && n[2] != 0))
+            throw Error(where + ": tag counts \"" + counts + "\" are not INTS/FLOATS");
+        const int ints = n[0], floats = n[1];
+        std::vector<long long> iv(static_cast<std::size_t>(ints));
+        std::vector<double> fv(static_cast<std::size_t>(floats));
+        for (auto& v : iv)
+            if (!(tokens >> v)) throw Error(where + ": expected " + std::to_string(ints) + " vertex indices");
+        for (auto& v : fv)
+            if (!(tokens >> v)) throw Error(where + ": expected " + std::to_string(floats) + " sharpness values");
+        std::string extra;
+        if (tokens >> extra) throw Error(where + ": unexpected \"" + extra + "\" after the tag's values");
+        for (long long v : iv)
+            if (v < 0 || v >= cage.mesh.vertexCount())
+                throw Error(where + ": vertex index " + std::to_string(v) + " is out of range 0.." +
+                            std::to_string(cage.mesh.vertexCount() - 1) + " (tags use 0-based indices)");
+        const int per = name == "crease" ? 2 : 1;
+        if (ints == 0 || ints % per != 0) throw Error(where + ": " + name + " needs vertex indices in groups of " + std::to_string(per));
+        const int items = ints / per;
+        if (floats != 1 && floats != items)
+            throw Error(where + ": " + name + " needs 1 or " + std::to_string(items) + " sharpness values");
+        for (double s : fv)
+            if (!validSharpness(s)) throw Error(where + ": sharpness must be finite and >= 0");
+        for (int k = 0; k < items; ++k) {
+            const double s = fv[static_cast<std::size_t>(floats == 1 ? 0 : k)];
+            if (per == 2)
+                cage.creases.push_back({static_cast<int>(iv[2 * k]), static_cast<int>(iv[2 * k + 1]), s});
+            else
+                cage.corners.push_back({static_cast<int>(iv[k]), s});
+        }
+    }
+}
+
+SubdivisionCage readCage(const std::string& path)
+{
+    SubdivisionCage cage;
+    cage.mesh = readPolygonMesh(path);
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext == ".obj") parseCreaseTags(readFile(path), path, cage);
+    return cage;
+}
+
+// ------------------------------------------------------------------------ topology
+
+struct SubdivisionSurface::Topology {
+    SubdivisionScheme scheme = SubdivisionScheme::Catmark;
+    BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
+    std::unique_ptr<osd::Far::TopologyRefiner> refiner;
+    std::unique_ptr<osd::Bfr::RefinerSurfaceFactory<>> factory;
+    std::vector<osd::Bfr::Surface<double>> surfaces; // per face; invalid when it has no limit surface
+    std::vector<int> patchOffset;                    // F + 1 offsets (in points) into the patch points
+    std::unordered_map<std::uint64_t, std::array<int, 2>> directed; // (a, b) -> (face, corner of a)
+    std::unordered_map<std::uint64_t, int> edgeFaces;               // {a, b} -> number of faces
+    std::vector<int> valence;                                       // faces at each vertex
+    std::vector<char> boundaryVertex, sharpVertex;                  // on a boundary edge; touched by sharpness
+
+    const osd::Bfr::Surface<double>& surface(int f) const { return surfaces[static_cast<std::size_t>(f)]; }
+};
+
+SubdivisionSurface::SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme scheme, BoundaryInterpolation boundary)
+    : cage_(std::move(cage))
+{
+    validateCage(cage_, scheme);
+    auto topo = std::make_shared<Topology>();
+    topo->scheme = scheme;
+    topo->boundary = boundary;
+    const PolygonMesh& mesh = cage_.mesh;
+    const int faces = mesh.faceCount();
+
+    std::vector<int> counts(static_cast<std::size_t>(faces));
+    for (int f = 0; f < faces; ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
+    std::vector<int> creasePairs, cornerIndices;
+    std::vector<float> creaseWeights, cornerWeights;
+    for (const EdgeCrease& c : cage_.creases) {
+        creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
+        creaseWeights.push_back(static_cast<float>(c.sharpness));
+    }
+    for (const VertexCorner& c : cage_.corners) {
+        cornerIndices.push_back(c.vertex);
+        cornerWeights.push_back(static_cast<float>(c.sharpness));
+    }
+    osd::Far::TopologyDescriptor desc;
+    desc.numVertices = mesh.vertexCount();
+    desc.numFaces = faces;
+    desc.numVertsPerFace = counts.data();
+    desc.vertIndicesPerFace = mesh.faceVertices.data();
+    desc.numCreases = static_cast<int>(creaseWeights.size());
+    desc.creaseVertexIndexPairs = creasePairs.data();
+    desc.creaseWeights = creaseWeights.data();
+    desc.numCorners = static_cast<int>(cornerWeights.size());
+    desc.cornerVertexIndices = cornerIndices.data();
+    desc.cornerWeights = cornerWeights.data();
+
+    osd::Sdc::Options sdc;
+    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
+                                    : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                                                                   : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+    const osd::Sdc::SchemeType type = scheme == SubdivisionScheme::Loop ? osd::Sdc::SCHEME_LOOP : osd::Sdc::SCHEME_CATMARK;
+    topo->refiner.reset(Factory::Create(desc, Factory::Options(type, sdc)));
+    if (!topo->refiner) throw Error("cage: OpenSubdiv could not build the topology");
+    topo->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*topo->refiner);
+
+    topo->surfaces.resize(static_cast<std::size_t>(faces));
+    topo->patchOffset.assign(static_cast<std::size_t>(faces) + 1, 0);
+    for (int f = 0; f < faces; ++f) {
+        auto& s = topo->surfaces[static_cast<std::size_t>(f)];
+        if (!topo->factory->InitVertexSurface<double>(f, &s)) s.Clear();
+        topo->patchOffset[static_cast<std::size_t>(f) + 1] =
+            topo->patchOffset[static_cast<std::size_t>(f)] + (s.IsValid() ? s.GetNumPatchPoints() : 0);
+    }
+
+    // Adjacency for the regular neighbourhoods.
+    topo->valence.assign(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    topo->boundaryVertex.assign(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    topo->sharpVertex.assign(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    for (int f = 0; f < faces; ++f) {
+        const int n = mesh.faceSize(f);
+        for (int k = 0; k < n; ++k) {
+            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % n];
+            topo->directed[directedKey(a, b)] = {f, k};
+            ++topo->edgeFaces[edgeKey(a, b)];
+            ++topo->valence[static_cast<std::size_t>(a)];
+        }
+    }
+    for (int f = 0; f < faces; ++f) {
+        const int n = mesh.faceSize(f);
+        for (int k = 0; k < n; ++k) {
+            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % n];
+            if (topo->edgeFaces[edgeKey(a, b)] == 1)
+                topo->boundaryVertex[static_cast<std::size_t>(a)] = topo->boundaryVertex[static_cast<std::size_t>(b)] = 1;
+        }
+    }
+    for (const EdgeCrease& c : cage_.creases)
+        if (c.sharpness > 0) topo->sharpVertex[static_cast<std::size_t>(c.v0)] = topo->sharpVertex[static_cast<std::size_t>(c.v1)] = 1;
+    for (const VertexCorner& c : cage_.corners)
+        if (c.sharpness > 0) topo->sharpVertex[static_cast<std::size_t>(c.vertex)] = 1;
+
+    topology_ = std::move(topo);
+    *this = withPositions(cage_.mesh.positions);
+}
+
+SubdivisionSurface::~SubdivisionSurface() = default;
+SubdivisionSurface::SubdivisionSurface(const SubdivisionSurface&) = default;
+SubdivisionSurface& SubdivisionSurface::operator=(const SubdivisionSurface&) = default;
+SubdivisionSurface::SubdivisionSurface(SubdivisionSurface&&) noexcept = default;
+SubdivisionSurface& SubdivisionSurface::operator=(SubdivisionSurface&&) noexcept = default;
+
+SubdivisionSurface SubdivisionSurface::withPositions(const Eigen::Matrix<double, 3, Eigen::Dynamic>& positions) const
+{
+    if (positions.cols() != cage_.mesh.positions.cols())
+        throw Error("cage: " + std::to_string(positions.cols()) + " positions for " +
+                    std::to_string(cage_.mesh.positions.cols()) + " vertices");
+    requireFinite(positions, "cage positions");
+    SubdivisionSurface out(*this);
+    out.cage_.mesh.positions = positions;
+    out.patchPoints_.assign(static_cast<std::size_t>(topology_->patchOffset.back()) * 3, 0.0);
+    const osd::Bfr::Surface<double>::PointDescriptor pd(3);
+    for (int f = 0; f < faceCount(); ++f) {
+        const auto& s = topology_->surface(f);
+        if (!s.IsValid()) continue;
+        s.PreparePatchPoints(out.cage_.mesh.positions.data(), pd,
+                             out.patchPoints_.data() + 3 * topology_->patchOffset[static_cast<std::size_t>(f)], pd);
+    }
+    return out;
+}
+
+const SubdivisionCage& SubdivisionSurface::cage() const { return cage_; }
+SubdivisionScheme SubdivisionSurface::scheme() const { return topology_->scheme; }
+BoundaryInterpolation SubdivisionSurface::boundary() const { return topology_->boundary; }
+int SubdivisionSurface::faceCount() const { return cage_.mesh.faceCount(); }
+
+bool SubdivisionSurface::hasLimitSurface(int face) const
+{
+    return face >= 0 && face < faceCount() && topology_->surface(face).IsValid();
+}
+
+bool SubdivisionSurface::isRegularPatch(int face) const
+{
+    return hasLimitSurface(face) && topology_->surface(face).IsRegular();
+}
+
+bool SubdivisionSurface::inDomain(int face, double u, double v) const
+{
+    if (!hasLimitSurface(face) || !std::isfinite(u) || !std::isfinite(v)) return false;
+    const osd::Bfr::Parameterization p = topology_->surface(face).GetParameterization();
+    switch (p.GetType()) {
+    case osd::Bfr::Parameterization::QUAD: return u >= 0 && u <= 1 && v >= 0 && v <= 1;
+    case osd::Bfr::Parameterization::TRI: return u >= 0 && v >= 0 && u + v <= 1;
+    default: {
+        const double uv[2] = {u, v};
+        double sub[2];
+        const int k = p.ConvertCoordToNormalizedSubFace(uv, sub);
+        return u >= 0 && v >= 0 && k >= 0 && k < p.GetFaceSize() && sub[0] >= 0 && sub[0] <= 1 && sub[1] >= 0 && sub[1] <= 1;
+    }
+    }
+}
+
+namespace {
+
+LimitPoint limitPoint(const osd::Bfr::Surface<double>& s, const double* patch, double u, double v)
+{
+    const osd::Bfr::Surface<double>::PointDescriptor pd(3);
+    LimitPoint out;
+    const double uv[2] = {u, v};
+    s.Evaluate(uv, patch, pd, out.position.data(), out.du.data(), out.dv.data());
+    const Eigen::Vector3d c = out.du.cross(out.dv);
+    const double len = c.norm();
+    if (len > 0 && std::isfinite(len)) out.normal = c / len;
+    return out;
+}
+
+} // namespace
+
+LimitPoint SubdivisionSurface::evaluate(int face, double u, double v) const
+{
+    if (face < 0 || face >= faceCount())
+        throw Error("subdivision surface: face " + std::to_string(face) + " is out of range 0.." + std::to_string(faceCount() - 1));
+    if (!hasLimitSurface(face))
+        throw Error("subdivision surface: face " + std::to_string(face) + " has no limit surface (boundary interpolation none)");
+    if (!inDomain(face, u, v)) {
+        std::ostringstream s;
+        s.precision(17);
+        s << "subdivision surface: (u, v) = (" << u << ", " << v << ") is outside the domain of face " << face;
+        throw Error(s.str());
+    }
+    return limitPoint(topology_->surface(face), patchPoints_.data() + 3 * topology_->patchOffset[static_cast<std::size_t>(face)], u, v);
+}
+
+// ------------------------------------------------------------------------ the tie to the Bézier core
+
+std::optional<std::array<int, 16>> SubdivisionSurface::regularNeighbourhood(int face) const
+{
+    const Topology& t = *topology_;
+    const PolygonMesh& mesh = cage_.mesh;
+    if (t.scheme != SubdivisionScheme::Catmark || face < 0 || face >= faceCount() || mesh.faceSize(face) != 4) return std::nullopt;
+    for (int k = 0; k < 4; ++k) {
+        const auto v = static_cast<std::size_t>(mesh.face(face)[k]);
+        if (t.valence[v] != 4 || t.boundaryVertex[v]) return std::nullopt;
+    }
+    // Cell (r, c), r, c in 0..2, is the quad G(r,c) G(r+1,c) G(r+1,c+1) G(r,c+1); the face is cell (1, 1).
+    std::array<int, 16> g;
+    g.fill(-1);
+    auto at = [&](int r, int c) -> int& { return g[static_cast<std::size_t>(r * 4 + c)]; };
+    at(1, 1) = mesh.face(face)[0];
+    at(2, 1) = mesh.face(face)[1];
+    at(2, 2) = mesh.face(face)[2];
+    at(1, 2) = mesh.face(face)[3];
+    const int order[8][2] = {{0, 1}, {2, 1}, {1, 0}, {1, 2}, {0, 0}, {2, 0}, {0, 2}, {2, 2}};
+    for (const auto& cell : order) {
+        const int cr[4][2] = {{cell[0], cell[1]}, {cell[0] + 1, cell[1]}, {cell[0] + 1, cell[1] + 1}, {cell[0], cell[1] + 1}};
+        int k = 0;
+        while (k < 4 && (at(cr[k][0], cr[k][1]) < 0 || at(cr[(k + 1) % 4][0], cr[(k + 1) % 4][1]) < 0)) ++k;
+        if (k == 4) return std::nullopt;
+        const auto it = t.directed.find(directedKey(at(cr[k][0], cr[k][1]), at(cr[(k + 1) % 4][0], cr[(k + 1) % 4][1])));
+        if (it == t.directed.end()) return std::nullopt;
+        const int f = it->second[0], m = it->second[1];
+        if (mesh.faceSize(f) != 4) return std::nullopt;
+        for (int j = 0; j < 4; ++j) {
+            const int v = mesh.face(f)[(m + j) % 4];
+            int& slot = at(cr[(k + j) % 4][0], cr[(k + j) % 4][1]);
+            if (slot < 0) slot = v;
+            else if (slot != v) return std::nullopt;
+        }
+    }
+    std::array<int, 16> sorted = g;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return std::nullopt;
+    for (int v : g)
+        if (t.sharpVertex[static_cast<std::size_t>(v)]) return std::nullopt;
+    return g;
+}
+
+std::optional<Patch> SubdivisionSurface::bezierPatch(int face) const
+{
+    const auto ring = regularNeighbourhood(face);
+    if (!ring) return std::nullopt;
+    PointMatrix<double, 3> deBoor(3, 16);
+    for (int i = 0; i < 16; ++i) deBoor.col(i) = cage_.mesh.positions.col((*ring)[static_cast<std::size_t>(i)]);
+    return deboorSurfacePatches(deBoor, 4, 4, EndCondition::Open, EndCondition::Open).patches.front();
+}
+
+PatchComplex SubdivisionSurface::regularBezierPatches(std::vector<int>* faces) const
+{
+    PatchComplex out;
+    if (faces) faces->clear();
+    for (int f = 0; f < faceCount(); ++f) {
+        if (auto p = bezierPatch(f)) {
+            out.patches.push_back(std::move(*p));
+            if (faces) faces->push_back(f);
+        }
+    }
+    return out;
+}
+
+// ------------------------------------------------------------------------ tessellation
+
+namespace {
+
+/// Segments n such that (Muu/8 + Muv/4 + Mvv/8) / n^2 <= tolerance, from second derivatives
+/// sampled at the interior points of a rate-4 pattern (an estimate for faces without a Bézier
+/// patch). The face's corners are left out: at an extraordinary or sharp vertex the second
+/// derivatives of the limit surface can be unbounded.
+int estimatedRate(const osd::Bfr::Surface<double>& s, const double* patch, double tolerance, int maxLevel)
+{
+    const osd::Bfr::Tessellation pattern(s.GetParameterization(), 4);
+    std::vector<double> coords(static_cast<std::size_t>(pattern.GetNumInteriorCoords()) * 2);
+    pattern.GetInteriorCoords(coords.data());
+    const osd::Bfr::Surface<double>::PointDescriptor pd(3);
+    double muu = 0, muv = 0, mvv = 0;
+    for (std::size_t i = 0; i < coords.size(); i += 2) {
+        Eigen::Vector3d p, du, dv, duu, duv, dvv;
+        s.Evaluate(&coords[i], patch, pd, p.data(), du.data(), dv.data(), duu.data(), duv.data(), dvv.data());
+        muu = std::max(muu, duu.norm());
+        muv = std::max(muv, duv.norm());
+        mvv = std::max(mvv, dvv.norm());
+    }
+    const double need = std::ceil(std::sqrt((muu / 8 + muv / 4 + mvv / 8) / tolerance));
+    return static_cast<int>(std::clamp(need, 1.0, static_cast<double>(maxLevel)));
+}
+
+} // namespace
+
+PolygonMesh SubdivisionSurface::tessellate(const SubdivisionTessellationOptions& options,
+                                           SubdivisionTessellationReport* report) const
+{
+    if (options.maxLevel < 1) throw Error("subdivision tessellation: maxLevel must be at least 1");
+    if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
+        throw Error("subdivision tessellation: the tolerance must be finite and >= 0");
+    if (options.tolerance == 0 && (options.level < 1 || options.level > options.maxLevel))
+        throw Error("subdivision tessellation: level " + std::to_string(options.level) + " is outside 1.." +
+                    std::to_string(options.maxLevel));
+    const Topology& t = *topology_;
+    const PolygonMesh& cageMesh = cage_.mesh;
+    const int faces = faceCount();
+    auto patchOf = [&](int f) { return patchPoints_.data() + 3 * t.patchOffset[static_cast<std::size_t>(f)]; };
+
+    // Rates per face, then per edge (the larger of its faces).
+    std::vector<int> rate(static_cast<std::size_t>(faces), 0);
+    int regular = 0;
+    for (int f = 0; f < faces; ++f) {
+        if (!t.surface(f).IsValid()) continue;
+        int& r = rate[static_cast<std::size_t>(f)];
+        if (options.tolerance == 0) {
+            r = options.level;
+        } else if (const auto patch = bezierPatch(f)) {
+            const auto n = adaptiveSegments(*patch, options.tolerance, options.maxLevel);
+            r = std::max(n[0], n[1]);
+            ++regular;
+        } else {
+            r = estimatedRate(t.surface(f), patchOf(f), options.tolerance, options.maxLevel);
+        }
+    }
+    std::unordered_map<std::uint64_t, int> edgeRate;
+    for (int f = 0; f < faces; ++f) {
+        const int n = cageMesh.faceSize(f);
+        for (int k = 0; k < n; ++k) {
+            int& r = edgeRate[edgeKey(cageMesh.face(f)[k], cageMesh.face(f)[(k + 1) % n])];
+            r = std::max(r, rate[static_cast<std::size_t>(f)]);
+        }
+    }
+
+    std::vector<Eigen::Vector3d> positions, normals;
+    std::vector<int> triangles;
+    std::vector<int> vertexOut(static_cast<std::size_t>(cageMesh.vertexCount()), -1);
+    struct EdgePoints {
+        int from = -1, first = -1;
+    };
+    std::unordered_map<std::uint64_t, EdgePoints> edgePoints;
+    std::vector<double> coords;
+    std::vector<int> facets, index, rates;
+    const osd::Bfr::Tessellation::Options tessOptions;
+
+    for (int f = 0; f < faces; ++f) {
+        const auto& s = t.surface(f);
+        if (!s.IsValid()) continue;
+        const double* patch = patchOf(f);
+        const int n = cageMesh.faceSize(f);
+        const int* fv = cageMesh.face(f);
+        rates.resize(static_cast<std::size_t>(n));
+        for (int k = 0; k < n; ++k) rates[static_cast<std::size_t>(k)] = edgeRate[edgeKey(fv[k], fv[(k + 1) % n])];
+        const osd::Bfr::Tessellation pattern(s.GetParameterization(), n, rates.data(), tessOptions);
+        coords.resize(static_cast<std::size_t>(pattern.GetNumCoords()) * 2);
+        pattern.GetCoords(coords.data());
+        facets.resize(static_cast<std::size_t>(pattern.GetNumFacets()) * 3);
+        pattern.GetFacets(facets.data());
+        index.assign(static_cast<std::size_t>(pattern.GetNumCoords()), -1);
+
+        auto emit = [&](int coord) {
+            const double* uv = &coords[static_cast<std::size_t>(coord) * 2];
+            LimitPoint p = limitPoint(s, patch, uv[0], uv[1]);
+            if (p.normal.isZero(0.0)) {
+                // f_u x f_v vanishes here: the normal approached from the face centre.
+                double centre[2];
+                s.GetParameterization().GetCenterCoord(centre);
+                const double w = 1e-7;
+                p.normal = limitPoint(s, patch, (1 - w) * uv[0] + w * centre[0], (1 - w) * uv[1] + w * centre[1]).normal;
+            }
+            positions.push_back(p.position);
+            normals.push_back(p.normal);
+            return static_cast<int>(positions.size()) - 1;
+        };
+
+        // Boundary coordinates come first: corner k, then the points inside edge k, for every k.
+        int c = 0;
+        for (int k = 0; k < n; ++k) {
+            int& corner = vertexOut[static_cast<std::size_t>(fv[k])];
+            if (corner < 0) corner = emit(c);
+            index[static_cast<std::size_t>(c++)] = corner;
+            const int inside = pattern.GetNumEdgeCoords(k);
+            const int a = fv[k], b = fv[(k + 1) % n];
+            EdgePoints& e = edgePoints[edgeKey(a, b)];
+            if (e.first < 0) {
+                e.from = a;
+                e.first = static_cast<int>(positions.size());
+                for (int i = 0; i < inside; ++i) emit(c + i);
+            }
+            for (int i = 0; i < inside; ++i)
+                index[static_cast<std::size_t>(c + i)] = e.from == a ? e.first + i : e.first + (inside - 1 - i);
+            c += inside;
+        }
+        for (; c < pattern.GetNumCoords(); ++c) index[static_cast<std::size_t>(c)] = emit(c);
+        for (int i : facets) triangles.push_back(index[static_cast<std::size_t>(i)]);
+    }
+
+    PolygonMesh out;
+    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
+    out.normals.resize(3, static_cast<Eigen::Index>(normals.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
+        out.normals.col(static_cast<Eigen::Index>(i)) = normals[i];
+    }
+    out.faceVertices = std::move(triangles);
+    out.faceStart.resize(out.faceVertices.size() / 3 + 1);
+    for (std::size_t i = 0; i < out.faceStart.size(); ++i) out.faceStart[i] = static_cast<int>(3 * i);
+    if (report) {
+        report->rates = std::move(rate);
+        report->regularFaces = regular;
+    }
+    return out;
+}
+
+// ------------------------------------------------------------------------ cage deformation
+
+SubdivisionCage deformCage(const SubdivisionCage& cage, const Lattice& lattice, const DeformOptions& options)
+{
+    SubdivisionCage out = cage;
+    deformPoints(lattice, out.mesh.positions, options);
+    return out;
+}
+
+// ------------------------------------------------------------------------ documents
+
+SubdivisionCage cageFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                             const std::string& what)
+{
+    try {
+        SubdivisionCage cage;
+        if (!data.mesh.empty()) {
+            std::filesystem::path path(data.mesh);
+            if (path.is_relative() && !documentDirectory.empty()) path = std::filesystem::path(documentDirectory) / path;
+            cage = readCage(path.string());
+        } else {
+            cage.mesh.positions = data.vertices.topRows(3);
+            for (const auto& f : data.faces) cage.mesh.addFace(f.begin(), f.end());
+        }
+        for (const auto& c : data.creases)
+            cage.creases.push_back({static_cast<int>(c[0]), static_cast<int>(c[1]), c[2]});
+        for (const auto& c : data.corners) cage.corners.push_back({static_cast<int>(c[0]), c[1]});
+        return cage;
+    } catch (const Error& e) {
+        throw Error(what + ": " + e.what());
+    }
+}
+
+SubdivisionSurface surfaceFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                                   const std::string& what)
+{
+    SubdivisionCage cage = cageFromData(data, documentDirectory, what);
+    try {
+        return SubdivisionSurface(std::move(cage), parseSubdivisionScheme(data.scheme, "scheme"),
+                                  parseBoundaryInterpolation(data.boundary, "boundary"));
+    } catch (const Error& e) {
+        throw Error(what + ": " + e.what());
+    }
+}
+
+} // namespace freeform
