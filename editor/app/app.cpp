@@ -16,7 +16,11 @@
 #include <iostream>
 #include <numeric>
 
+#include <unistd.h>
+
 #include "freeform/core/error.h"
+#include "freeform/io/file.h"
+#include "ui/tool_panels.h"
 
 namespace freeform::editor {
 
@@ -53,6 +57,9 @@ double millisecondsSince(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
+
+const char* kAutosaveFile = "autosave.json";
+const char* kAutosavePathFile = "autosave-path.txt";
 
 } // namespace
 
@@ -100,6 +107,17 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     ImGui_ImplGlfw_InitForOpenGL(window_, true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
     imgui_ = true;
+    replaying_ = !options_.replay.empty();
+    // Autosave: interactive sessions always, headless ones only when the folder is given.
+    autosave_ = !options_.headless() || std::getenv("FREEFORM_AUTOSAVE_DIR") != nullptr;
+    if (const char* interval = std::getenv("FREEFORM_AUTOSAVE_INTERVAL")) {
+        char* end = nullptr;
+        const double v = std::strtod(interval, &end);
+        if (end != interval && *end == 0 && v >= 0) autosaveInterval_ = v;
+    }
+    autosaveDir_ = autosaveDirectory();
+    lastAutosave_ = std::chrono::steady_clock::now();
+    if (autosave_) offerRecovery();
     if (!options_.headless()) loadRecent();
     if (!scene_.path().empty() && !options_.headless()) addRecent(scene_.path());
 }
@@ -127,22 +145,89 @@ double App::aspect() const
 void App::buildUi()
 {
     ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
     if (options_.headless()) {
+        // A hidden window has no real pointer: the GLFW backend's frame would overwrite the mouse
+        // state that --replay feeds in (as the backend's callbacks do), so only the sizes are set.
         ImGuiIO& io = ImGui::GetIO();
         io.DisplaySize = ImVec2(float(options_.width), float(options_.height));
         io.DisplayFramebufferScale = ImVec2(1, 1);
+        io.DeltaTime = 1.0f / 60.0f;
+    } else {
+        ImGui_ImplGlfw_NewFrame();
     }
     ImGui::NewFrame();
     if (drawUi(scene_, ui_, *this)) carryOutPending();
     ImGui::Render();
 }
 
+void App::viewSize(int& width, int& height) const
+{
+    if (options_.headless()) {
+        width = options_.width;
+        height = options_.height;
+    } else {
+        glfwGetWindowSize(window_, &width, &height);
+    }
+    width = std::max(width, 1);
+    height = std::max(height, 1);
+}
+
+ViewTransform App::view() const
+{
+    int w = 1, h = 1;
+    viewSize(w, h);
+    return ViewTransform::of(scene_, w, h);
+}
+
+ToolContext App::toolContext()
+{
+    int w = 1, h = 1;
+    viewSize(w, h);
+    ToolContext context{scene_, ui_.selection, w, h, ViewTransform::of(scene_, w, h).viewProjection};
+    return context;
+}
+
+PointerEvent App::pointerEvent(PointerEvent::Type type, int button, int mods) const
+{
+    PointerEvent e;
+    e.type = type;
+    e.button = button;
+    e.mods = mods;
+    e.x = cursorX_;
+    e.y = cursorY_;
+    view().ray(cursorX_, cursorY_, e.rayOrigin, e.rayDirection);
+    return e;
+}
+
+void App::validateSelection()
+{
+    Selection& s = ui_.selection;
+    if (s.item >= scene_.itemCount()) s.clear();
+    if (s.hoverItem >= scene_.itemCount()) s.hoverItem = s.hoverPoint = -1;
+    if (s.item >= 0 && !s.points.empty()) {
+        const int n = scene_.controlPointCount(s.item);
+        if (s.points.back() >= n) s.points.erase(std::lower_bound(s.points.begin(), s.points.end(), n), s.points.end());
+    }
+}
+
 void App::frame(int width, int height, bool withUi)
 {
     const auto t0 = std::chrono::steady_clock::now();
     if (withUi) buildUi();
-    ui_.triangles = drawer_->draw(scene_, width, height, ui_.selected);
+    validateSelection();
+    // Live results of the tools, then the geometry of what changed: the "update" time.
+    const auto t1 = std::chrono::steady_clock::now();
+    bool dirty = scene_.changeCount() != lastChange_;
+    for (int i = 0; i < scene_.itemCount() && !dirty; ++i) dirty = scene_.item(i).geometryDirty;
+    overlay_.clear();
+    ToolContext context = toolContext();
+    tools_.update(context, overlay_);
+    scene_.updateGeometry();
+    if (dirty) ui_.updateMs = millisecondsSince(t1);
+    lastChange_ = scene_.changeCount();
+    validateSelection();
+    interaction_.fillOverlay(scene_, ui_.selection, view(), overlay_);
+    ui_.triangles = drawer_->draw(scene_, width, height, ui_.selection.item, &overlay_);
     if (withUi) {
         renderer_->bindOverlayTarget();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -164,7 +249,9 @@ int App::run()
         frame(w, h, true);
         renderer_->presentToWindow(w, h);
         glfwSwapBuffers(window_);
+        maybeAutosave();
     }
+    if (quitting_) removeAutosave(); // a confirmed quit: nothing unsaved is wanted any more
     return 0;
 }
 
@@ -211,11 +298,16 @@ void App::printFrameStats(int frames)
 
 // ------------------------------------------------------------------------------------ actions
 
-void App::replaceScene(Scene scene)
+void App::replaceScene(Scene scene, bool keepAutosave)
 {
+    interaction_.finish(scene_);
     drawer_->clear();
     scene_ = std::move(scene);
-    ui_.selected = -1;
+    ui_.selection = Selection{};
+    tools_.reset();
+    pendingScene_.reset();
+    lastChange_ = -1;
+    if (!keepAutosave) removeAutosave();
 }
 
 void App::newDocument()
@@ -229,13 +321,17 @@ void App::newDocument()
 
 void App::open(const std::string& path)
 {
-    if (scene_.modified()) {
-        ui_.pending = PendingAction::Open;
-        ui_.pendingPath = path;
-        return;
-    }
+    // Read it first: a file that cannot be read shows its error and never asks about (or touches)
+    // the open document.
     try {
-        replaceScene(Scene::load(path, aspect()));
+        Scene next = Scene::load(path, aspect());
+        if (scene_.modified()) {
+            pendingScene_ = std::move(next);
+            ui_.pending = PendingAction::Open;
+            ui_.pendingPath = path;
+            return;
+        }
+        replaceScene(std::move(next));
         addRecent(path);
     } catch (const Error& e) {
         ui_.error = e.what();
@@ -248,13 +344,10 @@ void App::carryOutPending()
     ui_.pending = PendingAction::None;
     if (action == PendingAction::New) {
         replaceScene(Scene());
-    } else if (action == PendingAction::Open) {
-        try {
-            replaceScene(Scene::load(ui_.pendingPath, aspect()));
-            addRecent(ui_.pendingPath);
-        } catch (const Error& e) {
-            ui_.error = e.what();
-        }
+    } else if (action == PendingAction::Open && pendingScene_) {
+        Scene next = std::move(*pendingScene_);
+        replaceScene(std::move(next));
+        addRecent(ui_.pendingPath);
     } else if (action == PendingAction::Quit) {
         quitting_ = true;
     }
@@ -275,6 +368,7 @@ bool App::saveAs(const std::string& path)
     try {
         scene_.save(path);
         addRecent(path);
+        removeAutosave();
         return true;
     } catch (const Error& e) {
         ui_.error = e.what();
@@ -310,9 +404,17 @@ void App::fit(bool selectionOnly)
 {
     scene_.updateGeometry();
     Eigen::AlignedBox3d box = scene_.bounds();
-    if (selectionOnly && ui_.selected >= 0 && ui_.selected < scene_.itemCount() &&
-        !scene_.item(ui_.selected).geometry.bounds.isEmpty())
-        box = scene_.item(ui_.selected).geometry.bounds;
+    const Selection& sel = ui_.selection;
+    if (selectionOnly && sel.item >= 0 && sel.item < scene_.itemCount()) {
+        const Eigen::Matrix3Xd points = scene_.controlPoints(sel.item);
+        Eigen::AlignedBox3d selected;
+        selected.setEmpty();
+        for (int k : sel.points)
+            if (k < points.cols()) selected.extend(Eigen::Vector3d(points.col(k)));
+        if (!selected.isEmpty() && selected.diagonal().norm() > 0) box = selected;
+        else if (!selected.isEmpty()) box = Eigen::AlignedBox3d(selected.min() - Eigen::Vector3d::Constant(0.5), selected.max() + Eigen::Vector3d::Constant(0.5));
+        else if (!scene_.item(sel.item).geometry.bounds.isEmpty()) box = scene_.item(sel.item).geometry.bounds;
+    }
     scene_.camera.fit(box, aspect());
     scene_.touch();
 }
@@ -358,30 +460,172 @@ void App::saveRecent() const
     }
 }
 
+// ------------------------------------------------------------------------------------ undo, tools
+
+void App::undo()
+{
+    interaction_.finish(scene_); // Ctrl+Z during a drag: keep it as a step, then take it back
+    scene_.undo();
+    validateSelection();
+}
+
+void App::redo()
+{
+    interaction_.finish(scene_);
+    scene_.redo();
+    validateSelection();
+}
+
+void App::toolPanels()
+{
+    ToolContext context = toolContext();
+    drawToolPanels(context, tools_);
+}
+
+// ------------------------------------------------------------------------------------ autosave
+
+std::filesystem::path App::autosaveDirectory()
+{
+    if (const char* dir = std::getenv("FREEFORM_AUTOSAVE_DIR"); dir && *dir) return fs::path(dir);
+    if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state) return fs::path(state) / "freeform";
+    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".local" / "state" / "freeform";
+    std::error_code ec;
+    std::string name = "freeform-autosave-";
+    name += std::to_string(::getuid());
+    return fs::temp_directory_path(ec) / name;
+}
+
+void App::maybeAutosave()
+{
+    if (!autosave_ || !scene_.modified()) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - lastAutosave_).count() < autosaveInterval_) return;
+    lastAutosave_ = now;
+    std::string text = formatDocument(scene_.toDocument(true)); // mesh paths absolute: it lives elsewhere
+    if (text == lastAutosaveText_) return;
+    try {
+        std::error_code ec;
+        fs::create_directories(autosaveDir_, ec);
+        writeFileAtomically((autosaveDir_ / kAutosaveFile).string(), text);
+        writeFileAtomically((autosaveDir_ / kAutosavePathFile).string(), scene_.path() + "\n");
+        lastAutosaveText_ = std::move(text);
+    } catch (const Error&) {
+        // An unwritable state folder must not interrupt the work; the next interval tries again.
+    }
+}
+
+void App::removeAutosave()
+{
+    if (!autosave_) return;
+    std::error_code ec;
+    fs::remove(autosaveDir_ / kAutosaveFile, ec);
+    fs::remove(autosaveDir_ / kAutosavePathFile, ec);
+    lastAutosaveText_.clear();
+}
+
+void App::offerRecovery()
+{
+    std::error_code ec;
+    if (!fs::exists(autosaveDir_ / kAutosaveFile, ec)) return;
+    std::string original;
+    std::ifstream in(autosaveDir_ / kAutosavePathFile);
+    std::getline(in, original);
+    std::string text = "The editor closed with unsaved changes to ";
+    text += original.empty() ? std::string("an untitled document") : original;
+    text += ". They were autosaved to ";
+    text += (autosaveDir_ / kAutosaveFile).string();
+    text += ".\nRecover them (they open as unsaved changes) or discard them?";
+    ui_.recovery = text;
+}
+
+void App::recover(bool accept)
+{
+    const fs::path file = autosaveDir_ / kAutosaveFile;
+    if (!accept) {
+        removeAutosave();
+        return;
+    }
+    std::string original;
+    std::ifstream in(autosaveDir_ / kAutosavePathFile);
+    std::getline(in, original);
+    try {
+        replaceScene(Scene::recover(file.string(), original, aspect()), true);
+    } catch (const Error& e) {
+        ui_.error = e.what();
+    }
+}
+
 // ------------------------------------------------------------------------------------ input
 
 void App::onMouseButton(int button, int action, int mods)
 {
     if (action == GLFW_RELEASE) {
+        if (button != pressButton_) return;
+        if (drag_ == Drag::Pending) {
+            interaction_.click(scene_, ui_.selection, view(), mods, cursorX_, cursorY_);
+        } else if (drag_ == Drag::Interact) {
+            interaction_.release(scene_, ui_.selection, view(), button, mods, cursorX_, cursorY_);
+        } else if (drag_ == Drag::Tool) {
+            ToolContext context = toolContext();
+            tools_.onPointer(context, pointerEvent(PointerEvent::Type::Release, button, mods));
+        }
         drag_ = Drag::None;
+        pressButton_ = -1;
         return;
     }
-    if (ImGui::GetIO().WantCaptureMouse) return;
-    glfwGetCursorPos(window_, &lastX_, &lastY_);
-    if (button == GLFW_MOUSE_BUTTON_LEFT) drag_ = (mods & GLFW_MOD_SHIFT) ? Drag::Pan : Drag::Orbit;
+    if (ImGui::GetIO().WantCaptureMouse || drag_ != Drag::None) return;
+    lastX_ = pressX_ = cursorX_;
+    lastY_ = pressY_ = cursorY_;
+    pressButton_ = button;
+    // A grab (G) in progress takes the click (confirm or cancel).
+    if (interaction_.busy()) {
+        interaction_.press(scene_, ui_.selection, view(), button, mods, cursorX_, cursorY_);
+        drag_ = Drag::Interact;
+        return;
+    }
+    ToolContext context = toolContext();
+    if (tools_.onPointer(context, pointerEvent(PointerEvent::Type::Press, button, mods))) {
+        drag_ = Drag::Tool;
+        return;
+    }
+    if (interaction_.press(scene_, ui_.selection, view(), button, mods, cursorX_, cursorY_)) {
+        drag_ = Drag::Interact;
+        return;
+    }
+    if (button == GLFW_MOUSE_BUTTON_LEFT) drag_ = (mods & GLFW_MOD_SHIFT) ? Drag::Pan : Drag::Pending;
     else if (button == GLFW_MOUSE_BUTTON_MIDDLE || button == GLFW_MOUSE_BUTTON_RIGHT) drag_ = Drag::Pan;
 }
 
 void App::onCursor(double x, double y)
 {
-    const double dx = x - lastX_, dy = y - lastY_;
-    if (drag_ == Drag::None || (dx == 0 && dy == 0)) {
+    cursorX_ = x;
+    cursorY_ = y;
+    if (drag_ == Drag::Interact) {
+        interaction_.move(scene_, ui_.selection, view(), x, y);
+        return;
+    }
+    if (drag_ == Drag::Tool) {
+        ToolContext context = toolContext();
+        tools_.onPointer(context, pointerEvent(PointerEvent::Type::Move, pressButton_, 0));
+        return;
+    }
+    if (drag_ == Drag::None) {
+        // Hover (and a running grab, which follows the pointer without a button).
+        ToolContext context = toolContext();
+        if (interaction_.busy() || !tools_.onPointer(context, pointerEvent(PointerEvent::Type::Move, -1, 0)))
+            interaction_.move(scene_, ui_.selection, view(), x, y);
         lastX_ = x;
         lastY_ = y;
         return;
     }
+    if (drag_ == Drag::Pending) {
+        if (std::hypot(x - pressX_, y - pressY_) < 3) return; // still a click
+        drag_ = Drag::Orbit;
+    }
+    const double dx = x - lastX_, dy = y - lastY_;
+    if (dx == 0 && dy == 0) return;
     int w = 1, h = 1;
-    glfwGetWindowSize(window_, &w, &h);
+    viewSize(w, h);
     Camera& c = scene_.camera;
     if (drag_ == Drag::Orbit) {
         if (c.orbit == OrbitMode::Turntable) {
@@ -402,10 +646,8 @@ void App::onScroll(double dy)
 {
     if (ImGui::GetIO().WantCaptureMouse) return;
     int w = 1, h = 1;
-    glfwGetWindowSize(window_, &w, &h);
-    double x = 0, y = 0;
-    glfwGetCursorPos(window_, &x, &y);
-    scene_.camera.zoom(std::pow(0.85, dy), {2 * x / std::max(w, 1) - 1, 1 - 2 * y / std::max(h, 1)}, double(w) / std::max(h, 1));
+    viewSize(w, h);
+    scene_.camera.zoom(std::pow(0.85, dy), {2 * cursorX_ / w - 1, 1 - 2 * cursorY_ / h}, double(w) / h);
     scene_.touch();
 }
 
@@ -419,7 +661,11 @@ void App::onKey(int key, int action, int mods)
         std::snprintf(ui_.pathBuffer, sizeof ui_.pathBuffer, "%s", text.c_str());
     };
     if (ctrl) {
-        if (key == GLFW_KEY_N) newDocument();
+        if (key == GLFW_KEY_Z && shift) redo();
+        else if (key == GLFW_KEY_Z) undo();
+        else if (key == GLFW_KEY_Y) redo();
+        else if (interaction_.busy()) return; // files and views wait until the drag ends
+        else if (key == GLFW_KEY_N) newDocument();
         else if (key == GLFW_KEY_O) dialog(UiState::PathDialog::Open, scene_.path());
         else if (key == GLFW_KEY_S && (shift || scene_.path().empty()))
             dialog(UiState::PathDialog::SaveAs, scene_.path().empty() ? "scene.json" : scene_.path());
@@ -430,8 +676,19 @@ void App::onKey(int key, int action, int mods)
         else if (key == GLFW_KEY_1 || key == GLFW_KEY_KP_1) setView("back");
         else if (key == GLFW_KEY_3 || key == GLFW_KEY_KP_3) setView("left");
         else if (key == GLFW_KEY_7 || key == GLFW_KEY_KP_7) setView("bottom");
+        else {
+            ToolContext context = toolContext();
+            tools_.onKey(context, key, mods);
+        }
         return;
     }
+    if (interaction_.busy()) {
+        interaction_.key(scene_, ui_.selection, view(), key, mods, cursorX_, cursorY_);
+        return;
+    }
+    ToolContext context = toolContext();
+    if (tools_.onKey(context, key, mods)) return;
+    if (interaction_.key(scene_, ui_.selection, view(), key, mods, cursorX_, cursorY_)) return;
     switch (key) {
     case GLFW_KEY_1: case GLFW_KEY_KP_1: setView("front"); break;
     case GLFW_KEY_3: case GLFW_KEY_KP_3: setView("right"); break;
@@ -450,6 +707,7 @@ void App::onKey(int key, int action, int mods)
         scene_.touch();
         break;
     case GLFW_KEY_F1: ui_.showHelp = !ui_.showHelp; break;
+    case GLFW_KEY_F2: ui_.showStats = !ui_.showStats; break;
     default: break;
     }
 }
@@ -468,6 +726,87 @@ void App::onClose()
 {
     glfwSetWindowShouldClose(window_, GLFW_FALSE);
     quit();
+}
+
+// ------------------------------------------------------------------------------------ replay
+
+void App::applyModifiers(int mods)
+{
+    // As ImGui's GLFW backend: the modifier flags and the modifier keys' down state.
+    ImGuiIO& io = ImGui::GetIO();
+    io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] = (mods & GLFW_MOD_CONTROL) != 0;
+    io.KeyShift = io.KeysDown[GLFW_KEY_LEFT_SHIFT] = (mods & GLFW_MOD_SHIFT) != 0;
+    io.KeyAlt = io.KeysDown[GLFW_KEY_LEFT_ALT] = (mods & GLFW_MOD_ALT) != 0;
+    io.KeySuper = io.KeysDown[GLFW_KEY_LEFT_SUPER] = (mods & GLFW_MOD_SUPER) != 0;
+}
+
+void App::replay(const std::vector<ReplayEvent>& events)
+{
+    ImGuiIO& io = ImGui::GetIO();
+    const bool withUi = !options_.noUi;
+    auto render = [&] {
+        frame(options_.width, options_.height, withUi);
+        maybeAutosave();
+    };
+    auto moveTo = [&](double x, double y, int mods) {
+        if (x == cursorX_ && y == cursorY_ && io.MousePos.x == float(x) && io.MousePos.y == float(y)) return;
+        applyModifiers(mods);
+        io.MousePos = ImVec2(float(x), float(y));
+        onCursor(x, y);
+        render(); // ImGui sees the hover before a press there, as after a real move
+    };
+    render();
+    for (const ReplayEvent& e : events) {
+        switch (e.type) {
+        case ReplayEvent::Type::Move:
+            applyModifiers(e.mods);
+            io.MousePos = ImVec2(float(e.x), float(e.y));
+            onCursor(e.x, e.y);
+            break;
+        case ReplayEvent::Type::Press:
+        case ReplayEvent::Type::Release: {
+            moveTo(e.x, e.y, e.mods);
+            applyModifiers(e.mods);
+            const bool down = e.type == ReplayEvent::Type::Press;
+            if (e.button < 5) io.MouseDown[e.button] = down;
+            onMouseButton(e.button, down ? GLFW_PRESS : GLFW_RELEASE, e.mods);
+            break;
+        }
+        case ReplayEvent::Type::Key:
+            applyModifiers(e.mods);
+            io.KeysDown[e.key] = true;
+            onKey(e.key, GLFW_PRESS, e.mods);
+            render();
+            io.KeysDown[e.key] = false;
+            onKey(e.key, GLFW_RELEASE, e.mods);
+            break;
+        case ReplayEvent::Type::KeyPress:
+        case ReplayEvent::Type::KeyRelease: {
+            applyModifiers(e.mods);
+            const bool down = e.type == ReplayEvent::Type::KeyPress;
+            io.KeysDown[e.key] = down;
+            onKey(e.key, down ? GLFW_PRESS : GLFW_RELEASE, e.mods);
+            break;
+        }
+        case ReplayEvent::Type::Text:
+            io.AddInputCharactersUTF8(e.text.c_str());
+            break;
+        case ReplayEvent::Type::Scroll:
+            if (e.hasPosition) moveTo(e.x, e.y, e.mods);
+            applyModifiers(e.mods);
+            io.MouseWheel += float(e.dy);
+            onScroll(e.dy);
+            break;
+        case ReplayEvent::Type::Frame:
+            for (int i = 1; i < e.count; ++i) render();
+            break;
+        case ReplayEvent::Type::Open:
+            open(e.text);
+            break;
+        }
+        render();
+        if (quitting_) break;
+    }
 }
 
 } // namespace freeform::editor

@@ -2,18 +2,27 @@
 // The application: a GLFW window with an OpenGL 3.3 core context, the renderer, the scene and the
 // panels. The frame loop follows Dear ImGui's order (poll events, new frames, build the UI, draw
 // the scene, draw the UI, swap); io.WantCaptureMouse/WantCaptureKeyboard decide whether input
-// goes to the panels or to the camera. Headless runs (--screenshot, --frames) use a hidden window
-// and the same drawing path, reading the pixels back instead of showing them.
+// goes to the panels or to the view, where the tools (tools/) see pointer and keys first, then the
+// generic point editing (interaction/), then the camera. Headless runs (--screenshot, --frames,
+// --replay) use a hidden window and the same drawing path, reading the pixels back instead of
+// showing them; --replay feeds scripted events through the same handlers as GLFW's callbacks and
+// into ImGui's io as its GLFW backend does. Unsaved changes are autosaved (autosaveDirectory()).
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/options.h"
+#include "interaction/interaction.h"
+#include "interaction/replay.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "scene/scene_drawer.h"
+#include "scene/overlay.h"
+#include "tools/tools.h"
 #include "ui/ui.h"
 
 struct GLFWwindow;
@@ -37,6 +46,11 @@ public:
     void showError(const std::string& message) { ui_.error = message; }
     /// Renders `frames` frames and prints timing statistics on stdout.
     void printFrameStats(int frames);
+    /// Feeds the events through the input handlers, rendering a frame after each.
+    void replay(const std::vector<ReplayEvent>& events);
+    /// Saves the document as it is now (File > Save as); Error when it cannot be written.
+    void saveDocument(const std::string& path) { scene_.save(path); }
+    const Scene& scene() const { return scene_; }
 
     // UiActions
     void newDocument() override;
@@ -49,6 +63,10 @@ public:
     void fit(bool selectionOnly) override;
     void setView(const std::string& name) override;
     const std::vector<std::string>& recentFiles() const override { return recent_; }
+    void undo() override;
+    void redo() override;
+    void recover(bool accept) override;
+    void toolPanels() override;
 
     // Input (GLFW callbacks forward here).
     void onMouseButton(int button, int action, int mods);
@@ -62,7 +80,16 @@ private:
     void frame(int width, int height, bool withUi);
     void buildUi();
     void carryOutPending();
-    void replaceScene(Scene scene);
+    void replaceScene(Scene scene, bool keepAutosave = false);
+    void viewSize(int& width, int& height) const;
+    ViewTransform view() const;
+    ToolContext toolContext();
+    PointerEvent pointerEvent(PointerEvent::Type type, int button, int mods) const;
+    void validateSelection();
+    void maybeAutosave();
+    void removeAutosave();
+    void offerRecovery();
+    void applyModifiers(int mods);
     void addRecent(const std::string& path);
     void loadRecent();
     void saveRecent() const;
@@ -76,10 +103,28 @@ private:
     std::unique_ptr<SceneDrawer> drawer_;
     bool imgui_ = false;
     std::vector<std::string> recent_;
-    // Mouse drag state.
-    enum class Drag { None, Orbit, Pan } drag_ = Drag::None;
-    double lastX_ = 0, lastY_ = 0;
+    Tools tools_;
+    Interaction interaction_{ui_.edit};
+    Overlay overlay_;
+    std::optional<Scene> pendingScene_;   // opened, waiting for the unsaved-changes answer
+    // Pointer state: the cursor (view pixels), the press that may become a camera drag or a click.
+    enum class Drag { None, Pending, Orbit, Pan, Interact, Tool } drag_ = Drag::None;
+    double cursorX_ = 0, cursorY_ = 0, lastX_ = 0, lastY_ = 0, pressX_ = 0, pressY_ = 0;
+    int pressButton_ = -1;
+    bool replaying_ = false;
     bool quitting_ = false;
+    long lastChange_ = -1;
+    // Autosave.
+    bool autosave_ = false;
+    double autosaveInterval_ = 60;
+    std::filesystem::path autosaveDir_;
+    std::chrono::steady_clock::time_point lastAutosave_;
+    std::string lastAutosaveText_;
+
+public:
+    /// Where autosave files go: $FREEFORM_AUTOSAVE_DIR, else $XDG_STATE_HOME/freeform, else
+    /// ~/.local/state/freeform, else the temporary folder's freeform-autosave.
+    static std::filesystem::path autosaveDirectory();
 };
 
 } // namespace freeform::editor

@@ -1,4 +1,5 @@
-// freeform-editor: the interactive editor, and its headless uses (--screenshot, --save, --frames).
+// freeform-editor: the interactive editor, and its headless uses (--screenshot, --save, --frames,
+// --replay).
 // Contract as the command-line tool's: errors are one "error: ..." line on stderr, exit 1 for a file
 // that cannot be read or written (and then no output file), exit 2 for a wrong command line.
 
@@ -13,6 +14,7 @@
 #include "app/options.h"
 #include "freeform/core/error.h"
 #include "freeform/io/file.h"
+#include "interaction/replay.h"
 
 using namespace freeform;
 using namespace freeform::editor;
@@ -87,6 +89,9 @@ int main(int argc, char** argv)
         return 0;
     }
     try {
+        // A bad events file stops everything before any output is written.
+        std::vector<ReplayEvent> events;
+        if (!options.replay.empty()) events = readReplay(options.replay);
         Scene scene;
         std::string loadError;
         if (!options.file.empty()) {
@@ -98,6 +103,13 @@ int main(int argc, char** argv)
             }
         }
         applyOptions(scene, options);
+        if (!options.replay.empty()) {
+            App app(std::move(scene), options);
+            app.replay(events);
+            if (!options.save.empty()) app.saveDocument(options.save);
+            if (!options.screenshot.empty()) writePng(options.screenshot, app.renderImage());
+            return 0;
+        }
         if (!options.save.empty()) scene.save(options.save);
         if (!options.screenshot.empty() || options.frames > 0) {
             App app(std::move(scene), options);

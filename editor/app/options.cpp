@@ -47,6 +47,7 @@ Options parseOptions(const std::vector<std::string>& args)
         if (a == "--help" || a == "-h") o.help = true;
         else if (a == "--screenshot") o.screenshot = value();
         else if (a == "--save") o.save = value();
+        else if (a == "--replay") o.replay = value();
         else if (a == "--size") {
             const std::string v = value();
             const auto x = v.find('x');
@@ -90,6 +91,9 @@ headless use:
   --screenshot OUT.png   render one frame off-screen and write it as PNG, then exit
   --save OUT.json        write the document (with the editor's camera and display settings), then exit
   --frames N             render N frames off-screen and print the frame times, then exit
+  --replay EVENTS.json   feed the input events of the file (mouse, keys, text, frames; docs/editor.md)
+                         to a hidden window of --size, rendering a frame after each; then --save
+                         and/or --screenshot write the result, and the editor exits
   --size WxH             image size in pixels (default 1280x800; also the window size)
   --no-ui                leave the panels out of the screenshot
 
@@ -101,6 +105,9 @@ view (override what the document says):
   --tolerance T          adaptive tessellation tolerance (world units)
   --segments N           uniform tessellation with N x N quads per patch, for every surface
   --samples N            multisampling (0 = off; default 4)
+
+environment: FREEFORM_AUTOSAVE_DIR (the autosave folder; headless runs autosave only when it is
+set), FREEFORM_AUTOSAVE_INTERVAL (seconds between autosaves, default 60).
 
 exit status: 0 success, 1 a file could not be read or written (or no display), 2 bad command line.
 )";

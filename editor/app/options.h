@@ -17,7 +17,8 @@ public:
 struct Options {
     std::string file;                      // document, .bpt or mesh; empty: a new document
     std::string screenshot;                // write a PNG and exit
-    std::string save;                      // write the document and exit
+    std::string save;                      // write the document and exit (after --replay)
+    std::string replay;                    // feed the events of this file, then save/screenshot and exit
     int width = 1280, height = 800;        // --size (screenshot), window size otherwise
     bool sizeGiven = false;
     std::optional<std::string> shading;    // flat | gouraud | phong
@@ -34,7 +35,7 @@ struct Options {
     int frames = 0;                        // --frames N: render N frames and print timings
     bool help = false;
 
-    bool headless() const { return !screenshot.empty() || !save.empty() || frames > 0; }
+    bool headless() const { return !screenshot.empty() || !save.empty() || frames > 0 || !replay.empty(); }
 };
 
 /// Parses argv (without the program name). UsageError on unknown or malformed options.

@@ -2,13 +2,16 @@
 // meshes with normals, control nets as edge lists. Everything here is library code driven from
 // document data; nothing touches the GPU.
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <type_traits>
 
 #include "freeform/curve/aframe.h"
 #include "freeform/curve/bezier_curve.h"
 #include "freeform/curve/bezier_spline.h"
 #include "freeform/io/mesh_io.h"
+#include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/surface/bezier_surface.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/tessellate/tessellate.h"
@@ -71,6 +74,7 @@ struct Builder {
     const ObjectSettings& settings;
     double tolerance;
     ItemGeometry& g;
+    const std::string& documentDirectory;
 
     void operator()(const BezierCurveData& d)
     {
@@ -135,16 +139,29 @@ struct Builder {
 
     void operator()(const SubdivisionSurfaceData& d)
     {
-        // The control cage (the limit surface is drawn once the subdivision adapter exists).
-        if (d.vertices.cols() > 0) {
-            g.netPoints = d.vertices;
-            for (const auto& face : d.faces)
-                for (std::size_t k = 0; k < face.size(); ++k) {
-                    const int u = face[k], v = face[(k + 1) % face.size()];
-                    if (u < v) g.netEdges.emplace_back(u, v);
-                    else if (u > v) g.netEdges.emplace_back(v, u);
-                }
+        // The cage (inline, or the mesh file beside the document) is the control net: its vertices
+        // are the control points, its edges the net; the surface is the tessellated limit surface.
+        const SubdivisionCage cage = cageFromData(d, documentDirectory, "subdivision surface");
+        g.netPoints = cage.mesh.positions;
+        std::set<std::pair<int, int>> edges;
+        for (int f = 0; f < cage.mesh.faceCount(); ++f)
+            for (int k = 0; k < cage.mesh.faceSize(f); ++k) {
+                const int u = cage.mesh.face(f)[k], v = cage.mesh.face(f)[(k + 1) % cage.mesh.faceSize(f)];
+                edges.insert({std::min(u, v), std::max(u, v)});
+            }
+        g.netEdges.assign(edges.begin(), edges.end());
+        const SubdivisionSurface surface(cage, parseSubdivisionScheme(d.scheme, "scheme"),
+                                         parseBoundaryInterpolation(d.boundary, "boundary"));
+        const Tessellation& t = settings.tessellation;
+        SubdivisionTessellationOptions options;
+        if (t.mode == Tessellation::Mode::Uniform) options.level = std::clamp(t.segments, 1, options.maxLevel);
+        else options.tolerance = this->t();
+        PolygonMesh mesh = surface.tessellate(options);
+        if (t.flip) {
+            for (int f = 0; f < mesh.faceCount(); ++f) std::swap(mesh.faceVertices[3 * f + 1], mesh.faceVertices[3 * f + 2]);
+            mesh.normals = -mesh.normals;
         }
+        g.surface = std::move(mesh);
     }
 
     double t() const { return settings.tessellation.tolerance > 0 ? settings.tessellation.tolerance : tolerance; }
@@ -193,11 +210,12 @@ void finishBounds(ItemGeometry& g)
 
 } // namespace
 
-ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance)
+ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
+                           const std::string& documentDirectory)
 {
     ItemGeometry g;
     try {
-        std::visit(Builder{settings, tolerance, g}, data);
+        std::visit(Builder{settings, tolerance, g, documentDirectory}, data);
         if (g.surface) g.surface = withNormals(std::move(*g.surface));
     } catch (const Error& e) {
         g.surface.reset();

@@ -1,11 +1,14 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "freeform/io/file.h"
 #include "freeform/io/mesh_io.h"
+#include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/tessellate/tessellate.h"
 #include "scene/json_read.h"
@@ -66,6 +69,24 @@ int nextRevision()
 {
     static int counter = 0;
     return ++counter;
+}
+
+/// Content keys are unique across all scenes too.
+long nextKey()
+{
+    static long counter = 0;
+    return ++counter;
+}
+
+PointColumns& pointsOf(ObjectData& data)
+{
+    return std::visit(
+        [](auto& d) -> PointColumns& {
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return d.vertices;
+            else return d.points;
+        },
+        data);
 }
 
 } // namespace
@@ -151,6 +172,7 @@ void Scene::rebuildItems()
         item.kind = SceneItem::Kind::DocumentObject;
         item.name = o.name;
         item.type = objectType(o.data);
+        item.key = nextKey();
         items.push_back(std::move(item));
     }
     items_ = std::move(items);
@@ -163,6 +185,7 @@ void Scene::addMeshItem(const std::string& name, const std::string& path)
     item.name = uniqueName(name);
     item.type = "mesh";
     item.meshPath = path;
+    item.key = nextKey();
     items_.push_back(std::move(item));
 }
 
@@ -187,7 +210,7 @@ std::string Scene::resolve(const std::string& meshPath) const
     return (fs::path(path_).parent_path() / p).string();
 }
 
-Document Scene::toDocument() const
+Document Scene::toDocument(bool absoluteMeshPaths) const
 {
     Document doc = document_;
     for (std::size_t i = 0; i < doc.objects.size(); ++i) {
@@ -202,7 +225,7 @@ Document Scene::toDocument() const
         if (item.kind != SceneItem::Kind::ImportedMesh) continue;
         Json m;
         m["name"] = item.name;
-        m["path"] = item.meshPath;
+        m["path"] = absoluteMeshPaths ? fs::absolute(resolve(item.meshPath)).lexically_normal().string() : item.meshPath;
         if (!item.settings.isDefault()) m["editor"] = item.settings.toJson();
         meshes.push_back(std::move(m));
     }
@@ -252,13 +275,16 @@ void Scene::importFile(const std::string& path)
             SceneItem item;
             item.name = o.name;
             item.type = objectType(o.data);
+            item.key = nextKey();
             added.push_back(std::move(item));
         }
+        record(std::string("import ").append(fs::path(path).filename().string()));
         const auto documentItems = static_cast<std::ptrdiff_t>(document_.objects.size());
         document_ = std::move(next);
         items_.insert(items_.begin() + documentItems, added.begin(), added.end());
     } else if (isMeshFile(ext)) {
         ItemGeometry g = buildMeshGeometry(path); // reads it now: Error leaves the scene as it was
+        record(std::string("import ").append(fs::path(path).filename().string()));
         addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
         items_.back().geometry = std::move(g);
         items_.back().geometryDirty = false;
@@ -308,7 +334,7 @@ const DocumentObject& Scene::object(int i) const
     return document_.objects.at(static_cast<std::size_t>(i));
 }
 
-void Scene::replaceObject(int i, const DocumentObject& object)
+void Scene::replaceObject(int i, const DocumentObject& object, const std::string& label)
 {
     const DocumentObject& old = this->object(i);
     if (object.name != old.name) throw Error("replaceObject: the name must stay \"" + old.name + "\"");
@@ -316,36 +342,123 @@ void Scene::replaceObject(int i, const DocumentObject& object)
     Document single;
     single.objects.push_back(object);
     Document checked = parseDocument(formatDocument(single), "object \"" + object.name + "\"");
-    document_.objects[static_cast<std::size_t>(i)].data = std::move(checked.objects.front().data);
-    items_[static_cast<std::size_t>(i)].geometryDirty = true;
+    record(label);
+    setObjectData(i, std::move(checked.objects.front().data));
+}
+
+void Scene::setObjectData(int i, ObjectData data)
+{
+    document_.objects[static_cast<std::size_t>(i)].data = std::move(data);
+    SceneItem& it = items_[static_cast<std::size_t>(i)];
+    it.geometryDirty = true;
+    it.key = nextKey();
     modified_ = true;
 }
 
-void Scene::setControlPoint(int i, int k, const Eigen::Vector3d& p)
+void Scene::setControlPoint(int i, int k, const Eigen::Vector3d& p, const std::string& label)
 {
-    DocumentObject o = object(i);
-    std::visit(
-        [&](auto& d) {
-            using T = std::decay_t<decltype(d)>;
-            PointColumns* points = nullptr;
-            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) points = &d.vertices;
-            else points = &d.points;
-            if (k < 0 || k >= points->cols())
-                throw Error("\"" + o.name + "\" has no control point " + std::to_string(k));
-            for (Eigen::Index r = 0; r < points->rows(); ++r) (*points)(r, k) = p[r];
-        },
-        o.data);
-    replaceObject(i, o);
+    setControlPoints(i, {k}, p, label);
 }
 
-void Scene::setSettings(int i, const ObjectSettings& settings)
+void Scene::setControlPoints(int i, const std::vector<int>& ks, const Eigen::Matrix3Xd& ps, const std::string& label)
+{
+    const DocumentObject& o = object(i);
+    if (static_cast<Eigen::Index>(ks.size()) != ps.cols()) {
+        std::string message = "setControlPoints: ";
+        message += std::to_string(ks.size()) + " indices for " + std::to_string(ps.cols()) + " points";
+        throw Error(message);
+    }
+    ObjectData data = o.data;
+    // A subdivision cage read from a mesh file becomes inline vertices and faces (with the file's
+    // crease tags) when one of its vertices is edited; the file itself is left as it is.
+    if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty()) {
+        const SubdivisionCage cage = cageFromData(*sub, path_.empty() ? std::string() : fs::path(path_).parent_path().string(),
+                                                  "\"" + o.name + "\"");
+        sub->vertices = cage.mesh.positions;
+        sub->faces.clear();
+        for (int f = 0; f < cage.mesh.faceCount(); ++f)
+            sub->faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
+        sub->creases.clear();
+        for (const EdgeCrease& c : cage.creases) sub->creases.push_back({double(c.v0), double(c.v1), c.sharpness});
+        sub->corners.clear();
+        for (const VertexCorner& c : cage.corners) sub->corners.push_back({double(c.vertex), c.sharpness});
+        sub->mesh.clear();
+    }
+    PointColumns& points = pointsOf(data);
+    for (std::size_t j = 0; j < ks.size(); ++j) {
+        const int k = ks[j];
+        if (k < 0 || k >= points.cols()) throw Error("\"" + o.name + "\" has no control point " + std::to_string(k));
+        for (Eigen::Index r = 0; r < points.rows(); ++r) {
+            const double v = ps(r, static_cast<Eigen::Index>(j));
+            if (!std::isfinite(v)) throw Error("\"" + o.name + "\": control point " + std::to_string(k) + " must be finite");
+            points(r, k) = v;
+        }
+    }
+    record(label);
+    setObjectData(i, std::move(data));
+}
+
+Eigen::Matrix3Xd Scene::controlPoints(int i) const
+{
+    if (item(i).kind != SceneItem::Kind::DocumentObject) return {};
+    if (const auto* sub = std::get_if<SubdivisionSurfaceData>(&object(i).data); sub && !sub->mesh.empty())
+        return item(i).geometry.netPoints; // a file-backed cage: its vertices as read
+    const PointColumns& p = std::visit(
+        [](const auto& d) -> const PointColumns& {
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return d.vertices;
+            else return d.points;
+        },
+        object(i).data);
+    Eigen::Matrix3Xd out = Eigen::Matrix3Xd::Zero(3, p.cols());
+    out.topRows(std::min<Eigen::Index>(3, p.rows())) = p.topRows(std::min<Eigen::Index>(3, p.rows()));
+    return out;
+}
+
+int Scene::controlPointCount(int i) const
+{
+    if (item(i).kind != SceneItem::Kind::DocumentObject) return 0;
+    if (const auto* sub = std::get_if<SubdivisionSurfaceData>(&object(i).data); sub && !sub->mesh.empty())
+        return static_cast<int>(item(i).geometry.netPoints.cols());
+    return static_cast<int>(std::visit(
+        [](const auto& d) {
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return d.vertices.cols();
+            else return d.points.cols();
+        },
+        object(i).data));
+}
+
+void Scene::setSettings(int i, const ObjectSettings& settings, const std::string& label)
 {
     SceneItem& it = item(i);
     if (it.settings == settings) return;
+    record(label);
     const bool geometry = !(it.settings.tessellation == settings.tessellation);
     it.settings = settings;
-    if (geometry && it.kind == SceneItem::Kind::DocumentObject) it.geometryDirty = true;
+    if (geometry && it.kind == SceneItem::Kind::DocumentObject) {
+        it.geometryDirty = true;
+        it.key = nextKey();
+    }
     modified_ = true;
+}
+
+int Scene::addObject(DocumentObject object, const std::string& label)
+{
+    object.name = uniqueName(object.name);
+    Document single;
+    single.objects.push_back(object);
+    Document checked = parseDocument(formatDocument(single), "object \"" + object.name + "\"");
+    record(label);
+    const auto at = static_cast<std::ptrdiff_t>(document_.objects.size());
+    document_.objects.push_back(std::move(checked.objects.front()));
+    SceneItem item;
+    item.name = object.name;
+    item.type = objectType(document_.objects.back().data);
+    item.key = nextKey();
+    items_.insert(items_.begin() + at, std::move(item));
+    modified_ = true;
+    return static_cast<int>(at);
 }
 
 void Scene::setScalars(int i, std::vector<float> scalars)
@@ -360,10 +473,81 @@ void Scene::setScalars(int i, std::vector<float> scalars)
 
 void Scene::remove(int i)
 {
+    record("delete " + item(i).name);
     if (item(i).kind == SceneItem::Kind::DocumentObject)
         document_.objects.erase(document_.objects.begin() + i);
     items_.erase(items_.begin() + i);
     modified_ = true;
+}
+
+// ------------------------------------------------------------------------------------ undo
+
+void Scene::record(const std::string& label)
+{
+    ++changes_;
+    if (history_.wantsStep()) history_.record(label, state());
+}
+
+SceneState Scene::state() const
+{
+    SceneState s;
+    s.objects = document_.objects;
+    s.items.reserve(items_.size());
+    for (const SceneItem& it : items_) s.items.push_back({it.kind, it.name, it.type, it.meshPath, it.settings, it.key});
+    return s;
+}
+
+void Scene::restore(SceneState state)
+{
+    std::map<long, std::size_t> byKey;
+    for (std::size_t i = 0; i < items_.size(); ++i) byKey[items_[i].key] = i;
+    std::vector<SceneItem> items;
+    items.reserve(state.items.size());
+    for (SceneState::Item& r : state.items) {
+        SceneItem it;
+        if (const auto found = byKey.find(r.key); found != byKey.end()) it = std::move(items_[found->second]); // same content: keep its geometry
+        it.kind = r.kind;
+        it.name = std::move(r.name);
+        it.type = std::move(r.type);
+        it.meshPath = std::move(r.meshPath);
+        it.settings = r.settings;
+        it.key = r.key;
+        items.push_back(std::move(it));
+    }
+    items_ = std::move(items);
+    document_.objects = std::move(state.objects);
+    modified_ = true;
+    ++changes_;
+}
+
+bool Scene::undo()
+{
+    std::optional<SceneState> s = history_.undo(state());
+    if (!s) return false;
+    restore(std::move(*s));
+    return true;
+}
+
+bool Scene::redo()
+{
+    std::optional<SceneState> s = history_.redo(state());
+    if (!s) return false;
+    restore(std::move(*s));
+    return true;
+}
+
+void Scene::cancelMerge()
+{
+    if (std::optional<SceneState> s = history_.cancelMerge()) restore(std::move(*s));
+}
+
+Scene Scene::recover(const std::string& autosavePath, const std::string& originalPath, double aspect)
+{
+    Scene scene = load(autosavePath, aspect);
+    scene.path_ = originalPath;
+    scene.document_.source = originalPath.empty() ? autosavePath : originalPath;
+    scene.modified_ = true;
+    return scene;
 }
 
 void Scene::invalidateGeometry()
@@ -378,7 +562,8 @@ void Scene::updateGeometry()
         SceneItem& item = items_[i];
         if (!item.geometryDirty) continue;
         if (item.kind == SceneItem::Kind::DocumentObject) {
-            item.geometry = buildGeometry(document_.objects[i].data, item.settings, display.tolerance);
+            item.geometry = buildGeometry(document_.objects[i].data, item.settings, display.tolerance,
+                                          path_.empty() ? std::string() : fs::path(path_).parent_path().string());
         } else {
             try {
                 item.geometry = buildMeshGeometry(resolve(item.meshPath));

@@ -4,11 +4,14 @@
 // them by file path in its "editor" member, so saving never loses them.
 //
 // Invariants: items_ holds one item per document object, in document order, followed by the
-// imported meshes; every change to the document goes through replaceObject / setControlPoint /
-// add* / remove (the one path that marks an item dirty and the scene modified, and the place where
-// undo records will hook in). Derived geometry is rebuilt lazily by updateGeometry() for dirty
-// items only. Loading is all or nothing: a file that cannot be read throws Error and leaves the
-// scene untouched (load() builds a new Scene; the caller swaps it in).
+// imported meshes; every change to the document goes through replaceObject / setControlPoint(s) /
+// setSettings / addObject / importFile / remove, the one path that marks an item dirty, the scene
+// modified, and records an undo step (SceneState before the change) in the scene's History.
+// undo()/redo() restore the objects and items exactly (text() equal byte for byte, the camera and
+// display aside, which are not undo steps) and rebuild only items whose content key changed.
+// Derived geometry is rebuilt lazily by updateGeometry() for dirty items only. Loading is all or
+// nothing: a file that cannot be read throws Error and leaves the scene untouched (load() builds a
+// new Scene; the caller swaps it in).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -19,6 +22,7 @@
 
 #include "freeform/io/document.h"
 #include "freeform/mesh/polygon_mesh.h"
+#include "interaction/history.h"
 #include "render/render_types.h"
 #include "scene/camera.h"
 #include "scene/settings.h"
@@ -47,6 +51,20 @@ struct SceneItem {
     bool geometryDirty = true;            // the CPU geometry must be rebuilt
     int revision = 0;                     // bumped with every rebuild (the GPU copy compares it)
     std::vector<float> scalars;           // per-vertex scalars of the surface (colour map), or empty
+    long key = 0;                         // content key: new whenever the data behind the geometry
+                                          // (object, tessellation settings, mesh file) changes
+};
+
+/// What undo and redo restore: the document objects and the items without their derived geometry.
+struct SceneState {
+    struct Item {
+        SceneItem::Kind kind = SceneItem::Kind::DocumentObject;
+        std::string name, type, meshPath;
+        ObjectSettings settings;
+        long key = 0;
+    };
+    std::vector<DocumentObject> objects;
+    std::vector<Item> items;
 };
 
 class Scene {
@@ -60,8 +78,12 @@ public:
 
     /// Writes the document with the editor's settings to path atomically and remembers the path.
     void save(const std::string& path);
-    /// The document as it would be saved (objects, object settings, camera, display, meshes).
-    Document toDocument() const;
+    /// The document as it would be saved (objects, object settings, camera, display, meshes);
+    /// absoluteMeshPaths for a copy saved elsewhere (the autosave file).
+    Document toDocument(bool absoluteMeshPaths = false) const;
+    /// Reads an autosave file as the unsaved state of the document at `originalPath` (empty for
+    /// an untitled one): the result has that path and is modified. Error as load().
+    static Scene recover(const std::string& autosavePath, const std::string& originalPath, double aspect = 4.0 / 3.0);
     std::string text() const { return formatDocument(toDocument()); }
 
     /// Adds the patches of a .bpt file or a mesh file to this scene (Error: nothing changes).
@@ -82,14 +104,42 @@ public:
     const DocumentObject& object(int i) const;
 
     /// Replaces the document object behind item i (same name) after validating it through the
-    /// document reader; Error (nothing changes) when the new object is invalid.
-    void replaceObject(int i, const DocumentObject& object);
+    /// document reader; Error (nothing changes) when the new object is invalid. `label` names the
+    /// undo step (Edit > Undo <label>).
+    void replaceObject(int i, const DocumentObject& object, const std::string& label = "edit");
     /// Moves control point k of item i (2D objects ignore z). Error when invalid.
-    void setControlPoint(int i, int k, const Eigen::Vector3d& p);
-    void setSettings(int i, const ObjectSettings& settings);
-    /// Per-vertex scalars on item i's surface (size = its vertex count, or empty).
+    void setControlPoint(int i, int k, const Eigen::Vector3d& p, const std::string& label = "move point");
+    /// Moves control points ks[j] of item i to column j of ps (one step, one rebuild); Error
+    /// (nothing changes) on an index out of range or a coordinate that is not finite.
+    void setControlPoints(int i, const std::vector<int>& ks, const Eigen::Matrix3Xd& ps,
+                          const std::string& label = "move points");
+    /// The control points of item i in setControlPoint's order (3 x N, 2D padded with z = 0; empty
+    /// for meshes and for subdivision surfaces that reference a mesh file).
+    Eigen::Matrix3Xd controlPoints(int i) const;
+    /// The number of columns controlPoints(i) has, without copying them.
+    int controlPointCount(int i) const;
+    void setSettings(int i, const ObjectSettings& settings, const std::string& label = "object settings");
+    /// Per-vertex scalars on item i's surface (size = its vertex count, or empty). Derived data,
+    /// not an undo step.
     void setScalars(int i, std::vector<float> scalars);
+    /// Appends a document object (after the other objects, before the meshes) after validating it;
+    /// a name already in use gets a suffix. Returns its item index. Error: nothing changes.
+    int addObject(DocumentObject object, const std::string& label = "add object");
     void remove(int i);
+
+    // ---- undo and redo (Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y)
+    bool undo();
+    bool redo();
+    const History<SceneState>& history() const { return history_; }
+    /// One continuous gesture (a drag): the changes between beginMerge and endMerge are one step.
+    void beginMerge() { history_.beginMerge(); }
+    void endMerge() { history_.endMerge(); }
+    /// Ends the gesture and takes its changes back without a redo entry (Escape during a drag).
+    void cancelMerge();
+    /// The state undo would restore to (a copy of the objects and items, no geometry).
+    SceneState state() const;
+    /// Counts every change to the document (edits, undo, redo): tools compare it to notice changes.
+    long changeCount() const { return changes_; }
 
     /// Rebuilds the geometry of dirty items (tessellation, sampling).
     void updateGeometry();
@@ -105,6 +155,9 @@ public:
 
 private:
     void rebuildItems();
+    void record(const std::string& label);
+    void restore(SceneState state);
+    void setObjectData(int i, ObjectData data);
     void addMeshItem(const std::string& name, const std::string& path);
     std::string uniqueName(const std::string& base, const std::vector<SceneItem>& pending = {}) const;
     std::string resolve(const std::string& meshPath) const;
@@ -113,10 +166,14 @@ private:
     std::vector<SceneItem> items_;
     std::string path_;
     bool modified_ = false;
+    History<SceneState> history_;
+    long changes_ = 0;
 };
 
 /// Builds the geometry of a document object (tolerance: adaptive sampling in world units).
-ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance);
+/// documentDirectory resolves a subdivision_surface's relative mesh path.
+ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
+                           const std::string& documentDirectory = {});
 /// Reads a mesh file and makes sure it has triangles and per-vertex normals.
 ItemGeometry buildMeshGeometry(const std::string& path);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "interaction/manipulation.h"
+
 namespace freeform::editor {
 
 namespace {
@@ -53,15 +55,6 @@ private:
     std::vector<Vec3f> points_, colors_;
 };
 
-/// 1, 2 or 5 times a power of ten, the nearest at or above x.
-double niceStep(double x)
-{
-    const double p = std::pow(10.0, std::floor(std::log10(x)));
-    for (double m : {1.0, 2.0, 5.0, 10.0})
-        if (m * p >= x) return m * p;
-    return 10 * p;
-}
-
 } // namespace
 
 SceneDrawer::~SceneDrawer()
@@ -73,7 +66,7 @@ void SceneDrawer::clear()
 {
     for (auto& [name, gpu] : gpu_) releaseAll(gpu);
     gpu_.clear();
-    for (BufferHandle* h : {&grid_, &axes_})
+    for (BufferHandle* h : {&grid_, &axes_, &overlayLines_, &overlayTop_, &overlayPoints_})
         if (*h) renderer_.release(*h), *h = {};
     gridScale_ = 0;
 }
@@ -140,7 +133,7 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
     gpu.normalLength = normalLength;
 }
 
-long SceneDrawer::draw(Scene& scene, int width, int height, int selected)
+long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const Overlay* overlay)
 {
     scene.updateGeometry();
     const DisplaySettings& d = scene.display;
@@ -180,7 +173,7 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected)
     const double extent = std::max({std::abs(box.min().x()), std::abs(box.max().x()), std::abs(box.min().y()),
                                     std::abs(box.max().y()), 0.5 * diameter, 1e-6});
     if (!grid_ || gridScale_ != extent) {
-        const double step = niceStep(extent / 8);
+        const double step = gridStep(box); // the step snapping uses
         const int lines = static_cast<int>(std::ceil(extent / step));
         const double reach = lines * step;
         LineBuilder grid;
@@ -238,6 +231,14 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected)
         const Gpu& gpu = gpu_[item.name];
         if (d.controlNets || i == selected) renderer_.drawLines(gpu.net, identity, false);
         if (d.controlPoints || i == selected) renderer_.drawPoints(gpu.points, identity, d.pointSize);
+    }
+    if (overlay && !overlay->empty()) {
+        overlayLines_ = renderer_.uploadLines(overlayLines_, overlay->lines);
+        overlayTop_ = renderer_.uploadLines(overlayTop_, overlay->linesOnTop);
+        overlayPoints_ = renderer_.uploadPoints(overlayPoints_, overlay->points);
+        if (overlay->lines.positions.cols() > 0) renderer_.drawLines(overlayLines_, identity, true);
+        if (overlay->linesOnTop.positions.cols() > 0) renderer_.drawLines(overlayTop_, identity, false);
+        if (overlay->points.positions.cols() > 0) renderer_.drawPoints(overlayPoints_, identity, overlay->pointDiameter);
     }
     renderer_.endFrame();
     return triangles;

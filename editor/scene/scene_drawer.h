@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/renderer.h"
+#include "scene/overlay.h"
 #include "scene/scene.h"
 
 namespace freeform::editor {
@@ -22,8 +23,9 @@ public:
     static FrameInfo frameInfo(const Scene& scene, int width, int height);
 
     /// Draws the whole scene into the renderer's target (updateGeometry first). `selected` is the
-    /// highlighted item or -1. Returns the number of triangles drawn.
-    long draw(Scene& scene, int width, int height, int selected = -1);
+    /// highlighted item or -1; `overlay` (may be null) is drawn last: its lines depth-tested, its
+    /// on-top lines and points over everything. Returns the number of triangles drawn.
+    long draw(Scene& scene, int width, int height, int selected = -1, const Overlay* overlay = nullptr);
 
     /// Forgets every GPU buffer (after the scene was replaced).
     void clear();
@@ -43,6 +45,7 @@ private:
     Renderer& renderer_;
     std::map<std::string, Gpu> gpu_;        // by item name (unique within a scene)
     BufferHandle grid_, axes_;
+    BufferHandle overlayLines_, overlayTop_, overlayPoints_;
     double gridScale_ = 0;
 };
 

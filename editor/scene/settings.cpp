@@ -1,5 +1,6 @@
 #include "scene/settings.h"
 
+#include <cmath>
 #include <set>
 
 #include "scene/json_read.h"
@@ -16,6 +17,17 @@ void onlyKnown(const Json& j, const std::string& path, std::initializer_list<con
 }
 
 } // namespace
+
+const char* toString(JointMode mode)
+{
+    switch (mode) {
+    case JointMode::Free: return "free";
+    case JointMode::Aligned: return "aligned";
+    case JointMode::Mirrored: return "mirrored";
+    case JointMode::C2: return "c2";
+    }
+    return "free";
+}
 
 Json materialToJson(const Material& m)
 {
@@ -140,13 +152,24 @@ Json ObjectSettings::toJson() const
         if (tessellation.flip) t["flip"] = true;
         j["tessellation"] = std::move(t);
     }
+    if (!joints.empty()) {
+        Json a = Json::array();
+        for (JointMode m : joints) a.push_back(toString(m));
+        j["joints"] = std::move(a);
+    }
+    if (!(ffd == FfdSettings{})) {
+        Json f;
+        f["mesh"] = ffd.mesh;
+        f["strength"] = ffd.strength;
+        j["ffd"] = std::move(f);
+    }
     return j;
 }
 
 ObjectSettings ObjectSettings::fromJson(const Json& j, const std::string& path)
 {
     json::requireObject(j, path);
-    onlyKnown(j, path, {"visible", "material", "tessellation"});
+    onlyKnown(j, path, {"visible", "material", "tessellation", "joints", "ffd"});
     ObjectSettings s;
     json::read(j, "visible", path, s.visible);
     if (j.contains("material")) {
@@ -165,6 +188,32 @@ ObjectSettings ObjectSettings::fromJson(const Json& j, const std::string& path)
         json::read(t, "flip", tp, s.tessellation.flip);
         if (s.tessellation.tolerance < 0) json::fail(tp + ".tolerance", "must not be negative");
         if (s.tessellation.segments < 1 || s.tessellation.segments > 1000) json::fail(tp + ".segments", "must lie in 1..1000");
+    }
+    if (j.contains("joints")) {
+        const Json& a = j["joints"];
+        const std::string jp = path + ".joints";
+        if (!a.is_array()) json::fail(jp, "expected an array");
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            const std::string ip = jp + "[" + std::to_string(i) + "]";
+            if (!a[i].is_string()) json::fail(ip, "expected a string");
+            const std::string v = a[i].get<std::string>();
+            int m = 0;
+            while (m < 4 && v != toString(static_cast<JointMode>(m))) ++m;
+            if (m == 4) json::fail(ip, "\"" + v + "\" is not one of free, aligned, mirrored, c2");
+            s.joints.push_back(static_cast<JointMode>(m));
+        }
+    }
+    if (j.contains("ffd")) {
+        const std::string fp = path + ".ffd";
+        const Json& f = j["ffd"];
+        json::requireObject(f, fp);
+        onlyKnown(f, fp, {"mesh", "strength"});
+        if (f.contains("mesh")) {
+            if (!f["mesh"].is_string()) json::fail(fp + ".mesh", "expected a string");
+            s.ffd.mesh = f["mesh"].get<std::string>();
+        }
+        json::read(f, "strength", fp, s.ffd.strength);
+        if (!std::isfinite(s.ffd.strength)) json::fail(fp + ".strength", "must be finite");
     }
     return s;
 }

@@ -49,11 +49,27 @@ struct Tessellation {
     bool operator==(const Tessellation&) const = default;
 };
 
+/// Handle mode of a spline joint (docs/editor.md, "Curves and splines"): what the editor keeps
+/// when a handle next to the joint moves. Free: nothing (C0); Aligned: the handles and the joint on
+/// one line (G1); Mirrored: C1 (the opposite handle mirrored, scaled by the interval ratio);
+/// C2: the A-frame condition of cubics (C2).
+enum class JointMode { Free, Aligned, Mirrored, C2 };
+const char* toString(JointMode mode);
+
+/// A lattice's binding to an imported mesh it deforms (the lattice object's editor member "ffd").
+struct FfdSettings {
+    std::string mesh;                  // name of the imported mesh item; empty: none
+    double strength = 1;               // w of volume/deform.h
+    bool operator==(const FfdSettings&) const = default;
+};
+
 struct ObjectSettings {
     bool visible = true;
     bool ownMaterial = false;          // use `material` rather than the display default
     Material material;
     Tessellation tessellation;
+    std::vector<JointMode> joints;     // bezier_spline: one mode per joint (empty: all free)
+    FfdSettings ffd;                   // lattice: the mesh it deforms
 
     bool isDefault() const { return *this == ObjectSettings{}; }
     Json toJson() const;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "tools/tools.h"
+
 namespace freeform::editor {
 
 namespace {
@@ -68,6 +70,27 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         ImGui::EndMenu();
     }
+    if (ImGui::BeginMenu("Edit")) {
+        const auto& h = scene.history();
+        const std::string undoText = h.canUndo() ? "Undo " + h.undoLabel() : std::string("Undo");
+        const std::string redoText = h.canRedo() ? "Redo " + h.redoLabel() : std::string("Redo");
+        if (ImGui::MenuItem(undoText.c_str(), "Ctrl+Z", false, h.canUndo())) actions.undo();
+        if (ImGui::MenuItem(redoText.c_str(), "Ctrl+Shift+Z", false, h.canRedo())) actions.redo();
+        ImGui::Separator();
+        Selection& sel = s.selection;
+        const bool hasItem = sel.item >= 0 && sel.item < scene.itemCount();
+        if (ImGui::MenuItem("Select all points", "A", false, hasItem)) {
+            std::vector<int> all(static_cast<std::size_t>(scene.controlPointCount(sel.item)));
+            for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+            sel.setPoints(std::move(all));
+        }
+        if (ImGui::MenuItem("Select none", "Alt+A", false, !sel.points.empty())) sel.points.clear();
+        ImGui::Separator();
+        ImGui::MenuItem("Snap to grid", "Shift+Tab", &s.edit.snap);
+        ImGui::MenuItem("Proportional editing", "O", &s.edit.soft);
+        ImGui::MenuItem("Translate gizmo", "Shift+G", &s.edit.gizmo);
+        ImGui::EndMenu();
+    }
     if (ImGui::BeginMenu("View")) {
         DisplaySettings& d = scene.display;
         int shading = static_cast<int>(d.shading);
@@ -81,7 +104,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
             if (ImGui::MenuItem(v)) actions.setView(v);
         ImGui::Separator();
         if (ImGui::MenuItem("Fit all", "Home")) actions.fit(false);
-        if (ImGui::MenuItem("Fit selection", "F", false, s.selected >= 0)) actions.fit(true);
+        if (ImGui::MenuItem("Fit selection", "F", false, s.selection.item >= 0)) actions.fit(true);
         bool ortho = scene.camera.projection == Projection::Orthographic;
         if (ImGui::MenuItem("Orthographic", "5", &ortho)) {
             scene.camera.projection = ortho ? Projection::Orthographic : Projection::Perspective;
@@ -93,6 +116,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
             scene.touch();
         }
         ImGui::MenuItem("Display panel", nullptr, &s.showDisplay);
+        ImGui::MenuItem("Frame statistics", "F2", &s.showStats);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
@@ -125,7 +149,10 @@ void outliner(Scene& scene, UiState& s)
             }
             ImGui::SameLine();
             const std::string label = item.name + "  (" + item.type + ")" + (item.geometry.error.empty() ? "" : "  !");
-            if (ImGui::Selectable(label.c_str(), s.selected == i)) s.selected = (s.selected == i) ? -1 : i;
+            if (ImGui::Selectable(label.c_str(), s.selection.item == i)) {
+                if (s.selection.item == i) s.selection.clear();
+                else s.selection.selectItem(i);
+            }
             if (!item.geometry.error.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", item.geometry.error.c_str());
             ImGui::PopID();
         }
@@ -171,16 +198,64 @@ void controlPointTable(Scene& scene, int index, UiState& s)
     ImGui::EndChild();
 }
 
-void properties(Scene& scene, UiState& s)
+/// Numeric entry for the selected points: one point's coordinates, or the centroid of several
+/// (editing it moves them all by the same amount). One undo step per edit.
+void selectedPoints(Scene& scene, int index, UiState& s)
+{
+    const Eigen::Matrix3Xd points = scene.controlPoints(index);
+    std::vector<int> ks;
+    for (int k : s.selection.points)
+        if (k < points.cols()) ks.push_back(k);
+    if (ks.empty()) {
+        ImGui::TextDisabled("click a control point to select it (shift: add, ctrl+drag: box)");
+        return;
+    }
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int k : ks) centre += points.col(k);
+    centre /= double(ks.size());
+    double value[3] = {centre.x(), centre.y(), centre.z()};
+    std::string label = ks.size() == 1 ? std::string("point ") : std::string();
+    label += std::to_string(ks.size() == 1 ? ks.front() : static_cast<int>(ks.size()));
+    if (ks.size() > 1) label += " points (centre)";
+    ImGui::TextUnformatted(label.c_str());
+    if (ImGui::InputScalarN("##selected", ImGuiDataType_Double, value, 3, nullptr, nullptr, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+        const Eigen::Vector3d target(value[0], value[1], value[2]);
+        Eigen::Matrix3Xd moved(3, static_cast<Eigen::Index>(ks.size()));
+        for (std::size_t j = 0; j < ks.size(); ++j)
+            moved.col(static_cast<Eigen::Index>(j)) = ks.size() == 1 ? target : Eigen::Vector3d(points.col(ks[j]) + (target - centre));
+        try {
+            scene.setControlPoints(index, ks, moved, ks.size() == 1 ? "set point" : "set points");
+        } catch (const Error& e) {
+            s.error = e.what();
+        }
+    }
+}
+
+/// Snapping, proportional editing and the gizmo.
+void editOptions(Scene& scene, UiState& s)
+{
+    if (!ImGui::CollapsingHeader("editing")) return;
+    ImGui::Checkbox("snap to grid (Shift+Tab)", &s.edit.snap);
+    ImGui::Checkbox("proportional (O)", &s.edit.soft);
+    if (s.edit.soft) {
+        if (!(s.edit.softRadius > 0)) s.edit.softRadius = 0.25 * scene.bounds().diagonal().norm();
+        const double lo = 1e-4, hi = 1e4;
+        ImGui::SliderScalar("radius (+/-)", ImGuiDataType_Double, &s.edit.softRadius, &lo, &hi, "%.4g", ImGuiSliderFlags_Logarithmic);
+    }
+    ImGui::Checkbox("translate gizmo (Shift+G)", &s.edit.gizmo);
+}
+
+void properties(Scene& scene, UiState& s, UiActions& actions)
 {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - kPanelWidth - 8, vp->Pos.y + menuHeight() + 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 420), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Properties")) {
-        if (s.selected < 0 || s.selected >= scene.itemCount()) {
-            ImGui::TextDisabled("select an object in the Scene panel");
+        const int selected = s.selection.item;
+        if (selected < 0 || selected >= scene.itemCount()) {
+            ImGui::TextDisabled("select an object in the Scene panel or the view");
         } else {
-            SceneItem& item = scene.item(s.selected);
+            SceneItem& item = scene.item(selected);
             ImGui::Text("%s", item.name.c_str());
             ImGui::TextDisabled("%s", item.type.c_str());
             ObjectSettings settings = item.settings;
@@ -196,7 +271,7 @@ void properties(Scene& scene, UiState& s)
                         else if constexpr (std::is_same_v<T, LatticeData>) ImGui::Text("degree %d x %d x %d", d.degree[0], d.degree[1], d.degree[2]);
                         else ImGui::Text("scheme %s", d.scheme.c_str());
                     },
-                    scene.object(s.selected).data);
+                    scene.object(selected).data);
             }
             if (item.geometry.surface) {
                 ImGui::Text("%d vertices, %d triangles", item.geometry.surface->vertexCount(), item.geometry.surface->faceCount());
@@ -222,10 +297,16 @@ void properties(Scene& scene, UiState& s)
                     if (settings.ownMaterial) changed |= materialEditor(settings.material);
                 }
             }
-            if (changed) scene.setSettings(s.selected, settings);
+            if (changed) scene.setSettings(selected, settings);
             if (!item.geometry.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", item.geometry.error.c_str());
-            if (item.kind == SceneItem::Kind::DocumentObject) controlPointTable(scene, s.selected, s);
-            else ImGui::TextWrapped("file: %s", item.meshPath.c_str());
+            if (item.kind == SceneItem::Kind::DocumentObject) {
+                selectedPoints(scene, selected, s);
+                editOptions(scene, s);
+                controlPointTable(scene, selected, s);
+            } else {
+                ImGui::TextWrapped("file: %s", item.meshPath.c_str());
+            }
+            actions.toolPanels();
         }
     }
     ImGui::End();
@@ -389,9 +470,51 @@ void errorDialog(UiState& s)
 void helpWindow(UiState& s)
 {
     if (!s.showHelp) return;
-    ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Controls", &s.showHelp)) ImGui::TextUnformatted(controlsHelp());
+    ImGui::SetNextWindowSize(ImVec2(520, 560), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Controls", &s.showHelp)) {
+        ImGui::TextUnformatted(controlsHelp());
+        const char* tools = Tools::keyHelp();
+        if (tools && *tools) {
+            ImGui::Separator();
+            ImGui::TextUnformatted("Tools");
+            ImGui::TextUnformatted(tools);
+        }
+    }
     ImGui::End();
+}
+
+void statsWindow(UiState& s)
+{
+    if (!s.showStats) return;
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - 8), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("Frame statistics", nullptr, flags))
+        ImGui::Text("frame %.2f ms   update %.2f ms   %ld triangles", s.frameMs, s.updateMs, s.triangles);
+    ImGui::End();
+}
+
+void recoveryDialog(UiState& s, UiActions& actions)
+{
+    if (s.recovery.empty()) return;
+    const char* title = "Recover unsaved changes";
+    if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+    if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::PushTextWrapPos(560);
+        ImGui::TextUnformatted(s.recovery.c_str());
+        ImGui::PopTextWrapPos();
+        const bool recover = ImGui::Button("Recover (Enter)") || keyPressed(ImGuiKey_Enter);
+        ImGui::SameLine();
+        const bool discard = ImGui::Button("Discard (Escape)") || keyPressed(ImGuiKey_Escape);
+        if (recover || discard) {
+            s.recovery.clear();
+            ImGui::CloseCurrentPopup();
+            actions.recover(recover);
+        }
+        ImGui::EndPopup();
+    }
 }
 
 } // namespace
@@ -399,35 +522,61 @@ void helpWindow(UiState& s)
 const char* controlsHelp()
 {
     return "Mouse (in the view)\n"
-           "  left drag            orbit (turntable or arcball: View menu)\n"
-           "  middle drag,\n"
-           "  shift + left drag    pan\n"
-           "  wheel                zoom towards the cursor\n"
-           "Keys\n"
-           "  1 / Ctrl+1           front / back view\n"
-           "  3 / Ctrl+3           right / left view\n"
-           "  7 / Ctrl+7           top / bottom view\n"
-           "  9                    isometric view\n"
-           "  5                    perspective <-> orthographic\n"
-           "  Home / F             fit all / fit the selection\n"
-           "  Z                    next shading mode (flat, Gouraud, Phong)\n"
-           "  W                    wireframe overlay on / off\n"
-           "  R                    reflection lines on / off\n"
-           "  Ctrl+N, Ctrl+O       new, open\n"
-           "  Ctrl+S, Ctrl+Shift+S save, save as\n"
-           "  Ctrl+I, Ctrl+E       import mesh or .bpt, export OBJ\n"
-           "  Ctrl+Q               quit\n"
-           "  F1                   this help\n"
-           "Files can also be dropped on the window: documents open, meshes and .bpt files are imported.\n";
+           "  left click on a point     select it (the selected object's points first)\n"
+           "  shift + left click        add or remove a point from the selection\n"
+           "  left drag on a point      move the selected points in the view plane\n"
+           "  left drag on the gizmo    move along an axis (arrow) or in a plane (square)\n"
+           "  ctrl + left drag          box select (ctrl + shift: add to the selection)\n"
+           "  left click on a curve\n"
+           "    or surface              select that object\n"
+           "  left click on nothing     deselect the points, then the object\n"
+           "  left drag on nothing      orbit (turntable or arcball: View menu)\n"
+           "  middle drag, right drag,\n"
+           "  shift + left drag         pan\n"
+           "  wheel                     zoom towards the cursor\n"
+           "Editing\n"
+           "  A / Alt+A                 select all points / none\n"
+           "  Escape                    deselect points, then the object; cancels a drag\n"
+           "  G                         grab: move the selected points with the pointer\n"
+           "    X / Y / Z               ...along that axis (again: free)\n"
+           "    Shift+X / Y / Z         ...in the plane orthogonal to that axis\n"
+           "    click, Enter            confirm; right click, Escape: cancel\n"
+           "  Shift+Tab                 snap to the grid on / off\n"
+           "  O                         proportional (soft) editing on / off\n"
+           "  + / -                     soft radius larger / smaller\n"
+           "  Shift+G                   translate gizmo on / off\n"
+           "  Ctrl+Z                    undo\n"
+           "  Ctrl+Shift+Z, Ctrl+Y      redo\n"
+           "View\n"
+           "  1 / Ctrl+1                front / back view\n"
+           "  3 / Ctrl+3                right / left view\n"
+           "  7 / Ctrl+7                top / bottom view\n"
+           "  9                         isometric view\n"
+           "  5                         perspective <-> orthographic\n"
+           "  Home / F                  fit all / fit the selection\n"
+           "  Z                         next shading mode (flat, Gouraud, Phong)\n"
+           "  W                         wireframe overlay on / off\n"
+           "  R                         reflection lines on / off\n"
+           "  F2                        frame statistics on / off\n"
+           "Files\n"
+           "  Ctrl+N, Ctrl+O            new, open\n"
+           "  Ctrl+S, Ctrl+Shift+S      save, save as\n"
+           "  Ctrl+I, Ctrl+E            import mesh or .bpt, export OBJ\n"
+           "  Ctrl+Q                    quit\n"
+           "  F1                        this help\n"
+           "Files can also be dropped on the window: documents open, meshes and .bpt files are imported.\n"
+           "Unsaved changes are autosaved every minute and offered for recovery at the next start.\n";
 }
 
 bool drawUi(Scene& scene, UiState& state, UiActions& actions)
 {
     mainMenu(scene, state, actions);
     outliner(scene, state);
-    properties(scene, state);
+    properties(scene, state, actions);
     displayPanel(scene, state);
     helpWindow(state);
+    statsWindow(state);
+    recoveryDialog(state, actions);
     pathDialog(scene, state, actions);
     const bool proceed = unsavedDialog(scene, state, actions);
     errorDialog(state);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "interaction/interaction.h"
+#include "interaction/selection.h"
 #include "scene/scene.h"
 
 namespace freeform::editor {
@@ -25,20 +27,29 @@ public:
     virtual void fit(bool selectionOnly) = 0;
     virtual void setView(const std::string& name) = 0;
     virtual const std::vector<std::string>& recentFiles() const = 0;
+    virtual void undo() = 0;                              // Ctrl+Z (ends a running drag first)
+    virtual void redo() = 0;                              // Ctrl+Shift+Z, Ctrl+Y
+    virtual void recover(bool accept) = 0;                // the autosave recovery dialog's answer
+    virtual void toolPanels() = 0;                        // the tools' sections of the Properties window
 };
 
 enum class PendingAction { None, New, Open, Quit };
 
 /// State of the panels that is not part of the document.
 struct UiState {
-    int selected = -1;
+    Selection selection;              // the selected item and its selected control points
+    EditSettings edit;                // snapping, soft editing, gizmo
     std::string error;                // shown in a modal until dismissed
     PendingAction pending = PendingAction::None; // waits for the unsaved-changes answer
     std::string pendingPath;
     bool showDisplay = true;
     bool showHelp = false;
+    bool showStats = false;           // the frame statistics overlay (F2)
     double frameMs = 0;               // last frame time, for the status line
+    double updateMs = 0;              // CPU time of the last frame that rebuilt something
     long triangles = 0;
+    // Autosave recovery: offered in a modal when `recovery` is not empty (its description).
+    std::string recovery;
     // Path dialog: which action it serves and the text being edited.
     enum class PathDialog { None, Open, SaveAs, Import, Export } pathDialog = PathDialog::None;
     char pathBuffer[1024] = {};

@@ -1,0 +1,197 @@
+#include "tools/ffd_tools.h"
+
+#include <cmath>
+#include <limits>
+
+#include "freeform/core/error.h"
+#include "freeform/curve/bezier_spline.h"
+#include "freeform/io/mesh_io.h"
+#include "freeform/surface/bezier_surface.h"
+
+namespace freeform::editor {
+
+namespace {
+
+using Points3 = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+
+bool insideBox(const Lattice& lattice, const PointColumns& points)
+{
+    for (Eigen::Index i = 0; i < points.cols(); ++i)
+        if (!Lattice::insideBox(lattice.toLattice(Eigen::Vector3d(points.col(i))))) return false;
+    return true;
+}
+
+} // namespace
+
+FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
+    : frame_(lattice), rest_(std::move(rest)), binding_(lattice, rest_.positions)
+{
+}
+
+bool FfdSession::matches(const Lattice& lattice) const
+{
+    return lattice.sameFrame(frame_) && lattice.outside() == frame_.outside();
+}
+
+DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<double>* detJ) const
+{
+    const Eigen::Index count = rest_.positions.cols();
+    if (out.positions.cols() != count) out.positions.resize(3, count);
+    FfdOutputs<double> o;
+    o.positions = out.positions.data();
+    if (rest_.normals.cols() == count) {
+        if (out.normals.cols() != count) out.normals.resize(3, count);
+        o.normalsIn = rest_.normals.data();
+        o.normalsOut = out.normals.data();
+    }
+    if (detJ) {
+        detJ->resize(static_cast<std::size_t>(count));
+        o.determinants = detJ->data();
+    }
+    DeformOptions options;
+    options.strength = strength;
+    DeformReport report;
+    binding_.deform(lattice, o, options, &report);
+    return report;
+}
+
+DeformReport exportDeformedMesh(const std::string& input, const Lattice& lattice, double strength, const std::string& output)
+{
+    MeshFile file = MeshFile::read(input);
+    auto& positions = file.positions();
+    const Eigen::Index count = positions.cols();
+    const FfdBinding<double> binding(lattice, positions);
+    Points3 moved(3, count);
+    Eigen::Matrix<double, 9, Eigen::Dynamic> jacobians(9, count);
+    FfdOutputs<double> out;
+    out.positions = moved.data();
+    out.jacobians = jacobians.data();
+    DeformOptions options;
+    options.strength = strength;
+    DeformReport report;
+    binding.deform(lattice, out, options, &report);
+    positions = moved;
+    const auto jacobianAt = [&](int v) { return Eigen::Matrix3d(Eigen::Map<const Eigen::Matrix3d>(jacobians.col(v).data())); };
+    // Normals and tangents sit at positions (anchors); where J is the identity they stay bit for bit.
+    auto& normals = file.normals();
+    const auto& normalAnchors = file.normalAnchors();
+    for (Eigen::Index i = 0; i < normals.cols(); ++i) {
+        const int a = normalAnchors[static_cast<std::size_t>(i)];
+        if (a < 0) continue;
+        const Eigen::Matrix3d j = jacobianAt(a);
+        if (j != Eigen::Matrix3d::Identity()) normals.col(i) = transformNormal(j, normals.col(i));
+    }
+    auto& tangents = file.tangents();
+    const auto& tangentAnchors = file.tangentAnchors();
+    for (Eigen::Index i = 0; i < tangents.cols(); ++i) {
+        const int a = tangentAnchors[static_cast<std::size_t>(i)];
+        if (a < 0) continue;
+        const Eigen::Matrix3d j = jacobianAt(a);
+        if (j != Eigen::Matrix3d::Identity()) tangents.col(i).head<3>() = transformTangent(j, tangents.col(i).head<3>());
+    }
+    file.write(output);
+    return report;
+}
+
+std::optional<ObjectData> deformObject(const Lattice& lattice, const ObjectData& object, double strength, std::string& why)
+{
+    const bool extrapolate = lattice.outside() == OutsidePolicy::Extrapolate;
+    const auto outside = [&](const PointColumns& p) {
+        if (extrapolate || insideBox(lattice, p)) return false;
+        why = "control points outside the lattice box (exact only inside, or with the extrapolate policy)";
+        return true;
+    };
+    if (const auto* c = std::get_if<BezierCurveData>(&object)) {
+        if (c->points.rows() != 3) {
+            why = "a 2D curve (the lattice deforms 3D space)";
+            return std::nullopt;
+        }
+        if (outside(c->points)) return std::nullopt;
+        BezierCurveData d;
+        d.points = deformCurve(lattice, BezierCurve<double, 3>(Points3(c->points)), strength).controlPoints();
+        return d;
+    }
+    if (const auto* s = std::get_if<BezierSplineData>(&object)) {
+        if (s->points.rows() != 3) {
+            why = "a 2D spline (the lattice deforms 3D space)";
+            return std::nullopt;
+        }
+        if (outside(s->points)) return std::nullopt;
+        const BezierSpline<double, 3> spline(s->degree, s->closed, Points3(s->points), s->intervals);
+        BezierSplineData d;
+        d.closed = s->closed;
+        d.intervals = s->intervals;
+        const int L = spline.segmentCount();
+        for (int i = 0; i < L; ++i) {
+            const BezierCurve<double, 3> piece = deformCurve(lattice, spline.segment(i), strength);
+            const int n = piece.degree();
+            if (i == 0) {
+                d.degree = n;
+                d.points.resize(3, s->closed ? L * n : L * n + 1);
+            }
+            // Segment i owns its first n points (the joint from its own composition); the last
+            // segment of an open spline its end point too.
+            d.points.middleCols(static_cast<Eigen::Index>(i) * n, n) = piece.controlPoints().leftCols(n);
+            if (!s->closed && i + 1 == L) d.points.col(d.points.cols() - 1) = piece.controlPoints().col(n);
+        }
+        return d;
+    }
+    if (const auto* p = std::get_if<BezierSurfaceData>(&object)) {
+        if (outside(p->points)) return std::nullopt;
+        const BezierSurface<double, 3> patch(p->degree[0], p->degree[1], Points3(p->points));
+        const BezierSurface<double, 3> moved = deformSurface(lattice, patch, strength);
+        BezierSurfaceData d;
+        d.degree = {moved.degreeU(), moved.degreeV()};
+        d.points = moved.controlPoints();
+        return d;
+    }
+    if (const auto* g = std::get_if<SubdivisionSurfaceData>(&object)) {
+        if (g->vertices.cols() == 0) {
+            why = "the cage is in a mesh file (only inline cages are deformed)";
+            return std::nullopt;
+        }
+        SubdivisionSurfaceData d = *g;
+        Points3 v = g->vertices;
+        DeformOptions options;
+        options.strength = strength;
+        deformPoints(lattice, v, options);
+        d.vertices = v;
+        return d;
+    }
+    why = "no exact deformation for this object type";
+    return std::nullopt;
+}
+
+std::optional<MeshHit> rayMesh(const PolygonMesh& mesh, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction)
+{
+    // Moeller-Trumbore on every triangle (fans of larger faces), nearest positive distance.
+    std::optional<MeshHit> best;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        for (int k = 1; k + 1 < mesh.faceSize(f); ++k) {
+            const Eigen::Vector3d a = mesh.positions.col(v[0]), b = mesh.positions.col(v[k]), c = mesh.positions.col(v[k + 1]);
+            const Eigen::Vector3d e1 = b - a, e2 = c - a, p = direction.cross(e2);
+            const double det = e1.dot(p);
+            if (std::abs(det) < 1e-300) continue;
+            const Eigen::Vector3d s = origin - a;
+            const double u = s.dot(p) / det;
+            if (u < 0 || u > 1) continue;
+            const Eigen::Vector3d q = s.cross(e1);
+            const double w = direction.dot(q) / det;
+            if (w < 0 || u + w > 1) continue;
+            const double t = e2.dot(q) / det;
+            if (t <= 0 || (best && t >= best->distance)) continue;
+            if (mesh.faceSize(f) != 3) continue; // the editor's meshes are triangulated
+            best = MeshHit{f, u, w, t};
+        }
+    }
+    return best;
+}
+
+Eigen::Vector3d pointAt(const PolygonMesh& mesh, const Points3& positions, const MeshHit& hit)
+{
+    const int* v = mesh.face(hit.face);
+    return (1 - hit.b1 - hit.b2) * positions.col(v[0]) + hit.b1 * positions.col(v[1]) + hit.b2 * positions.col(v[2]);
+}
+
+} // namespace freeform::editor
