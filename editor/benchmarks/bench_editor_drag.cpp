@@ -1,0 +1,110 @@
+// The CPU side of one frame of a lattice drag in the editor (issue 7: at most 20 ms for a
+// 1,000,000-vertex mesh on the 2-core test machine). The scene holds an imported triangle mesh of
+// V vertices (a 1000 x 1000 sphere grid written as OBJ once, read through Scene::importFile as the
+// editor reads it) and a cubic lattice fitted to it by the tools (fitLattice, key L). Each
+// iteration is what a frame does while a lattice point is dragged:
+//   - Scene::setControlPoint on the lattice inside a merged undo step (the drag),
+//   - Tools::update: the FFD link notices the new control points and deforms positions, normals
+//     and det J of every vertex through the binding made at fit time (no lattice coordinates are
+//     computed again), the det J colour scalars and the bounds,
+//   - Scene::updateGeometry: the rebuild of what changed (the lattice's net).
+// Uploading to the GPU is not included (the driver's work). A second benchmark times the
+// FfdSession::deform call alone. Nothing here is a test: docs/performance.md has the figures.
+//
+//   build/bin/bench_editor_drag --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "interaction/selection.h"
+#include "scene/overlay.h"
+#include "scene/scene.h"
+#include "tools/tool_state.h"
+#include "tools/tools.h"
+
+namespace {
+
+using namespace freeform;
+using namespace freeform::editor;
+
+constexpr int kGrid = 1000; // kGrid x kGrid vertices
+
+/// A closed-ish sphere grid (latitude x longitude, poles not merged) as an OBJ file, written once.
+std::string meshFile()
+{
+    static const std::string path = (std::filesystem::temp_directory_path() / "freeform_bench_drag_1m.obj").string();
+    static bool written = false;
+    if (written) return path;
+    std::ofstream out(path);
+    char line[96];
+    for (int i = 0; i < kGrid; ++i) {
+        const double theta = std::numbers::pi * (i + 0.5) / kGrid;
+        for (int j = 0; j < kGrid; ++j) {
+            const double phi = 2 * std::numbers::pi * j / kGrid;
+            std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta));
+            out << line;
+        }
+    }
+    for (int i = 0; i + 1 < kGrid; ++i)
+        for (int j = 0; j < kGrid; ++j) {
+            const int a = i * kGrid + j + 1, b = i * kGrid + (j + 1) % kGrid + 1, c = a + kGrid, d = b + kGrid;
+            std::snprintf(line, sizeof line, "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c);
+            out << line;
+        }
+    written = true;
+    return path;
+}
+
+struct DragScene {
+    Scene scene;
+    Selection selection;
+    Tools tools;
+    Overlay overlay;
+    int lattice = -1, mesh = -1;
+
+    DragScene()
+    {
+        scene.importFile(meshFile());
+        ToolContext context{scene, selection};
+        tools.state().latticeDegree[0] = tools.state().latticeDegree[1] = tools.state().latticeDegree[2] = 3;
+        if (!fitLattice(context, tools.state(), scene.itemCount() - 1)) throw Error("fit: " + tools.state().message);
+        lattice = selection.item;
+        mesh = findItem(scene, std::filesystem::path(meshFile()).stem().string());
+        tools.update(context, overlay); // binds the mesh once, as the first frame after the fit does
+        scene.updateGeometry();
+    }
+};
+
+void BM_DragFrame(benchmark::State& state)
+{
+    static DragScene d; // made once: reading the mesh and binding it are not what is measured
+    ToolContext context{d.scene, d.selection};
+    const int k = 21; // an inner control point of the 4 x 4 x 4 lattice
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    d.scene.beginMerge();
+    int frame = 0;
+    for (auto _ : state) {
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+    }
+    d.scene.endMerge();
+    state.counters["vertices"] = double(kGrid) * kGrid;
+    const auto& links = d.tools.state().links;
+    if (!links.empty()) state.counters["deform_ms_last"] = links.begin()->second.deformMs;
+}
+BENCHMARK(BM_DragFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+} // namespace
+
+BENCHMARK_MAIN();
