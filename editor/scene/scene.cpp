@@ -236,7 +236,9 @@ Document Scene::toDocument(bool absoluteMeshPaths) const
 
 void Scene::save(const std::string& path)
 {
-    // Mesh paths are stored relative to the document when they lie beside or below it.
+    // Mesh paths are stored relative to the document when they lie beside or below it, and when
+    // they were relative already (rebased onto the new folder, ".." allowed: a document and its
+    // meshes that travel together keep working); others stay absolute.
     const std::string oldPath = path_;
     std::vector<std::string> oldMeshPaths;
     for (SceneItem& item : items_) {
@@ -245,7 +247,9 @@ void Scene::save(const std::string& path)
         const fs::path absolute = fs::absolute(resolve(item.meshPath));
         const fs::path base = fs::absolute(path).parent_path();
         const fs::path relative = absolute.lexically_relative(base);
-        item.meshPath = (!relative.empty() && *relative.begin() != "..") ? relative.generic_string() : absolute.string();
+        const bool wasRelative = fs::path(item.meshPath).is_relative();
+        item.meshPath = (!relative.empty() && (wasRelative || *relative.begin() != "..")) ? relative.generic_string()
+                                                                                         : absolute.string();
     }
     try {
         path_ = path;
