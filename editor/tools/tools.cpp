@@ -185,9 +185,18 @@ void trackJointModes(ToolContext& c, State& s)
     for (Eigen::Index k = 0; k < d->points.cols(); ++k)
         if (d->points.col(k) != s.modeSnapshot->points.col(k)) moved.push_back(static_cast<int>(k));
     if (moved.empty()) return;
+    // Undo and redo restore states of the document as they were: enforcing the modes on them would
+    // be an edit of its own that clears the redo steps (a record always empties them, so a redo
+    // step left means the last change was an undo or a redo).
+    if (c.scene.history().canRedo()) {
+        s.modeSnapshot = *d;
+        return;
+    }
     const std::vector<JointMode> modes = jointModes(c.scene, item);
     BezierSplineData enforced = enforceJointModes(*s.modeSnapshot, *d, modes, moved);
-    if (enforced.points != d->points) {
+    // Re-enforcing a mode that already holds moves points by rounding only: no edit for that.
+    const double scale = std::max(1.0, d->points.cwiseAbs().maxCoeff());
+    if ((enforced.points - d->points).cwiseAbs().maxCoeff() > 1e-12 * scale) {
         DocumentObject next = *object;
         next.data = enforced;
         try {
@@ -359,22 +368,42 @@ bool editSelected(ToolContext& c, State& s, const char* label, Op op)
         s.message = "select a curve or spline first";
         return false;
     }
+    // op may change the object's settings too (joint modes): one step with the object, and
+    // nothing left of either when it fails.
+    c.scene.beginMerge();
     try {
         DocumentObject next = *object;
         if (!op(next)) {
+            c.scene.cancelMerge();
             s.message = std::string(label) + ": not for a " + c.scene.item(item).type;
             return false;
         }
         c.scene.replaceObject(item, next, label);
+        c.scene.endMerge();
         s.message.clear();
         return true;
     } catch (const Error& e) {
+        c.scene.cancelMerge();
         s.message = e.what();
         return false;
     }
 }
 
 int selectedPoint(const ToolContext& c) { return c.selection.points.empty() ? -1 : c.selection.points.back(); }
+
+/// Error naming the item unless item i is a lattice object (the lattice operations' argument).
+void requireLattice(const Scene& scene, int i)
+{
+    std::string why;
+    if (i < 0 || i >= scene.itemCount()) {
+        why = "there is no item ";
+        why += std::to_string(i);
+    } else if (scene.item(i).kind != SceneItem::Kind::DocumentObject || !std::holds_alternative<LatticeData>(scene.object(i).data)) {
+        why = scene.item(i).name;
+        why += " is not a lattice";
+    }
+    if (!why.empty()) throw Error(why);
+}
 
 } // namespace
 
@@ -632,6 +661,7 @@ bool fitLattice(ToolContext& c, State& s, int meshItem)
 bool resetLattice(ToolContext& c, State& s, int latticeItem)
 {
     try {
+        requireLattice(c.scene, latticeItem);
         DocumentObject o = c.scene.object(latticeItem);
         const Lattice lattice = Lattice::fromData(std::get<LatticeData>(o.data));
         auto& d = std::get<LatticeData>(o.data);
@@ -647,6 +677,7 @@ bool resetLattice(ToolContext& c, State& s, int latticeItem)
 bool exportDeformed(ToolContext& c, State& s, int latticeItem, const std::string& path)
 {
     try {
+        requireLattice(c.scene, latticeItem);
         const SceneItem& item = c.scene.item(latticeItem);
         const int m = findItem(c.scene, item.settings.ffd.mesh);
         if (m < 0 || c.scene.item(m).kind != SceneItem::Kind::ImportedMesh)
@@ -664,6 +695,7 @@ bool exportDeformed(ToolContext& c, State& s, int latticeItem, const std::string
 bool applyLatticeToObjects(ToolContext& c, State& s, int latticeItem)
 {
     try {
+        requireLattice(c.scene, latticeItem);
         const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const double w = c.scene.item(latticeItem).settings.ffd.strength;
         int done = 0, skipped = 0;
@@ -720,13 +752,14 @@ bool computeEdgeContinuity(ToolContext& c, State& s)
 bool certifyLattice(ToolContext& c, State& s, int latticeItem)
 {
     try {
+        requireLattice(c.scene, latticeItem);
         const std::string& name = c.scene.item(latticeItem).name;
         const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const Certificate cert = certify(lattice, c.scene.item(latticeItem).settings.ffd.strength);
         if (auto it = s.links.find(name); it != s.links.end()) it->second.certificate = cert;
         s.message = "certificate: " + toString(cert.verdict);
         return true;
-    } catch (const Error& e) {
+    } catch (const std::exception& e) { // also a wrong item (not a lattice, out of range)
         s.message = e.what();
         return false;
     }
