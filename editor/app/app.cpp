@@ -789,6 +789,9 @@ void App::replay(const std::vector<ReplayEvent>& events)
             break;
         }
         case ReplayEvent::Type::Text:
+            // No modifiers held (like every event without "mods"): ImGui drops characters typed
+            // with Ctrl held, which a preceding Ctrl+A would otherwise leave set.
+            applyModifiers(0);
             io.AddInputCharactersUTF8(e.text.c_str());
             break;
         case ReplayEvent::Type::Scroll:

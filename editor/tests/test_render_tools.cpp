@@ -1,0 +1,388 @@
+// Replayed sessions of the editing tools (label "render": they need an X display). Each runs
+// build/bin/freeform-editor FILE --replay EVENTS.json --save OUT.json with event files written from
+// worldToPixel (interaction/replay.h) and checks the saved document against an independent route:
+//   - a joint made C1 with the handle-mode key 3 (mirrored): before, the library's continuity
+//     analysis (jointContinuity on the two segments read from the file) and `freeform continuity`
+//     say C0; after, C1 and G1; the opposite handle sits where the hand formula puts it
+//     (p3 + (h1 / h0) (p3 - p2)), every other point is where it was;
+//   - a lattice fitted to an imported OBJ mesh (L), one lattice point dragged, the det J colour map
+//     switched on and the deformed mesh exported through the lattice panel: the exported vertex
+//     lines equal, character for character, those `freeform ffd` writes for the same mesh and the
+//     lattice taken out of the saved document, and the file's other lines are the input's;
+//   - all joints of a free cubic spline set to C2 through the panel's "all joints" combo: C2 at every
+//     joint by the library's analysis and the CLI, the hand-computed first moved handle, the left
+//     points of each joint unmoved; Ctrl+Z gives the original bytes back;
+//   - a curve drawn by clicking (C, clicks, Enter): its control points project exactly onto the
+//     clicked pixels and lie in the view plane through the scene's centre; Ctrl+Z removes it.
+//
+// The panel widgets are clicked at fixed pixels: the Properties window opens at a fixed place and
+// size (no ini file), and after scrolling it to the end the last rows of a tool panel sit at fixed
+// heights above its bottom edge. If the panels change, these tests fail (no export, no mode
+// change) rather than pass by accident; docs/images/replay/*.events.json use the same positions.
+
+#include <catch2/catch.hpp>
+
+#include <freeform/core/types.h>
+#include <freeform/curve/continuity.h>
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "interaction/replay.h"
+#include "scene/scene.h"
+#include "support/process.h"
+
+using namespace freeform;
+using namespace freeform::editor;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kTmp = FREEFORM_TEST_TMP;
+constexpr int kW = 1280, kH = 800;
+
+// The Properties window (ui/ui.cpp): 290 pixels wide, 8 from the right edge, 420 high, 8 below the
+// 19-pixel menu bar; so its bottom edge is at y = 447.
+constexpr double kPanelBottom = 19 + 8 + 420;
+const Eigen::Vector2d kPanelScroll(1100, 60); // over the panel, off its scrolling child windows
+
+template <typename... Parts>
+std::string cat(const Parts&... parts)
+{
+    std::ostringstream s;
+    (s << ... << parts);
+    return s.str();
+}
+
+test::ProcessResult runEditor(const std::string& arguments)
+{
+    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' ", arguments));
+}
+
+/// A camera looking from the front right above (as the editor saves it).
+Json camera(const Eigen::Vector3d& target, double distance)
+{
+    const Eigen::Vector3d back = Eigen::Vector3d(1, -2, 1).normalized(), right = Eigen::Vector3d(2, 1, 0).normalized();
+    Eigen::Matrix3d frame;
+    frame << right, back.cross(right), back;
+    const Eigen::Quaterniond q(frame);
+    return {{"target", {target.x(), target.y(), target.z()}}, {"distance", distance}, {"orientation", {q.w(), q.x(), q.y(), q.z()}},
+            {"fovy", 35.0}, {"projection", "perspective"}, {"orbit", "turntable"}};
+}
+
+/// Writes `j` and lets the editor save it once, so that a load and a save reproduce it byte for byte.
+std::string writeDocument(const std::string& name, const Json& j)
+{
+    const std::string source = cat(kTmp, "/tools_", name, ".source.json"), doc = cat(kTmp, "/tools_", name, ".json");
+    test::writeText(source, j.dump(2));
+    const auto r = runEditor(cat("'", source, "' --save '", doc, "'"));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    return doc;
+}
+
+/// Runs a replay of `events` on `doc` and returns the saved file.
+std::string replay(const std::string& doc, const std::string& name, const Json& events)
+{
+    const std::string file = cat(kTmp, "/tools_", name, ".events.json"), out = cat(kTmp, "/tools_", name, ".out.json");
+    test::writeText(file, Json{{"events", events}}.dump(1));
+    fs::remove(out);
+    const auto r = runEditor(cat("'", doc, "' --replay '", file, "' --save '", out, "' --size ", kW, "x", kH));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    REQUIRE(fs::exists(out));
+    return out;
+}
+
+Json move(const Eigen::Vector2d& p) { return {{"type", "move"}, {"x", p.x()}, {"y", p.y()}}; }
+Json press(const Eigen::Vector2d& p) { return {{"type", "press"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}}; }
+Json release(const Eigen::Vector2d& p) { return {{"type", "release"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}}; }
+Json key(const std::string& k, const std::vector<std::string>& mods = {})
+{
+    Json e = {{"type", "key"}, {"key", k}};
+    if (!mods.empty()) e["mods"] = mods;
+    return e;
+}
+Json frames(int count) { return {{"type", "frame"}, {"count", count}}; }
+
+void click(Json& events, const Eigen::Vector2d& p)
+{
+    events.push_back(move(p));
+    events.push_back(press(p));
+    events.push_back(release(p));
+    events.push_back(frames(1));
+}
+
+void drag(Json& events, const Eigen::Vector2d& from, const Eigen::Vector2d& to)
+{
+    events.push_back(move(from));
+    events.push_back(press(from));
+    events.push_back(move(0.5 * (from + to)));
+    events.push_back(move(to));
+    events.push_back(release(to));
+}
+
+/// Scrolls the Properties window to its end.
+void scrollPanelToEnd(Json& events)
+{
+    events.push_back({{"type", "scroll"}, {"dy", -30}, {"x", kPanelScroll.x()}, {"y", kPanelScroll.y()}});
+    events.push_back(frames(2));
+}
+
+Eigen::Vector3d vec(const Json& p) { return {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()}; }
+
+/// The points of the object named `name` in a saved document.
+std::vector<Eigen::Vector3d> savedPoints(const std::string& path, const std::string& name)
+{
+    const Json j = Json::parse(test::slurp(path));
+    for (const Json& o : j["objects"])
+        if (o["name"] == name) {
+            std::vector<Eigen::Vector3d> out;
+            for (const Json& p : o["points"]) out.push_back(vec(p));
+            return out;
+        }
+    FAIL("no object " << name << " in " << path);
+    return {};
+}
+
+/// The continuity of every inner joint of an open cubic spline, by the library's analysis of the
+/// segments themselves (not through the editor's tools).
+std::vector<JointContinuity<double>> jointsOf(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& intervals)
+{
+    std::vector<JointContinuity<double>> out;
+    auto segment = [&](std::size_t i) {
+        PointMatrix<double, 3> s(3, 4);
+        for (int k = 0; k < 4; ++k) s.col(k) = points[3 * i + static_cast<std::size_t>(k)];
+        return s;
+    };
+    for (std::size_t i = 0; i + 1 < intervals.size(); ++i)
+        out.push_back(jointContinuity<double, 3>(segment(i), segment(i + 1), intervals[i], intervals[i + 1]));
+    return out;
+}
+
+/// `freeform continuity` of the spline: the (C, G) of each joint.
+std::vector<std::pair<int, int>> cliContinuity(const std::string& doc, const std::string& name)
+{
+    const auto r = test::cli(cat("continuity '", doc, "' --object ", name));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    std::vector<std::pair<int, int>> out;
+    const Json report = Json::parse(r.out);
+    for (const Json& j : report["joints"]) out.emplace_back(j["C"].get<int>(), j["G"].get<int>());
+    return out;
+}
+
+std::vector<std::string> lines(const std::string& text)
+{
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+} // namespace
+
+TEST_CASE("the mirrored handle mode (key 3) makes a C0 joint C1 by the continuity analysis", "[render][replay][tools]")
+{
+    // Two cubic segments on intervals 1 and 2 meeting at p3 with a kink.
+    const std::vector<Eigen::Vector3d> points = {{-3, 0, 0}, {-2.5, 0, 1.5}, {-1, 0.5, 2}, {0, 0, 1}, {1, 0, 2}, {2.5, 0, 1}, {3, 0, 0}};
+    const std::vector<double> intervals = {1, 2};
+    Json pts = Json::array();
+    for (const auto& p : points) pts.push_back({p.x(), p.y(), p.z()});
+    const std::string doc = writeDocument(
+        "mirror", {{"format", "freeform"},
+                   {"version", 1},
+                   {"objects", {{{"name", "s"}, {"type", "bezier_spline"}, {"degree", 3}, {"points", pts}, {"intervals", intervals}}}},
+                   {"editor", {{"camera", camera({0, 0, 0.75}, 11)}}}});
+
+    const auto before = jointsOf(savedPoints(doc, "s"), intervals);
+    REQUIRE(before.size() == 1);
+    CHECK(before[0].C == 0);
+    CHECK(before[0].G == 0);
+    CHECK(cliContinuity(doc, "s") == std::vector<std::pair<int, int>>{{0, 0}});
+
+    const Scene scene = Scene::load(doc);
+    Json events = Json::array();
+    click(events, worldToPixel(scene, kW, kH, points[0])); // selects the spline
+    click(events, worldToPixel(scene, kW, kH, points[3])); // selects the joint point
+    events.push_back(key("3"));
+    const std::string out = replay(doc, "mirror", events);
+
+    const std::vector<Eigen::Vector3d> after = savedPoints(out, "s");
+    REQUIRE(after.size() == points.size());
+    // The joint keeps its left handle; the right one goes to p3 + (h1 / h0) (p3 - p2) = (2, -1, -1).
+    CHECK(after[4] == Eigen::Vector3d(2, -1, -1));
+    for (std::size_t k : {0, 1, 2, 3, 5, 6}) CHECK(after[k] == points[k]);
+    const auto joints = jointsOf(after, intervals);
+    CHECK(joints[0].C == 1);
+    CHECK(joints[0].G == 1);
+    CHECK(joints[0].jumps[1] < 1e-12);
+    CHECK(cliContinuity(out, "s") == std::vector<std::pair<int, int>>{{1, 1}});
+    // The mode is saved with the spline (joints 0 and 2 are its ends).
+    const Json saved = Json::parse(test::slurp(out))["objects"][0];
+    CHECK(saved["editor"]["joints"] == Json::array({"free", "mirrored", "free"}));
+}
+
+TEST_CASE("a lattice fitted to an imported mesh, dragged and exported, gives freeform ffd's mesh", "[render][replay][tools]")
+{
+    const std::string mesh = cat(FREEFORM_SOURCE_DIR, "/data/meshes/sphere.obj");
+    Json meshes = Json::array({{{"name", "sphere"}, {"path", mesh}}});
+    const std::string doc = writeDocument("ffd", {{"format", "freeform"},
+                                                  {"version", 1},
+                                                  {"objects", Json::array()},
+                                                  {"editor", {{"camera", camera({0, 0, 0}, 7)}, {"meshes", meshes}}}});
+    const Scene scene = Scene::load(doc);
+
+    // Phase 1: select the mesh (a click on its middle) and fit a lattice (L, degrees 3 x 3 x 3).
+    Json fit = Json::array();
+    click(fit, worldToPixel(scene, kW, kH, Eigen::Vector3d::Zero()));
+    fit.push_back(key("L"));
+    const std::string fitted = replay(doc, "ffd_fit", fit);
+    const std::vector<Eigen::Vector3d> rest = savedPoints(fitted, "sphere_lattice");
+    REQUIRE(rest.size() == 64);
+
+    // Phase 2: the same, then drag lattice point 63 (the corner at (s, t, u) = (1, 1, 1)), switch
+    // the det J colour map on and export the deformed mesh through the lattice panel.
+    const std::string exported = kTmp + "/tools_ffd_exported.obj", reference = kTmp + "/tools_ffd_reference.obj";
+    fs::remove(exported);
+    Json events = fit;
+    const Eigen::Vector2d corner = worldToPixel(scene, kW, kH, rest[63]);
+    drag(events, corner, corner + Eigen::Vector2d(43, -34));
+    events.push_back(key("Escape")); // deselects the point (the lattice stays selected)
+    scrollPanelToEnd(events);
+    click(events, {1000, kPanelBottom - 64});           // "det J colour map"
+    click(events, {1080, kPanelBottom - 41});           // the export path field
+    events.push_back(key("A", {"ctrl"}));               // select its text ...
+    events.push_back({{"type", "text"}, {"text", exported}}); // ... and type over it
+    events.push_back(key("Enter"));
+    click(events, {1220, kPanelBottom - 41});           // "export deformed"
+    const std::string out = replay(doc, "ffd", events);
+    REQUIRE(fs::exists(exported));
+
+    // Exactly point 63 moved.
+    const std::vector<Eigen::Vector3d> moved = savedPoints(out, "sphere_lattice");
+    REQUIRE(moved.size() == 64);
+    for (std::size_t k = 0; k < 63; ++k) CHECK(moved[k] == rest[k]);
+    CHECK((moved[63] - rest[63]).norm() > 0.1);
+    const Json saved = Json::parse(test::slurp(out));
+    CHECK(saved["objects"][0]["editor"]["ffd"]["mesh"] == "sphere");
+    CHECK(saved["editor"]["display"]["analysis"] == "scalar_map");
+
+    // The lattice from the saved document, by itself, through the command-line tool.
+    Json lattice = saved["objects"][0];
+    lattice.erase("editor");
+    const std::string latticeFile = kTmp + "/tools_ffd_lattice.json";
+    test::writeText(latticeFile, Json{{"format", "freeform"}, {"version", 1}, {"objects", Json::array({lattice})}}.dump(1));
+    fs::remove(reference);
+    const auto r = test::cli(cat("ffd '", mesh, "' --lattice '", latticeFile, "' -o '", reference, "'"));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+
+    const std::vector<std::string> ours = lines(test::slurp(exported)), theirs = lines(test::slurp(reference)),
+                                   input = lines(test::slurp(mesh));
+    REQUIRE(ours.size() == input.size());
+    REQUIRE(theirs.size() == input.size());
+    int vertices = 0, changed = 0;
+    for (std::size_t i = 0; i < ours.size(); ++i) {
+        if (startsWith(input[i], "v ")) {
+            ++vertices;
+            CHECK(ours[i] == theirs[i]);
+            changed += ours[i] != input[i];
+        } else if (!startsWith(input[i], "vn ")) {
+            CHECK(ours[i] == input[i]); // faces, texture coordinates, groups, comments
+        }
+    }
+    CHECK(vertices == 266);
+    CHECK(changed > 10); // the corner's move reaches a good part of the sphere
+}
+
+TEST_CASE("all joints of a cubic spline set to C2 through the panel are C2; undo gives the file back", "[render][replay][tools]")
+{
+    const std::vector<Eigen::Vector3d> points = {{-4.5, 0, 0}, {-4, 0, 1.5},  {-2.5, 0.5, 2}, {-1.5, 0, 1},   {-0.5, 0, 2},
+                                                 {0.5, -0.5, 1}, {1.5, 0, 0}, {2.5, 0, 1},    {3.5, 0.5, 1.5}, {4.5, 0, 0}};
+    const std::vector<double> intervals = {1, 2, 1.5};
+    Json pts = Json::array();
+    for (const auto& p : points) pts.push_back({p.x(), p.y(), p.z()});
+    const std::string doc = writeDocument(
+        "c2", {{"format", "freeform"},
+               {"version", 1},
+               {"objects", {{{"name", "s"}, {"type", "bezier_spline"}, {"degree", 3}, {"points", pts}, {"intervals", intervals}}}},
+               {"editor", {{"camera", camera({0.5, 0.25, 0.5}, 15)}}}});
+    for (const auto& j : jointsOf(points, intervals)) CHECK(j.C == 0);
+
+    const Scene scene = Scene::load(doc);
+    Json events = Json::array();
+    click(events, worldToPixel(scene, kW, kH, points[0]));
+    scrollPanelToEnd(events);
+    // The spline panel ends with the joints table (two rows); the "all joints" combo is above it,
+    // and its list opens below it: free, aligned, mirrored, C2.
+    click(events, {1040, kPanelBottom - 85});
+    click(events, {1020, kPanelBottom - 10});
+    const std::string out = replay(doc, "c2", events);
+
+    const std::vector<Eigen::Vector3d> after = savedPoints(out, "s");
+    REQUIRE(after.size() == points.size());
+    // Left to right, each joint keeps its left side: joint 1 moves p4 and p5, joint 2 p7 and p8.
+    for (std::size_t k : {0, 1, 2, 3, 6, 9}) CHECK(after[k] == points[k]);
+    CHECK(after[4] == Eigen::Vector3d(0.5, -1, -1)); // p3 + (h1 / h0) (p3 - p2)
+    const auto joints = jointsOf(after, intervals);
+    REQUIRE(joints.size() == 2);
+    for (const auto& j : joints) {
+        INFO("joint " << &j - joints.data() + 1 << " jumps " << j.jumps[1] << " " << j.jumps[2]);
+        CHECK(j.C == 2);
+        CHECK(j.G == 2);
+    }
+    CHECK(cliContinuity(out, "s") == std::vector<std::pair<int, int>>{{2, 2}, {2, 2}});
+    CHECK(Json::parse(test::slurp(out))["objects"][0]["editor"]["joints"] == Json::array({"free", "c2", "c2", "free"}));
+
+    // One undo step takes the modes and the points back.
+    Json undone = events;
+    undone.push_back(key("Z", {"ctrl"}));
+    CHECK(test::slurp(replay(doc, "c2_undo", undone)) == test::slurp(doc));
+}
+
+TEST_CASE("a curve drawn by clicking has its points under the clicks, in the view plane", "[render][replay][tools]")
+{
+    const std::string doc = writeDocument(
+        "draw", {{"format", "freeform"},
+                 {"version", 1},
+                 {"objects", {{{"name", "c"}, {"type", "bezier_curve"}, {"points", {{-2, 0, 0}, {-1, 0, 1.5}, {1, 0, 1.5}, {2, 0, 0}}}}}},
+                 {"editor", {{"camera", camera({0, 0, 0.75}, 9)}}}});
+    Scene scene = Scene::load(doc);
+    scene.updateGeometry();
+    const Eigen::Vector3d centre = scene.bounds().center();
+    const std::vector<Eigen::Vector2d> clicks = {{420.25, 520}, {500, 300.5}, {700, 280}, {820.75, 560.125}};
+    Json events = Json::array();
+    events.push_back(key("C"));
+    for (const auto& p : clicks) click(events, p);
+    events.push_back(key("Enter"));
+    const std::string out = replay(doc, "draw", events);
+
+    const Json saved = Json::parse(test::slurp(out));
+    REQUIRE(saved["objects"].size() == 2);
+    CHECK(saved["objects"][1]["type"] == "bezier_curve");
+    const std::vector<Eigen::Vector3d> drawn = savedPoints(out, saved["objects"][1]["name"].get<std::string>());
+    REQUIRE(drawn.size() == clicks.size());
+    // The plane through the centre of the scene's bounds, orthogonal to the viewing direction.
+    const Eigen::Vector3d back = Eigen::Vector3d(1, -2, 1).normalized();
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+        const Eigen::Vector2d at = worldToPixel(scene, kW, kH, drawn[k]);
+        INFO("point " << k << " at " << at.transpose() << ", clicked " << clicks[k].transpose());
+        CHECK((at - clicks[k]).norm() < 1e-6);
+        CHECK(std::abs((drawn[k] - centre).dot(back)) < 1e-9);
+    }
+    Json undone = events;
+    undone.push_back(key("Z", {"ctrl"}));
+    CHECK(test::slurp(replay(doc, "draw_undo", undone)) == test::slurp(doc));
+}
