@@ -192,6 +192,53 @@ TEST_CASE("Tools: C, clicks and Enter create a bezier_curve through the ray/plan
     CHECK(b.scene.text() == empty);
 }
 
+TEST_CASE("Tools: Shift+C, clicks and Enter create a C2 cubic spline through the hits, joints in mode C2", "[tools]")
+{
+    Bench b{Scene()};
+    b.scene.camera.setView("front"); // the click plane is y = 0 (see above)
+    const std::string empty = b.scene.text();
+    REQUIRE(b.tools.onKey(b.context, GLFW_KEY_C, GLFW_MOD_SHIFT));
+    CHECK(b.state().creating);
+    CHECK(b.state().creatingSpline);
+    // Vertical rays hit y = 0 at (x, 0, z); the chords are 5, 10 and 3 (3-4-5 and 6-8-10 triangles).
+    const Eigen::Vector3d hits[4] = {{-4, 0, 0}, {-1, 0, 4}, {5, 0, -4}, {5, 0, -1}};
+    for (const auto& h : hits) b.tools.onPointer(b.context, press(Eigen::Vector3d(h.x(), -10, h.z()), Eigen::Vector3d(0, 1, 0)));
+    REQUIRE(b.tools.onKey(b.context, GLFW_KEY_ENTER, 0));
+    CHECK_FALSE(b.state().creating);
+
+    REQUIRE(b.scene.itemCount() == 1);
+    CHECK(b.scene.item(0).type == "bezier_spline");
+    const BezierSplineData& d = std::get<BezierSplineData>(b.scene.object(0).data);
+    CHECK(d.degree == 3);
+    CHECK_FALSE(d.closed);
+    CHECK(d.intervals == std::vector<double>{5, 10, 3}); // chord lengths, exact here
+    REQUIRE(d.points.cols() == 10);
+    for (int j = 0; j < 4; ++j) CHECK((Eigen::Vector3d(d.points.col(3 * j)) - hits[j]).norm() < 1e-12); // through the clicks
+    const BezierSpline<double, 3> spline(3, false, Points3(d.points), d.intervals);
+    for (const auto& c : continuityReport(spline)) {
+        CHECK(c.C >= 2);
+        CHECK(c.G == 2);
+    }
+    // Natural ends: f'' = 6 (b0 - 2 b1 + b2) / h^2 vanishes at both ends.
+    const auto second = [&](int a, int m, int z, double h) {
+        return (6 * (d.points.col(a) - 2 * d.points.col(m) + d.points.col(z)) / (h * h)).norm();
+    };
+    CHECK(second(0, 1, 2, 5) < 1e-12);
+    CHECK(second(9, 8, 7, 3) < 1e-12);
+    CHECK(jointModes(b.scene, 0) == std::vector<JointMode>{JointMode::Free, JointMode::C2, JointMode::C2, JointMode::Free});
+    CHECK(b.scene.history().size() == 1); // the spline and its modes: one step
+    REQUIRE(b.scene.undo());
+    CHECK(b.scene.text() == empty);
+
+    // Clicks on one spot cannot make a spline: a message, nothing added.
+    b.tools.onKey(b.context, GLFW_KEY_C, GLFW_MOD_SHIFT);
+    b.tools.onPointer(b.context, press(Eigen::Vector3d(1, -10, 1), Eigen::Vector3d(0, 1, 0)));
+    b.tools.onPointer(b.context, press(Eigen::Vector3d(1, -10, 1), Eigen::Vector3d(0, 1, 0)));
+    CHECK_FALSE(createCurveFromClicks(b.context, b.state()));
+    CHECK_FALSE(b.state().message.empty());
+    CHECK(b.scene.text() == empty);
+}
+
 TEST_CASE("Tools: elevating a curve adds one degree and keeps every point of it (key E)", "[tools]")
 {
     Bench b{curveScene("tools_elevate.json")};
@@ -400,11 +447,16 @@ TEST_CASE("Tools: C2 on every joint gives a C2 spline; dragging a de Boor point 
     Bench b{curveScene("tools_c2.json")};
     b.scene.camera.setView("top"); // the drag plane faces +z
     b.select("s");
+    const PointColumns before = splineData(b.scene, "s").points;
     REQUIRE(setAllJointModes(b.context, b.state(), JointMode::C2));
     for (const auto& c : continuityReport(splineOf(b.scene, "s"))) {
         CHECK(c.C >= 2);
         CHECK(c.G == 2);
     }
+    // No joint moves; the end handles (the end tangents) stay up to rounding.
+    const PointColumns& after = splineData(b.scene, "s").points;
+    for (int k : {0, 3, 6, 9}) CHECK(after.col(k) == before.col(k));
+    for (int k : {1, 8}) CHECK((after.col(k) - before.col(k)).norm() < 1e-12);
     const std::vector<JointMode> modes = jointModes(b.scene, findItem(b.scene, "s"));
     REQUIRE(modes.size() == 4);
     CHECK(modes[1] == JointMode::C2);

@@ -37,7 +37,8 @@ struct Tools::State {
     std::string message;                    // the last operation's error or result, shown in the panel
 
     // Curves and splines.
-    bool creating = false;                  // "create curve" mode: clicks add points
+    bool creating = false;                  // "create" mode: clicks add points ...
+    bool creatingSpline = false;            // ... of a C2 cubic spline through them (else a curve)
     Points3 newPoints;                      // the points clicked so far
     double t = 0.5;                         // the t slider (global parameter fraction for splines)
     bool construction = false;              // draw the de Casteljau construction at t
@@ -78,6 +79,9 @@ bool insertAtSelected(ToolContext& context, Tools::State& state);
 bool deleteSelected(ToolContext& context, Tools::State& state);
 /// Sets the mode of the joint of the selected point (or of `joint` >= 0) and applies it at once.
 bool setJointMode(ToolContext& context, Tools::State& state, JointMode mode, int joint = -1);
+/// All inner joints to `mode`. For C2 on a cubic spline the joints stay where they are and the
+/// handles become those of the C2 interpolant of the joints on the spline's own intervals (the end
+/// tangents kept; closed: periodic); other modes go joint by joint, left to right.
 bool setAllJointModes(ToolContext& context, Tools::State& state, JointMode mode);
 bool fitLattice(ToolContext& context, Tools::State& state, int meshItem);
 bool resetLattice(ToolContext& context, Tools::State& state, int latticeItem);

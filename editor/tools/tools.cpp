@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "freeform/core/error.h"
+#include "freeform/curve/interpolation.h"
 #include "freeform/surface/bezier_surface.h"
 #include "tools/tool_state.h"
 
@@ -313,6 +314,36 @@ std::vector<JointMode> jointModes(const Scene& scene, int item)
 
 // ------------------------------------------------------------------ operations
 
+namespace {
+
+/// The cubic spline with the joints of `d` (same intervals) that is C2 at every inner joint: the
+/// C2 interpolant of the joints, with the end derivatives of `d` (open) or periodic (closed). Unlike
+/// making joints C2 one after the other, no joint moves and the handles stay near the old ones.
+BezierSplineData c2ThroughJoints(const BezierSplineData& d)
+{
+    const Eigen::Index L = d.closed ? d.points.cols() / 3 : (d.points.cols() - 1) / 3;
+    Points3 joints(3, L + 1);
+    for (Eigen::Index j = 0; j <= L; ++j) joints.col(j) = d.points.col((3 * j) % d.points.cols());
+    InterpolationOptions<double, 3> options;
+    options.params.assign(1, 0.0);
+    for (Eigen::Index i = 0; i < L; ++i)
+        options.params.push_back(options.params.back() + (d.intervals.empty() ? 1.0 : d.intervals[static_cast<std::size_t>(i)]));
+    if (d.closed) {
+        options.end = InterpolationEnd::Periodic;
+    } else {
+        const double h0 = options.params[1] - options.params[0], hL = options.params.back() - options.params[static_cast<std::size_t>(L - 1)];
+        options.end = InterpolationEnd::Clamped;
+        options.startDerivative = 3 * (d.points.col(1) - d.points.col(0)) / h0;
+        options.endDerivative = 3 * (d.points.col(3 * L) - d.points.col(3 * L - 1)) / hL;
+    }
+    const BezierSpline<double, 3> spline = interpolateCubic<double, 3>(joints, options);
+    BezierSplineData out = d;
+    out.points = spline.controlPoints();
+    return out;
+}
+
+} // namespace
+
 bool createCurveFromClicks(ToolContext& c, State& s)
 {
     s.creating = false;
@@ -321,10 +352,29 @@ bool createCurveFromClicks(ToolContext& c, State& s)
         s.newPoints.resize(3, 0);
         return false;
     }
-    DocumentObject o{"curve", BezierCurveData{s.newPoints}, ""};
+    const Points3 clicked = s.newPoints;
     s.newPoints.resize(3, 0);
     try {
-        const int i = c.scene.addObject(o, "create curve");
+        if (s.creatingSpline) {
+            // Through the clicked points: the C2 cubic interpolant (natural ends, chord-length
+            // intervals), every inner joint in mode C2, so dragging keeps it C2.
+            const BezierSpline<double, 3> spline = interpolateCubic<double, 3>(clicked);
+            BezierSplineData data;
+            data.points = spline.controlPoints();
+            data.intervals = spline.intervals();
+            ObjectSettings settings;
+            settings.joints.assign(static_cast<std::size_t>(spline.segmentCount() + 1), JointMode::C2);
+            settings.joints.front() = settings.joints.back() = JointMode::Free;
+            c.scene.beginMerge();
+            const int i = c.scene.addObject({"spline", data, ""}, "create spline");
+            c.scene.setSettings(i, settings, "create spline");
+            c.scene.endMerge();
+            c.selection.selectItem(i);
+            s.modeSnapshot = data;
+            s.message.clear();
+            return true;
+        }
+        const int i = c.scene.addObject({"curve", BezierCurveData{clicked}, ""}, "create curve");
         c.selection.selectItem(i);
         s.message.clear();
         return true;
@@ -600,7 +650,12 @@ bool setAllJointModes(ToolContext& c, State& s, JointMode mode)
         BezierSplineData data = *d;
         ObjectSettings settings = c.scene.item(item).settings;
         settings.joints = jointModes(c.scene, item);
-        for (int j = 0; j < static_cast<int>(settings.joints.size()); ++j) {
+        if (mode == JointMode::C2 && data.degree == 3) {
+            data = c2ThroughJoints(data);
+            for (int j = 0; j < static_cast<int>(settings.joints.size()); ++j)
+                if (isInnerJoint(data, j)) settings.joints[static_cast<std::size_t>(j)] = mode;
+        }
+        for (int j = 0; j < static_cast<int>(settings.joints.size()) && !(mode == JointMode::C2 && data.degree == 3); ++j) {
             if (!isInnerJoint(data, j)) continue;
             data = applyJointMode(data, j, mode, -1); // left to right: each joint keeps its left side
             settings.joints[static_cast<std::size_t>(j)] = mode;
@@ -793,8 +848,11 @@ bool Tools::onKey(ToolContext& c, int key, int mods)
     switch (key) {
     case GLFW_KEY_C:
         s.creating = !s.creating;
+        s.creatingSpline = (mods & GLFW_MOD_SHIFT) != 0;
         s.newPoints.resize(3, 0);
-        s.message = s.creating ? "click points in the view; Enter or right click ends, Escape cancels" : "";
+        s.message = !s.creating ? ""
+                    : s.creatingSpline ? "click the points the C2 spline passes through; Enter or right click ends, Escape cancels"
+                                       : "click control points in the view; Enter or right click ends, Escape cancels";
         return true;
     case GLFW_KEY_P: return createPatch(c, s), true;
     case GLFW_KEY_E:
@@ -945,7 +1003,19 @@ void Tools::update(ToolContext& c, Overlay& o)
     updateLinks(c, s);
     // Overlays.
     if (s.creating) {
-        drawPolyline(o, s.newPoints, kCreate);
+        if (s.creatingSpline && s.newPoints.cols() >= 2) {
+            // The spline the clicks make so far (nothing while two clicks coincide).
+            try {
+                const BezierSpline<double, 3> preview = interpolateCubic<double, 3>(s.newPoints);
+                Points3 samples(3, 16 * preview.segmentCount() + 1);
+                for (Eigen::Index k = 0; k < samples.cols(); ++k)
+                    samples.col(k) = preview.evaluate(preview.domainEnd() * double(k) / double(samples.cols() - 1));
+                drawPolyline(o, samples, kCreate);
+            } catch (const Error&) {
+            }
+        } else {
+            drawPolyline(o, s.newPoints, kCreate);
+        }
         for (Eigen::Index i = 0; i < s.newPoints.cols(); ++i) o.addPoint(f3(s.newPoints.col(i)), kCreate);
     }
     try {
@@ -963,7 +1033,8 @@ void Tools::reset()
 
 const char* Tools::keyHelp()
 {
-    return "C: create a curve by clicking (Enter / right click ends, Backspace removes the last point, Escape cancels)\n"
+    return "C: create a curve by clicking its control points (Enter / right click ends, Backspace removes the last point, Escape cancels)\n"
+           "Shift+C: create a C2 cubic spline through the clicked points (ends as C)\n"
            "P: create a Bezier patch of the panel's degrees in the view plane\n"
            "I: insert a control point after the selected one (spline: a joint in its segment)\n"
            "Delete: delete the selected control point (spline: its joint)\n"

@@ -215,9 +215,14 @@ void drawToolPanels(ToolContext& c, Tools& tools)
     State& s = tools.state();
     const int item = c.selection.item;
     ImGui::Separator();
-    if (ImGui::Button(s.creating ? "finish curve (Enter)" : "create curve (C)")) {
+    if (ImGui::Button(s.creating && !s.creatingSpline ? "finish curve (Enter)" : "create curve (C)")) {
         if (s.creating) createCurveFromClicks(c, s);
-        else s.creating = true;
+        else s.creating = true, s.creatingSpline = false;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button(s.creating && s.creatingSpline ? "finish spline (Enter)" : "create C2 spline (Shift+C)")) {
+        if (s.creating) createCurveFromClicks(c, s);
+        else s.creating = true, s.creatingSpline = true;
     }
     ImGui::SameLine();
     if (ImGui::Button("create patch (P)")) createPatch(c, s);
