@@ -155,6 +155,19 @@ public:
         return handle;
     }
 
+    void updateVertices(BufferHandle handle, const MeshData& mesh) override
+    {
+        if (mesh.normals.cols() != mesh.positions.cols()) throw Error("renderer: a mesh needs one normal per vertex");
+        Buffers& b = buffers_.at(handle.id);
+        const auto bytes = static_cast<GLsizeiptr>(sizeof(float) * static_cast<std::size_t>(mesh.positions.size()));
+        glBindBuffer(GL_ARRAY_BUFFER, b.positions);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, mesh.positions.data());
+        glBindBuffer(GL_ARRAY_BUFFER, b.normals);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, mesh.normals.data());
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        uploadScalars(handle, mesh.scalars);
+    }
+
     void uploadScalars(BufferHandle handle, const std::vector<float>& scalars) override
     {
         Buffers& b = buffers_.at(handle.id);

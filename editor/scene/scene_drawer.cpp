@@ -17,15 +17,17 @@ const Vec3f kSelectedNet(1.0f, 1.0f, 1.0f);
 const Vec3f kSelectedPoint(1.0f, 0.9f, 0.3f);
 const Vec3f kNormalColor(0.3f, 0.85f, 0.95f);
 
-MeshData meshData(const PolygonMesh& mesh, const std::vector<float>& scalars)
+/// The mesh's vertex data for the GPU; with `triangles`, its index list too.
+MeshData meshData(const PolygonMesh& mesh, const std::vector<float>& scalars, bool triangles = true)
 {
     MeshData d;
     d.positions = mesh.positions.cast<float>();
     d.normals = mesh.normals.cast<float>();
+    d.scalars = scalars;
+    if (!triangles) return d;
     d.triangles.reserve(static_cast<std::size_t>(mesh.faceCount()) * 3);
     for (int f = 0; f < mesh.faceCount(); ++f)
         for (int k = 0; k < 3; ++k) d.triangles.push_back(static_cast<std::uint32_t>(mesh.face(f)[k]));
-    d.scalars = scalars;
     return d;
 }
 
@@ -99,7 +101,17 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
     const bool geometryChanged = gpu.revision != item.revision;
     if (geometryChanged) {
         if (g.surface && g.surface->faceCount() > 0) {
-            gpu.mesh = renderer_.uploadMesh(gpu.mesh, meshData(*g.surface, item.scalars));
+            // Same triangles as on the GPU (only the vertices moved, e.g. a lattice drag): upload
+            // the vertex data alone.
+            if (gpu.mesh && gpu.topology == item.topology && gpu.vertices == g.surface->vertexCount() &&
+                gpu.faces == g.surface->faceCount()) {
+                renderer_.updateVertices(gpu.mesh, meshData(*g.surface, item.scalars, false));
+            } else {
+                gpu.mesh = renderer_.uploadMesh(gpu.mesh, meshData(*g.surface, item.scalars));
+                gpu.topology = item.topology;
+                gpu.vertices = g.surface->vertexCount();
+                gpu.faces = g.surface->faceCount();
+            }
             gpu.triangles = g.surface->faceCount();
         } else if (gpu.mesh) {
             renderer_.release(gpu.mesh);

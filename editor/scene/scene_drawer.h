@@ -33,6 +33,8 @@ public:
 private:
     struct Gpu {
         int revision = -1;
+        int topology = -1;                 // SceneItem::topology of the uploaded triangles
+        long vertices = 0, faces = 0;
         BufferHandle mesh, curve, net, points, normals;
         std::size_t scalarCount = 0;
         bool selected = false;
