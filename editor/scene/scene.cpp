@@ -292,7 +292,7 @@ void Scene::importFile(const std::string& path)
         addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
         items_.back().geometry = std::move(g);
         items_.back().geometryDirty = false;
-        items_.back().revision = nextRevision();
+        items_.back().revision = items_.back().topology = nextRevision();
     } else {
         throw Error(path + ": cannot import this kind of file (.bpt or a mesh: .obj .ply .stl .off .gltf .glb)");
     }
@@ -375,19 +375,8 @@ void Scene::setControlPoints(int i, const std::vector<int>& ks, const Eigen::Mat
     ObjectData data = o.data;
     // A subdivision cage read from a mesh file becomes inline vertices and faces (with the file's
     // crease tags) when one of its vertices is edited; the file itself is left as it is.
-    if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty()) {
-        const SubdivisionCage cage = cageFromData(*sub, path_.empty() ? std::string() : fs::path(path_).parent_path().string(),
-                                                  "\"" + o.name + "\"");
-        sub->vertices = cage.mesh.positions;
-        sub->faces.clear();
-        for (int f = 0; f < cage.mesh.faceCount(); ++f)
-            sub->faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
-        sub->creases.clear();
-        for (const EdgeCrease& c : cage.creases) sub->creases.push_back({double(c.v0), double(c.v1), c.sharpness});
-        sub->corners.clear();
-        for (const VertexCorner& c : cage.corners) sub->corners.push_back({double(c.vertex), c.sharpness});
-        sub->mesh.clear();
-    }
+    if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty())
+        *sub = inlineCage(*sub, documentDirectory(), "\"" + o.name + "\"");
     PointColumns& points = pointsOf(data);
     for (std::size_t j = 0; j < ks.size(); ++j) {
         const int k = ks[j];
@@ -400,6 +389,29 @@ void Scene::setControlPoints(int i, const std::vector<int>& ks, const Eigen::Mat
     }
     record(label);
     setObjectData(i, std::move(data));
+}
+
+std::string Scene::documentDirectory() const
+{
+    return path_.empty() ? std::string() : fs::path(path_).parent_path().string();
+}
+
+SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                                  const std::string& what)
+{
+    if (data.mesh.empty()) return data;
+    const SubdivisionCage cage = cageFromData(data, documentDirectory, what);
+    SubdivisionSurfaceData out = data;
+    out.vertices = cage.mesh.positions;
+    out.faces.clear();
+    for (int f = 0; f < cage.mesh.faceCount(); ++f)
+        out.faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
+    out.creases.clear();
+    for (const EdgeCrease& c : cage.creases) out.creases.push_back({double(c.v0), double(c.v1), c.sharpness});
+    out.corners.clear();
+    for (const VertexCorner& c : cage.corners) out.corners.push_back({double(c.vertex), c.sharpness});
+    out.mesh.clear();
+    return out;
 }
 
 Eigen::Matrix3Xd Scene::controlPoints(int i) const
@@ -550,6 +562,11 @@ Scene Scene::recover(const std::string& autosavePath, const std::string& origina
     Scene scene = load(autosavePath, aspect);
     scene.path_ = originalPath;
     scene.document_.source = originalPath.empty() ? autosavePath : originalPath;
+    // A relative cage path belongs to the original document's folder, not the autosave's.
+    for (std::size_t i = 0; i < scene.document_.objects.size(); ++i)
+        if (const auto* sub = std::get_if<SubdivisionSurfaceData>(&scene.document_.objects[i].data); sub && !sub->mesh.empty())
+            scene.items_[i].geometryDirty = true;
+    scene.updateGeometry();
     scene.modified_ = true;
     return scene;
 }
@@ -566,8 +583,7 @@ void Scene::updateGeometry()
         SceneItem& item = items_[i];
         if (!item.geometryDirty) continue;
         if (item.kind == SceneItem::Kind::DocumentObject) {
-            item.geometry = buildGeometry(document_.objects[i].data, item.settings, display.tolerance,
-                                          path_.empty() ? std::string() : fs::path(path_).parent_path().string());
+            item.geometry = buildGeometry(document_.objects[i].data, item.settings, display.tolerance, documentDirectory());
         } else {
             try {
                 item.geometry = buildMeshGeometry(resolve(item.meshPath));
@@ -579,7 +595,7 @@ void Scene::updateGeometry()
         if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
             item.scalars.clear();
         item.geometryDirty = false;
-        item.revision = nextRevision();
+        item.revision = item.topology = nextRevision();
     }
 }
 

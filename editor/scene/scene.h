@@ -50,6 +50,9 @@ struct SceneItem {
     ItemGeometry geometry;
     bool geometryDirty = true;            // the CPU geometry must be rebuilt
     int revision = 0;                     // bumped with every rebuild (the GPU copy compares it)
+    int topology = 0;                     // the revision of the last full rebuild: while it stays,
+                                          // only vertex data changed (positions, normals, scalars:
+                                          // an FFD update), so the GPU keeps the triangles
     std::vector<float> scalars;           // per-vertex scalars of the surface (colour map), or empty
     long key = 0;                         // content key: new whenever the data behind the geometry
                                           // (object, tessellation settings, mesh file) changes
@@ -94,6 +97,8 @@ public:
 
     const Document& document() const { return document_; }
     const std::string& path() const { return path_; }
+    /// The folder of path() (empty for an untitled document): relative cage paths start there.
+    std::string documentDirectory() const;
     bool modified() const { return modified_; }
     void markSaved() { modified_ = false; }
 
@@ -174,6 +179,12 @@ private:
 /// documentDirectory resolves a subdivision_surface's relative mesh path.
 ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
                            const std::string& documentDirectory = {});
+/// A subdivision_surface whose cage is in a mesh file as inline vertices and faces, with the file's
+/// crease tags (and the object's own creases and corners) as creases / corners; an inline one as it
+/// is. Error prefixed with `what` when the file cannot be read. Edits and deformations of a file
+/// cage go through this, so the file itself is never rewritten.
+SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                                  const std::string& what);
 /// Reads a mesh file and makes sure it has triangles and per-vertex normals.
 ItemGeometry buildMeshGeometry(const std::string& path);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.

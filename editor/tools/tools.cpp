@@ -266,9 +266,9 @@ void updateLinks(ToolContext& c, State& s)
                                  link.appliedStrength != settings.ffd.strength;
             if (!changed) continue;
             const auto t0 = std::chrono::steady_clock::now();
-            std::vector<double> det;
-            link.report = link.session->deform(lattice, settings.ffd.strength, *mesh.geometry.surface, &det);
-            std::vector<float> scalars(det.begin(), det.end());
+            link.report = link.session->deform(lattice, settings.ffd.strength, *mesh.geometry.surface, &link.detJ);
+            std::vector<float> scalars = std::move(mesh.scalars); // reuses the last frame's memory
+            scalars.assign(link.detJ.begin(), link.detJ.end());
             link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             mesh.geometry.bounds.setEmpty();
             const auto& p = mesh.geometry.surface->positions;
@@ -761,7 +761,19 @@ bool applyLatticeToObjects(ToolContext& c, State& s, int latticeItem)
             const DocumentObject& o = c.scene.object(i);
             if (std::holds_alternative<LatticeData>(o.data)) continue;
             std::string reason;
-            const auto moved = deformObject(lattice, o.data, w, reason);
+            // A cage in a mesh file is deformed as inline vertices (the file stays as it is), as
+            // when one of its vertices is dragged.
+            ObjectData data = o.data;
+            if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty()) {
+                try {
+                    *sub = inlineCage(*sub, c.scene.documentDirectory(), "the cage file");
+                } catch (const Error& e) {
+                    ++skipped;
+                    why = o.name + ": " + e.what();
+                    continue;
+                }
+            }
+            const auto moved = deformObject(lattice, data, w, reason);
             if (!moved) {
                 ++skipped;
                 why = o.name + ": " + reason;

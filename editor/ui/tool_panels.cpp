@@ -224,7 +224,6 @@ void drawToolPanels(ToolContext& c, Tools& tools)
         if (s.creating) createCurveFromClicks(c, s);
         else s.creating = true, s.creatingSpline = true;
     }
-    ImGui::SameLine();
     if (ImGui::Button("create patch (P)")) createPatch(c, s);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(80);
