@@ -106,6 +106,7 @@ Scene Scene::load(const std::string& path, double aspect)
     } else {
         scene.document_ = readDocument(path);
         scene.path_ = path;
+        scene.cageDirectory_ = fs::path(path).parent_path().string();
     }
     // The editor member: camera, display, imported meshes. Errors name the file.
     bool hasCamera = false;
@@ -216,6 +217,14 @@ Document Scene::toDocument(bool absoluteMeshPaths) const
     for (std::size_t i = 0; i < doc.objects.size(); ++i) {
         const ObjectSettings& s = items_[i].settings;
         doc.objects[i].editor = s.isDefault() ? std::string() : s.toJson().dump();
+        // A relative cage path starts at cageDirectory_; for a document in another folder (after
+        // Save As) it is rebased there, so that it names the same file. (The autosave keeps it
+        // relative to the document's folder too: recovery resolves it there.)
+        auto* sub = std::get_if<SubdivisionSurfaceData>(&doc.objects[i].data);
+        if (!sub || sub->mesh.empty() || fs::path(sub->mesh).is_absolute() || path_.empty()) continue;
+        const fs::path from = fs::absolute(fs::path(documentDirectory())).lexically_normal();
+        const fs::path to = fs::absolute(fs::path(path_).parent_path()).lexically_normal();
+        if (from != to) sub->mesh = (from / sub->mesh).lexically_normal().lexically_relative(to).generic_string();
     }
     Json e;
     e["camera"] = camera.toJson();
@@ -393,6 +402,7 @@ void Scene::setControlPoints(int i, const std::vector<int>& ks, const Eigen::Mat
 
 std::string Scene::documentDirectory() const
 {
+    if (!cageDirectory_.empty()) return cageDirectory_;
     return path_.empty() ? std::string() : fs::path(path_).parent_path().string();
 }
 
@@ -561,6 +571,7 @@ Scene Scene::recover(const std::string& autosavePath, const std::string& origina
 {
     Scene scene = load(autosavePath, aspect);
     scene.path_ = originalPath;
+    scene.cageDirectory_ = originalPath.empty() ? std::string() : fs::path(originalPath).parent_path().string();
     scene.document_.source = originalPath.empty() ? autosavePath : originalPath;
     // A relative cage path belongs to the original document's folder, not the autosave's.
     for (std::size_t i = 0; i < scene.document_.objects.size(); ++i)

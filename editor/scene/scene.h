@@ -170,6 +170,8 @@ private:
     Document document_;
     std::vector<SceneItem> items_;
     std::string path_;
+    std::string cageDirectory_;   // where relative cage paths of the objects in memory (and in the
+                                  // undo history) start: the folder the document was read from
     bool modified_ = false;
     History<SceneState> history_;
     long changes_ = 0;

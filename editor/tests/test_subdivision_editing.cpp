@@ -471,3 +471,35 @@ TEST_CASE("Subdivision: a recovered autosave finds a relative cage file beside t
     REQUIRE(g.surface);
     CHECK(meshDistance(*g.surface, libraryTessellation(readCage(dir + "/cube.obj"), 1e-3)) <= 1e-12);
 }
+
+TEST_CASE("Subdivision: Save As into another folder rebases a relative cage path; the saved file shows the same surface",
+          "[subdivision][scene]")
+{
+    const std::string dir = folderWith("subdiv_save_as", {"cube.obj"});
+    const std::string doc = dir + "/cube.json";
+    test::writeText(doc, document(R"({"name": "cube", "type": "subdivision_surface", "mesh": "cube.obj"})"));
+    Scene scene = Scene::load(doc);
+    scene.updateGeometry();
+    REQUIRE(scene.item(0).geometry.surface);
+    const PolygonMesh before = *scene.item(0).geometry.surface;
+
+    // Saved beside itself: the path is written as it was read.
+    scene.save(doc);
+    CHECK(std::get<SubdivisionSurfaceData>(readDocument(doc).objects[0].data).mesh == "cube.obj");
+
+    // Saved one folder down: "../cube.obj", and that file opens with the same limit surface.
+    fs::create_directories(fs::path(dir) / "sub");
+    const std::string moved = dir + "/sub/copy.json";
+    scene.save(moved);
+    CHECK(std::get<SubdivisionSurfaceData>(readDocument(moved).objects[0].data).mesh == "../cube.obj");
+    Scene reopened = Scene::load(moved);
+    reopened.updateGeometry();
+    REQUIRE(reopened.item(0).geometry.error.empty());
+    REQUIRE(reopened.item(0).geometry.surface);
+    CHECK(meshDistance(*reopened.item(0).geometry.surface, before) == 0);
+    // The scene in memory still draws the same surface after the save.
+    scene.invalidateGeometry();
+    scene.updateGeometry();
+    REQUIRE(scene.item(0).geometry.surface);
+    CHECK(meshDistance(*scene.item(0).geometry.surface, before) == 0);
+}
