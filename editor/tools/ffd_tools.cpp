@@ -1,9 +1,11 @@
 #include "tools/ffd_tools.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "freeform/core/error.h"
+#include "freeform/core/parallel.h"
 #include "freeform/curve/bezier_spline.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/surface/bezier_surface.h"
@@ -24,7 +26,7 @@ bool insideBox(const Lattice& lattice, const PointColumns& points)
 } // namespace
 
 FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
-    : frame_(lattice), rest_(std::move(rest)), binding_(lattice, rest_.positions)
+    : frame_(lattice), rest_(std::move(rest)), binding_(lattice, rest_.positions), restNormals_(rest_.normals.cast<float>())
 {
 }
 
@@ -33,16 +35,19 @@ bool FfdSession::matches(const Lattice& lattice) const
     return lattice.sameFrame(frame_) && lattice.outside() == frame_.outside();
 }
 
-DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<double>* detJ) const
+DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ)
 {
     const Eigen::Index count = rest_.positions.cols();
+    const bool normals = rest_.normals.cols() == count;
+    positions_.resize(3, count);
     if (out.positions.cols() != count) out.positions.resize(3, count);
-    FfdOutputs<double> o;
-    o.positions = out.positions.data();
-    if (rest_.normals.cols() == count) {
+    FfdOutputs<float> o;
+    o.positions = positions_.data();
+    if (normals) {
+        normals_.resize(3, count);
         if (out.normals.cols() != count) out.normals.resize(3, count);
-        o.normalsIn = rest_.normals.data();
-        o.normalsOut = out.normals.data();
+        o.normalsIn = restNormals_.data();
+        o.normalsOut = normals_.data();
     }
     if (detJ) {
         detJ->resize(static_cast<std::size_t>(count));
@@ -51,7 +56,22 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
     DeformOptions options;
     options.strength = strength;
     DeformReport report;
+    if (lattice.isRest() || strength == 0) {
+        // The identity: the file's own vertices, bit for bit (float would round them), det J 1.
+        out.positions = rest_.positions;
+        if (normals) out.normals = rest_.normals;
+        if (detJ) std::fill(detJ->begin(), detJ->end(), 1.0f);
+        report.vertices = static_cast<std::size_t>(count);
+        report.outside = binding_.outsideVertices().size();
+        return report;
+    }
     binding_.deform(lattice, o, options, &report);
+    // Into the scene's double mesh, on the same threads as the deformation.
+    parallelFor(0, static_cast<std::size_t>(count), 16384, 0, [&](int, std::size_t first, std::size_t last) {
+        const auto n = static_cast<Eigen::Index>(last - first), f = static_cast<Eigen::Index>(first);
+        out.positions.middleCols(f, n) = positions_.middleCols(f, n).cast<double>();
+        if (normals) out.normals.middleCols(f, n) = normals_.middleCols(f, n).cast<double>();
+    });
     return report;
 }
 

@@ -2,7 +2,9 @@
 // The FFD of an imported mesh in the editor (no scene, no ImGui): an FfdSession binds the rest
 // mesh to a lattice's frame once (FfdBinding: lattice coordinates computed once per fit) and then
 // deforms positions AND normals for any control points of that frame, without recomputing the
-// lattice coordinates. Exports write the deformed mesh through MeshFile into the input's own file
+// lattice coordinates. The live view computes in float, the precision the GPU draws in (about twice
+// as fast as double for positions + normals: docs/performance.md); exports and the exact
+// composition with curves and patches compute in double. Exports write the deformed mesh through MeshFile into the input's own file
 // format (only positions, normals and tangents change; docs/mesh-io.md), exactly as `freeform ffd`
 // does. The lattice also applies exactly to the document's Bézier curves, splines and patches
 // (deformCurve / deformSurface) and to the inline cage vertices of subdivision surfaces.
@@ -33,14 +35,17 @@ public:
     /// Whether `lattice` has the bound frame, degrees and outside policy (else bind again).
     bool matches(const Lattice& lattice) const;
 
-    /// Deformed positions and normals (cof(J) n renormalised) into `out` (which must have the rest
-    /// mesh's vertex count; faces untouched), det J per vertex into detJ when given.
-    DeformReport deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<double>* detJ = nullptr) const;
+    /// Deformed positions and normals (cof(J) n renormalised), computed in float, into `out`
+    /// (resized to the rest mesh's vertex count; faces untouched), det J per vertex into detJ when
+    /// given (the colour map's scalars).
+    DeformReport deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ = nullptr);
 
 private:
     Lattice frame_;
     PolygonMesh rest_;
-    FfdBinding<double> binding_;
+    FfdBinding<float> binding_;
+    Eigen::Matrix<float, 3, Eigen::Dynamic> restNormals_;      // rest_.normals in float
+    Eigen::Matrix<float, 3, Eigen::Dynamic> positions_, normals_; // kept between calls (no fresh pages)
 };
 
 /// The mesh file `input` deformed through the lattice into `output` (format by its extension;

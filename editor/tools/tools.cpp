@@ -268,7 +268,7 @@ void updateLinks(ToolContext& c, State& s)
             const auto t0 = std::chrono::steady_clock::now();
             link.report = link.session->deform(lattice, settings.ffd.strength, *mesh.geometry.surface, &link.detJ);
             std::vector<float> scalars = std::move(mesh.scalars); // reuses the last frame's memory
-            scalars.assign(link.detJ.begin(), link.detJ.end());
+            scalars = link.detJ;
             link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             mesh.geometry.bounds.setEmpty();
             const auto& p = mesh.geometry.surface->positions;
