@@ -470,8 +470,9 @@ void errorDialog(UiState& s)
 void helpWindow(UiState& s)
 {
     if (!s.showHelp) return;
-    ImGui::SetNextWindowSize(ImVec2(520, 560), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(700, 600), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Controls", &s.showHelp)) {
+        if (ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen)) ImGui::TextUnformatted(firstStepsHelp());
         ImGui::TextUnformatted(controlsHelp());
         const char* tools = Tools::keyHelp();
         if (tools && *tools) {
@@ -518,6 +519,19 @@ void recoveryDialog(UiState& s, UiActions& actions)
 }
 
 } // namespace
+
+const char* firstStepsHelp()
+{
+    return "Draw a C2 spline: Shift+C, click the points it should pass through, Enter.\n"
+           "  Its joints are in mode C2 (Properties > Joints); drag the cyan de Boor points,\n"
+           "  and it stays C2. T: de Casteljau construction at t, V: curvature comb.\n"
+           "Smooth a teapot patch: File > Open data/teapot.bpt, R (reflection lines), click a\n"
+           "  patch, drag its net points (G, X/Y/Z to constrain); Properties > 'edge continuity\n"
+           "  of all patches' lists C0/G1/C1 per shared edge; a smaller tolerance removes facets.\n"
+           "Deform a mesh: Ctrl+I imports it, click it, L fits a lattice; drag the lattice points\n"
+           "  and the mesh follows; 'export deformed' in the lattice panel writes it (any format\n"
+           "  by extension, nothing else in the file changes). Ctrl+Z undoes every step.\n";
+}
 
 const char* controlsHelp()
 {

@@ -61,6 +61,8 @@ struct UiState {
 bool drawUi(Scene& scene, UiState& state, UiActions& actions);
 
 /// The keyboard and mouse help, shown in the Help window and in docs/editor.md.
+/// The three tasks of docs/editor.md "First steps", short, for the help window.
+const char* firstStepsHelp();
 const char* controlsHelp();
 
 } // namespace freeform::editor
