@@ -86,10 +86,10 @@ std::vector<int> pointsInBox(const ViewTransform& view, const Eigen::Matrix3Xd& 
     return inside;
 }
 
-std::optional<double> rayMesh(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const PolygonMesh& mesh)
+std::optional<MeshHit> rayMeshHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const PolygonMesh& mesh)
 {
     // Moeller-Trumbore on each triangle of each face's fan; both sides count.
-    std::optional<double> best;
+    std::optional<MeshHit> best;
     for (int f = 0; f < mesh.faceCount(); ++f) {
         const int* v = mesh.face(f);
         const Eigen::Vector3d a = mesh.positions.col(v[0]);
@@ -105,10 +105,22 @@ std::optional<double> rayMesh(const Eigen::Vector3d& origin, const Eigen::Vector
             const double w = direction.dot(q) / det;
             if (w < 0 || u + w > 1) continue;
             const double t = e2.dot(q) / det;
-            if (t > 0 && (!best || t < *best)) best = t;
+            if (t > 0 && (!best || t < best->distance)) best = MeshHit{f, k, u, w, t};
         }
     }
     return best;
+}
+
+std::optional<double> rayMesh(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const PolygonMesh& mesh)
+{
+    const auto hit = rayMeshHit(origin, direction, mesh);
+    return hit ? std::optional<double>(hit->distance) : std::nullopt;
+}
+
+Eigen::Vector3d pointAt(const PolygonMesh& mesh, const Eigen::Matrix3Xd& positions, const MeshHit& hit)
+{
+    const int* v = mesh.face(hit.face);
+    return (1 - hit.b1 - hit.b2) * positions.col(v[0]) + hit.b1 * positions.col(v[hit.k]) + hit.b2 * positions.col(v[hit.k + 1]);
 }
 
 std::optional<double> pixelDistanceToPolyline(const ViewTransform& view, const Eigen::Matrix3Xd& polyline, double x, double y)

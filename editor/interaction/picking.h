@@ -46,9 +46,20 @@ std::optional<int> pickPoint(const ViewTransform& view, const Eigen::Matrix3Xd& 
 std::vector<int> pointsInBox(const ViewTransform& view, const Eigen::Matrix3Xd& points, double x0, double y0, double x1,
                              double y1);
 
-/// The smallest ray parameter t > 0 at which origin + t direction meets a triangle of the mesh
-/// (faces are fanned), or nothing.
+/// Where a ray meets a mesh: the face, the fan triangle (corners 0, k, k + 1 of the face), the
+/// barycentric coordinates (b1, b2) of corners k and k + 1, and the ray parameter t.
+struct MeshHit {
+    int face = -1, k = 1;
+    double b1 = 0, b2 = 0, distance = 0;
+};
+/// The nearest hit with t > 0 of origin + t direction on the triangles of the mesh (faces are
+/// fanned; both sides count), or nothing.
+std::optional<MeshHit> rayMeshHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const PolygonMesh& mesh);
+/// rayMeshHit's t alone.
 std::optional<double> rayMesh(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const PolygonMesh& mesh);
+/// The point of the hit's fan triangle at its barycentric coordinates, on `positions` (the mesh's
+/// own, or another set for the same faces, e.g. the rest positions of a deformed mesh).
+Eigen::Vector3d pointAt(const PolygonMesh& mesh, const Eigen::Matrix3Xd& positions, const MeshHit& hit);
 
 /// The distance in pixels from (x, y) to the projected polyline (3 x P points), or nothing when
 /// no segment is in front of the eye.

@@ -8,6 +8,7 @@
 #include "freeform/core/parallel.h"
 #include "freeform/curve/bezier_spline.h"
 #include "freeform/io/mesh_io.h"
+#include "freeform/volume/deform_file.h"
 #include "freeform/surface/bezier_surface.h"
 
 namespace freeform::editor {
@@ -78,37 +79,9 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
 DeformReport exportDeformedMesh(const std::string& input, const Lattice& lattice, double strength, const std::string& output)
 {
     MeshFile file = MeshFile::read(input);
-    auto& positions = file.positions();
-    const Eigen::Index count = positions.cols();
-    const FfdBinding<double> binding(lattice, positions);
-    Points3 moved(3, count);
-    Eigen::Matrix<double, 9, Eigen::Dynamic> jacobians(9, count);
-    FfdOutputs<double> out;
-    out.positions = moved.data();
-    out.jacobians = jacobians.data();
     DeformOptions options;
     options.strength = strength;
-    DeformReport report;
-    binding.deform(lattice, out, options, &report);
-    positions = moved;
-    const auto jacobianAt = [&](int v) { return Eigen::Matrix3d(Eigen::Map<const Eigen::Matrix3d>(jacobians.col(v).data())); };
-    // Normals and tangents sit at positions (anchors); where J is the identity they stay bit for bit.
-    auto& normals = file.normals();
-    const auto& normalAnchors = file.normalAnchors();
-    for (Eigen::Index i = 0; i < normals.cols(); ++i) {
-        const int a = normalAnchors[static_cast<std::size_t>(i)];
-        if (a < 0) continue;
-        const Eigen::Matrix3d j = jacobianAt(a);
-        if (j != Eigen::Matrix3d::Identity()) normals.col(i) = transformNormal(j, normals.col(i));
-    }
-    auto& tangents = file.tangents();
-    const auto& tangentAnchors = file.tangentAnchors();
-    for (Eigen::Index i = 0; i < tangents.cols(); ++i) {
-        const int a = tangentAnchors[static_cast<std::size_t>(i)];
-        if (a < 0) continue;
-        const Eigen::Matrix3d j = jacobianAt(a);
-        if (j != Eigen::Matrix3d::Identity()) tangents.col(i).head<3>() = transformTangent(j, tangents.col(i).head<3>());
-    }
+    const DeformReport report = deformMeshFile(lattice, file, options).report; // what `freeform ffd` does
     file.write(output);
     return report;
 }
@@ -180,38 +153,6 @@ std::optional<ObjectData> deformObject(const Lattice& lattice, const ObjectData&
     }
     why = "no exact deformation for this object type";
     return std::nullopt;
-}
-
-std::optional<MeshHit> rayMesh(const PolygonMesh& mesh, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction)
-{
-    // Moeller-Trumbore on every triangle (fans of larger faces), nearest positive distance.
-    std::optional<MeshHit> best;
-    for (int f = 0; f < mesh.faceCount(); ++f) {
-        const int* v = mesh.face(f);
-        for (int k = 1; k + 1 < mesh.faceSize(f); ++k) {
-            const Eigen::Vector3d a = mesh.positions.col(v[0]), b = mesh.positions.col(v[k]), c = mesh.positions.col(v[k + 1]);
-            const Eigen::Vector3d e1 = b - a, e2 = c - a, p = direction.cross(e2);
-            const double det = e1.dot(p);
-            if (std::abs(det) < 1e-300) continue;
-            const Eigen::Vector3d s = origin - a;
-            const double u = s.dot(p) / det;
-            if (u < 0 || u > 1) continue;
-            const Eigen::Vector3d q = s.cross(e1);
-            const double w = direction.dot(q) / det;
-            if (w < 0 || u + w > 1) continue;
-            const double t = e2.dot(q) / det;
-            if (t <= 0 || (best && t >= best->distance)) continue;
-            if (mesh.faceSize(f) != 3) continue; // the editor's meshes are triangulated
-            best = MeshHit{f, u, w, t};
-        }
-    }
-    return best;
-}
-
-Eigen::Vector3d pointAt(const PolygonMesh& mesh, const Points3& positions, const MeshHit& hit)
-{
-    const int* v = mesh.face(hit.face);
-    return (1 - hit.b1 - hit.b2) * positions.col(v[0]) + hit.b1 * positions.col(v[1]) + hit.b2 * positions.col(v[2]);
 }
 
 } // namespace freeform::editor

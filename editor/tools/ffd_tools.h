@@ -61,14 +61,4 @@ DeformReport exportDeformedMesh(const std::string& input, const Lattice& lattice
 /// nullopt with `why` set when the object is left as it is.
 std::optional<ObjectData> deformObject(const Lattice& lattice, const ObjectData& object, double strength, std::string& why);
 
-/// The nearest intersection of a ray with a triangle mesh: triangle, barycentric (b1, b2) of its
-/// second and third corners, and the distance along the (unit) direction.
-struct MeshHit {
-    int face = -1;
-    double b1 = 0, b2 = 0, distance = 0;
-};
-std::optional<MeshHit> rayMesh(const PolygonMesh& mesh, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction);
-/// The point of face `hit.face` at the hit's barycentric coordinates, on `positions`.
-Eigen::Vector3d pointAt(const PolygonMesh& mesh, const Eigen::Matrix<double, 3, Eigen::Dynamic>& positions, const MeshHit& hit);
-
 } // namespace freeform::editor

@@ -10,6 +10,7 @@
 #include "freeform/core/error.h"
 #include "freeform/curve/interpolation.h"
 #include "freeform/surface/bezier_surface.h"
+#include "interaction/picking.h"
 #include "tools/tool_state.h"
 
 namespace freeform::editor {
@@ -987,7 +988,7 @@ bool Tools::onPointer(ToolContext& c, const PointerEvent& e)
             const int m = findItem(scene, link.mesh), li = findItem(scene, name);
             if (m < 0 || li < 0 || !link.session || !scene.item(m).geometry.surface || !scene.item(m).settings.visible) continue;
             const PolygonMesh& shown = *scene.item(m).geometry.surface;
-            const auto hit = rayMesh(shown, e.rayOrigin, e.rayDirection);
+            const auto hit = rayMeshHit(e.rayOrigin, e.rayDirection, shown);
             if (!hit || hit->distance >= nearest) continue;
             nearest = hit->distance;
             s.drag = State::Drag::Direct;

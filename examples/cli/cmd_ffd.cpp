@@ -7,6 +7,7 @@
 #include "command.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/volume/deform.h"
+#include "freeform/volume/deform_file.h"
 #include "spline_object.h"
 
 namespace freeform::cli {
@@ -28,11 +29,6 @@ const DocumentObject& findLattice(const Document& doc, const std::optional<std::
     }
     if (!found) throw Error(doc.source + ": has no lattice object");
     return *found;
-}
-
-bool isIdentity(const Eigen::Matrix3d& j)
-{
-    return j == Eigen::Matrix3d::Identity();
 }
 
 bool endsWithJson(const std::string& path)
@@ -208,50 +204,12 @@ int runFfd(const std::vector<std::string>& argv)
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);
 
-    // Positions, with the Jacobian of every position for the normals and tangents anchored there.
-    auto& positions = file.positions();
-    const Eigen::Index count = positions.cols();
-    const FfdBinding<double> binding(lattice, positions);
-    Eigen::Matrix<double, 3, Eigen::Dynamic> moved(3, count);
-    Eigen::Matrix<double, 9, Eigen::Dynamic> jacobians(9, count);
-    FfdOutputs<double> out;
-    out.positions = moved.data();
-    out.jacobians = jacobians.data();
-    DeformReport report;
-    binding.deform(lattice, out, options, &report);
-    positions = moved;
-    auto jacobianAt = [&](int v) { return Eigen::Matrix3d(Eigen::Map<const Eigen::Matrix3d>(jacobians.col(v).data())); };
-
-    auto& n = file.normals();
-    const auto& normalAnchors = file.normalAnchors();
-    if (n.cols() > 0) {
-        if (normals == NormalMode::Recompute) {
-            const Eigen::Matrix<double, 3, Eigen::Dynamic> fresh = areaWeightedNormals(file.toPolygonMesh());
-            for (Eigen::Index i = 0; i < n.cols(); ++i) {
-                const int a = normalAnchors[static_cast<std::size_t>(i)];
-                if (a >= 0 && fresh.col(a).squaredNorm() > 0) n.col(i) = fresh.col(a);
-            }
-        } else {
-            for (Eigen::Index i = 0; i < n.cols(); ++i) {
-                const int a = normalAnchors[static_cast<std::size_t>(i)];
-                if (a < 0) continue;
-                const Eigen::Matrix3d j = jacobianAt(a);
-                if (!isIdentity(j)) n.col(i) = transformNormal(j, n.col(i)); // untouched where the map is I
-            }
-        }
-    }
-    auto& tangents = file.tangents();
-    const auto& tangentAnchors = file.tangentAnchors();
-    for (Eigen::Index i = 0; i < tangents.cols(); ++i) {
-        const int a = tangentAnchors[static_cast<std::size_t>(i)];
-        if (a < 0) continue;
-        const Eigen::Matrix3d j = jacobianAt(a);
-        if (!isIdentity(j)) tangents.col(i).head<3>() = transformTangent(j, tangents.col(i).head<3>()); // w kept
-    }
+    const MeshFileDeformation deformed = deformMeshFile(lattice, file, options, normals);
+    const DeformReport& report = deformed.report;
 
     // The certificate for the lattice box; a vertex inside the box with det J <= 0 decides "folds".
     const Certificate cert = certify(lattice, options.strength);
-    const auto& outsideList = binding.outsideVertices();
+    const auto& outsideList = deformed.outside;
     std::size_t insideFolds = 0;
     for (int v : report.folds)
         if (!std::binary_search(outsideList.begin(), outsideList.end(), v)) ++insideFolds;

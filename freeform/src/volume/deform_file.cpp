@@ -1,0 +1,51 @@
+// Free-form deformation of a mesh file in place (volume/deform_file.h).
+
+#include "freeform/volume/deform_file.h"
+
+namespace freeform {
+
+MeshFileDeformation deformMeshFile(const Lattice& lattice, MeshFile& file, const DeformOptions& options, NormalMode normals)
+{
+    // Positions, with the Jacobian at every position for the normals and tangents anchored there.
+    auto& positions = file.positions();
+    const Eigen::Index count = positions.cols();
+    const FfdBinding<double> binding(lattice, positions);
+    Eigen::Matrix<double, 3, Eigen::Dynamic> moved(3, count);
+    Eigen::Matrix<double, 9, Eigen::Dynamic> jacobians(9, count);
+    FfdOutputs<double> out;
+    out.positions = moved.data();
+    out.jacobians = jacobians.data();
+    MeshFileDeformation result;
+    binding.deform(lattice, out, options, &result.report);
+    result.outside = binding.outsideVertices();
+    positions = moved;
+    const auto jacobianAt = [&](int v) { return Eigen::Matrix3d(Eigen::Map<const Eigen::Matrix3d>(jacobians.col(v).data())); };
+
+    auto& n = file.normals();
+    const auto& normalAnchors = file.normalAnchors();
+    if (n.cols() > 0 && normals == NormalMode::Recompute) {
+        const Eigen::Matrix<double, 3, Eigen::Dynamic> fresh = areaWeightedNormals(file.toPolygonMesh());
+        for (Eigen::Index i = 0; i < n.cols(); ++i) {
+            const int a = normalAnchors[static_cast<std::size_t>(i)];
+            if (a >= 0 && fresh.col(a).squaredNorm() > 0) n.col(i) = fresh.col(a);
+        }
+    } else {
+        for (Eigen::Index i = 0; i < n.cols(); ++i) {
+            const int a = normalAnchors[static_cast<std::size_t>(i)];
+            if (a < 0) continue;
+            const Eigen::Matrix3d j = jacobianAt(a);
+            if (j != Eigen::Matrix3d::Identity()) n.col(i) = transformNormal(j, n.col(i));
+        }
+    }
+    auto& tangents = file.tangents();
+    const auto& tangentAnchors = file.tangentAnchors();
+    for (Eigen::Index i = 0; i < tangents.cols(); ++i) {
+        const int a = tangentAnchors[static_cast<std::size_t>(i)];
+        if (a < 0) continue;
+        const Eigen::Matrix3d j = jacobianAt(a);
+        if (j != Eigen::Matrix3d::Identity()) tangents.col(i).head<3>() = transformTangent(j, tangents.col(i).head<3>()); // w kept
+    }
+    return result;
+}
+
+} // namespace freeform
