@@ -359,6 +359,17 @@ void Scene::replaceObject(int i, const DocumentObject& object, const std::string
     setObjectData(i, std::move(checked.objects.front().data));
 }
 
+void Scene::amendObject(int i, const DocumentObject& object)
+{
+    const DocumentObject& old = this->object(i);
+    if (object.name != old.name) throw Error("amendObject: the name must stay \"" + old.name + "\"");
+    Document single;
+    single.objects.push_back(object);
+    Document checked = parseDocument(formatDocument(single), "object \"" + object.name + "\"");
+    ++changes_;
+    setObjectData(i, std::move(checked.objects.front().data));
+}
+
 void Scene::setObjectData(int i, ObjectData data)
 {
     document_.objects[static_cast<std::size_t>(i)].data = std::move(data);

@@ -112,6 +112,10 @@ public:
     /// document reader; Error (nothing changes) when the new object is invalid. `label` names the
     /// undo step (Edit > Undo <label>).
     void replaceObject(int i, const DocumentObject& object, const std::string& label = "edit");
+    /// Replaces object i as part of the change recorded last, without a step of its own: for a
+    /// fix-up that completes the edit just made (a spline's joint modes enforced after one of its
+    /// handles was typed in), so that one undo takes both back. Validated as replaceObject.
+    void amendObject(int i, const DocumentObject& object);
     /// Moves control point k of item i (2D objects ignore z). Error when invalid.
     void setControlPoint(int i, int k, const Eigen::Vector3d& p, const std::string& label = "move point");
     /// Moves control points ks[j] of item i to column j of ps (one step, one rebuild); Error

@@ -202,7 +202,10 @@ void trackJointModes(ToolContext& c, State& s)
         DocumentObject next = *object;
         next.data = enforced;
         try {
-            c.scene.replaceObject(item, next, "handle mode");
+            // One change since the last look (a typed coordinate, a frame of a drag): the modes
+            // complete that change, in its undo step. Several: a step of their own.
+            if (c.scene.changeCount() == s.lastChange + 1) c.scene.amendObject(item, next);
+            else c.scene.replaceObject(item, next, "handle mode");
         } catch (const Error& e) {
             s.message = e.what();
         }
@@ -1013,6 +1016,7 @@ void Tools::update(ToolContext& c, Overlay& o)
 {
     State& s = *state_;
     if (s.drag == State::Drag::None) trackJointModes(c, s);
+    s.lastChange = c.scene.changeCount();
     updateLinks(c, s);
     // Overlays.
     if (s.creating) {
