@@ -501,7 +501,7 @@ void App::maybeAutosave()
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - lastAutosave_).count() < autosaveInterval_) return;
     lastAutosave_ = now;
-    std::string text = formatDocument(scene_.toDocument(true)); // mesh paths absolute: it lives elsewhere
+    std::string text = formatDocument(scene_.toDocument(Scene::MeshPaths::Absolute)); // it lives elsewhere
     if (text == lastAutosaveText_) return;
     try {
         std::error_code ec;

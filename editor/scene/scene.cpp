@@ -211,7 +211,7 @@ std::string Scene::resolve(const std::string& meshPath) const
     return (fs::path(path_).parent_path() / p).string();
 }
 
-Document Scene::toDocument(bool absoluteMeshPaths) const
+Document Scene::toDocument(MeshPaths meshPaths) const
 {
     Document doc = document_;
     for (std::size_t i = 0; i < doc.objects.size(); ++i) {
@@ -234,7 +234,7 @@ Document Scene::toDocument(bool absoluteMeshPaths) const
         if (item.kind != SceneItem::Kind::ImportedMesh) continue;
         Json m;
         m["name"] = item.name;
-        m["path"] = absoluteMeshPaths ? fs::absolute(resolve(item.meshPath)).lexically_normal().string() : item.meshPath;
+        m["path"] = meshPaths == MeshPaths::Absolute ? fs::absolute(resolve(item.meshPath)).lexically_normal().string() : item.meshPath;
         if (!item.settings.isDefault()) m["editor"] = item.settings.toJson();
         meshes.push_back(std::move(m));
     }

@@ -81,9 +81,11 @@ public:
 
     /// Writes the document with the editor's settings to path atomically and remembers the path.
     void save(const std::string& path);
-    /// The document as it would be saved (objects, object settings, camera, display, meshes);
-    /// absoluteMeshPaths for a copy saved elsewhere (the autosave file).
-    Document toDocument(bool absoluteMeshPaths = false) const;
+    /// How imported mesh paths are written: as the document stores them (relative to its folder
+    /// where possible), or absolute, for a copy saved elsewhere (the autosave file).
+    enum class MeshPaths { AsStored, Absolute };
+    /// The document as it would be saved (objects, object settings, camera, display, meshes).
+    Document toDocument(MeshPaths meshPaths = MeshPaths::AsStored) const;
     /// Reads an autosave file as the unsaved state of the document at `originalPath` (empty for
     /// an untitled one): the result has that path and is modified. Error as load().
     static Scene recover(const std::string& autosavePath, const std::string& originalPath, double aspect = 4.0 / 3.0);

@@ -459,7 +459,7 @@ TEST_CASE("Subdivision: a recovered autosave finds a relative cage file beside t
     fs::remove_all(autosaveDir);
     fs::create_directories(autosaveDir);
     const std::string autosave = (autosaveDir / "autosave.json").string();
-    test::writeText(autosave, formatDocument(scene.toDocument(true)));
+    test::writeText(autosave, formatDocument(scene.toDocument(Scene::MeshPaths::Absolute)));
 
     Scene recovered = Scene::recover(autosave, doc);
     recovered.updateGeometry();

@@ -30,8 +30,6 @@ struct FfdLink {
     int appliedRevision = -1;               // the mesh item's revision after the last update
     DeformReport report;
     double deformMs = 0;                    // CPU time of the last update (positions, normals, det J)
-    std::vector<float> detJ;                // det J per vertex, kept between updates (no fresh
-                                            // pages for 10^6 values in every frame of a drag)
     std::optional<Certificate> certificate; // computed on request for appliedPoints
 };
 

@@ -270,9 +270,9 @@ void updateLinks(ToolContext& c, State& s)
                                  link.appliedStrength != settings.ffd.strength;
             if (!changed) continue;
             const auto t0 = std::chrono::steady_clock::now();
-            link.report = link.session->deform(lattice, settings.ffd.strength, *mesh.geometry.surface, &link.detJ);
-            std::vector<float> scalars = std::move(mesh.scalars); // reuses the last frame's memory
-            scalars = link.detJ;
+            // det J straight into the colour scalars, in the last frame's memory (no fresh pages).
+            std::vector<float> scalars = std::move(mesh.scalars);
+            link.report = link.session->deform(lattice, settings.ffd.strength, *mesh.geometry.surface, &scalars);
             link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             mesh.geometry.bounds.setEmpty();
             const auto& p = mesh.geometry.surface->positions;
@@ -654,14 +654,11 @@ bool setAllJointModes(ToolContext& c, State& s, JointMode mode)
         BezierSplineData data = *d;
         ObjectSettings settings = c.scene.item(item).settings;
         settings.joints = jointModes(c.scene, item);
-        if (mode == JointMode::C2 && data.degree == 3) {
-            data = c2ThroughJoints(data);
-            for (int j = 0; j < static_cast<int>(settings.joints.size()); ++j)
-                if (isInnerJoint(data, j)) settings.joints[static_cast<std::size_t>(j)] = mode;
-        }
-        for (int j = 0; j < static_cast<int>(settings.joints.size()) && !(mode == JointMode::C2 && data.degree == 3); ++j) {
+        const bool c2Cubic = mode == JointMode::C2 && data.degree == 3;
+        if (c2Cubic) data = c2ThroughJoints(data);
+        for (int j = 0; j < static_cast<int>(settings.joints.size()); ++j) {
             if (!isInnerJoint(data, j)) continue;
-            data = applyJointMode(data, j, mode, -1); // left to right: each joint keeps its left side
+            if (!c2Cubic) data = applyJointMode(data, j, mode, -1); // left to right: each joint keeps its left side
             settings.joints[static_cast<std::size_t>(j)] = mode;
         }
         DocumentObject next = *object;

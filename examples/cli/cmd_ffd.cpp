@@ -13,24 +13,6 @@
 namespace freeform::cli {
 namespace {
 
-const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name)
-{
-    if (name) {
-        const DocumentObject& o = doc.object(*name);
-        if (!std::holds_alternative<LatticeData>(o.data))
-            throw Error(doc.source + ": object \"" + *name + "\" is a " + objectType(o.data) + ", not a lattice");
-        return o;
-    }
-    const DocumentObject* found = nullptr;
-    for (const DocumentObject& o : doc.objects) {
-        if (!std::holds_alternative<LatticeData>(o.data)) continue;
-        if (found) throw Error(doc.source + ": has several lattices; choose one with --object");
-        found = &o;
-    }
-    if (!found) throw Error(doc.source + ": has no lattice object");
-    return *found;
-}
-
 bool endsWithJson(const std::string& path)
 {
     if (path.size() < 5) return false;

@@ -9,24 +9,6 @@
 namespace freeform::cli {
 namespace {
 
-const DocumentObject& latticeObject(const Document& doc, const std::optional<std::string>& name)
-{
-    if (name) {
-        const DocumentObject& o = doc.object(*name);
-        if (!std::holds_alternative<LatticeData>(o.data))
-            throw Error(doc.source + ": object \"" + *name + "\" is a " + objectType(o.data) + ", not a lattice");
-        return o;
-    }
-    const DocumentObject* found = nullptr;
-    for (const DocumentObject& o : doc.objects) {
-        if (!std::holds_alternative<LatticeData>(o.data)) continue;
-        if (found) throw Error(doc.source + ": has several lattices; choose one with --object");
-        found = &o;
-    }
-    if (!found) throw Error(doc.source + ": has no lattice object");
-    return *found;
-}
-
 int runSubdivide(const std::vector<std::string>& argv)
 {
     const Args args(argv, {"output", "scheme", "level", "tolerance", "lattice", "object", "boundary"}, {});
@@ -61,7 +43,7 @@ int runSubdivide(const std::vector<std::string>& argv)
     std::string latticeName;
     if (const auto latticePath = args.get("lattice")) {
         const Document doc = readDocument(*latticePath);
-        const DocumentObject& object = latticeObject(doc, args.get("object"));
+        const DocumentObject& object = findLattice(doc, args.get("object"));
         latticeName = object.name;
         cage = deformCage(cage, Lattice::fromData(std::get<LatticeData>(object.data)));
     }

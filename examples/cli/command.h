@@ -56,6 +56,10 @@ void printJson(const Json& value);
 /// A point as a JSON array.
 Json pointJson(const double* p, int dim);
 
+/// The lattice object `name` of the document, or its only lattice when no name is given; Error
+/// naming the document when it is not a lattice, when there are several, or none.
+const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name);
+
 struct Command {
     std::string name;
     std::string summary; // one line for `freeform --help`
