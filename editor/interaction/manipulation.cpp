@@ -37,15 +37,6 @@ std::optional<Eigen::Vector3d> hitPlane(const Eigen::Vector3d& g, const Eigen::V
     return o + ((g - o).dot(n) / dn) * d;
 }
 
-/// 1, 2 or 5 times a power of ten, the nearest at or above x.
-double niceStep(double x)
-{
-    const double p = std::pow(10.0, std::floor(std::log10(x)));
-    for (double m : {1.0, 2.0, 5.0, 10.0})
-        if (m * p >= x) return m * p;
-    return 10 * p;
-}
-
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b)
 {
     return a.x() * b.y() - a.y() * b.x();
@@ -119,14 +110,6 @@ std::vector<double> softWeights(const Eigen::Matrix3Xd& points, const std::vecto
         w[static_cast<std::size_t>(k)] = falloff(nearest, radius);
     }
     return w;
-}
-
-double gridStep(const Eigen::AlignedBox3d& box)
-{
-    const double diameter = box.diagonal().norm();
-    const double extent = std::max({std::abs(box.min().x()), std::abs(box.max().x()), std::abs(box.min().y()),
-                                    std::abs(box.max().y()), 0.5 * diameter, 1e-6});
-    return niceStep(extent / 8);
 }
 
 std::optional<Constraint> Gizmo::pick(const ViewTransform& view, double x, double y) const

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "interaction/picking.h"
+#include "scene/grid.h" // gridStep: the step snapping uses
 
 namespace freeform::editor {
 
@@ -43,10 +44,6 @@ double falloff(double d, double radius);
 /// Weights of every point (3 x N): 1 for the selected ones, falloff of the distance to the nearest
 /// selected point for the others (radius <= 0: 0 for all others).
 std::vector<double> softWeights(const Eigen::Matrix3Xd& points, const std::vector<int>& selected, double radius);
-
-/// The grid spacing snapping uses for a scene of these bounds: the display grid's line spacing
-/// (1, 2 or 5 times a power of ten, at or above an eighth of the scene's extent).
-double gridStep(const Eigen::AlignedBox3d& bounds);
 
 /// The translate gizmo: three axis arrows and three plane squares at `centre`, sized in pixels.
 struct Gizmo {

@@ -22,7 +22,7 @@
 
 #include "freeform/io/document.h"
 #include "freeform/mesh/polygon_mesh.h"
-#include "interaction/history.h"
+#include "scene/history.h"
 #include "render/render_types.h"
 #include "scene/camera.h"
 #include "scene/settings.h"

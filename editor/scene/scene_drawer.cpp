@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "interaction/manipulation.h"
+#include "scene/grid.h"
 
 namespace freeform::editor {
 

@@ -10,7 +10,7 @@
 #include <limits>
 #include <string>
 
-#include "interaction/history.h"
+#include "scene/history.h"
 #include "scene/scene.h"
 #include "support/process.h"
 
