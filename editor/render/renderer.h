@@ -1,7 +1,9 @@
 #pragma once
 // The renderer interface: buffers are uploaded once and redrawn every frame until the scene marks
-// them dirty and uploads again. One backend exists (OpenGL 3.3 core, render/gl_renderer.h); the
-// interface keeps the scene and the UI free of graphics API calls and lets a test backend stand in.
+// them dirty and uploads again. Two backends: OpenGL 3.3 core (createGlRenderer, render/gl_renderer.cpp)
+// and the recording backend (render/recording_renderer.h), which keeps the uploaded buffers and the
+// draw calls of a frame without any graphics API, for the unit tests (editor/tests/test_drawer.cpp).
+// The interface keeps the scene and the UI free of graphics API calls.
 //
 // A frame: beginFrame (clears, sets the camera) -> draw* calls in any order (depth-tested) ->
 // endFrame (resolves multisampling into the target). readPixels returns the last frame.
