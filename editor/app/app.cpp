@@ -654,32 +654,16 @@ void App::onScroll(double dy)
 void App::onKey(int key, int action, int mods)
 {
     if (action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
-    const bool ctrl = mods & GLFW_MOD_CONTROL, shift = mods & GLFW_MOD_SHIFT;
-    DisplaySettings& d = scene_.display;
-    auto dialog = [&](UiState::PathDialog which, const std::string& text) {
-        ui_.pathDialog = which;
-        std::snprintf(ui_.pathBuffer, sizeof ui_.pathBuffer, "%s", text.c_str());
-    };
-    if (ctrl) {
-        if (key == GLFW_KEY_Z && shift) redo();
-        else if (key == GLFW_KEY_Z) undo();
-        else if (key == GLFW_KEY_Y) redo();
-        else if (interaction_.busy()) return; // files and views wait until the drag ends
-        else if (key == GLFW_KEY_N) newDocument();
-        else if (key == GLFW_KEY_O) dialog(UiState::PathDialog::Open, scene_.path());
-        else if (key == GLFW_KEY_S && (shift || scene_.path().empty()))
-            dialog(UiState::PathDialog::SaveAs, scene_.path().empty() ? "scene.json" : scene_.path());
-        else if (key == GLFW_KEY_S) save();
-        else if (key == GLFW_KEY_I) dialog(UiState::PathDialog::Import, "");
-        else if (key == GLFW_KEY_E) dialog(UiState::PathDialog::Export, "scene.obj");
-        else if (key == GLFW_KEY_Q) quit();
-        else if (key == GLFW_KEY_1 || key == GLFW_KEY_KP_1) setView("back");
-        else if (key == GLFW_KEY_3 || key == GLFW_KEY_KP_3) setView("left");
-        else if (key == GLFW_KEY_7 || key == GLFW_KEY_KP_7) setView("bottom");
-        else {
-            ToolContext context = toolContext();
-            tools_.onKey(context, key, mods);
-        }
+    // The keymap's contexts in dispatch order (interaction/keymap.h, docs/editor.md): undo and redo
+    // always; during a drag or grab its keys and nothing else; files; the tools; editing; views.
+    if (const KeyBinding* b = findBinding(KeyContext::History, key, mods)) {
+        if (b->action == KeyAction::Undo) undo();
+        else redo();
+        return;
+    }
+    if (mods & GLFW_MOD_CONTROL) {
+        if (interaction_.busy()) return; // files and views wait until the drag ends
+        if (const KeyBinding* b = findBinding(KeyContext::Files, key, mods)) perform(b->action);
         return;
     }
     if (interaction_.busy()) {
@@ -689,26 +673,59 @@ void App::onKey(int key, int action, int mods)
     ToolContext context = toolContext();
     if (tools_.onKey(context, key, mods)) return;
     if (interaction_.key(scene_, ui_.selection, view(), key, mods, cursorX_, cursorY_)) return;
-    switch (key) {
-    case GLFW_KEY_1: case GLFW_KEY_KP_1: setView("front"); break;
-    case GLFW_KEY_3: case GLFW_KEY_KP_3: setView("right"); break;
-    case GLFW_KEY_7: case GLFW_KEY_KP_7: setView("top"); break;
-    case GLFW_KEY_9: case GLFW_KEY_KP_9: setView("iso"); break;
-    case GLFW_KEY_5: case GLFW_KEY_KP_5:
+    if (const KeyBinding* b = findBinding(KeyContext::View, key, mods)) perform(b->action);
+}
+
+void App::perform(KeyAction action)
+{
+    DisplaySettings& d = scene_.display;
+    auto dialog = [&](UiState::PathDialog which, const std::string& text) {
+        ui_.pathDialog = which;
+        std::snprintf(ui_.pathBuffer, sizeof ui_.pathBuffer, "%s", text.c_str());
+    };
+    switch (action) {
+    // Files
+    case KeyAction::NewDocument: newDocument(); break;
+    case KeyAction::OpenDocument: dialog(UiState::PathDialog::Open, scene_.path()); break;
+    case KeyAction::Save:
+        if (!scene_.path().empty()) {
+            save();
+            break;
+        }
+        [[fallthrough]];
+    case KeyAction::SaveAs: dialog(UiState::PathDialog::SaveAs, scene_.path().empty() ? "scene.json" : scene_.path()); break;
+    case KeyAction::ImportFile: dialog(UiState::PathDialog::Import, ""); break;
+    case KeyAction::ExportMesh: dialog(UiState::PathDialog::Export, "scene.obj"); break;
+    case KeyAction::Quit: quit(); break;
+    case KeyAction::ViewBack: setView("back"); break;
+    case KeyAction::ViewLeft: setView("left"); break;
+    case KeyAction::ViewBottom: setView("bottom"); break;
+    // View
+    case KeyAction::ViewFront: setView("front"); break;
+    case KeyAction::ViewRight: setView("right"); break;
+    case KeyAction::ViewTop: setView("top"); break;
+    case KeyAction::ViewIso: setView("iso"); break;
+    case KeyAction::ToggleProjection:
         scene_.camera.projection = scene_.camera.projection == Projection::Perspective ? Projection::Orthographic : Projection::Perspective;
         scene_.touch();
         break;
-    case GLFW_KEY_HOME: fit(false); break;
-    case GLFW_KEY_F: fit(true); break;
-    case GLFW_KEY_Z: d.shading = static_cast<Shading>((static_cast<int>(d.shading) + 1) % 3); scene_.touch(); break;
-    case GLFW_KEY_W: d.wireframe = !d.wireframe; scene_.touch(); break;
-    case GLFW_KEY_R:
+    case KeyAction::FitAll: fit(false); break;
+    case KeyAction::FitSelection: fit(true); break;
+    case KeyAction::NextShading:
+        d.shading = static_cast<Shading>((static_cast<int>(d.shading) + 1) % 3);
+        scene_.touch();
+        break;
+    case KeyAction::ToggleWireframe:
+        d.wireframe = !d.wireframe;
+        scene_.touch();
+        break;
+    case KeyAction::ToggleReflectionLines:
         d.analysis = d.analysis == SurfaceAnalysis::ReflectionLines ? SurfaceAnalysis::None : SurfaceAnalysis::ReflectionLines;
         scene_.touch();
         break;
-    case GLFW_KEY_F1: ui_.showHelp = !ui_.showHelp; break;
-    case GLFW_KEY_F2: ui_.showStats = !ui_.showStats; break;
-    default: break;
+    case KeyAction::ToggleHelp: ui_.showHelp = !ui_.showHelp; break;
+    case KeyAction::ToggleStatistics: ui_.showStats = !ui_.showStats; break;
+    default: break; // the other contexts' actions are handled by Interaction and the tools
     }
 }
 

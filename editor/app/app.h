@@ -17,6 +17,7 @@
 
 #include "app/options.h"
 #include "interaction/interaction.h"
+#include "interaction/keymap.h"
 #include "interaction/replay.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -73,6 +74,8 @@ public:
     void onCursor(double x, double y);
     void onScroll(double dy);
     void onKey(int key, int action, int mods);
+    /// Carries out an action of the keymap's Files and View contexts (interaction/keymap.h).
+    void perform(KeyAction action);
     void onDrop(int count, const char** paths);
     void onClose();
 

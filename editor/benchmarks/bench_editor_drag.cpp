@@ -4,10 +4,11 @@
 // editor reads it) and a cubic lattice fitted to it by the tools (fitLattice, key L). Each
 // iteration is what a frame does while a lattice point is dragged:
 //   - Scene::setControlPoint on the lattice inside a merged undo step (the drag),
-//   - Tools::update: the FFD link notices the new control points and deforms positions, normals
-//     and det J of every vertex through the binding made at fit time (no lattice coordinates are
-//     computed again), the det J colour scalars and the bounds,
-//   - Scene::updateGeometry: the rebuild of what changed (the lattice's net).
+//   - Tools::update: the tools' per-frame follow-up and overlays,
+//   - Scene::updateGeometry: the rebuild of what changed (the lattice's net), then the derived
+//     items: the FFD link notices the new control points and deforms positions, normals and det J
+//     of every vertex through the binding made at fit time (no lattice coordinates are computed
+//     again), the det J colour scalars and the bounds.
 // Uploading to the GPU is not included (the driver's work). A second benchmark times the
 // FfdSession::deform call alone. Nothing here is a test: docs/performance.md has the figures.
 //
@@ -25,7 +26,6 @@
 #include "interaction/selection.h"
 #include "scene/overlay.h"
 #include "scene/scene.h"
-#include "tools/tool_state.h"
 #include "tools/tools.h"
 
 namespace {
@@ -73,12 +73,12 @@ struct DragScene {
     {
         scene.importFile(meshFile());
         ToolContext context{scene, selection};
-        tools.state().latticeDegree[0] = tools.state().latticeDegree[1] = tools.state().latticeDegree[2] = 3;
-        if (!fitLattice(context, tools.state(), scene.itemCount() - 1)) throw Error("fit: " + tools.state().message);
+        tools.lattice().degree[0] = tools.lattice().degree[1] = tools.lattice().degree[2] = 3;
+        if (!tools.lattice().fitLattice(context, scene.itemCount() - 1)) throw Error("fit: " + tools.message());
         lattice = selection.item;
         mesh = findItem(scene, std::filesystem::path(meshFile()).stem().string());
-        tools.update(context, overlay); // binds the mesh once, as the first frame after the fit does
-        scene.updateGeometry();
+        tools.update(context, overlay);
+        scene.updateGeometry(); // binds the mesh once, as the first frame after the fit does
     }
 };
 
@@ -100,7 +100,7 @@ void BM_DragFrame(benchmark::State& state)
     }
     d.scene.endMerge();
     state.counters["vertices"] = double(kGrid) * kGrid;
-    const auto& links = d.tools.state().links;
+    const auto& links = d.scene.ffdLinks();
     if (!links.empty()) state.counters["deform_ms_last"] = links.begin()->second.deformMs;
 }
 BENCHMARK(BM_DragFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);

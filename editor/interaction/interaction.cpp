@@ -10,6 +10,8 @@
 #include <limits>
 #include <numeric>
 
+#include "interaction/keymap.h"
+
 namespace freeform::editor {
 
 namespace {
@@ -316,59 +318,61 @@ void Interaction::click(Scene& scene, Selection& selection, const ViewTransform&
 
 bool Interaction::key(Scene& scene, Selection& selection, const ViewTransform& view, int key, int mods, double x, double y)
 {
-    const bool shift = mods & GLFW_MOD_SHIFT, ctrl = mods & GLFW_MOD_CONTROL, alt = mods & GLFW_MOD_ALT;
     if (busy()) {
-        if (key == GLFW_KEY_ESCAPE) cancel(scene);
-        else if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER || key == GLFW_KEY_SPACE) finish(scene);
-        else if (key == GLFW_KEY_X) setConstraint(scene, view, shift ? Constraint::PlaneX : Constraint::AxisX);
-        else if (key == GLFW_KEY_Y) setConstraint(scene, view, shift ? Constraint::PlaneY : Constraint::AxisY);
-        else if (key == GLFW_KEY_Z) setConstraint(scene, view, shift ? Constraint::PlaneZ : Constraint::AxisZ);
+        if (const KeyBinding* b = findBinding(KeyContext::Gesture, key, mods)) {
+            switch (b->action) {
+            case KeyAction::GestureCancel: cancel(scene); break;
+            case KeyAction::GestureConfirm: finish(scene); break;
+            case KeyAction::AxisX: setConstraint(scene, view, Constraint::AxisX); break;
+            case KeyAction::AxisY: setConstraint(scene, view, Constraint::AxisY); break;
+            case KeyAction::AxisZ: setConstraint(scene, view, Constraint::AxisZ); break;
+            case KeyAction::PlaneX: setConstraint(scene, view, Constraint::PlaneX); break;
+            case KeyAction::PlaneY: setConstraint(scene, view, Constraint::PlaneY); break;
+            case KeyAction::PlaneZ: setConstraint(scene, view, Constraint::PlaneZ); break;
+            default: break;
+            }
+        }
         return true; // everything else waits until the gesture ends
     }
-    if (ctrl) return false;
+    const KeyBinding* b = findBinding(KeyContext::Edit, key, mods);
+    if (!b) return false;
     const bool hasItem = selection.item >= 0 && selection.item < scene.itemCount();
-    switch (key) {
-    case GLFW_KEY_A:
-        if (alt) {
-            selection.points.clear();
-            return true;
-        }
-        if (shift || !hasItem) return false;
-        {
-            std::vector<int> all(static_cast<std::size_t>(scene.controlPointCount(selection.item)));
-            std::iota(all.begin(), all.end(), 0);
-            selection.setPoints(std::move(all));
-        }
+    switch (b->action) {
+    case KeyAction::SelectNone:
+        selection.points.clear();
         return true;
-    case GLFW_KEY_ESCAPE:
+    case KeyAction::SelectAll: {
+        if (!hasItem) return false;
+        std::vector<int> all(static_cast<std::size_t>(scene.controlPointCount(selection.item)));
+        std::iota(all.begin(), all.end(), 0);
+        selection.setPoints(std::move(all));
+        return true;
+    }
+    case KeyAction::Deselect:
         if (!selection.points.empty()) selection.points.clear();
         else if (hasItem) selection.clear();
         else return false;
         return true;
-    case GLFW_KEY_G:
-        if (alt) return false;
-        if (shift) {
-            settings_.gizmo = !settings_.gizmo;
-            return true;
-        }
+    case KeyAction::ToggleGizmo:
+        settings_.gizmo = !settings_.gizmo;
+        return true;
+    case KeyAction::Grab:
         if (!hasItem || selection.points.empty()) return false;
         mode_ = Mode::Grab;
         startMove(scene, selection, Constraint::View, selection.has(activePoint_) ? activePoint_ : selection.points.front(), x, y);
         return true;
-    case GLFW_KEY_O:
-        if (shift || alt) return false;
+    case KeyAction::ToggleSoft:
         settings_.soft = !settings_.soft;
         if (settings_.soft && !(settings_.softRadius > 0)) settings_.softRadius = softRadius(scene);
         return true;
-    case GLFW_KEY_TAB:
-        if (!shift) return false;
+    case KeyAction::ToggleSnap:
         settings_.snap = !settings_.snap;
         return true;
-    case GLFW_KEY_KP_ADD: case GLFW_KEY_EQUAL:
+    case KeyAction::SoftLarger:
         if (!settings_.soft) return false;
         settings_.softRadius = softRadius(scene) * 1.25;
         return true;
-    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT:
+    case KeyAction::SoftSmaller:
         if (!settings_.soft) return false;
         settings_.softRadius = softRadius(scene) / 1.25;
         return true;

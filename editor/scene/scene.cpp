@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -73,6 +74,14 @@ int nextRevision()
 
 /// Content keys are unique across all scenes too.
 long nextKey()
+{
+    static long counter = 0;
+    return ++counter;
+}
+
+/// Stable item ids, never reused (unique across all scenes, so a drawer or a tool that kept one
+/// never finds another item under it).
+long nextId()
 {
     static long counter = 0;
     return ++counter;
@@ -152,6 +161,7 @@ Scene Scene::load(const std::string& path, double aspect)
             throw Error(path + ": " + e.what());
         }
     }
+    for (SceneItem& item : scene.items_) scene.resolveLink(item);
     // Mesh files are read now, so that an unreadable one fails the load.
     scene.updateGeometry();
     for (const SceneItem& item : scene.items_)
@@ -174,6 +184,7 @@ void Scene::rebuildItems()
         item.name = o.name;
         item.type = objectType(o.data);
         item.key = nextKey();
+        item.id = nextId();
         items.push_back(std::move(item));
     }
     items_ = std::move(items);
@@ -187,6 +198,7 @@ void Scene::addMeshItem(const std::string& name, const std::string& path)
     item.type = "mesh";
     item.meshPath = path;
     item.key = nextKey();
+    item.id = nextId();
     items_.push_back(std::move(item));
 }
 
@@ -215,7 +227,9 @@ Document Scene::toDocument(MeshPaths meshPaths) const
 {
     Document doc = document_;
     for (std::size_t i = 0; i < doc.objects.size(); ++i) {
-        const ObjectSettings& s = items_[i].settings;
+        ObjectSettings s = items_[i].settings;
+        // The link is the mesh's id; the document names the mesh as it is called now.
+        if (const int m = indexOf(items_[i].deforms); m >= 0) s.ffd.mesh = items_[static_cast<std::size_t>(m)].name;
         doc.objects[i].editor = s.isDefault() ? std::string() : s.toJson().dump();
         // A relative cage path starts at cageDirectory_; for a document in another folder (after
         // Save As) it is rebased there, so that it names the same file. (The autosave keeps it
@@ -289,6 +303,7 @@ void Scene::importFile(const std::string& path)
             item.name = o.name;
             item.type = objectType(o.data);
             item.key = nextKey();
+            item.id = nextId();
             added.push_back(std::move(item));
         }
         record(std::string("import ").append(fs::path(path).filename().string()));
@@ -472,7 +487,9 @@ void Scene::setSettings(int i, const ObjectSettings& settings, const std::string
     if (it.settings == settings) return;
     record(label);
     const bool geometry = !(it.settings.tessellation == settings.tessellation);
+    const bool link = it.settings.ffd.mesh != settings.ffd.mesh;
     it.settings = settings;
+    if (link) resolveLink(it);
     if (geometry && it.kind == SceneItem::Kind::DocumentObject) {
         it.geometryDirty = true;
         it.key = nextKey();
@@ -493,6 +510,7 @@ int Scene::addObject(DocumentObject object, const std::string& label)
     item.name = object.name;
     item.type = objectType(document_.objects.back().data);
     item.key = nextKey();
+    item.id = nextId();
     items_.insert(items_.begin() + at, std::move(item));
     modified_ = true;
     return static_cast<int>(at);
@@ -530,7 +548,7 @@ SceneState Scene::state() const
     SceneState s;
     s.objects = document_.objects;
     s.items.reserve(items_.size());
-    for (const SceneItem& it : items_) s.items.push_back({it.kind, it.name, it.type, it.meshPath, it.settings, it.key});
+    for (const SceneItem& it : items_) s.items.push_back({it.kind, it.name, it.type, it.meshPath, it.settings, it.key, it.id, it.deforms});
     return s;
 }
 
@@ -549,6 +567,8 @@ void Scene::restore(SceneState state)
         it.meshPath = std::move(r.meshPath);
         it.settings = r.settings;
         it.key = r.key;
+        it.id = r.id;
+        it.deforms = r.deforms;
         items.push_back(std::move(it));
     }
     items_ = std::move(items);
@@ -618,6 +638,117 @@ void Scene::updateGeometry()
             item.scalars.clear();
         item.geometryDirty = false;
         item.revision = item.topology = nextRevision();
+    }
+    updateDerived();
+}
+
+// ------------------------------------------------------------------------------------ ids, links
+
+int Scene::indexOf(long id) const
+{
+    if (id == 0) return -1;
+    for (std::size_t i = 0; i < items_.size(); ++i)
+        if (items_[i].id == id) return static_cast<int>(i);
+    return -1;
+}
+
+int Scene::indexOf(const std::string& name) const
+{
+    for (std::size_t i = 0; i < items_.size(); ++i)
+        if (items_[i].name == name) return static_cast<int>(i);
+    return -1;
+}
+
+void Scene::resolveLink(SceneItem& item) const
+{
+    const int m = item.settings.ffd.mesh.empty() ? -1 : indexOf(item.settings.ffd.mesh);
+    item.deforms = m >= 0 ? items_[static_cast<std::size_t>(m)].id : 0;
+}
+
+const FfdLink* Scene::ffdLink(int i) const
+{
+    const auto it = ffdLinks_.find(item(i).id);
+    return it == ffdLinks_.end() ? nullptr : &it->second;
+}
+
+void Scene::setCertificate(int i, const Certificate& certificate)
+{
+    if (const auto it = ffdLinks_.find(item(i).id); it != ffdLinks_.end()) it->second.certificate = certificate;
+}
+
+void Scene::updateDerived()
+{
+    // Puts the rest mesh back into the mesh of a link that goes away.
+    auto restoreRest = [&](const FfdLink& link) {
+        const int m = indexOf(link.meshId);
+        if (m < 0 || !link.session) return;
+        SceneItem& it = items_[static_cast<std::size_t>(m)];
+        if (it.key != link.meshKey || !it.geometry.surface ||
+            it.geometry.surface->positions.cols() != link.session->rest().positions.cols())
+            return;
+        it.geometry.surface->positions = link.session->rest().positions;
+        it.geometry.surface->normals = link.session->rest().normals;
+        setScalars(m, {});
+    };
+    // Lattices that deform a mesh, by id. A name the document gave before its mesh was there
+    // (a mesh imported later under that name) is resolved now.
+    std::map<long, int> lattices;
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+        SceneItem& it = items_[i];
+        if (it.kind != SceneItem::Kind::DocumentObject || it.type != "lattice") continue;
+        if (it.deforms == 0 && !it.settings.ffd.mesh.empty()) resolveLink(it);
+        if (it.deforms != 0) lattices[it.id] = static_cast<int>(i);
+    }
+    for (auto it = ffdLinks_.begin(); it != ffdLinks_.end();) {
+        const auto found = lattices.find(it->first);
+        if (found == lattices.end() || items_[static_cast<std::size_t>(found->second)].deforms != it->second.meshId) {
+            restoreRest(it->second);
+            it = ffdLinks_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    for (const auto& [id, li] : lattices) {
+        const SceneItem& latticeItem = items_[static_cast<std::size_t>(li)];
+        const int m = indexOf(latticeItem.deforms);
+        if (m < 0 || items_[static_cast<std::size_t>(m)].kind != SceneItem::Kind::ImportedMesh) continue;
+        SceneItem& mesh = items_[static_cast<std::size_t>(m)];
+        if (!mesh.geometry.surface) continue;
+        FfdLink& link = ffdLinks_[id];
+        const auto& data = std::get<LatticeData>(document_.objects[static_cast<std::size_t>(li)].data);
+        const double strength = latticeItem.settings.ffd.strength;
+        try {
+            const Lattice lattice = Lattice::fromData(data);
+            const bool rebind = !link.session || link.meshId != mesh.id || link.meshKey != mesh.key || !link.session->matches(lattice);
+            if (rebind) {
+                // The rest mesh: the item's geometry as read, unless this link deformed it.
+                PolygonMesh rest = *mesh.geometry.surface;
+                if (link.session && link.meshKey == mesh.key && link.appliedRevision == mesh.revision) rest = link.session->rest();
+                link = FfdLink{};
+                link.meshId = mesh.id;
+                link.meshKey = mesh.key;
+                link.session = std::make_shared<FfdSession>(lattice, std::move(rest));
+            }
+            const bool changed = rebind || link.appliedRevision != mesh.revision || link.appliedPoints != data.points ||
+                                 link.appliedStrength != strength;
+            if (!changed) continue;
+            const auto t0 = std::chrono::steady_clock::now();
+            // det J straight into the colour scalars, in the last frame's memory (no fresh pages).
+            std::vector<float> scalars = std::move(mesh.scalars);
+            link.report = link.session->deform(lattice, strength, *mesh.geometry.surface, &scalars);
+            link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            mesh.geometry.bounds.setEmpty();
+            const auto& p = mesh.geometry.surface->positions;
+            if (p.cols() > 0) mesh.geometry.bounds = Eigen::AlignedBox3d(p.rowwise().minCoeff(), p.rowwise().maxCoeff());
+            setScalars(m, std::move(scalars)); // also a new revision: the drawer uploads the vertices
+            link.appliedRevision = mesh.revision;
+            link.appliedPoints = data.points;
+            link.appliedStrength = strength;
+            link.certificate.reset();
+            link.error.clear();
+        } catch (const Error& e) {
+            link.error = e.what();
+        }
     }
 }
 

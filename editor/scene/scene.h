@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "scene/history.h"
 #include "render/render_types.h"
 #include "scene/camera.h"
+#include "scene/derived.h"
 #include "scene/settings.h"
 
 namespace freeform::editor {
@@ -56,6 +58,10 @@ struct SceneItem {
     std::vector<float> scalars;           // per-vertex scalars of the surface (colour map), or empty
     long key = 0;                         // content key: new whenever the data behind the geometry
                                           // (object, tessellation settings, mesh file) changes
+    long id = 0;                          // stable id: given when the item is made, kept through
+                                          // renames, undo/redo and reordering, never reused
+    long deforms = 0;                     // lattice: the id of the mesh it deforms (from
+                                          // settings.ffd.mesh, the document's form), 0: none
 };
 
 /// What undo and redo restore: the document objects and the items without their derived geometry.
@@ -65,6 +71,7 @@ struct SceneState {
         std::string name, type, meshPath;
         ObjectSettings settings;
         long key = 0;
+        long id = 0, deforms = 0;
     };
     std::vector<DocumentObject> objects;
     std::vector<Item> items;
@@ -109,6 +116,10 @@ public:
     const SceneItem& item(int i) const { return items_.at(static_cast<std::size_t>(i)); }
     /// The document object behind item i (Error for an imported mesh).
     const DocumentObject& object(int i) const;
+    /// The index of the item with stable id `id`, or -1.
+    int indexOf(long id) const;
+    /// The index of the item named `name`, or -1.
+    int indexOf(const std::string& name) const;
 
     /// Replaces the document object behind item i (same name) after validating it through the
     /// document reader; Error (nothing changes) when the new object is invalid. `label` names the
@@ -152,8 +163,15 @@ public:
     /// Counts every change to the document (edits, undo, redo): tools compare it to notice changes.
     long changeCount() const { return changes_; }
 
-    /// Rebuilds the geometry of dirty items (tessellation, sampling).
+    /// Rebuilds the geometry of dirty items (tessellation, sampling), then evaluates the derived
+    /// items whose inputs changed (scene/derived.h: the meshes lattices deform).
     void updateGeometry();
+    /// The lattice -> mesh links evaluated by updateGeometry, by the lattice item's id.
+    const std::map<long, FfdLink>& ffdLinks() const { return ffdLinks_; }
+    /// The link of lattice item i (nullptr when it deforms no mesh, or not yet evaluated).
+    const FfdLink* ffdLink(int i) const;
+    /// Stores a certificate computed for lattice item i's current points with its link.
+    void setCertificate(int i, const Certificate& certificate);
     /// The bounding box of the visible items (updateGeometry first); a unit box when empty.
     Eigen::AlignedBox3d bounds() const;
 
@@ -166,6 +184,8 @@ public:
 
 private:
     void rebuildItems();
+    void updateDerived();
+    void resolveLink(SceneItem& item) const;
     void record(const std::string& label);
     void restore(SceneState state);
     void setObjectData(int i, ObjectData data);
@@ -181,6 +201,7 @@ private:
     bool modified_ = false;
     History<SceneState> history_;
     long changes_ = 0;
+    std::map<long, FfdLink> ffdLinks_; // derived: by lattice id
 };
 
 /// Builds the geometry of a document object (tolerance: adaptive sampling in world units).

@@ -66,7 +66,7 @@ SceneDrawer::~SceneDrawer()
 
 void SceneDrawer::clear()
 {
-    for (auto& [name, gpu] : gpu_) releaseAll(gpu);
+    for (auto& [id, gpu] : gpu_) releaseAll(gpu);
     gpu_.clear();
     for (BufferHandle* h : {&grid_, &axes_, &overlayLines_, &overlayTop_, &overlayPoints_})
         if (*h) renderer_.release(*h), *h = {};
@@ -166,11 +166,11 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
     }
 
     // Upload what changed; forget items that are gone.
-    std::set<std::string> present;
+    std::set<long> present;
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& item = scene.item(i);
-        present.insert(item.name);
-        upload(item, gpu_[item.name], i == selected, d.normalLength * diameter);
+        present.insert(item.id);
+        upload(item, gpu_[item.id], i == selected, d.normalLength * diameter);
     }
     for (auto it = gpu_.begin(); it != gpu_.end();) {
         if (present.count(it->first)) {
@@ -214,7 +214,7 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& item = scene.item(i);
         if (!item.settings.visible) continue;
-        const Gpu& gpu = gpu_[item.name];
+        const Gpu& gpu = gpu_[item.id];
         if (gpu.mesh) {
             SurfaceStyle style;
             style.shading = d.shading;
@@ -240,7 +240,7 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& item = scene.item(i);
         if (!item.settings.visible) continue;
-        const Gpu& gpu = gpu_[item.name];
+        const Gpu& gpu = gpu_[item.id];
         if (d.controlNets || i == selected) renderer_.drawLines(gpu.net, identity, false);
         if (d.controlPoints || i == selected) renderer_.drawPoints(gpu.points, identity, d.pointSize);
     }

@@ -45,7 +45,7 @@ private:
     void releaseAll(Gpu& gpu);
 
     Renderer& renderer_;
-    std::map<std::string, Gpu> gpu_;        // by item name (unique within a scene)
+    std::map<long, Gpu> gpu_;               // by stable item id (SceneItem::id)
     BufferHandle grid_, axes_;
     BufferHandle overlayLines_, overlayTop_, overlayPoints_;
     double gridScale_ = 0;

@@ -25,7 +25,6 @@
 #include <vector>
 
 #include "support/process.h"
-#include "tools/tool_state.h"
 #include "tools/tools.h"
 
 using namespace freeform;
@@ -142,7 +141,6 @@ struct Bench {
     Selection selection;
     Tools tools;
     ToolContext context{scene, selection, 800, 500, Eigen::Matrix4d::Identity()};
-    Tools::State& state() { return tools.state(); }
 };
 
 } // namespace
@@ -361,9 +359,9 @@ TEST_CASE("Subdivision: applying a lattice moves every cage vertex through Latti
     const std::string before = b.scene.text();
     const std::size_t steps = b.scene.history().size();
 
-    REQUIRE(applyLatticeToObjects(b.context, b.state(), li));
-    INFO(b.state().message);
-    CHECK(b.state().message.find("deformed 1 object") != std::string::npos);
+    REQUIRE(b.tools.lattice().applyLatticeToObjects(b.context, li));
+    INFO(b.tools.message());
+    CHECK(b.tools.message().find("deformed 1 object") != std::string::npos);
     const auto& d = std::get<SubdivisionSurfaceData>(b.scene.object(0).data);
     CHECK(d.mesh.empty());
     REQUIRE(d.vertices.cols() == 8);

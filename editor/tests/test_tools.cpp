@@ -1,5 +1,5 @@
 // The editing tools without a window: driven through the entry points the application uses
-// (Tools::onKey / onPointer / update and the operations of tools/tool_state.h) on a Scene, and
+// (Tools::onKey / onPointer / update and the operations of the tool classes, tools/*_tool.h) on a Scene, and
 // checked against independent computations: ray/plane hits worked out by hand, the library's own
 // evaluation of curves and splines (elevation and splitting keep the shape), its continuity
 // analysis (joint handle modes), Lattice::deform evaluated point by point (the reference for the
@@ -22,7 +22,6 @@
 
 #include "interaction/picking.h"
 #include "support/process.h"
-#include "tools/tool_state.h"
 #include "tools/tools.h"
 
 using namespace freeform;
@@ -58,7 +57,6 @@ struct Bench {
     Tools tools;
     Overlay overlay;
     ToolContext context{scene, selection, 800, 500, handViewProjection()};
-    Tools::State& state() { return tools.state(); }
     void update()
     {
         overlay.clear();
@@ -145,18 +143,18 @@ TEST_CASE("Tools: C, clicks and Enter create a bezier_curve through the ray/plan
                                      // origin), facing the camera: y = 0
     const std::string empty = b.scene.text();
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_C, 0));
-    CHECK(b.state().creating);
+    CHECK(b.tools.curve().creating());
     // Oblique rays from y = -10 along (a, 1, c) meet y = 0 at (x0 + 10 a, 0, z0 + 10 c).
     const double rays[4][4] = {{-1, 0.5, 0.1, -0.02}, {0, 1, 0.03, 0.01}, {2, -0.5, -0.05, 0.04}, {9, 9, 0, 0}};
     for (const auto& r : rays)
         CHECK(b.tools.onPointer(b.context, press(Eigen::Vector3d(r[0], -10, r[1]), Eigen::Vector3d(r[2], 1, r[3]))));
-    CHECK(b.state().newPoints.cols() == 4);
+    CHECK(b.tools.curve().newPoints().cols() == 4);
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_BACKSPACE, 0)); // drops the last click
-    CHECK(b.state().newPoints.cols() == 3);
+    CHECK(b.tools.curve().newPoints().cols() == 3);
     b.update();
     CHECK(b.overlay.points.positions.cols() == 3); // the clicked points are drawn
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_ENTER, 0));
-    CHECK_FALSE(b.state().creating);
+    CHECK_FALSE(b.tools.curve().creating());
 
     REQUIRE(b.scene.itemCount() == 1);
     CHECK(b.scene.item(0).type == "bezier_curve");
@@ -183,12 +181,12 @@ TEST_CASE("Tools: C, clicks and Enter create a bezier_curve through the ray/plan
     b.tools.onPointer(b.context, press(Eigen::Vector3d(0, -10, 0), Eigen::Vector3d(0, 1, 0)));
     b.tools.onPointer(b.context, press(Eigen::Vector3d(1, -10, 0), Eigen::Vector3d(0, 1, 0)));
     b.tools.onKey(b.context, GLFW_KEY_ESCAPE, 0);
-    CHECK_FALSE(b.state().creating);
+    CHECK_FALSE(b.tools.curve().creating());
     CHECK(b.scene.itemCount() == 0);
     b.tools.onKey(b.context, GLFW_KEY_C, 0);
     b.tools.onPointer(b.context, press(Eigen::Vector3d(0, -10, 0), Eigen::Vector3d(0, 1, 0)));
     b.tools.onKey(b.context, GLFW_KEY_ENTER, 0);
-    CHECK_FALSE(b.state().message.empty());
+    CHECK_FALSE(b.tools.message().empty());
     CHECK(b.scene.text() == empty);
 }
 
@@ -198,13 +196,13 @@ TEST_CASE("Tools: Shift+C, clicks and Enter create a C2 cubic spline through the
     b.scene.camera.setView("front"); // the click plane is y = 0 (see above)
     const std::string empty = b.scene.text();
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_C, GLFW_MOD_SHIFT));
-    CHECK(b.state().creating);
-    CHECK(b.state().creatingSpline);
+    CHECK(b.tools.curve().creating());
+    CHECK(b.tools.curve().creatingSpline());
     // Vertical rays hit y = 0 at (x, 0, z); the chords are 5, 10 and 3 (3-4-5 and 6-8-10 triangles).
     const Eigen::Vector3d hits[4] = {{-4, 0, 0}, {-1, 0, 4}, {5, 0, -4}, {5, 0, -1}};
     for (const auto& h : hits) b.tools.onPointer(b.context, press(Eigen::Vector3d(h.x(), -10, h.z()), Eigen::Vector3d(0, 1, 0)));
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_ENTER, 0));
-    CHECK_FALSE(b.state().creating);
+    CHECK_FALSE(b.tools.curve().creating());
 
     REQUIRE(b.scene.itemCount() == 1);
     CHECK(b.scene.item(0).type == "bezier_spline");
@@ -234,8 +232,8 @@ TEST_CASE("Tools: Shift+C, clicks and Enter create a C2 cubic spline through the
     b.tools.onKey(b.context, GLFW_KEY_C, GLFW_MOD_SHIFT);
     b.tools.onPointer(b.context, press(Eigen::Vector3d(1, -10, 1), Eigen::Vector3d(0, 1, 0)));
     b.tools.onPointer(b.context, press(Eigen::Vector3d(1, -10, 1), Eigen::Vector3d(0, 1, 0)));
-    CHECK_FALSE(createCurveFromClicks(b.context, b.state()));
-    CHECK_FALSE(b.state().message.empty());
+    CHECK_FALSE(b.tools.curve().createFromClicks(b.context));
+    CHECK_FALSE(b.tools.message().empty());
     CHECK(b.scene.text() == empty);
 }
 
@@ -258,7 +256,7 @@ TEST_CASE("Tools: elevating a curve adds one degree and keeps every point of it 
     // A spline: every segment one degree up, the same curve.
     const BezierSpline<double, 3> spline = splineOf(b.scene, "s");
     b.select("s");
-    REQUIRE(elevateSelected(b.context, b.state()));
+    REQUIRE(b.tools.curve().elevateSelected(b.context));
     const BezierSpline<double, 3> raised = splineOf(b.scene, "s");
     CHECK(raised.degree() == 4);
     CHECK(raised.segmentCount() == 3);
@@ -273,7 +271,7 @@ TEST_CASE("Tools: splitting a curve at t gives pieces that are the original on [
     const std::string original = b.scene.text();
     const BezierCurve<double, 3> whole = curveOf(b.scene, "c");
     const double t = 0.3;
-    b.state().t = t;
+    b.tools.curve().t = t;
     b.select("c");
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_K, 0));
     REQUIRE(b.scene.itemCount() == 4);
@@ -296,9 +294,9 @@ TEST_CASE("Tools: splitting a curve at t gives pieces that are the original on [
 
     // An open spline at the fraction 0.5 of its domain [0, 3.5]: T = 1.75 inside segment 1.
     const BezierSpline<double, 3> spline = splineOf(b.scene, "s");
-    b.state().t = 0.5;
+    b.tools.curve().t = 0.5;
     b.select("s");
-    REQUIRE(splitSelected(b.context, b.state()));
+    REQUIRE(b.tools.curve().splitSelected(b.context));
     const BezierSpline<double, 3> first = splineOf(b.scene, "s");
     const BezierSpline<double, 3> second = splineOf(b.scene, b.scene.item(b.selection.item).name);
     CHECK(first.domainEnd() == Approx(1.75).margin(1e-15));
@@ -342,7 +340,7 @@ TEST_CASE("Tools: inserting and deleting curve points changes the count and noth
 
     // The last point selected: a new end point continuing the last leg.
     b.selection.setPoints({3});
-    REQUIRE(insertAtSelected(b.context, b.state()));
+    REQUIRE(b.tools.curve().insertAtSelected(b.context));
     after = std::get<BezierCurveData>(b.scene.object(0).data).points;
     REQUIRE(after.cols() == 5);
     CHECK(after.leftCols(4) == before);
@@ -353,7 +351,7 @@ TEST_CASE("Tools: inserting a spline joint keeps the shape and the modes; deleti
 {
     Bench b{curveScene("tools_insert_spline.json")};
     b.select("s", {4});
-    REQUIRE(setJointMode(b.context, b.state(), JointMode::Mirrored));
+    REQUIRE(b.tools.spline().setJointMode(b.context, JointMode::Mirrored));
     const std::string mirrored = b.scene.text();
     const BezierSpline<double, 3> before = splineOf(b.scene, "s");
     const std::size_t steps = b.scene.history().size();
@@ -419,7 +417,7 @@ TEST_CASE("Tools: mirrored makes the joint C1, aligned G1 but not C1, free chang
     // Joint 2 (column 6) aligned keeping its left handle (column 5): the right handle (column 7)
     // turns onto the line and keeps its length, which differs from the C1 length.
     b.selection.setPoints({5});
-    REQUIRE(setJointMode(b.context, b.state(), JointMode::Aligned));
+    REQUIRE(b.tools.spline().setJointMode(b.context, JointMode::Aligned));
     const PointColumns p2 = splineData(b.scene, "s").points;
     const Eigen::Vector3d dir = (p0.col(6) - p0.col(5)).normalized();
     const Eigen::Vector3d aligned = Eigen::Vector3d(p0.col(6)) + (p0.col(7) - p0.col(6)).norm() * dir;
@@ -432,7 +430,7 @@ TEST_CASE("Tools: mirrored makes the joint C1, aligned G1 but not C1, free chang
     // Free: the points stay bit for bit, only the mode changes.
     const std::string beforeFree = b.scene.text();
     b.select("s", {3});
-    REQUIRE(setJointMode(b.context, b.state(), JointMode::Free));
+    REQUIRE(b.tools.spline().setJointMode(b.context, JointMode::Free));
     CHECK(splineData(b.scene, "s").points == p2);
     CHECK(jointModes(b.scene, findItem(b.scene, "s"))[1] == JointMode::Free);
     CHECK(jointReport(b.scene, "s", 1).C >= 1);
@@ -448,7 +446,7 @@ TEST_CASE("Tools: C2 on every joint gives a C2 spline; dragging a de Boor point 
     b.scene.camera.setView("top"); // the drag plane faces +z
     b.select("s");
     const PointColumns before = splineData(b.scene, "s").points;
-    REQUIRE(setAllJointModes(b.context, b.state(), JointMode::C2));
+    REQUIRE(b.tools.spline().setAllJointModes(b.context, JointMode::C2));
     for (const auto& c : continuityReport(splineOf(b.scene, "s"))) {
         CHECK(c.C >= 2);
         CHECK(c.G == 2);
@@ -493,8 +491,8 @@ TEST_CASE("Tools: C2 on every joint gives a C2 spline; dragging a de Boor point 
     CHECK(b.scene.text() == c2);
 
     // C2 needs a cubic: elevation is refused while a joint is C2, and nothing changes.
-    CHECK_FALSE(elevateSelected(b.context, b.state()));
-    CHECK_FALSE(b.state().message.empty());
+    CHECK_FALSE(b.tools.curve().elevateSelected(b.context));
+    CHECK_FALSE(b.tools.message().empty());
     CHECK(b.scene.text() == c2);
 }
 
@@ -502,7 +500,7 @@ TEST_CASE("Tools: a handle moved through the scene keeps its joint's mode after 
 {
     Bench b{curveScene("tools_handle_drag.json")};
     b.select("s", {4});
-    REQUIRE(setJointMode(b.context, b.state(), JointMode::Mirrored));
+    REQUIRE(b.tools.spline().setJointMode(b.context, JointMode::Mirrored));
     b.update();
     const std::string mirrored = b.scene.text();
     const int s = findItem(b.scene, "s");
@@ -549,7 +547,7 @@ TEST_CASE("Tools: a handle set by number (no merge) then undone and redone: no s
     // inside that step, so one undo takes both back. Undo and redo add no steps.
     Bench b{curveScene("tools_handle_number.json")};
     b.select("s", {4});
-    REQUIRE(setJointMode(b.context, b.state(), JointMode::Mirrored));
+    REQUIRE(b.tools.spline().setJointMode(b.context, JointMode::Mirrored));
     b.update();
     const std::string mirrored = b.scene.text();
     const int s = findItem(b.scene, "s");
@@ -576,7 +574,7 @@ TEST_CASE("Tools: the de Casteljau construction and the curvature comb are drawn
 {
     Bench b{curveScene("tools_overlay.json")};
     b.select("c");
-    b.state().t = 0.25;
+    b.tools.curve().t = 0.25;
     b.update();
     CHECK(b.overlay.empty());
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_T, 0));
@@ -627,8 +625,8 @@ TEST_CASE("Tools: a patch of the chosen degrees; edge continuity of two patches 
 {
     Bench b{Scene()};
     b.scene.camera.setView("front");
-    b.state().patchDegree[0] = 2;
-    b.state().patchDegree[1] = 3;
+    b.tools.patch().degree[0] = 2;
+    b.tools.patch().degree[1] = 3;
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_P, 0));
     REQUIRE(b.scene.itemCount() == 1);
     const auto& d = std::get<BezierSurfaceData>(b.scene.object(0).data);
@@ -647,21 +645,21 @@ TEST_CASE("Tools: a patch of the chosen degrees; edge continuity of two patches 
         next.points.col(2 * 4 + j) = 3 * d.points.col(2 * 4 + j) - 2 * d.points.col(1 * 4 + j) + Eigen::Vector3d(0, 0.3, 0);
     }
     b.scene.addObject({"patch", next, ""});
-    REQUIRE(computeEdgeContinuity(b.context, b.state()));
-    REQUIRE(b.state().edges.size() == 1);
-    CHECK(b.state().edgePatchNames.size() == 2);
-    CHECK(b.state().edges[0].c0);
-    CHECK(b.state().edges[0].c1);
-    CHECK(b.state().edges[0].g1);
+    REQUIRE(b.tools.patch().computeEdgeContinuity(b.context));
+    REQUIRE(b.tools.patch().edges().size() == 1);
+    CHECK(b.tools.patch().edgePatchNames().size() == 2);
+    CHECK(b.tools.patch().edges()[0].c0);
+    CHECK(b.tools.patch().edges()[0].c1);
+    CHECK(b.tools.patch().edges()[0].g1);
     // A kink: the second patch's first inner row pulled off the tangent plane.
     next.points.col(1 * 4 + 1) += Eigen::Vector3d(0, 0.5, 0);
     DocumentObject kinked = b.scene.object(1);
     kinked.data = next;
     b.scene.replaceObject(1, kinked);
-    REQUIRE(computeEdgeContinuity(b.context, b.state()));
-    REQUIRE(b.state().edges.size() == 1);
-    CHECK(b.state().edges[0].c0);
-    CHECK_FALSE(b.state().edges[0].g1);
+    REQUIRE(b.tools.patch().computeEdgeContinuity(b.context));
+    REQUIRE(b.tools.patch().edges().size() == 1);
+    CHECK(b.tools.patch().edges()[0].c0);
+    CHECK_FALSE(b.tools.patch().edges()[0].g1);
 }
 
 // ------------------------------------------------------------------ FFD
@@ -702,10 +700,10 @@ TEST_CASE("Tools: fit a lattice to an imported mesh, move a point, the mesh foll
     const std::size_t steps = b.scene.history().size();
 
     b.selection.selectItem(mesh);
-    b.state().latticeDegree[0] = 2;
-    b.state().latticeDegree[1] = 3;
-    b.state().latticeDegree[2] = 1;
-    b.state().margin = 0.1;
+    b.tools.lattice().degree[0] = 2;
+    b.tools.lattice().degree[1] = 3;
+    b.tools.lattice().degree[2] = 1;
+    b.tools.lattice().margin = 0.1;
     REQUIRE(b.tools.onKey(b.context, GLFW_KEY_L, 0));
     const int li = findItem(b.scene, "ffd_box_lattice");
     REQUIRE(li >= 0);
@@ -765,7 +763,7 @@ TEST_CASE("Tools: fit a lattice to an imported mesh, move a point, the mesh foll
     // Reset: the rest lattice, the mesh back to the file's vertices bit for bit; one step.
     const std::string deformed = b.scene.text();
     const std::size_t before = b.scene.history().size();
-    REQUIRE(resetLattice(b.context, b.state(), li));
+    REQUIRE(b.tools.lattice().resetLattice(b.context, li));
     b.update();
     CHECK(latticeOf(b.scene, li).isRest());
     for (int v = 0; v < 8; ++v) CHECK(Eigen::Vector3d(b.scene.item(mesh).geometry.surface->positions.col(v)) == boxVertex(v));
@@ -790,7 +788,7 @@ TEST_CASE("Tools: exportDeformed writes the file's faces with Lattice::deform's 
     Bench b{Scene()};
     b.scene.importFile(obj);
     const int mesh = findItem(b.scene, "ffd_export");
-    REQUIRE(fitLattice(b.context, b.state(), mesh));
+    REQUIRE(b.tools.lattice().fitLattice(b.context, mesh));
     const int li = b.selection.item;
     Lattice lattice = latticeOf(b.scene, li);
     b.scene.setControlPoint(li, lattice.index(3, 0, 3), lattice.restPoint(3, 0, 3) + Eigen::Vector3d(-0.4, 0.1, 0.2));
@@ -799,7 +797,7 @@ TEST_CASE("Tools: exportDeformed writes the file's faces with Lattice::deform's 
     lattice = latticeOf(b.scene, li);
     const std::string text = b.scene.text();
     const std::string out = cat(kTmp, "/ffd_export_out.obj");
-    REQUIRE(exportDeformed(b.context, b.state(), li, out));
+    REQUIRE(b.tools.lattice().exportDeformed(b.context, li, out));
     CHECK(b.scene.text() == text);
     const PolygonMesh written = readPolygonMesh(out), input = readPolygonMesh(obj);
     REQUIRE(written.positions.cols() == 8);
@@ -816,7 +814,7 @@ TEST_CASE("Tools: applyLatticeToObjects turns a curve inside the box into deform
     const std::string obj = writeBox("ffd_apply.obj");
     Bench b{Scene()};
     b.scene.importFile(obj);
-    REQUIRE(fitLattice(b.context, b.state(), findItem(b.scene, "ffd_apply")));
+    REQUIRE(b.tools.lattice().fitLattice(b.context, findItem(b.scene, "ffd_apply")));
     const int li = b.selection.item;
     Lattice lattice = latticeOf(b.scene, li);
     b.scene.setControlPoint(li, lattice.index(2, 1, 1), lattice.restPoint(2, 1, 1) + Eigen::Vector3d(0.2, 0.3, -0.1));
@@ -829,8 +827,8 @@ TEST_CASE("Tools: applyLatticeToObjects turns a curve inside the box into deform
     const std::string before = b.scene.text();
     const std::size_t steps = b.scene.history().size();
 
-    REQUIRE(applyLatticeToObjects(b.context, b.state(), li));
-    CHECK(b.state().message.find("left 1") != std::string::npos);
+    REQUIRE(b.tools.lattice().applyLatticeToObjects(b.context, li));
+    CHECK(b.tools.message().find("left 1") != std::string::npos);
     const BezierCurve<double, 3> original(inside), composed = curveOf(b.scene, "in");
     CHECK(composed.degree() == 2 * 9); // degree d (l + m + n) for the cubic lattice
     const BezierCurve<double, 3> library = deformCurve(lattice, original);
@@ -850,23 +848,24 @@ TEST_CASE("Tools: the certificate of a lattice: injective for a small move, fold
     const std::string obj = writeBox("ffd_certify.obj");
     Bench b{Scene()};
     b.scene.importFile(obj);
-    b.state().latticeDegree[0] = b.state().latticeDegree[1] = b.state().latticeDegree[2] = 1;
-    REQUIRE(fitLattice(b.context, b.state(), findItem(b.scene, "ffd_certify")));
+    b.tools.lattice().degree[0] = b.tools.lattice().degree[1] = b.tools.lattice().degree[2] = 1;
+    REQUIRE(b.tools.lattice().fitLattice(b.context, findItem(b.scene, "ffd_certify")));
     const int li = b.selection.item;
     const Lattice rest = latticeOf(b.scene, li);
     b.scene.setControlPoint(li, rest.index(1, 1, 1), rest.restPoint(1, 1, 1) + Eigen::Vector3d(0.1, 0.05, -0.1));
     b.update();
-    REQUIRE(certifyLattice(b.context, b.state(), li));
-    const auto& link = b.state().links.at(b.scene.item(li).name);
+    REQUIRE(b.tools.lattice().certifyLattice(b.context, li));
+    REQUIRE(b.scene.ffdLink(li));
+    const auto& link = *b.scene.ffdLink(li);
     REQUIRE(link.certificate);
     CHECK(link.certificate->verdict == Verdict::CertifiedInjective);
     // The corner (1, 1, 1) pulled through the opposite corner (0, 0, 0): the trilinear map folds.
     b.scene.setControlPoint(li, rest.index(1, 1, 1), rest.restPoint(0, 0, 0) - 0.5 * (rest.restPoint(1, 1, 1) - rest.restPoint(0, 0, 0)));
     b.update();
-    REQUIRE(certifyLattice(b.context, b.state(), li));
-    REQUIRE(b.state().links.at(b.scene.item(li).name).certificate);
-    CHECK(b.state().links.at(b.scene.item(li).name).certificate->verdict == Verdict::Folds);
-    CHECK(b.state().message.find("folds") != std::string::npos);
+    REQUIRE(b.tools.lattice().certifyLattice(b.context, li));
+    REQUIRE(b.scene.ffdLink(li)->certificate);
+    CHECK(b.scene.ffdLink(li)->certificate->verdict == Verdict::Folds);
+    CHECK(b.tools.message().find("folds") != std::string::npos);
 }
 
 TEST_CASE("Tools: direct manipulation drags a point of the mesh and the lattice follows exactly (key D)", "[tools][ffd]")
@@ -875,7 +874,7 @@ TEST_CASE("Tools: direct manipulation drags a point of the mesh and the lattice 
     Bench b{Scene()};
     b.scene.camera.setView("top"); // the drag plane faces +z
     b.scene.importFile(obj);
-    REQUIRE(fitLattice(b.context, b.state(), findItem(b.scene, "ffd_direct")));
+    REQUIRE(b.tools.lattice().fitLattice(b.context, findItem(b.scene, "ffd_direct")));
     const int li = b.selection.item, mesh = findItem(b.scene, "ffd_direct");
     b.update();
     const std::string fitted = b.scene.text();
@@ -919,67 +918,67 @@ TEST_CASE("Tools: operations on the wrong object or an empty selection fail with
     const std::size_t imported = b.scene.history().size();
     const int c = findItem(b.scene, "c"), s = findItem(b.scene, "s"), box = findItem(b.scene, "box"),
               mesh = findItem(b.scene, "tools_bad");
-    auto& st = b.state();
+    auto& st = b.tools;
     const auto fails = [&](bool ok, const char* what) {
         INFO(what);
         CHECK_FALSE(ok);
-        CHECK_FALSE(st.message.empty());
+        CHECK_FALSE(st.message().empty());
         CHECK(b.scene.text() == original);
         CHECK(b.scene.history().size() == imported);
-        st.message.clear();
+        st.message().clear();
     };
 
     b.selection.clear();
-    fails(elevateSelected(b.context, st), "elevate, nothing selected");
-    fails(splitSelected(b.context, st), "split, nothing selected");
-    fails(insertAtSelected(b.context, st), "insert, nothing selected");
-    fails(deleteSelected(b.context, st), "delete, nothing selected");
-    fails(setJointMode(b.context, st, JointMode::Mirrored), "mode, nothing selected");
-    fails(setAllJointModes(b.context, st, JointMode::C2), "all modes, nothing selected");
+    fails(b.tools.curve().elevateSelected(b.context), "elevate, nothing selected");
+    fails(b.tools.curve().splitSelected(b.context), "split, nothing selected");
+    fails(b.tools.curve().insertAtSelected(b.context), "insert, nothing selected");
+    fails(b.tools.curve().deleteSelected(b.context), "delete, nothing selected");
+    fails(b.tools.spline().setJointMode(b.context, JointMode::Mirrored), "mode, nothing selected");
+    fails(b.tools.spline().setAllJointModes(b.context, JointMode::C2), "all modes, nothing selected");
 
     b.select("box", {0});
-    fails(elevateSelected(b.context, st), "elevate a lattice");
-    fails(splitSelected(b.context, st), "split a lattice");
-    fails(insertAtSelected(b.context, st), "insert into a lattice");
-    fails(deleteSelected(b.context, st), "delete from a lattice");
-    fails(setJointMode(b.context, st, JointMode::Aligned), "mode of a lattice");
+    fails(b.tools.curve().elevateSelected(b.context), "elevate a lattice");
+    fails(b.tools.curve().splitSelected(b.context), "split a lattice");
+    fails(b.tools.curve().insertAtSelected(b.context), "insert into a lattice");
+    fails(b.tools.curve().deleteSelected(b.context), "delete from a lattice");
+    fails(b.tools.spline().setJointMode(b.context, JointMode::Aligned), "mode of a lattice");
     CHECK_FALSE(b.tools.onKey(b.context, GLFW_KEY_E, 0)); // not taken for a lattice
 
     b.select("c", {1});
-    fails(setJointMode(b.context, st, JointMode::Mirrored), "mode of a bezier_curve");
-    b.state().t = 0;
-    fails(splitSelected(b.context, st), "split at t = 0");
-    b.state().t = 0.5;
+    fails(b.tools.spline().setJointMode(b.context, JointMode::Mirrored), "mode of a bezier_curve");
+    b.tools.curve().t = 0;
+    fails(b.tools.curve().splitSelected(b.context), "split at t = 0");
+    b.tools.curve().t = 0.5;
     b.select("s", {0});
-    fails(setJointMode(b.context, st, JointMode::Mirrored), "mode of an end joint");
+    fails(b.tools.spline().setJointMode(b.context, JointMode::Mirrored), "mode of an end joint");
     b.select("s");
-    fails(deleteSelected(b.context, st), "delete without a point");
+    fails(b.tools.curve().deleteSelected(b.context), "delete without a point");
     b.select("s", {2});
-    b.state().t = 1;
-    fails(splitSelected(b.context, st), "split a spline at its end");
-    b.state().t = 0.5;
+    b.tools.curve().t = 1;
+    fails(b.tools.curve().splitSelected(b.context), "split a spline at its end");
+    b.tools.curve().t = 0.5;
 
-    fails(fitLattice(b.context, st, c), "fit a lattice to a curve");
-    fails(fitLattice(b.context, st, -1), "fit a lattice to nothing");
-    fails(resetLattice(b.context, st, c), "reset a curve");
-    fails(resetLattice(b.context, st, mesh), "reset a mesh");
-    fails(resetLattice(b.context, st, 99), "reset an item that does not exist");
-    fails(exportDeformed(b.context, st, s, cat(kTmp, "/tools_bad_out.obj")), "export through a spline");
-    fails(exportDeformed(b.context, st, box, cat(kTmp, "/tools_bad_out.obj")), "export through a lattice bound to nothing");
-    fails(applyLatticeToObjects(b.context, st, c), "apply a curve as a lattice");
-    fails(applyLatticeToObjects(b.context, st, mesh), "apply a mesh as a lattice");
-    fails(certifyLattice(b.context, st, c), "certify a curve");
-    fails(certifyLattice(b.context, st, 99), "certify an item that does not exist");
+    fails(b.tools.lattice().fitLattice(b.context, c), "fit a lattice to a curve");
+    fails(b.tools.lattice().fitLattice(b.context, -1), "fit a lattice to nothing");
+    fails(b.tools.lattice().resetLattice(b.context, c), "reset a curve");
+    fails(b.tools.lattice().resetLattice(b.context, mesh), "reset a mesh");
+    fails(b.tools.lattice().resetLattice(b.context, 99), "reset an item that does not exist");
+    fails(b.tools.lattice().exportDeformed(b.context, s, cat(kTmp, "/tools_bad_out.obj")), "export through a spline");
+    fails(b.tools.lattice().exportDeformed(b.context, box, cat(kTmp, "/tools_bad_out.obj")), "export through a lattice bound to nothing");
+    fails(b.tools.lattice().applyLatticeToObjects(b.context, c), "apply a curve as a lattice");
+    fails(b.tools.lattice().applyLatticeToObjects(b.context, mesh), "apply a mesh as a lattice");
+    fails(b.tools.lattice().certifyLattice(b.context, c), "certify a curve");
+    fails(b.tools.lattice().certifyLattice(b.context, 99), "certify an item that does not exist");
     // The lattice operations name the item that is not a lattice.
     for (int i : {c, s, mesh}) {
-        CHECK_FALSE(resetLattice(b.context, st, i));
-        CHECK(st.message == cat(b.scene.item(i).name, " is not a lattice"));
-        CHECK_FALSE(applyLatticeToObjects(b.context, st, i));
-        CHECK(st.message == cat(b.scene.item(i).name, " is not a lattice"));
-        CHECK_FALSE(exportDeformed(b.context, st, i, cat(kTmp, "/tools_bad_out.obj")));
-        CHECK(st.message == cat(b.scene.item(i).name, " is not a lattice"));
-        CHECK_FALSE(certifyLattice(b.context, st, i));
-        CHECK(st.message == cat(b.scene.item(i).name, " is not a lattice"));
+        CHECK_FALSE(b.tools.lattice().resetLattice(b.context, i));
+        CHECK(st.message() == cat(b.scene.item(i).name, " is not a lattice"));
+        CHECK_FALSE(b.tools.lattice().applyLatticeToObjects(b.context, i));
+        CHECK(st.message() == cat(b.scene.item(i).name, " is not a lattice"));
+        CHECK_FALSE(b.tools.lattice().exportDeformed(b.context, i, cat(kTmp, "/tools_bad_out.obj")));
+        CHECK(st.message() == cat(b.scene.item(i).name, " is not a lattice"));
+        CHECK_FALSE(b.tools.lattice().certifyLattice(b.context, i));
+        CHECK(st.message() == cat(b.scene.item(i).name, " is not a lattice"));
     }
     CHECK(b.scene.text() == original);
 
@@ -988,8 +987,8 @@ TEST_CASE("Tools: operations on the wrong object or an empty selection fail with
     const std::string withLine = b.scene.text();
     const std::size_t steps = b.scene.history().size();
     b.select("line", {0});
-    CHECK_FALSE(deleteSelected(b.context, st));
-    CHECK_FALSE(st.message.empty());
+    CHECK_FALSE(b.tools.curve().deleteSelected(b.context));
+    CHECK_FALSE(st.message().empty());
     CHECK(b.scene.text() == withLine);
     CHECK(b.scene.history().size() == steps);
 }

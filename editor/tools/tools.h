@@ -1,72 +1,66 @@
 #pragma once
-// The editing tools' entry points, called by the application (app/) and the panels (ui/): the
-// interaction layer (selection, picking, dragging, gizmo, undo) is generic over control points; the
-// tools add what is specific to an object type: curve creation by clicking, point insertion and
-// deletion, degree elevation, splitting, the de Casteljau construction, spline joint handle modes,
-// curvature combs, patch creation, lattice fitting and live FFD of imported meshes, direct
-// manipulation. No ImGui here (the panels live in ui/tool_panels.cpp).
+// The editing tools as one set, the application's entry point (app/) and the panels' (ui/): one
+// object per tool (tools/tool.h), each owning its state and its panel; the set dispatches keys
+// (through the keymap, interaction/keymap.h), pointer events and the per-frame update to them in a
+// fixed order and holds the status line they share. The interaction layer (selection, picking,
+// dragging, gizmo) is generic over control points; the tools add what is specific to an object
+// type. The deformed mesh of a lattice is not a tool's: the scene derives it (scene/derived.h).
 //
-// Every change to the document goes through Scene's mutating methods, so undo and redo cover the
-// tools without their knowing.
-
-#include <Eigen/Core>
+// Where a new tool goes: a class deriving from Tool in tools/<name>_tool.{h,cpp}, its drawPanel in
+// ui/tool_panels.cpp, its keys as a KeyContext with entries in interaction/keymap.cpp, and one
+// line in Tools' constructor.
 
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "interaction/selection.h"
-#include "scene/overlay.h"
-#include "scene/scene.h"
+#include "tools/curve_tool.h"
+#include "tools/lattice_tool.h"
+#include "tools/patch_tool.h"
+#include "tools/spline_tool.h"
+#include "tools/tool.h"
+#include "tools/tool_util.h"
 
 namespace freeform::editor {
 
-/// A pointer event in pixels (origin top left of the view), with the camera ray through it.
-struct PointerEvent {
-    enum class Type { Move, Press, Release } type = Type::Move;
-    int button = 0;                        // 0 left, 1 right, 2 middle
-    int mods = 0;                          // GLFW modifier bits
-    double x = 0, y = 0;                   // pixels
-    Eigen::Vector3d rayOrigin = Eigen::Vector3d::Zero();
-    Eigen::Vector3d rayDirection = Eigen::Vector3d::UnitZ(); // unit
-};
-
-/// What the tools see of the application for one call.
-struct ToolContext {
-    Scene& scene;
-    Selection& selection;
-    int viewWidth = 1, viewHeight = 1;     // pixels
-    Eigen::Matrix4d viewProjection = Eigen::Matrix4d::Identity(); // world -> clip
-};
-
-/// The state of the tools (modes, t slider, lattice sessions, caches); one per application.
 class Tools {
 public:
     Tools();
-    ~Tools();
     Tools(const Tools&) = delete;
     Tools& operator=(const Tools&) = delete;
 
-    /// A key press (GLFW key code and modifier bits) not taken by the panels; true when a tool
-    /// used it (the application then ignores it).
+    /// A key press (GLFW key code and modifier bits) not taken by the panels: the tools' keymap
+    /// contexts are looked up in turn (creation first), and the first tool that uses its action
+    /// takes the key (true; the application then ignores it).
     bool onKey(ToolContext& context, int key, int mods);
     /// A pointer event not taken by the panels; true when a tool took it (e.g. a click that adds a
-    /// curve point, or the start of a direct-manipulation drag), so the generic picking and
-    /// dragging leave it alone.
+    /// curve point, or the start of a de Boor or direct-manipulation drag), so the generic picking
+    /// and dragging leave it alone.
     bool onPointer(ToolContext& context, const PointerEvent& event);
-    /// Called once per frame before drawing: updates live results (e.g. the deformed mesh after a
-    /// lattice point moved) and fills the overlay with construction geometry.
+    /// Called once per frame before drawing: each tool's follow-up (joint modes) and overlay.
     void update(ToolContext& context, Overlay& overlay);
-    /// The scene was replaced (new, open, recovery): drops caches and sessions.
+    /// The scene was replaced (new, open, recovery): every tool starts afresh.
     void reset();
+    /// Every tool's panel section, then the status line (ui/tool_panels.cpp).
+    void drawPanels(ToolContext& context);
 
-    /// Lines for the help window: "key: what it does", one per line.
-    static const char* keyHelp();
+    CurveTool& curve() { return curve_; }
+    SplineTool& spline() { return spline_; }
+    PatchTool& patch() { return patch_; }
+    LatticeTool& lattice() { return lattice_; }
+    /// The tools in dispatch order.
+    const std::vector<Tool*>& all() const { return all_; }
 
-    struct State;
-    State& state() { return *state_; }     // for the panels (ui/tool_panels.cpp)
+    /// The status line: the last operation's error or result.
+    std::string& message() { return message_; }
 
 private:
-    std::unique_ptr<State> state_;
+    std::string message_;
+    CurveTool curve_{message_};
+    SplineTool spline_{message_};
+    PatchTool patch_{message_};
+    LatticeTool lattice_{message_};
+    std::vector<Tool*> all_;
 };
 
 } // namespace freeform::editor

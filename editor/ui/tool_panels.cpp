@@ -1,47 +1,81 @@
+// The tools' panels: each tool's drawToolbar / drawPanel (tools/*_tool.h), and Tools::drawPanels,
+// which lays them out in the Properties window: the creation buttons of every tool, then the
+// section of the tool whose kind the selected item is, then the status line. A new tool's panel
+// goes here, as <Tool>::drawPanel.
+
 #include "ui/tool_panels.h"
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 
-#include "tools/tool_state.h"
+#include "freeform/core/error.h"
+#include "tools/tools.h"
 
 namespace freeform::editor {
 
 namespace {
 
-using State = Tools::State;
-
-void curvePanel(ToolContext& c, State& s, const std::string& type)
+std::string selectedType(const ToolContext& c)
 {
-    ImGui::TextUnformatted("Curve tools");
-    float t = static_cast<float>(s.t);
-    if (ImGui::SliderFloat("t", &t, 0.0f, 1.0f, "%.4f")) s.t = t;
-    ImGui::Checkbox("de Casteljau at t (T)", &s.construction);
-    ImGui::Checkbox("curvature comb (V)", &s.comb);
-    if (s.comb) {
-        float scale = static_cast<float>(s.combScale);
-        if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) s.combScale = scale;
-    }
-    if (type != "deboor_spline") {
-        if (ImGui::Button("elevate degree (E)")) elevateSelected(c, s);
-        ImGui::SameLine();
-        if (ImGui::Button("split at t (K)")) splitSelected(c, s);
-    }
-    if (ImGui::Button("insert point (I)")) insertAtSelected(c, s);
-    ImGui::SameLine();
-    if (ImGui::Button("delete point (Del)")) deleteSelected(c, s);
+    const int item = c.selection.item;
+    return item >= 0 && item < c.scene.itemCount() ? c.scene.item(item).type : std::string();
 }
 
-void splinePanel(ToolContext& c, State& s, int item)
+} // namespace
+
+// ------------------------------------------------------------------ curves
+
+void CurveTool::drawToolbar(ToolContext& c)
 {
+    if (ImGui::Button(creating_ && !creatingSpline_ ? "finish curve (Enter)" : "create curve (C)")) {
+        if (creating_) createFromClicks(c);
+        else startCreating(false);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button(creating_ && creatingSpline_ ? "finish spline (Enter)" : "create C2 spline (Shift+C)")) {
+        if (creating_) createFromClicks(c);
+        else startCreating(true);
+    }
+}
+
+void CurveTool::drawPanel(ToolContext& c)
+{
+    const std::string type = selectedType(c);
+    if (type != "bezier_curve" && type != "bezier_spline" && type != "deboor_spline") return;
+    ImGui::TextUnformatted("Curve tools");
+    float tf = static_cast<float>(t);
+    if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
+    ImGui::Checkbox("de Casteljau at t (T)", &construction);
+    ImGui::Checkbox("curvature comb (V)", &comb);
+    if (comb) {
+        float scale = static_cast<float>(combScale);
+        if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) combScale = scale;
+    }
+    if (type != "deboor_spline") {
+        if (ImGui::Button("elevate degree (E)")) elevateSelected(c);
+        ImGui::SameLine();
+        if (ImGui::Button("split at t (K)")) splitSelected(c);
+    }
+    if (ImGui::Button("insert point (I)")) insertAtSelected(c);
+    ImGui::SameLine();
+    if (ImGui::Button("delete point (Del)")) deleteSelected(c);
+}
+
+// ------------------------------------------------------------------ spline joints
+
+void SplineTool::drawPanel(ToolContext& c)
+{
+    if (selectedType(c) != "bezier_spline") return;
+    const int item = c.selection.item;
     const auto& d = std::get<BezierSplineData>(c.scene.object(item).data);
     ImGui::Separator();
     ImGui::TextUnformatted("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
     static const char* names[] = {"free", "aligned", "mirrored", "C2"};
     int all = -1;
     ImGui::SetNextItemWidth(120);
-    if (ImGui::Combo("all joints", &all, names, 4)) setAllJointModes(c, s, static_cast<JointMode>(all));
+    if (ImGui::Combo("all joints", &all, names, 4)) setAllJointModes(c, static_cast<JointMode>(all));
     std::vector<JointContinuity<double>> report;
     try {
         report = splineContinuity(d);
@@ -63,7 +97,7 @@ void splinePanel(ToolContext& c, State& s, int item)
             int mode = static_cast<int>(modes[static_cast<std::size_t>(r.joint)]);
             ImGui::PushID(r.joint);
             ImGui::SetNextItemWidth(90);
-            if (ImGui::Combo("##mode", &mode, names, 4)) setJointMode(c, s, static_cast<JointMode>(mode), r.joint);
+            if (ImGui::Combo("##mode", &mode, names, 4)) setJointMode(c, static_cast<JointMode>(mode), r.joint);
             ImGui::PopID();
             ImGui::TableNextColumn();
             ImGui::Text("C%d G%d", r.C, r.G);
@@ -80,8 +114,22 @@ void splinePanel(ToolContext& c, State& s, int item)
     }
 }
 
-void surfacePanel(ToolContext& c, State& s, int item)
+// ------------------------------------------------------------------ patches
+
+void PatchTool::drawToolbar(ToolContext& c)
 {
+    if (ImGui::Button("create patch (P)")) createPatch(c);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(80);
+    ImGui::InputInt2("m, n", degree);
+    for (int& d : degree) d = std::clamp(d, 1, 20);
+}
+
+void PatchTool::drawPanel(ToolContext& c)
+{
+    const std::string type = selectedType(c);
+    if (type != "bezier_surface" && type != "deboor_surface") return;
+    const int item = c.selection.item;
     ImGui::TextUnformatted("Tessellation");
     ObjectSettings settings = c.scene.item(item).settings;
     Tessellation& t = settings.tessellation;
@@ -101,11 +149,11 @@ void surfacePanel(ToolContext& c, State& s, int item)
     }
     if (changed) c.scene.setSettings(item, settings, "tessellation");
     ImGui::Separator();
-    if (ImGui::Button("edge continuity of all patches")) computeEdgeContinuity(c, s);
-    if (!s.edges.empty()) {
+    if (ImGui::Button("edge continuity of all patches")) computeEdgeContinuity(c);
+    if (!edges_.empty()) {
         int g1 = 0, c1 = 0;
-        for (const EdgeContinuity& e : s.edges) g1 += e.g1, c1 += e.c1;
-        ImGui::Text("%zu edges: %d C1, %d G1, %zu G0 only", s.edges.size(), c1, g1, s.edges.size() - static_cast<std::size_t>(g1));
+        for (const EdgeContinuity& e : edges_) g1 += e.g1, c1 += e.c1;
+        ImGui::Text("%zu edges: %d C1, %d G1, %zu G0 only", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
         if (ImGui::BeginTable("edges", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit,
                               ImVec2(0, 180))) {
@@ -114,11 +162,11 @@ void surfacePanel(ToolContext& c, State& s, int item)
             ImGui::TableSetupColumn("angle");
             ImGui::TableSetupColumn("gap");
             ImGui::TableHeadersRow();
-            for (const EdgeContinuity& e : s.edges) {
+            for (const EdgeContinuity& e : edges_) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                ImGui::Text("%s.%s | %s.%s", s.edgePatchNames[static_cast<std::size_t>(e.a.patch)].c_str(),
-                            sides[static_cast<int>(e.a.side)], s.edgePatchNames[static_cast<std::size_t>(e.b.patch)].c_str(),
+                ImGui::Text("%s.%s | %s.%s", edgePatchNames_[static_cast<std::size_t>(e.a.patch)].c_str(),
+                            sides[static_cast<int>(e.a.side)], edgePatchNames_[static_cast<std::size_t>(e.b.patch)].c_str(),
                             sides[static_cast<int>(e.b.side)]);
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(e.c1 ? "C1" : e.g1 ? "G1" : "C0");
@@ -132,16 +180,22 @@ void surfacePanel(ToolContext& c, State& s, int item)
     }
 }
 
-void latticePanel(ToolContext& c, State& s, int item)
+// ------------------------------------------------------------------ lattices
+
+void LatticeTool::drawPanel(ToolContext& c)
 {
+    const std::string type = selectedType(c);
+    const int item = c.selection.item;
+    if (type == "mesh") return drawMeshPanel(c, item);
+    if (type != "lattice") return;
     ImGui::TextUnformatted("Free-form deformation");
     ObjectSettings settings = c.scene.item(item).settings;
-    // The mesh it deforms.
+    // The mesh it deforms (the link is the mesh's id; the document names it).
     std::vector<std::string> meshes{"(none)"};
     int current = 0;
     for (int i = 0; i < c.scene.itemCount(); ++i)
         if (c.scene.item(i).kind == SceneItem::Kind::ImportedMesh) {
-            if (c.scene.item(i).name == settings.ffd.mesh) current = static_cast<int>(meshes.size());
+            if (c.scene.item(i).id == c.scene.item(item).deforms) current = static_cast<int>(meshes.size());
             meshes.push_back(c.scene.item(i).name);
         }
     if (ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str())) {
@@ -166,21 +220,20 @@ void latticePanel(ToolContext& c, State& s, int item)
         try {
             c.scene.replaceObject(item, o, "outside policy");
         } catch (const Error& e) {
-            s.message = e.what();
+            status() = e.what();
         }
     }
-    if (ImGui::Button("reset lattice")) resetLattice(c, s, item);
+    if (ImGui::Button("reset lattice")) resetLattice(c, item);
     ImGui::SameLine();
-    ImGui::Checkbox("direct manipulation (D)", &s.direct);
-    if (auto it = s.links.find(c.scene.item(item).name); it != s.links.end()) {
-        const FfdLink& link = it->second;
-        ImGui::Text("%zu vertices (%zu outside), update %.2f ms", link.report.vertices, link.report.outside, link.deformMs);
-        ImGui::Text("det J in [%.4g, %.4g]", link.report.minDetJ, link.report.maxDetJ);
-        if (link.report.foldCount > 0)
-            ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "fold-over: det J <= 0 at %zu vertices", link.report.foldCount);
-        if (ImGui::Button("certify (det J > 0 on the box?)")) certifyLattice(c, s, item);
-        if (link.certificate) {
-            const Certificate& cert = *link.certificate;
+    ImGui::Checkbox("direct manipulation (D)", &direct);
+    if (const FfdLink* link = c.scene.ffdLink(item)) {
+        ImGui::Text("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
+        ImGui::Text("det J in [%.4g, %.4g]", link->report.minDetJ, link->report.maxDetJ);
+        if (link->report.foldCount > 0)
+            ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "fold-over: det J <= 0 at %zu vertices", link->report.foldCount);
+        if (ImGui::Button("certify (det J > 0 on the box?)")) certifyLattice(c, item);
+        if (link->certificate) {
+            const Certificate& cert = *link->certificate;
             const bool ok = cert.verdict == Verdict::CertifiedInjective;
             ImGui::TextColored(ok ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.6f, 0.3f, 1), "%s (det J in [%.3g, %.3g], %d boxes)",
                                toString(cert.verdict).c_str(), cert.minCoefficient, cert.maxCoefficient, cert.boxes);
@@ -191,54 +244,40 @@ void latticePanel(ToolContext& c, State& s, int item)
             c.scene.display.analysis = show ? SurfaceAnalysis::ScalarMap : SurfaceAnalysis::None;
             c.scene.touch();
         }
-        ImGui::InputText("##export", s.exportPath, sizeof s.exportPath);
+        ImGui::InputText("##export", exportPath, sizeof exportPath);
         ImGui::SameLine();
-        if (ImGui::Button("export deformed")) exportDeformed(c, s, item, s.exportPath);
+        if (ImGui::Button("export deformed")) exportDeformed(c, item, exportPath);
     }
-    if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, s, item);
+    if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, item);
 }
 
-void meshPanel(ToolContext& c, State& s, int item)
+void LatticeTool::drawMeshPanel(ToolContext& c, int meshItem)
 {
     ImGui::TextUnformatted("Fit a lattice (L)");
-    ImGui::InputInt3("degrees", s.latticeDegree);
-    for (int& d : s.latticeDegree) d = std::clamp(d, 1, 12);
-    float margin = static_cast<float>(s.margin);
-    if (ImGui::SliderFloat("margin", &margin, 0.0f, 0.5f, "%.3f")) s.margin = margin;
-    if (ImGui::Button("fit lattice")) fitLattice(c, s, item);
+    ImGui::InputInt3("degrees", degree);
+    for (int& d : degree) d = std::clamp(d, 1, 12);
+    float m = static_cast<float>(margin);
+    if (ImGui::SliderFloat("margin", &m, 0.0f, 0.5f, "%.3f")) margin = m;
+    if (ImGui::Button("fit lattice")) fitLattice(c, meshItem);
 }
 
-} // namespace
+// ------------------------------------------------------------------ the set
+
+void Tools::drawPanels(ToolContext& c)
+{
+    ImGui::Separator();
+    for (Tool* tool : all_) tool->drawToolbar(c);
+    const int item = c.selection.item;
+    if (item >= 0 && item < c.scene.itemCount()) {
+        ImGui::Separator();
+        for (Tool* tool : all_) tool->drawPanel(c);
+    }
+    if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+}
 
 void drawToolPanels(ToolContext& c, Tools& tools)
 {
-    State& s = tools.state();
-    const int item = c.selection.item;
-    ImGui::Separator();
-    if (ImGui::Button(s.creating && !s.creatingSpline ? "finish curve (Enter)" : "create curve (C)")) {
-        if (s.creating) createCurveFromClicks(c, s);
-        else s.creating = true, s.creatingSpline = false;
-    }
-    ImGui::SameLine();
-    if (ImGui::Button(s.creating && s.creatingSpline ? "finish spline (Enter)" : "create C2 spline (Shift+C)")) {
-        if (s.creating) createCurveFromClicks(c, s);
-        else s.creating = true, s.creatingSpline = true;
-    }
-    if (ImGui::Button("create patch (P)")) createPatch(c, s);
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(80);
-    ImGui::InputInt2("m, n", s.patchDegree);
-    for (int& d : s.patchDegree) d = std::clamp(d, 1, 20);
-    if (item >= 0 && item < c.scene.itemCount()) {
-        const std::string type = c.scene.item(item).type;
-        ImGui::Separator();
-        if (type == "bezier_curve" || type == "bezier_spline" || type == "deboor_spline") curvePanel(c, s, type);
-        if (type == "bezier_spline") splinePanel(c, s, item);
-        if (type == "bezier_surface" || type == "deboor_surface") surfacePanel(c, s, item);
-        if (type == "lattice") latticePanel(c, s, item);
-        if (type == "mesh") meshPanel(c, s, item);
-    }
-    if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
+    tools.drawPanels(c);
 }
 
 } // namespace freeform::editor

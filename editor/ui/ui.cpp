@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "interaction/keymap.h"
 #include "tools/tools.h"
 
 namespace freeform::editor {
@@ -473,13 +474,8 @@ void helpWindow(UiState& s)
     ImGui::SetNextWindowSize(ImVec2(700, 600), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Controls", &s.showHelp)) {
         if (ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen)) ImGui::TextUnformatted(firstStepsHelp());
-        ImGui::TextUnformatted(controlsHelp());
-        const char* tools = Tools::keyHelp();
-        if (tools && *tools) {
-            ImGui::Separator();
-            ImGui::TextUnformatted("Tools");
-            ImGui::TextUnformatted(tools);
-        }
+        const std::string controls = controlsHelp();
+        ImGui::TextUnformatted(controls.c_str());
     }
     ImGui::End();
 }
@@ -533,53 +529,27 @@ const char* firstStepsHelp()
            "  by extension, nothing else in the file changes). Ctrl+Z undoes every step.\n";
 }
 
-const char* controlsHelp()
+std::string controlsHelp()
 {
-    return "Mouse (in the view)\n"
-           "  left click on a point     select it (the selected object's points first)\n"
-           "  shift + left click        add or remove a point from the selection\n"
-           "  left drag on a point      move the selected points in the view plane\n"
-           "  left drag on the gizmo    move along an axis (arrow) or in a plane (square)\n"
-           "  ctrl + left drag          box select (ctrl + shift: add to the selection)\n"
-           "  left click on a curve\n"
-           "    or surface              select that object\n"
-           "  left click on nothing     deselect the points, then the object\n"
-           "  left drag on nothing      orbit (turntable or arcball: View menu)\n"
-           "  middle drag, right drag,\n"
-           "  shift + left drag         pan\n"
-           "  wheel                     zoom towards the cursor\n"
-           "Editing\n"
-           "  A / Alt+A                 select all points / none\n"
-           "  Escape                    deselect points, then the object; cancels a drag\n"
-           "  G                         grab: move the selected points with the pointer\n"
-           "    X / Y / Z               ...along that axis (again: free)\n"
-           "    Shift+X / Y / Z         ...in the plane orthogonal to that axis\n"
-           "    click, Enter            confirm; right click, Escape: cancel\n"
-           "  Shift+Tab                 snap to the grid on / off\n"
-           "  O                         proportional (soft) editing on / off\n"
-           "  + / -                     soft radius larger / smaller\n"
-           "  Shift+G                   translate gizmo on / off\n"
-           "  Ctrl+Z                    undo\n"
-           "  Ctrl+Shift+Z, Ctrl+Y      redo\n"
-           "View\n"
-           "  1 / Ctrl+1                front / back view\n"
-           "  3 / Ctrl+3                right / left view\n"
-           "  7 / Ctrl+7                top / bottom view\n"
-           "  9                         isometric view\n"
-           "  5                         perspective <-> orthographic\n"
-           "  Home / F                  fit all / fit the selection\n"
-           "  Z                         next shading mode (flat, Gouraud, Phong)\n"
-           "  W                         wireframe overlay on / off\n"
-           "  R                         reflection lines on / off\n"
-           "  F2                        frame statistics on / off\n"
-           "Files\n"
-           "  Ctrl+N, Ctrl+O            new, open\n"
-           "  Ctrl+S, Ctrl+Shift+S      save, save as\n"
-           "  Ctrl+I, Ctrl+E            import mesh or .bpt, export OBJ\n"
-           "  Ctrl+Q                    quit\n"
-           "  F1                        this help\n"
-           "Files can also be dropped on the window: documents open, meshes and .bpt files are imported.\n"
-           "Unsaved changes are autosaved every minute and offered for recovery at the next start.\n";
+    // The mouse, then every key of the keymap (interaction/keymap.h), the one table that key
+    // handling uses too.
+    std::string text = "Mouse (in the view)\n"
+                       "  left click on a point     select it (the selected object's points first)\n"
+                       "  shift + left click        add or remove a point from the selection\n"
+                       "  left drag on a point      move the selected points in the view plane\n"
+                       "  left drag on the gizmo    move along an axis (arrow) or in a plane (square)\n"
+                       "  ctrl + left drag          box select (ctrl + shift: add to the selection)\n"
+                       "  left click on a curve\n"
+                       "    or surface              select that object\n"
+                       "  left click on nothing     deselect the points, then the object\n"
+                       "  left drag on nothing      orbit (turntable or arcball: View menu)\n"
+                       "  middle drag, right drag,\n"
+                       "  shift + left drag         pan\n"
+                       "  wheel                     zoom towards the cursor\n";
+    text += keymapHelp();
+    text += "Files can also be dropped on the window: documents open, meshes and .bpt files are imported.\n"
+            "Unsaved changes are autosaved every minute and offered for recovery at the next start.\n";
+    return text;
 }
 
 bool drawUi(Scene& scene, UiState& state, UiActions& actions)

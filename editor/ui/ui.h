@@ -60,9 +60,10 @@ struct UiState {
 /// caller then carries it out.
 bool drawUi(Scene& scene, UiState& state, UiActions& actions);
 
-/// The keyboard and mouse help, shown in the Help window and in docs/editor.md.
 /// The three tasks of docs/editor.md "First steps", short, for the help window.
 const char* firstStepsHelp();
-const char* controlsHelp();
+/// The F1 help (the Help window; docs/editor.md lists the same keys): the mouse, then every key
+/// binding of the keymap (interaction/keymap.h).
+std::string controlsHelp();
 
 } // namespace freeform::editor

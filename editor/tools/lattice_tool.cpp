@@ -1,0 +1,250 @@
+#include "tools/lattice_tool.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+
+#include "freeform/core/error.h"
+#include "freeform/volume/deform.h"
+#include "interaction/picking.h"
+#include "tools/ffd_tools.h"
+#include "tools/tool_util.h"
+
+namespace freeform::editor {
+
+using namespace tool_util;
+
+namespace {
+
+/// Error naming the item unless item i is a lattice object (the lattice operations' argument).
+void requireLattice(const Scene& scene, int i)
+{
+    std::string why;
+    if (i < 0 || i >= scene.itemCount()) {
+        why = "there is no item ";
+        why += std::to_string(i);
+    } else if (scene.item(i).kind != SceneItem::Kind::DocumentObject || !std::holds_alternative<LatticeData>(scene.object(i).data)) {
+        why = scene.item(i).name;
+        why += " is not a lattice";
+    }
+    if (!why.empty()) throw Error(why);
+}
+
+} // namespace
+
+bool LatticeTool::onKey(ToolContext& c, KeyAction action)
+{
+    switch (action) {
+    case KeyAction::FitLattice: {
+        const int item = c.selection.item;
+        if (item < 0 || item >= c.scene.itemCount() || c.scene.item(item).kind != SceneItem::Kind::ImportedMesh) return false;
+        return fitLattice(c, item), true;
+    }
+    case KeyAction::DirectManipulation:
+        direct = !direct;
+        status() = direct ? "direct manipulation: drag a point of a deformed mesh" : "";
+        return true;
+    default: return false;
+    }
+}
+
+bool LatticeTool::onPointer(ToolContext& c, const PointerEvent& e)
+{
+    Scene& scene = c.scene;
+    if (dragLattice_ != 0) {
+        if (e.type == PointerEvent::Type::Release) {
+            dragLattice_ = 0;
+            scene.endMerge();
+            return true;
+        }
+        if (e.type != PointerEvent::Type::Move) return true;
+        const auto hit = rayPlane(e, dragPlanePoint_, dragPlaneNormal_);
+        const int li = scene.indexOf(dragLattice_);
+        if (!hit || li < 0) return true;
+        try {
+            DocumentObject next = dragObject_;
+            const Lattice start = Lattice::fromData(std::get<LatticeData>(dragObject_.data));
+            directTarget_ = *hit;
+            const DirectManipulation dm = directManipulation(start, directRest_, directTarget_, scene.item(li).settings.ffd.strength);
+            next.data = dm.lattice.toData();
+            scene.replaceObject(li, next, "direct manipulation");
+        } catch (const Error& err) {
+            status() = err.what();
+        }
+        return true;
+    }
+    if (!direct || e.type != PointerEvent::Type::Press || e.button != 0 || e.mods != 0) return false;
+    // A point of a mesh deformed by a lattice: the nearest hit over all links.
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [latticeId, link] : scene.ffdLinks()) {
+        const int m = scene.indexOf(link.meshId), li = scene.indexOf(latticeId);
+        if (m < 0 || li < 0 || !link.session || !scene.item(m).geometry.surface || !scene.item(m).settings.visible) continue;
+        const PolygonMesh& shown = *scene.item(m).geometry.surface;
+        const auto hit = rayMeshHit(e.rayOrigin, e.rayDirection, shown);
+        if (!hit || hit->distance >= nearest) continue;
+        nearest = hit->distance;
+        dragLattice_ = latticeId;
+        dragObject_ = scene.object(li);
+        directRest_ = pointAt(link.session->rest(), link.session->rest().positions, *hit);
+        dragPlanePoint_ = pointAt(shown, shown.positions, *hit);
+        directTarget_ = dragPlanePoint_;
+        dragPlaneNormal_ = scene.camera.back();
+    }
+    if (dragLattice_ == 0) return false;
+    c.selection.selectItem(scene.indexOf(dragLattice_));
+    scene.beginMerge();
+    return true;
+}
+
+void LatticeTool::update(ToolContext& c, Overlay& o)
+{
+    // A deformation the scene could not compute says why (e.g. a lattice made invalid).
+    for (const auto& [id, link] : c.scene.ffdLinks())
+        if (!link.error.empty()) status() = link.error;
+    if (dragLattice_ != 0) o.addPoint(f3(directTarget_), kCurvePoint);
+}
+
+void LatticeTool::reset()
+{
+    degree[0] = degree[1] = degree[2] = 3;
+    margin = 0.05;
+    direct = false;
+    std::strcpy(exportPath, "deformed.obj");
+    dragLattice_ = 0;
+}
+
+bool LatticeTool::fitLattice(ToolContext& c, int meshItem)
+{
+    if (meshItem < 0 || meshItem >= c.scene.itemCount() || c.scene.item(meshItem).kind != SceneItem::Kind::ImportedMesh) {
+        status() = "select an imported mesh to fit a lattice to";
+        return false;
+    }
+    c.scene.updateGeometry();
+    const SceneItem& mesh = c.scene.item(meshItem);
+    if (!mesh.geometry.surface) {
+        status() = "the mesh has no geometry";
+        return false;
+    }
+    // Fit to the rest mesh (a mesh already deformed by a lattice is fitted as it was read).
+    const PolygonMesh* rest = &*mesh.geometry.surface;
+    for (const auto& [id, link] : c.scene.ffdLinks())
+        if (link.meshId == mesh.id && link.session && link.meshKey == mesh.key) rest = &link.session->rest();
+    try {
+        std::array<int, 3> degrees{};
+        for (int a = 0; a < 3; ++a) degrees[static_cast<std::size_t>(a)] = std::clamp(degree[a], 1, 20);
+        const Lattice lattice = Lattice::fit(rest->positions, degrees, margin);
+        ObjectSettings settings;
+        settings.ffd.mesh = mesh.name; // the document's form; the scene links by the mesh's id
+        const std::string meshName = mesh.name;
+        c.scene.beginMerge();
+        const int i = c.scene.addObject({meshName + "_lattice", lattice.toData(), ""}, "fit lattice");
+        c.scene.setSettings(i, settings, "fit lattice");
+        c.scene.endMerge();
+        c.selection.selectItem(i);
+        status().clear();
+        return true;
+    } catch (const Error& e) {
+        c.scene.endMerge();
+        status() = e.what();
+        return false;
+    }
+}
+
+bool LatticeTool::resetLattice(ToolContext& c, int latticeItem)
+{
+    try {
+        requireLattice(c.scene, latticeItem);
+        DocumentObject o = c.scene.object(latticeItem);
+        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(o.data));
+        auto& d = std::get<LatticeData>(o.data);
+        d.points = lattice.restPoints();
+        c.scene.replaceObject(latticeItem, o, "reset lattice");
+        return true;
+    } catch (const std::exception& e) {
+        status() = e.what();
+        return false;
+    }
+}
+
+bool LatticeTool::exportDeformed(ToolContext& c, int latticeItem, const std::string& path)
+{
+    try {
+        requireLattice(c.scene, latticeItem);
+        const SceneItem& item = c.scene.item(latticeItem);
+        const int m = c.scene.indexOf(item.deforms);
+        if (m < 0 || c.scene.item(m).kind != SceneItem::Kind::ImportedMesh) throw Error("the lattice is bound to no imported mesh");
+        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const DeformReport report = exportDeformedMesh(meshFilePath(c.scene, m), lattice, item.settings.ffd.strength, path);
+        status() = "wrote " + path + " (" + std::to_string(report.vertices) + " positions)";
+        return true;
+    } catch (const std::exception& e) {
+        status() = e.what();
+        return false;
+    }
+}
+
+bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
+{
+    try {
+        requireLattice(c.scene, latticeItem);
+        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const double w = c.scene.item(latticeItem).settings.ffd.strength;
+        int done = 0, skipped = 0;
+        std::string why;
+        c.scene.beginMerge();
+        for (int i = 0; i < c.scene.itemCount(); ++i) {
+            if (i == latticeItem || c.scene.item(i).kind != SceneItem::Kind::DocumentObject) continue;
+            const DocumentObject& o = c.scene.object(i);
+            if (std::holds_alternative<LatticeData>(o.data)) continue;
+            std::string reason;
+            // A cage in a mesh file is deformed as inline vertices (the file stays as it is), as
+            // when one of its vertices is dragged.
+            ObjectData data = o.data;
+            if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty()) {
+                try {
+                    *sub = inlineCage(*sub, c.scene.documentDirectory(), "the cage file");
+                } catch (const Error& e) {
+                    ++skipped;
+                    why = o.name + ": " + e.what();
+                    continue;
+                }
+            }
+            const auto moved = deformObject(lattice, data, w, reason);
+            if (!moved) {
+                ++skipped;
+                why = o.name + ": " + reason;
+                continue;
+            }
+            DocumentObject next = o;
+            next.data = *moved;
+            c.scene.replaceObject(i, next, "apply lattice");
+            ++done;
+        }
+        c.scene.endMerge();
+        status() = "deformed " + std::to_string(done) + " object(s) exactly";
+        if (skipped) status() += ", left " + std::to_string(skipped) + " (" + why + ")";
+        return done > 0;
+    } catch (const std::exception& e) {
+        c.scene.endMerge();
+        status() = e.what();
+        return false;
+    }
+}
+
+bool LatticeTool::certifyLattice(ToolContext& c, int latticeItem)
+{
+    try {
+        requireLattice(c.scene, latticeItem);
+        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Certificate cert = certify(lattice, c.scene.item(latticeItem).settings.ffd.strength);
+        c.scene.setCertificate(latticeItem, cert);
+        status() = "certificate: " + toString(cert.verdict);
+        return true;
+    } catch (const std::exception& e) { // also a wrong item (not a lattice, out of range)
+        status() = e.what();
+        return false;
+    }
+}
+
+} // namespace freeform::editor
