@@ -215,7 +215,8 @@ void App::frame(int width, int height, bool withUi)
     const auto t0 = std::chrono::steady_clock::now();
     if (withUi) buildUi();
     validateSelection();
-    // Live results of the tools, then the geometry of what changed: the "update" time.
+    // The tools' follow-up (joint modes), then the geometry of what changed and the derived items
+    // (the meshes lattices deform): the "update" time.
     const auto t1 = std::chrono::steady_clock::now();
     bool dirty = scene_.changeCount() != lastChange_;
     for (int i = 0; i < scene_.itemCount() && !dirty; ++i) dirty = scene_.item(i).geometryDirty;

@@ -189,28 +189,7 @@ void CurveTool::update(ToolContext& c, Overlay& o)
             if (construction) drawConstruction(o, p, t);
             if (comb) drawComb(o, curveJets(BezierCurve<double, 3>(p), 200), size, combScale);
         } else if (const auto* d = std::get_if<BezierSplineData>(&object->data)) {
-          try {
-            const BezierSpline<double, 3> spline = toSpline(*d);
-            if (construction) {
-                const auto where = spline.locate(t * spline.domainEnd());
-                drawConstruction(o, spline.segmentPoints(where.segment), where.t);
-            }
-            if (comb) {
-                std::vector<Eigen::Matrix3d> jets;
-                for (int i = 0; i < spline.segmentCount(); ++i) {
-                    const auto segment = curveJets(spline.segment(i), 60);
-                    const double h = spline.intervals()[static_cast<std::size_t>(i)];
-                    for (Eigen::Matrix3d j : segment) {
-                        j.col(1) /= h; // derivatives with respect to the global parameter
-                        j.col(2) /= h * h;
-                        jets.push_back(j);
-                    }
-                }
-                drawComb(o, jets, size, combScale);
-            }
-          } catch (const Error&) {
-            // A spline the library rejects draws no construction and no comb (no message).
-          }
+            splineOverlays(o, *d, size);
         } else if (const auto* d = std::get_if<DeBoorSplineData>(&object->data)) {
             const auto spline = BezierSpline<double, 3>::fromDeBoor(toPoints3(d->points), parseEndCondition(d->end, "end"), d->intervals);
             if (construction) {
@@ -220,6 +199,32 @@ void CurveTool::update(ToolContext& c, Overlay& o)
         }
     } catch (const Error& e) {
         status() = e.what();
+    }
+}
+
+void CurveTool::splineOverlays(Overlay& o, const BezierSplineData& d, double size) const
+{
+    try {
+        const BezierSpline<double, 3> spline = toSpline(d);
+        if (construction) {
+            const auto where = spline.locate(t * spline.domainEnd());
+            drawConstruction(o, spline.segmentPoints(where.segment), where.t);
+        }
+        if (comb) {
+            std::vector<Eigen::Matrix3d> jets;
+            for (int i = 0; i < spline.segmentCount(); ++i) {
+                const auto segment = curveJets(spline.segment(i), 60);
+                const double h = spline.intervals()[static_cast<std::size_t>(i)];
+                for (Eigen::Matrix3d j : segment) {
+                    j.col(1) /= h; // derivatives with respect to the global parameter
+                    j.col(2) /= h * h;
+                    jets.push_back(j);
+                }
+            }
+            drawComb(o, jets, size, combScale);
+        }
+    } catch (const Error&) {
+        // A spline the library rejects draws no construction and no comb (no message).
     }
 }
 

@@ -1,0 +1,107 @@
+// The derived items of a Scene (scene/derived.h): the lattice -> mesh links and their evaluation,
+// the one path by which a deformed mesh is written.
+
+#include "scene/derived.h"
+
+#include <chrono>
+#include <map>
+
+#include "freeform/core/error.h"
+#include "scene/scene.h"
+
+namespace freeform::editor {
+
+void Scene::resolveLink(SceneItem& item) const
+{
+    const int m = item.settings.ffd.mesh.empty() ? -1 : indexOf(item.settings.ffd.mesh);
+    item.deforms = m >= 0 ? items_[static_cast<std::size_t>(m)].id : 0;
+}
+
+const FfdLink* Scene::ffdLink(int i) const
+{
+    const auto it = ffdLinks_.find(item(i).id);
+    return it == ffdLinks_.end() ? nullptr : &it->second;
+}
+
+void Scene::setCertificate(int i, const Certificate& certificate)
+{
+    if (const auto it = ffdLinks_.find(item(i).id); it != ffdLinks_.end()) it->second.certificate = certificate;
+}
+
+void Scene::updateDerived()
+{
+    // Puts the rest mesh back into the mesh of a link that goes away.
+    auto restoreRest = [&](const FfdLink& link) {
+        const int m = indexOf(link.meshId);
+        if (m < 0 || !link.session) return;
+        SceneItem& it = items_[static_cast<std::size_t>(m)];
+        if (it.key != link.meshKey || !it.geometry.surface ||
+            it.geometry.surface->positions.cols() != link.session->rest().positions.cols())
+            return;
+        it.geometry.surface->positions = link.session->rest().positions;
+        it.geometry.surface->normals = link.session->rest().normals;
+        setScalars(m, {});
+    };
+    // Lattices that deform a mesh, by id. A name the document gave before its mesh was there
+    // (a mesh imported later under that name) is resolved now.
+    std::map<long, int> lattices;
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+        SceneItem& it = items_[i];
+        if (it.kind != SceneItem::Kind::DocumentObject || it.type != "lattice") continue;
+        if (it.deforms == 0 && !it.settings.ffd.mesh.empty()) resolveLink(it);
+        if (it.deforms != 0) lattices[it.id] = static_cast<int>(i);
+    }
+    for (auto it = ffdLinks_.begin(); it != ffdLinks_.end();) {
+        const auto found = lattices.find(it->first);
+        if (found == lattices.end() || items_[static_cast<std::size_t>(found->second)].deforms != it->second.meshId) {
+            restoreRest(it->second);
+            it = ffdLinks_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    for (const auto& [id, li] : lattices) {
+        const SceneItem& latticeItem = items_[static_cast<std::size_t>(li)];
+        const int m = indexOf(latticeItem.deforms);
+        if (m < 0 || items_[static_cast<std::size_t>(m)].kind != SceneItem::Kind::ImportedMesh) continue;
+        SceneItem& mesh = items_[static_cast<std::size_t>(m)];
+        if (!mesh.geometry.surface) continue;
+        FfdLink& link = ffdLinks_[id];
+        const auto& data = std::get<LatticeData>(document_.objects[static_cast<std::size_t>(li)].data);
+        const double strength = latticeItem.settings.ffd.strength;
+        try {
+            const Lattice lattice = Lattice::fromData(data);
+            const bool rebind = !link.session || link.meshId != mesh.id || link.meshKey != mesh.key || !link.session->matches(lattice);
+            if (rebind) {
+                // The rest mesh: the item's geometry as read, unless this link deformed it.
+                PolygonMesh rest = *mesh.geometry.surface;
+                if (link.session && link.meshKey == mesh.key && link.appliedRevision == mesh.revision) rest = link.session->rest();
+                link = FfdLink{};
+                link.meshId = mesh.id;
+                link.meshKey = mesh.key;
+                link.session = std::make_shared<FfdSession>(lattice, std::move(rest));
+            }
+            const bool changed = rebind || link.appliedRevision != mesh.revision || link.appliedPoints != data.points ||
+                                 link.appliedStrength != strength;
+            if (!changed) continue;
+            const auto t0 = std::chrono::steady_clock::now();
+            // det J straight into the colour scalars, in the last frame's memory (no fresh pages).
+            std::vector<float> scalars = std::move(mesh.scalars);
+            link.report = link.session->deform(lattice, strength, *mesh.geometry.surface, &scalars);
+            link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            mesh.geometry.bounds.setEmpty();
+            const auto& p = mesh.geometry.surface->positions;
+            if (p.cols() > 0) mesh.geometry.bounds = Eigen::AlignedBox3d(p.rowwise().minCoeff(), p.rowwise().maxCoeff());
+            setScalars(m, std::move(scalars)); // also a new revision: the drawer uploads the vertices
+            link.appliedRevision = mesh.revision;
+            link.appliedPoints = data.points;
+            link.appliedStrength = strength;
+            link.certificate.reset();
+            link.error.clear();
+        } catch (const Error& e) {
+            link.error = e.what();
+        }
+    }
+}
+
+} // namespace freeform::editor
