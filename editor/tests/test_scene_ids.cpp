@@ -12,7 +12,9 @@
 #include <set>
 #include <string>
 
+#include "render/recording_renderer.h"
 #include "scene/scene.h"
+#include "scene/scene_drawer.h"
 #include "support/process.h"
 
 using namespace freeform;
@@ -200,4 +202,35 @@ TEST_CASE("derived: the lattice links to its mesh by id; the deformed mesh is wr
     scene.updateGeometry();
     CHECK(s.maxError() < 1e-6);
     CHECK_FALSE(s.atRest());
+}
+
+TEST_CASE("derived: a lattice drag reaches the drawer as a vertex update of the same mesh buffer", "[editor][ids][ffd][drawer]")
+{
+    LinkedScene s;
+    Scene& scene = s.scene;
+    RecordingRenderer r;
+    SceneDrawer drawer(r);
+    drawer.draw(scene, 200, 150);
+    const auto first = r.calls(RecordingRenderer::Kind::Mesh);
+    REQUIRE(first.size() == 1);
+    const int handle = first[0].handle;
+    r.clearCounters();
+
+    // One frame of a drag: a lattice point moves; the frame's draw evaluates the link (through
+    // updateGeometry) and updates the vertices of the buffer it drew before.
+    const Lattice rest = s.latticeNow();
+    scene.setControlPoint(s.lattice, rest.index(1, 0, 1), rest.restPoint(1, 0, 1) + Eigen::Vector3d(0.25, 0.1, -0.2));
+    drawer.draw(scene, 200, 150);
+    CHECK(r.counters().vertexUpdates == 1);
+    CHECK(r.counters().meshUploads == 0);
+    REQUIRE(r.calls(RecordingRenderer::Kind::Mesh).size() == 1);
+    CHECK(r.calls(RecordingRenderer::Kind::Mesh)[0].handle == handle);
+    // What the buffer holds is the deformed mesh: Lattice::deform of each file vertex (in float).
+    const Lattice moved = s.latticeNow();
+    const MeshData& gpu = r.buffer(handle).mesh;
+    REQUIRE(gpu.positions.cols() == 8);
+    for (int v = 0; v < 8; ++v)
+        CHECK((gpu.positions.col(v).cast<double>() - moved.deform(boxVertex(v)).point).norm() < 1e-6);
+    // det J as the colour scalars: one per vertex.
+    CHECK(gpu.scalars.size() == 8);
 }
