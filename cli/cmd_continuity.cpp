@@ -1,5 +1,7 @@
 // freeform continuity: the continuity report of every joint of a spline (curve/continuity.h).
 
+#include <memory>
+
 #include "command.h"
 #include "freeform/curve/continuity.h"
 #include "spline_object.h"
@@ -27,42 +29,50 @@ Json report(const Document& doc, const DocumentObject& object, const ContinuityT
     return out;
 }
 
-int runContinuity(const std::vector<std::string>& argv)
+struct ContinuityOptions {
+    std::vector<std::string> positional;
+    std::string object;
+    double tolerance = 1e-9;
+    const CLI::Option* toleranceGiven = nullptr;
+};
+
+Json continuity(const ContinuityOptions& o)
 {
-    const Args args(argv, {"object", "tolerance"}, {});
-    args.expectPositional(1, "the document (freeform continuity DOC.json --object NAME)");
-    const std::string name = args.required("object");
+    expectPositional(o.positional, 1, "the document (freeform continuity DOC.json --object NAME)");
     ContinuityTolerances<double> tol;
-    if (const auto e = args.get("tolerance")) {
-        const double v = parseNumber(*e, "--tolerance");
-        if (!(v > 0)) throw UsageError("option --tolerance: must be positive");
-        tol.relative = tol.angle = v;
+    if (given(o.toleranceGiven)) {
+        if (!(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
+        tol.relative = tol.angle = o.tolerance;
     }
-    const Document doc = readDocument(args.positional()[0]);
-    const DocumentObject& object = doc.object(name);
-    printJson(splineDimension(doc, object) == 2 ? report<2>(doc, object, tol) : report<3>(doc, object, tol));
-    return 0;
+    const Document doc = readDocument(o.positional[0]);
+    const DocumentObject& object = doc.object(o.object);
+    return splineDimension(doc, object) == 2 ? report<2>(doc, object, tol) : report<3>(doc, object, tol);
 }
 
-const RegisterCommand reg({"continuity", "continuity of every joint of a spline (C and G levels, jumps)",
-                           "usage: freeform continuity DOC.json --object NAME [--tolerance E]\n"
-                           "\n"
-                           "Analyses every joint where two segments of the spline NAME meet (bezier_spline, or\n"
-                           "deboor_spline through the A-frame); a closed spline's closing joint (joint 0, t = 0)\n"
-                           "comes first.\n"
-                           "\n"
-                           "  --object NAME    the spline\n"
-                           "  --tolerance E    relative tolerance (default 1e-9): derivative k agrees when its jump\n"
-                           "                   is at most E times the size of the k-th derivative on the two\n"
-                           "                   segments; also the largest difference of the unit tangents for G1\n"
-                           "\n"
-                           "Output: {\"object\": NAME, \"joints\": [{\"joint\": J, \"t\": T, \"C\": C, \"G\": G,\n"
-                           "\"jumps\": [...]}, ...]} with C the highest order k whose derivatives 0..k agree (-1: the\n"
-                           "points differ; C = degree: one polynomial), G the geometric level (0..2, -1 when the\n"
-                           "points differ) and jumps[k] = |f_R^(k) - f_L^(k)| for k = 0..degree, derivatives with\n"
-                           "respect to the global parameter.\n"
-                           "Exit status: 0 ok, 1 bad input, 2 bad usage.\n",
-                           runContinuity});
-
 } // namespace
+
+Action defineContinuity(CLI::App& app)
+{
+    auto o = std::make_shared<ContinuityOptions>();
+    app.footer("Analyses every joint where two segments of the spline NAME meet (bezier_spline, or\n"
+               "deboor_spline through the A-frame); a closed spline's closing joint (joint 0, t = 0)\n"
+               "comes first.\n"
+               "\n"
+               "Output: {\"object\": NAME, \"joints\": [{\"joint\": J, \"t\": T, \"C\": C, \"G\": G,\n"
+               "\"jumps\": [...]}, ...]} with C the highest order k whose derivatives 0..k agree (-1: the\n"
+               "points differ; C = degree: one polynomial), G the geometric level (0..2, -1 when the\n"
+               "points differ) and jumps[k] = |f_R^(k) - f_L^(k)| for k = 0..degree, derivatives with\n"
+               "respect to the global parameter.\n"
+               "Exit status: 0 ok, 1 bad input, 2 bad usage.");
+    addPositionals(app, "DOC.json", o->positional, "the document");
+    app.add_option("--object", o->object, "the spline")->type_name("NAME")->required();
+    o->toleranceGiven = addNumber(app, "--tolerance", o->tolerance,
+                                  "relative tolerance (positive): derivative k agrees when its jump is at most E "
+                                  "times the size of the k-th derivative on the two segments; also the largest "
+                                  "difference of the unit tangents for G1")
+                            ->type_name("E")
+                            ->default_str("1e-9");
+    return [o] { return continuity(*o); };
+}
+
 } // namespace freeform::cli

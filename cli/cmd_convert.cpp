@@ -3,39 +3,48 @@
 //   - documents and OBJ free-form geometry (cstype bezier), by the file extensions, see
 //     cmd_convert_obj.cpp
 
-#include "command.h"
+#include <memory>
+
+#include "convert.h"
 
 namespace freeform::cli {
 
-int convertSpline(const Args& args);   // cmd_convert_spline.cpp
-int convertObjFreeform(const Args& args); // cmd_convert_obj.cpp
-
 namespace {
 
-int runConvert(const std::vector<std::string>& argv)
+Json convert(const ConvertOptions& o)
 {
-    const Args args(argv, {"object", "to", "end", "output"}, {});
-    if (args.has("to")) return convertSpline(args);
-    if (args.has("end")) throw UsageError("option --end: goes with --to deboor_spline only");
-    return convertObjFreeform(args);
+    if (given(o.toGiven)) return convertSpline(o);
+    if (given(o.endGiven)) throw UsageError("option --end: goes with --to deboor_spline only");
+    return convertObjFreeform(o);
 }
 
-const RegisterCommand reg({"convert", "convert splines between forms, documents to and from OBJ free-form",
-                           "usage: freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
-                           "                        [--end open|clamped|closed] -o OUT.json\n"
-                           "       freeform convert DOC.json -o OUT.obj     (Bézier curves and surfaces as OBJ cstype bezier)\n"
-                           "       freeform convert IN.obj -o OUT.json      (OBJ free-form Bézier geometry to a document)\n"
-                           "\n"
-                           "  --object NAME   the spline to convert (with --to)\n"
-                           "  --to FORM       bezier_spline: the A-frame turns a deboor_spline into Bézier segments;\n"
-                           "                  deboor_spline: recovers the de Boor points of a C2 cubic bezier_spline\n"
-                           "  --end END       with --to deboor_spline: the end condition of the de Boor form,\n"
-                           "                  open or clamped for an open spline (default clamped), closed for a\n"
-                           "                  closed one (the default there)\n"
-                           "  -o, --output F  the file to write (written to a temporary file, then renamed)\n"
-                           "\n"
-                           "Exit status: 0 ok, 1 bad input, 2 bad usage.\n",
-                           runConvert});
-
 } // namespace
+
+Action defineConvert(CLI::App& app)
+{
+    auto o = std::make_shared<ConvertOptions>();
+    app.footer("Three forms:\n"
+               "  freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
+               "                   [--end open|clamped|closed] -o OUT.json\n"
+               "  freeform convert DOC.json -o OUT.obj   (Bézier curves and surfaces as OBJ cstype bezier)\n"
+               "  freeform convert IN.obj -o OUT.json    (OBJ free-form Bézier geometry to a document)\n"
+               "Exit status: 0 ok, 1 bad input, 2 bad usage.");
+    addPositionals(app, "IN", o->positional, "the document (DOC.json) or OBJ file (IN.obj) to convert");
+    o->objectGiven = app.add_option("--object", o->object, "the spline to convert (with --to)")->type_name("NAME");
+    o->toGiven = app.add_option("--to", o->to,
+                                "bezier_spline: the A-frame turns a deboor_spline into Bézier segments; "
+                                "deboor_spline: recovers the de Boor points of a C2 cubic bezier_spline")
+                     ->type_name("FORM")
+                     ->check(CLI::IsMember({"bezier_spline", "deboor_spline"}));
+    o->endGiven = app.add_option("--end", o->end,
+                                 "with --to deboor_spline: the end condition of the de Boor form, open or clamped "
+                                 "for an open spline (default clamped), closed for a closed one (the default there)")
+                      ->type_name("END")
+                      ->check(CLI::IsMember({"open", "clamped", "closed"}));
+    app.add_option("-o,--output", o->output, "the file to write (written to a temporary file, then renamed)")
+        ->type_name("FILE")
+        ->required();
+    return [o] { return convert(*o); };
+}
+
 } // namespace freeform::cli

@@ -1,5 +1,7 @@
 // freeform info: the topology report of a mesh file.
 
+#include <memory>
+
 #include "command.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/mesh/topology.h"
@@ -30,11 +32,15 @@ Json componentJson(const ComponentReport& c)
     return j;
 }
 
-int runInfo(const std::vector<std::string>& argv)
+struct InfoOptions {
+    std::vector<std::string> positional;
+    bool details = false;
+};
+
+Json info(const InfoOptions& o)
 {
-    const Args args(argv, {}, {"details"});
-    args.expectPositional(1, "the mesh file (freeform info MESH)");
-    const MeshReport r = meshReport(readPolygonMesh(args.positional()[0]));
+    expectPositional(o.positional, 1, "the mesh file (freeform info MESH)");
+    const MeshReport r = meshReport(readPolygonMesh(o.positional[0]));
     Json j;
     j["vertices"] = r.vertices;
     j["edges"] = r.edges;
@@ -47,7 +53,7 @@ int runInfo(const std::vector<std::string>& argv)
     j["euler"] = r.euler;
     j["genus"] = genusJson(r.genus);
     if (!r.genus) j["genus_note"] = r.genusNote;
-    if (args.has("details")) {
+    if (o.details) {
         j["orientable"] = r.orientable;
         j["oriented"] = r.oriented;
         j["isolated_vertices"] = r.isolatedVertices;
@@ -60,30 +66,31 @@ int runInfo(const std::vector<std::string>& argv)
         j["component_reports"] = Json::array();
         for (const auto& c : r.componentReports) j["component_reports"].push_back(componentJson(c));
     }
-    printJson(j);
-    return 0;
+    return j;
 }
 
-const RegisterCommand reg({"info", "topology of a mesh file (counts, boundary, manifoldness, genus)",
-                           "usage: freeform info MESH [--details]\n"
-                           "\n"
-                           "Reads a mesh file (.obj .ply .stl .off .gltf .glb) and prints one JSON object:\n"
-                           "  {\"vertices\": V, \"edges\": E, \"faces\": F, \"boundary_edges\": B,\n"
-                           "   \"boundary_loops\": L, \"components\": C, \"manifold\": true|false,\n"
-                           "   \"closed\": true|false, \"euler\": V - E + F, \"genus\": G}\n"
-                           "E counts distinct undirected edges, B the edges with exactly one face, C the pieces of\n"
-                           "faces connected through shared vertices. The genus is given only when every component\n"
-                           "is a closed orientable manifold (then it is the sum of (2 - chi) / 2 over the\n"
-                           "components); otherwise it is null and \"genus_note\" says why. docs/meshes.md explains\n"
-                           "every field.\n"
-                           "\n"
-                           "  --details   also print \"orientable\", \"oriented\", \"isolated_vertices\", the lists\n"
-                           "              \"non_manifold_edges\" ([from, to, faces]), \"non_manifold_vertices\"\n"
-                           "              ([vertex, fans]) and \"inconsistent_edges\" ([a, b], run a -> b by both\n"
-                           "              faces), and \"component_reports\" (the same fields per component)\n"
-                           "\n"
-                           "Exit status: 0 ok, 1 bad input (missing, unreadable or malformed file), 2 bad usage.\n",
-                           runInfo});
-
 } // namespace
+
+Action defineInfo(CLI::App& app)
+{
+    auto o = std::make_shared<InfoOptions>();
+    app.footer("Reads a mesh file (.obj .ply .stl .off .gltf .glb) and prints one JSON object:\n"
+               "  {\"vertices\": V, \"edges\": E, \"faces\": F, \"boundary_edges\": B,\n"
+               "   \"boundary_loops\": L, \"components\": C, \"manifold\": true|false,\n"
+               "   \"closed\": true|false, \"euler\": V - E + F, \"genus\": G}\n"
+               "E counts distinct undirected edges, B the edges with exactly one face, C the pieces of\n"
+               "faces connected through shared vertices. The genus is given only when every component\n"
+               "is a closed orientable manifold (then it is the sum of (2 - chi) / 2 over the\n"
+               "components); otherwise it is null and \"genus_note\" says why. docs/meshes.md explains\n"
+               "every field.\n"
+               "Exit status: 0 ok, 1 bad input (missing, unreadable or malformed file), 2 bad usage.");
+    addPositionals(app, "MESH", o->positional, "the mesh file");
+    addFlag(app, "--details", o->details,
+                 "also print \"orientable\", \"oriented\", \"isolated_vertices\", the lists "
+                 "\"non_manifold_edges\" ([from, to, faces]), \"non_manifold_vertices\" ([vertex, fans]) and "
+                 "\"inconsistent_edges\" ([a, b], run a -> b by both faces), and \"component_reports\" (the "
+                 "same fields per component)");
+    return [o] { return info(*o); };
+}
+
 } // namespace freeform::cli

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 
 #include "command.h"
 #include "freeform/io/mesh_io.h"
@@ -26,31 +27,26 @@ std::array<int, 3> parseDegrees(const std::string& text, const std::string& opti
 
 namespace {
 
-int runLattice(const std::vector<std::string>& argv)
-{
-    const Args args(argv, {"fit", "degree", "margin", "outside", "name", "output"}, {});
-    args.expectPositional(0, "");
-    const std::string meshPath = args.required("fit");
-    const std::string output = args.required("output");
-    const std::array<int, 3> degree = parseDegrees(args.get("degree").value_or("3,3,3"), "--degree");
+struct LatticeOptions {
+    std::string fit, degree = "3,3,3", outside = "clamp", name = "lattice", output;
     double margin = 0.05;
-    if (const auto m = args.get("margin")) {
-        margin = parseNumber(*m, "--margin");
-        if (margin < 0) throw UsageError("option --margin: must not be negative");
-    }
-    OutsidePolicy outside = OutsidePolicy::Clamp;
-    if (const auto o = args.get("outside")) {
-        if (*o != "keep" && *o != "clamp" && *o != "extrapolate")
-            throw UsageError("option --outside: \"" + *o + "\" is not one of keep, clamp, extrapolate");
-        outside = parseOutsidePolicy(*o, "--outside");
-    }
-    const std::string name = args.get("name").value_or("lattice");
+};
+
+Json lattice(const LatticeOptions& o)
+{
+    const std::string& meshPath = o.fit;
+    const std::string& output = o.output;
+    const std::array<int, 3> degree = parseDegrees(o.degree, "--degree");
+    const double margin = o.margin;
+    if (margin < 0) throw UsageError("option --margin: must not be negative");
+    const OutsidePolicy outside = parseOutsidePolicy(o.outside, "--outside");
+    const std::string& name = o.name;
     if (name.empty()) throw UsageError("option --name: the name must not be empty");
 
     const PolygonMesh mesh = readPolygonMesh(meshPath);
-    const Lattice lattice = Lattice::fit(mesh.positions, degree, margin, outside);
+    const Lattice fitted = Lattice::fit(mesh.positions, degree, margin, outside);
     Document doc;
-    doc.objects.push_back({name, lattice.toData(), ""});
+    doc.objects.push_back({name, fitted.toData(), ""});
     writeDocument(doc, output);
 
     Json out;
@@ -58,33 +54,37 @@ int runLattice(const std::vector<std::string>& argv)
     out["object"] = name;
     out["vertices"] = mesh.vertexCount();
     out["degree"] = Json::array({degree[0], degree[1], degree[2]});
-    out["origin"] = pointJson(lattice.origin().data(), 3);
+    out["origin"] = pointJson(fitted.origin().data(), 3);
     Json axes = Json::array();
-    for (int a = 0; a < 3; ++a) axes.push_back(pointJson(lattice.axes().col(a).data(), 3));
+    for (int a = 0; a < 3; ++a) axes.push_back(pointJson(fitted.axes().col(a).data(), 3));
     out["axes"] = std::move(axes);
-    printJson(out);
-    return 0;
+    return out;
 }
 
-const RegisterCommand reg({"lattice", "write the identity FFD lattice around a mesh",
-                           "usage: freeform lattice --fit MESH [--degree L,M,N] [--margin F] [--outside POLICY]\n"
-                           "                        [--name NAME] -o LATTICE.json\n"
-                           "\n"
-                           "Writes a document with one lattice object: the identity (rest) lattice of degrees\n"
-                           "(L, M, N) around the axis-aligned bounding box of the mesh's vertices.\n"
-                           "\n"
-                           "  --fit MESH        the mesh (.obj .ply .stl .off .gltf .glb)\n"
-                           "  --degree L,M,N    degrees in s, t, u (default 3,3,3: 4 x 4 x 4 control points)\n"
-                           "  --margin F        each side of the box is pushed out by F times its largest\n"
-                           "                    extent (default 0.05)\n"
-                           "  --outside POLICY  keep | clamp | extrapolate, for points outside the lattice\n"
-                           "                    (default clamp; see docs/ffd.md)\n"
-                           "  --name NAME       the object's name (default \"lattice\")\n"
-                           "  -o, --output FILE the document to write (atomically)\n"
-                           "\n"
-                           "Prints {\"output\", \"object\", \"vertices\", \"degree\", \"origin\", \"axes\"}.\n"
-                           "Exit status: 0 ok, 1 bad input (mesh file), 2 bad usage.\n",
-                           runLattice});
-
 } // namespace
+
+Action defineLattice(CLI::App& app)
+{
+    auto o = std::make_shared<LatticeOptions>();
+    app.footer("Writes a document with one lattice object: the identity (rest) lattice of degrees\n"
+               "(L, M, N) around the axis-aligned bounding box of the mesh's vertices.\n"
+               "\n"
+               "Prints {\"output\", \"object\", \"vertices\", \"degree\", \"origin\", \"axes\"}.\n"
+               "Exit status: 0 ok, 1 bad input (mesh file), 2 bad usage.");
+    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb)")->type_name("MESH")->required();
+    app.add_option("--degree", o->degree, "degrees in s, t, u (3,3,3: 4 x 4 x 4 control points)")
+        ->type_name("L,M,N")
+        ->capture_default_str();
+    addNumber(app, "--margin", o->margin, "each side of the box is pushed out by F times its largest extent")
+        ->type_name("F")
+        ->capture_default_str();
+    app.add_option("--outside", o->outside, "for points outside the lattice (see docs/ffd.md)")
+        ->type_name("POLICY")
+        ->check(CLI::IsMember({"keep", "clamp", "extrapolate"}))
+        ->capture_default_str();
+    app.add_option("--name", o->name, "the object's name")->type_name("NAME")->capture_default_str();
+    app.add_option("-o,--output", o->output, "the document to write (atomically)")->type_name("FILE")->required();
+    return [o] { return lattice(*o); };
+}
+
 } // namespace freeform::cli

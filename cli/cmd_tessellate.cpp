@@ -1,6 +1,7 @@
 // freeform tessellate: surfaces of a document (or a .bpt patch file) to a triangle mesh in OBJ.
 
 #include <filesystem>
+#include <memory>
 
 #include "command.h"
 #include "freeform/io/mesh_io.h"
@@ -17,34 +18,43 @@ bool hasExtension(const std::string& path, const std::string& ext)
     return e == ext;
 }
 
-int runTessellate(const std::vector<std::string>& argv)
+struct TessellateOptions {
+    std::vector<std::string> positional;
+    std::string output, object;
+    double tolerance = 0;
+    int segments = 8;
+    bool outward = false;
+    const CLI::Option* toleranceGiven = nullptr;
+    const CLI::Option* segmentsGiven = nullptr;
+    const CLI::Option* objectGiven = nullptr;
+};
+
+Json tessellateCommand(const TessellateOptions& o)
 {
-    const Args args(argv, {"output", "tolerance", "segments", "object"}, {"outward"});
-    args.expectPositional(1, "the input (freeform tessellate IN.json|IN.bpt -o OUT.obj)");
-    const std::string input = args.positional()[0];
-    const std::string output = args.required("output");
+    expectPositional(o.positional, 1, "the input (freeform tessellate IN.json|IN.bpt -o OUT.obj)");
+    const std::string& input = o.positional[0];
+    const std::string& output = o.output;
     if (!hasExtension(output, ".obj")) throw UsageError("option -o: the output must be an .obj file");
-    if (args.has("tolerance") && args.has("segments")) throw UsageError("give either --tolerance or --segments, not both");
+    if (given(o.toleranceGiven) && given(o.segmentsGiven)) throw UsageError("give either --tolerance or --segments, not both");
     TessellationOptions options;
-    if (const auto t = args.get("tolerance")) {
-        options.tolerance = parseNumber(*t, "--tolerance");
+    if (given(o.toleranceGiven)) {
+        options.tolerance = o.tolerance;
         if (!(options.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
     } else {
-        int n = 8;
-        if (const auto s = args.get("segments")) n = parseInteger(*s, "--segments");
+        const int n = o.segments;
         if (n < 1 || n > 4096) throw UsageError("option --segments: must be in 1..4096");
         options.segmentsU = options.segmentsV = n;
     }
-    options.flipNormals = args.has("outward");
+    options.flipNormals = o.outward;
 
     PatchComplex complex;
     if (hasExtension(input, ".bpt")) {
-        if (args.has("object")) throw UsageError("option --object applies to documents, not .bpt files");
+        if (given(o.objectGiven)) throw UsageError("option --object applies to documents, not .bpt files");
         complex = readBpt(input);
     } else {
         const Document doc = readDocument(input);
-        if (const auto name = args.get("object")) {
-            complex = surfacePatches(doc, doc.object(*name));
+        if (given(o.objectGiven)) {
+            complex = surfacePatches(doc, doc.object(o.object));
         } else {
             for (const DocumentObject& o : doc.objects) {
                 if (!isSurfaceObject(o)) continue;
@@ -64,31 +74,38 @@ int runTessellate(const std::vector<std::string>& argv)
     out["vertices"] = mesh.vertexCount();
     out["triangles"] = mesh.faceCount();
     out["error_bound"] = report.errorBound;
-    printJson(out);
-    return 0;
+    return out;
 }
 
-const RegisterCommand reg({"tessellate", "surfaces (document or .bpt) to a triangle mesh (OBJ with normals and uv)",
-                           "usage: freeform tessellate IN.json|IN.bpt -o OUT.obj [--tolerance E | --segments N]\n"
-                           "                          [--object NAME] [--outward]\n"
-                           "\n"
-                           "Tessellates every bezier_surface and deboor_surface of the document (or the one named by\n"
-                           "--object), or every patch of a .bpt file, into one triangle mesh. Patches that share a side\n"
-                           "(identical control points) share its vertices, so a closed complex gives a closed mesh.\n"
-                           "The OBJ has v, vt (u, v of the patch), vn (the surface's unit normal) and f v/vt/vn.\n"
-                           "\n"
-                           "  -o, --output F    the .obj file to write (written to a temporary file, then renamed)\n"
-                           "  --tolerance E     adaptive: every surface point lies within E of the mesh (certified\n"
-                           "                    bound from the control net, docs/surfaces.md)\n"
-                           "  --segments N      uniform: N x N cells per patch (default 8; 1..4096)\n"
-                           "  --object NAME     only this surface object of the document\n"
-                           "  --outward         reverse the triangles and the normals: normals along -(f_u x f_v)\n"
-                           "                    (outward for teapot.bpt, whose f_u x f_v points inwards)\n"
-                           "\n"
-                           "Output: {\"output\": F, \"patches\": P, \"vertices\": V, \"triangles\": T, \"error_bound\": B}\n"
-                           "with B the largest certified distance bound over the patches.\n"
-                           "Exit status: 0 ok, 1 bad input, 2 bad usage.\n",
-                           runTessellate});
-
 } // namespace
+
+Action defineTessellate(CLI::App& app)
+{
+    auto o = std::make_shared<TessellateOptions>();
+    app.footer("Tessellates every bezier_surface and deboor_surface of the document (or the one named by\n"
+               "--object), or every patch of a .bpt file, into one triangle mesh. Patches that share a side\n"
+               "(identical control points) share its vertices, so a closed complex gives a closed mesh.\n"
+               "The OBJ has v, vt (u, v of the patch), vn (the surface's unit normal) and f v/vt/vn.\n"
+               "\n"
+               "Output: {\"output\": F, \"patches\": P, \"vertices\": V, \"triangles\": T, \"error_bound\": B}\n"
+               "with B the largest certified distance bound over the patches.\n"
+               "Exit status: 0 ok, 1 bad input, 2 bad usage.");
+    addPositionals(app, "IN", o->positional, "the document (IN.json) or Bézier patch file (IN.bpt)");
+    app.add_option("-o,--output", o->output, "the .obj file to write (written to a temporary file, then renamed)")
+        ->type_name("OUT.obj")
+        ->required();
+    o->toleranceGiven = addNumber(app, "--tolerance", o->tolerance,
+                                  "adaptive: every surface point lies within E of the mesh (certified bound from "
+                                  "the control net, docs/surfaces.md)")
+                            ->type_name("E");
+    o->segmentsGiven = addNumber(app, "--segments", o->segments, "uniform: N x N cells per patch (1..4096)")
+                           ->type_name("N")
+                           ->capture_default_str();
+    o->objectGiven = app.add_option("--object", o->object, "only this surface object of the document")->type_name("NAME");
+    addFlag(app, "--outward", o->outward,
+                 "reverse the triangles and the normals: normals along -(f_u x f_v) (outward for teapot.bpt, whose "
+                 "f_u x f_v points inwards)");
+    return [o] { return tessellateCommand(*o); };
+}
+
 } // namespace freeform::cli

@@ -1,90 +1,103 @@
-// freeform: the command-line tool. See `freeform --help` and docs/cli.md.
+// freeform::cli::run: the command line parsed by CLI11 (one subcommand per command, declared by
+// the command itself), the command's action run, its JSON printed on `out`, errors as one line on
+// `err`. See docs/cli.md.
 
-#include <cmath>
+#include <algorithm>
 #include <charconv>
-#include <iostream>
+#include <cmath>
+#include <memory>
 
 #include "command.h"
 #include "freeform/core/error.h"
 
 namespace freeform::cli {
 
-Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& valueOptions,
-           const std::set<std::string>& flags)
+namespace {
+
+/// CLI11 reads integers with base detection (010 is 8, 0x10 is 16) and floating point with
+/// strtold (nan, inf, hex): these validators keep numbers decimal and finite, as documented.
+std::string checkInteger(std::string& text)
 {
-    for (std::size_t i = 0; i < argv.size(); ++i) {
-        const std::string& a = argv[i];
-        if (a.size() > 2 && a.rfind("--", 0) == 0) {
-            std::string name = a.substr(2), value;
-            const auto eq = name.find('=');
-            const bool inlineValue = eq != std::string::npos;
-            if (inlineValue) {
-                value = name.substr(eq + 1);
-                name = name.substr(0, eq);
-            }
-            if (valueOptions.count(name)) {
-                if (!inlineValue) {
-                    if (i + 1 >= argv.size()) throw UsageError("option --" + name + " needs a value");
-                    value = argv[++i];
-                }
-            } else if (flags.count(name)) {
-                if (inlineValue) throw UsageError("option --" + name + " takes no value");
-            } else {
-                throw UsageError("unknown option --" + name);
-            }
-            if (options_.count(name)) throw UsageError("option --" + name + " is given twice");
-            options_[name] = value;
-        } else if (a == "-o") {
-            if (!valueOptions.count("output")) throw UsageError("unknown option -o");
-            if (i + 1 >= argv.size()) throw UsageError("option -o needs a value");
-            if (options_.count("output")) throw UsageError("option -o is given twice");
-            options_["output"] = argv[++i];
-        } else if (a.size() > 1 && a[0] == '-' && !(std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')) {
-            throw UsageError("unknown option " + a);
-        } else {
-            positional_.push_back(a);
-        }
-    }
+    long v = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
+        return "\"" + text + "\" is not an integer";
+    text = std::to_string(v); // canonical decimal: no leading zeros for the base detection to see
+    return {};
 }
 
-std::optional<std::string> Args::get(const std::string& name) const
-{
-    const auto it = options_.find(name);
-    if (it == options_.end()) return std::nullopt;
-    return it->second;
-}
-
-std::string Args::required(const std::string& name) const
-{
-    const auto v = get(name);
-    if (!v) throw UsageError("option --" + name + " is required");
-    return *v;
-}
-
-void Args::expectPositional(std::size_t count, const std::string& what) const
-{
-    if (positional_.size() < count) throw UsageError("missing " + what);
-    if (positional_.size() > count) throw UsageError("unexpected argument \"" + positional_[count] + "\"");
-}
-
-double parseNumber(const std::string& text, const std::string& option)
+std::string checkFinite(std::string& text)
 {
     double v = 0;
     const char* first = text.data();
     const char* last = first + text.size();
     if (first != last && *first == '+') ++first;
     const auto [ptr, ec] = std::from_chars(first, last, v);
-    if (ec != std::errc() || ptr != last || text.empty() || !std::isfinite(v))
-        throw UsageError("option " + option + ": \"" + text + "\" is not a finite number");
+    if (text.empty() || ec != std::errc() || ptr != last || !std::isfinite(v)) return "\"" + text + "\" is not a finite number";
+    return {};
+}
+
+const CLI::Validator& integerValidator()
+{
+    static const CLI::Validator v(checkInteger, "INTEGER", "decimal integer");
     return v;
 }
 
-int parseInteger(const std::string& text, const std::string& option)
+const CLI::Validator& finiteValidator()
 {
-    int v = 0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || ptr != text.data() + text.size() || text.empty())
-        throw UsageError("option " + option + ": \"" + text + "\" is not an integer");
+    static const CLI::Validator v(checkFinite, "NUMBER", "finite number");
+    return v;
+}
+
+std::string oneLine(std::string text)
+{
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+} // namespace
+
+CLI::Option* addPositionals(CLI::App& app, const std::string& name, std::vector<std::string>& values,
+                            const std::string& description)
+{
+    return app.add_option(name, values, description)->type_name("");
+}
+
+void expectPositional(const std::vector<std::string>& positional, std::size_t count, const std::string& what)
+{
+    if (positional.size() < count) throw UsageError("missing " + what);
+    if (positional.size() > count) throw UsageError("unexpected argument \"" + positional[count] + "\"");
+}
+
+CLI::Option* addNumber(CLI::App& app, const std::string& name, int& value, const std::string& description)
+{
+    return app.add_option(name, value, description)->transform(integerValidator());
+}
+
+CLI::Option* addNumber(CLI::App& app, const std::string& name, long& value, const std::string& description)
+{
+    return app.add_option(name, value, description)->transform(integerValidator());
+}
+
+CLI::Option* addNumber(CLI::App& app, const std::string& name, double& value, const std::string& description)
+{
+    return app.add_option(name, value, description)->check(finiteValidator());
+}
+
+CLI::Option* addFlag(CLI::App& app, const std::string& name, bool& value, const std::string& description)
+{
+    return app.add_flag(name, value, description)->multi_option_policy(CLI::MultiOptionPolicy::Throw)->disable_flag_override();
+}
+
+double parseNumber(const std::string& text, const std::string& option)
+{
+    std::string copy = text;
+    if (!checkFinite(copy).empty()) throw UsageError("option " + option + ": \"" + text + "\" is not a finite number");
+    double v = 0;
+    const char* first = text.data();
+    if (*first == '+') ++first;
+    std::from_chars(first, text.data() + text.size(), v);
     return v;
 }
 
@@ -102,11 +115,6 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
         throw UsageError("option " + option + ": expected " + std::to_string(count) + " comma-separated numbers, found " +
                          std::to_string(out.size()));
     return out;
-}
-
-void printJson(const Json& value)
-{
-    std::cout << value.dump() << '\n';
 }
 
 Json pointJson(const double* p, int dim)
@@ -134,83 +142,75 @@ const DocumentObject& findLattice(const Document& doc, const std::optional<std::
     return *found;
 }
 
-std::map<std::string, Command>& commands()
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
 {
-    static std::map<std::string, Command> registry;
-    return registry;
-}
-
-std::map<std::string, Evaluator>& evaluators()
-{
-    static std::map<std::string, Evaluator> registry;
-    return registry;
-}
-
-namespace {
-
-std::string mainHelp()
-{
-    std::string text =
-        "freeform - Bézier curves, splines, surfaces and free-form deformation\n"
-        "\n"
-        "usage: freeform COMMAND [ARGS...]\n"
-        "       freeform COMMAND --help\n"
-        "\n"
-        "commands:\n";
-    for (const auto& [name, c] : commands()) {
-        text += "  " + name + std::string(name.size() < 12 ? 12 - name.size() : 1, ' ') + c.summary + "\n";
+    CLI::App app("freeform - Bézier curves, splines, surfaces and free-form deformation", "freeform");
+    app.footer("Results are printed as JSON on stdout. Errors are one line starting \"error:\" on stderr;\n"
+               "the exit status is 1 for bad input and 2 for bad usage. Documents: docs/format.md.\n"
+               "Every command explains its options: freeform COMMAND --help.");
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
+    app.require_subcommand(1); // exactly one: a later word that names a command is an argument
+    std::map<std::string, std::pair<CLI::App*, Action>> actions;
+    for (const Command& c : commands()) {
+        CLI::App* sub = app.add_subcommand(c.name, c.summary);
+        sub->allow_extras(); // unknown options are reported below, by name
+        actions[c.name] = {sub, c.define(*sub)};
     }
-    text +=
-        "\n"
-        "Results are printed as JSON on stdout. Errors are one line starting \"error:\" on stderr;\n"
-        "the exit status is 1 for bad input and 2 for bad usage. Documents: docs/format.md.\n";
-    return text;
-}
 
-} // namespace
-} // namespace freeform::cli
-
-int main(int argc, char** argv)
-{
-    using namespace freeform::cli;
-    const std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
-        std::cerr << "error: no command given (see freeform --help)\n";
+        err << "error: no command given (see freeform --help)\n";
         return 2;
     }
     if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-        std::cout << mainHelp();
+        out << app.help();
         return 0;
     }
     if (args[0] == "--version") {
-        std::cout << "freeform 0.1.0\n";
+        out << "freeform 0.1.0\n";
         return 0;
     }
-    const auto it = commands().find(args[0]);
-    if (it == commands().end()) {
-        std::cerr << "error: unknown command \"" << args[0] << "\" (see freeform --help)\n";
+    const auto it = actions.find(args[0]);
+    if (it == actions.end()) {
+        err << "error: unknown command \"" << args[0] << "\" (see freeform --help)\n";
         return 2;
     }
-    const std::vector<std::string> rest(args.begin() + 1, args.end());
-    for (const auto& a : rest) {
-        if (a == "--help" || a == "-h") {
-            std::cout << it->second.help;
-            return 0;
+    const std::string usage = " (see freeform " + args[0] + " --help)\n";
+    CLI::App& sub = *it->second.first;
+    try {
+        std::vector<std::string> reversed(args.rbegin(), args.rend()); // CLI11 takes them last first
+        app.parse(reversed);
+    } catch (const CLI::CallForHelp&) {
+        out << sub.help("freeform");
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        err << "error: " << oneLine(e.what()) << usage;
+        return 2;
+    }
+    for (const std::string& extra : sub.remaining()) {
+        if (extra.size() > 1 && extra[0] == '-') {
+            err << "error: unknown option " << extra.substr(0, extra.find('=')) << usage;
+            return 2;
         }
+        err << "error: unexpected argument \"" << extra << "\"" << usage;
+        return 2;
     }
     try {
-        return it->second.run(rest);
+        const Json result = it->second.second();
+        out << result.dump() << '\n';
+        return 0;
     } catch (const UsageError& e) {
-        std::cerr << "error: " << e.what() << " (see freeform " << args[0] << " --help)\n";
+        err << "error: " << oneLine(e.what()) << usage;
         return 2;
     } catch (const freeform::Error& e) {
-        std::cerr << "error: " << e.what() << '\n';
+        err << "error: " << oneLine(e.what()) << '\n';
         return 1;
     } catch (const std::bad_alloc&) {
-        std::cerr << "error: out of memory\n";
+        err << "error: out of memory\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << '\n';
+        err << "error: " << oneLine(e.what()) << '\n';
         return 1;
     }
 }
+
+} // namespace freeform::cli
