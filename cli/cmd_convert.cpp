@@ -23,6 +23,7 @@ Json convert(const ConvertOptions& o)
 Action defineConvert(CLI::App& app)
 {
     auto o = std::make_shared<ConvertOptions>();
+    // --to and --end are checked by convertSpline: docs/cli.md and the tests pin their messages.
     app.footer("Three forms:\n"
                "  freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
                "                   [--end open|clamped|closed] -o OUT.json\n"
@@ -34,13 +35,11 @@ Action defineConvert(CLI::App& app)
     o->toGiven = app.add_option("--to", o->to,
                                 "bezier_spline: the A-frame turns a deboor_spline into Bézier segments; "
                                 "deboor_spline: recovers the de Boor points of a C2 cubic bezier_spline")
-                     ->type_name("FORM")
-                     ->check(CLI::IsMember({"bezier_spline", "deboor_spline"}));
+                     ->type_name("bezier_spline|deboor_spline");
     o->endGiven = app.add_option("--end", o->end,
                                  "with --to deboor_spline: the end condition of the de Boor form, open or clamped "
                                  "for an open spline (default clamped), closed for a closed one (the default there)")
-                      ->type_name("END")
-                      ->check(CLI::IsMember({"open", "clamped", "closed"}));
+                      ->type_name("open|clamped|closed");
     app.add_option("-o,--output", o->output, "the file to write (written to a temporary file, then renamed)")
         ->type_name("FILE")
         ->required();
