@@ -116,7 +116,7 @@ Action defineSubdivide(CLI::App& app)
                                   "adaptive segments per face: certified (Bezier bound) on regular faces, estimated "
                                   "from sampled second derivatives elsewhere (not with --level)")
                             ->type_name("E");
-    app.add_option("--boundary", o->boundary, "boundary faces: edge_and_corner, or none (dropped)")
+    app.add_option("--boundary", o->boundary, "boundary interpolation: edge_only, edge_and_corner, or none (boundary faces dropped)")
         ->type_name("B")
         ->check(CLI::IsMember({"edge_only", "edge_and_corner", "none"}))
         ->capture_default_str();
