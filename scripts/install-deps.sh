@@ -11,6 +11,7 @@ packages=(
   build-essential cmake pkg-config      # toolchain
   libeigen3-dev                         # vectors and matrices (header-only)
   nlohmann-json3-dev                    # the JSON document format (header-only)
+  libcli11-dev                          # command-line parsing of the freeform tool (header-only)
   catch2                                # unit tests (v2.13, single header)
   libbenchmark-dev                      # benchmarks (not run by the tests)
   libosd-dev                            # OpenSubdiv 3.5: subdivision limit surfaces

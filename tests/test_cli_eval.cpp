@@ -4,9 +4,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "support/process.h"
+#include "support/cli.h"
 
-using freeform::test::cli;
+namespace {
+/// In process (support/cli.h); "help texts" and "bad usage exits 2" start the binary.
+freeform::test::ProcessResult cli(const std::string& arguments)
+{
+    return freeform::test::cliInProcess(arguments);
+}
+} // namespace
 using freeform::test::writeText;
 using Json = nlohmann::json;
 
@@ -71,10 +77,10 @@ TEST_CASE("eval numbers read back to the same double", "[cli]")
 
 TEST_CASE("help texts", "[cli]")
 {
-    const auto top = cli("--help");
+    const auto top = freeform::test::cli("--help");
     CHECK(top.status == 0);
     CHECK(top.out.find("eval") != std::string::npos);
-    const auto ev = cli("eval --help");
+    const auto ev = freeform::test::cli("eval --help");
     CHECK(ev.status == 0);
     for (const char* option : {"--object", "--at", "--derivatives"}) CHECK(ev.out.find(option) != std::string::npos);
 }
@@ -82,15 +88,15 @@ TEST_CASE("help texts", "[cli]")
 TEST_CASE("bad usage exits 2", "[cli][errors]")
 {
     const std::string d = curveDoc();
-    requireError(cli(""), 2, "no command");
-    requireError(cli("frobnicate"), 2, "unknown command");
-    requireError(cli("eval " + d + " --at 0.5"), 2, "--object is required");
-    requireError(cli("eval " + d + " --object c"), 2, "--at is required");
-    requireError(cli("eval --object c --at 0.5"), 2, "missing the document");
-    requireError(cli("eval " + d + " --object c --at abc"), 2, "not a finite number");
-    requireError(cli("eval " + d + " --object c --at 0.5 --derivatives -1"), 2, "must not be negative");
-    requireError(cli("eval " + d + " --object c --at 0.5 --bogus"), 2, "unknown option --bogus");
-    requireError(cli("eval " + d + " " + d + " --object c --at 0.5"), 2, "unexpected argument");
+    requireError(freeform::test::cli(""), 2, "no command");
+    requireError(freeform::test::cli("frobnicate"), 2, "unknown command");
+    requireError(freeform::test::cli("eval " + d + " --at 0.5"), 2, "--object is required");
+    requireError(freeform::test::cli("eval " + d + " --object c"), 2, "--at is required");
+    requireError(freeform::test::cli("eval --object c --at 0.5"), 2, "missing the document");
+    requireError(freeform::test::cli("eval " + d + " --object c --at abc"), 2, "not a finite number");
+    requireError(freeform::test::cli("eval " + d + " --object c --at 0.5 --derivatives -1"), 2, "must not be negative");
+    requireError(freeform::test::cli("eval " + d + " --object c --at 0.5 --bogus"), 2, "unknown option --bogus");
+    requireError(freeform::test::cli("eval " + d + " " + d + " --object c --at 0.5"), 2, "unexpected argument");
 }
 
 TEST_CASE("bad input exits 1", "[cli][errors]")

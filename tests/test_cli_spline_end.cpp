@@ -8,9 +8,15 @@
 
 #include <filesystem>
 
-#include "support/process.h"
+#include "support/cli.h"
 
-using freeform::test::cli;
+namespace {
+/// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
+freeform::test::ProcessResult cli(const std::string& arguments)
+{
+    return freeform::test::cliInProcess(arguments);
+}
+} // namespace
 using freeform::test::slurp;
 using freeform::test::writeText;
 using Json = nlohmann::json;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <memory>
 
 #include "command.h"
 #include "freeform/io/mesh_io.h"
@@ -78,8 +79,8 @@ BezierSpline<double, 3> splineFromObjectUnprefixed(const DocumentObject& object)
 
 /// freeform ffd DOC.json: every 3D Bézier curve, spline and patch of the document through the
 /// lattice, exactly (by composition); other objects are copied unchanged and listed as skipped.
-int runFfdDocument(const std::string& input, const std::string& output, const DocumentObject& latticeObject,
-                   const Lattice& lattice, const DeformOptions& options, const std::optional<std::string>& reportPath)
+Json runFfdDocument(const std::string& input, const std::string& output, const DocumentObject& latticeObject,
+                    const Lattice& lattice, const DeformOptions& options, const std::optional<std::string>& reportPath)
 {
     Document doc = readDocument(input);
     const double w = options.strength;
@@ -150,38 +151,39 @@ int runFfdDocument(const std::string& input, const std::string& output, const Do
 
     writeDocument(doc, output);
     if (reportPath) writeFileAtomically(*reportPath, j.dump(2) + "\n");
-    printJson(j);
-    return 0;
+    return j;
 }
 
-int runFfd(const std::vector<std::string>& argv)
+struct FfdOptions {
+    std::vector<std::string> positional;
+    std::string lattice, object, output, normals = "jacobian", report;
+    double strength = 1;
+    int threads = 0;
+    const CLI::Option* objectGiven = nullptr;
+    const CLI::Option* normalsGiven = nullptr;
+    const CLI::Option* reportGiven = nullptr;
+};
+
+Json ffd(const FfdOptions& o)
 {
-    const Args args(argv, {"lattice", "object", "output", "normals", "strength", "threads", "report"}, {});
-    args.expectPositional(1, "the mesh file (freeform ffd MESH --lattice LATTICE.json -o OUT)");
-    const std::string meshPath = args.positional()[0];
-    const std::string latticePath = args.required("lattice");
-    const std::string output = args.required("output");
-    NormalMode normals = NormalMode::Jacobian;
-    if (const auto n = args.get("normals")) {
-        if (*n != "jacobian" && *n != "recompute")
-            throw UsageError("option --normals: \"" + *n + "\" is not one of jacobian, recompute");
-        normals = parseNormalMode(*n, "--normals");
-    }
+    expectPositional(o.positional, 1, "the mesh file (freeform ffd MESH --lattice LATTICE.json -o OUT)");
+    const std::string& meshPath = o.positional[0];
+    const std::string& output = o.output;
+    const NormalMode normals = parseNormalMode(o.normals, "--normals");
     DeformOptions options;
-    if (const auto s = args.get("strength")) options.strength = parseNumber(*s, "--strength");
-    if (const auto t = args.get("threads")) {
-        options.threads = parseInteger(*t, "--threads");
-        if (options.threads < 0) throw UsageError("option --threads: must not be negative");
-    }
-    const auto reportPath = args.get("report");
+    options.strength = o.strength;
+    options.threads = o.threads;
+    if (options.threads < 0) throw UsageError("option --threads: must not be negative");
+    const std::optional<std::string> reportPath = given(o.reportGiven) ? std::optional<std::string>(o.report) : std::nullopt;
     if (endsWithJson(meshPath) != endsWithJson(output))
         throw UsageError(endsWithJson(meshPath) ? "option -o: a document is deformed into a document (OUT.json)"
                                                 : "option -o: a mesh is deformed into a mesh file, not a document");
-    if (endsWithJson(meshPath) && args.has("normals"))
+    if (endsWithJson(meshPath) && given(o.normalsGiven))
         throw UsageError("option --normals: applies to meshes only, not to a document");
 
-    const Document doc = readDocument(latticePath);
-    const DocumentObject& object = findLattice(doc, args.get("object"));
+    const Document doc = readDocument(o.lattice);
+    const DocumentObject& object =
+        findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
     const Lattice lattice = Lattice::fromData(std::get<LatticeData>(object.data));
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);
@@ -213,49 +215,58 @@ int runFfd(const std::vector<std::string>& argv)
 
     file.write(output);
     if (reportPath) writeFileAtomically(*reportPath, j.dump(2) + "\n");
-    printJson(j);
-    return 0;
+    return j;
 }
 
-const RegisterCommand reg({"ffd", "deform a mesh file or a document through a lattice (free-form deformation)",
-                           "usage: freeform ffd MESH --lattice LATTICE.json -o OUT [--object NAME]\n"
-                           "                    [--normals jacobian|recompute] [--strength W] [--threads T]\n"
-                           "                    [--report REPORT.json]\n"
-                           "       freeform ffd DOC.json --lattice LATTICE.json -o OUT.json [--object NAME]\n"
-                           "                    [--strength W] [--report REPORT.json]\n"
-                           "\n"
-                           "Moves every vertex of MESH through the lattice (p' = p + W sum B (P - R)) and writes\n"
-                           "OUT in the format of its extension. Written back in the same format, the file keeps\n"
-                           "everything but positions, normals and tangents as it was (faces, texture\n"
-                           "coordinates, groups, materials, colours, vertex order). See docs/ffd.md.\n"
-                           "\n"
-                           "A document (DOC.json) is deformed exactly: every 3D bezier_curve of degree d and\n"
-                           "bezier_spline becomes one of degree d (l+m+n), every bezier_surface of degrees (p, q)\n"
-                           "one of degrees (p (l+m+n), q (l+m+n)) (composition, not control points moved);\n"
-                           "a deboor_spline becomes a bezier_spline of degree 3 (l+m+n). Other objects are\n"
-                           "copied unchanged and listed under \"skipped\". The result equals point-wise FFD\n"
-                           "where the geometry lies in the lattice box (\"inside\": its control points do); outside\n"
-                           "it is the lattice polynomial continued, whatever the outside policy.\n"
-                           "\n"
-                           "  --lattice FILE    a document with the lattice object\n"
-                           "  --object NAME     which lattice, when the document has several\n"
-                           "  -o, --output OUT  the deformed mesh (.obj .ply .stl .off .gltf .glb), atomically\n"
-                           "  --normals MODE    jacobian: cof(J) n renormalised (default); recompute:\n"
-                           "                    area-weighted vertex normals of the deformed mesh\n"
-                           "  --strength W      scales the deformation (default 1)\n"
-                           "  --threads T       worker threads (default 0: all cores)\n"
-                           "  --report FILE     also write the report (below) to FILE\n"
-                           "\n"
-                           "Prints the report: {\"input\", \"output\", \"lattice\", \"vertices\", \"outside\",\n"
-                           "\"min_det_j\", \"max_det_j\", \"fold_count\", \"folds\" (first 1000 vertex indices with\n"
-                           "det J <= 0), \"certificate\": {\"verdict\": \"certified injective\" | \"folds\" |\n"
-                           "\"undecided\", \"degree\", \"min_coefficient\", \"max_coefficient\"[, \"witness\"]}}.\n"
-                           "For a document it prints {\"input\", \"output\", \"lattice\", \"objects\": [{\"name\",\n"
-                           "\"from\", \"type\", \"degree\", \"inside\"}], \"skipped\": [{\"name\", \"type\", \"reason\"}],\n"
-                           "\"certificate\"}. --normals applies to meshes only.\n"
-                           "Exit status: 0 ok, 1 bad input (mesh, document, lattice, a degree above 67), 2 bad\n"
-                           "usage. On error no output file is written.\n",
-                           runFfd});
-
 } // namespace
+
+Action defineFfd(CLI::App& app)
+{
+    auto o = std::make_shared<FfdOptions>();
+    app.footer("Two forms:\n"
+               "  freeform ffd MESH --lattice LATTICE.json -o OUT [--object NAME] [--normals jacobian|recompute]\n"
+               "               [--strength W] [--threads T] [--report REPORT.json]\n"
+               "  freeform ffd DOC.json --lattice LATTICE.json -o OUT.json [--object NAME] [--strength W]\n"
+               "               [--report REPORT.json]\n"
+               "\n"
+               "Moves every vertex of MESH through the lattice (p' = p + W sum B (P - R)) and writes\n"
+               "OUT in the format of its extension. Written back in the same format, the file keeps\n"
+               "everything but positions, normals and tangents as it was (faces, texture\n"
+               "coordinates, groups, materials, colours, vertex order). See docs/ffd.md.\n"
+               "\n"
+               "A document (DOC.json) is deformed exactly: every 3D bezier_curve of degree d and\n"
+               "bezier_spline becomes one of degree d (l+m+n), every bezier_surface of degrees (p, q)\n"
+               "one of degrees (p (l+m+n), q (l+m+n)) (composition, not control points moved);\n"
+               "a deboor_spline becomes a bezier_spline of degree 3 (l+m+n). Other objects are\n"
+               "copied unchanged and listed under \"skipped\". The result equals point-wise FFD\n"
+               "where the geometry lies in the lattice box (\"inside\": its control points do); outside\n"
+               "it is the lattice polynomial continued, whatever the outside policy.\n"
+               "\n"
+               "Prints the report: {\"input\", \"output\", \"lattice\", \"vertices\", \"outside\",\n"
+               "\"min_det_j\", \"max_det_j\", \"fold_count\", \"folds\" (first 1000 vertex indices with\n"
+               "det J <= 0), \"certificate\": {\"verdict\": \"certified injective\" | \"folds\" |\n"
+               "\"undecided\", \"degree\", \"min_coefficient\", \"max_coefficient\"[, \"witness\"]}}.\n"
+               "For a document it prints {\"input\", \"output\", \"lattice\", \"objects\": [{\"name\",\n"
+               "\"from\", \"type\", \"degree\", \"inside\"}], \"skipped\": [{\"name\", \"type\", \"reason\"}],\n"
+               "\"certificate\"}. --normals applies to meshes only.\n"
+               "Exit status: 0 ok, 1 bad input (mesh, document, lattice, a degree above 67), 2 bad\n"
+               "usage. On error no output file is written.");
+    addPositionals(app, "MESH", o->positional, "the mesh (.obj .ply .stl .off .gltf .glb) or document (.json) to deform");
+    app.add_option("--lattice", o->lattice, "a document with the lattice object")->type_name("FILE")->required();
+    o->objectGiven = app.add_option("--object", o->object, "which lattice, when the document has several")->type_name("NAME");
+    app.add_option("-o,--output", o->output, "the deformed mesh (.obj .ply .stl .off .gltf .glb) or document, atomically")
+        ->type_name("OUT")
+        ->required();
+    o->normalsGiven = app.add_option("--normals", o->normals,
+                                     "jacobian: cof(J) n renormalised; recompute: area-weighted vertex normals of "
+                                     "the deformed mesh")
+                          ->type_name("MODE")
+                          ->check(CLI::IsMember({"jacobian", "recompute"}))
+                          ->capture_default_str();
+    addNumber(app, "--strength", o->strength, "scales the deformation")->type_name("W")->capture_default_str();
+    addNumber(app, "--threads", o->threads, "worker threads (0: all cores)")->type_name("T")->capture_default_str();
+    o->reportGiven = app.add_option("--report", o->report, "also write the report (below) to FILE")->type_name("FILE");
+    return [o] { return ffd(*o); };
+}
+
 } // namespace freeform::cli

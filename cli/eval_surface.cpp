@@ -51,8 +51,12 @@ Json evalSurface(const Document& doc, const DocumentObject& object, const std::s
     return out;
 }
 
-const RegisterEvaluator regBezier("bezier_surface", evalSurface);
-const RegisterEvaluator regDeBoor("deboor_surface", evalSurface);
-
 } // namespace
+
+void addSurfaceEvaluators(std::map<std::string, Evaluator>& table)
+{
+    table["bezier_surface"] = evalSurface;
+    table["deboor_surface"] = evalSurface;
+}
+
 } // namespace freeform::cli

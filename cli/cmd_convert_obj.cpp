@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "command.h"
+#include "convert.h"
 #include "freeform/core/error.h"
 #include "freeform/io/obj_freeform.h"
 
@@ -19,16 +19,16 @@ std::string lowerExtension(const std::string& path)
 }
 } // namespace
 
-int convertObjFreeform(const Args& args)
+Json convertObjFreeform(const ConvertOptions& o)
 {
-    args.expectPositional(1, "the input file (freeform convert IN -o OUT)");
-    const std::string input = args.positional()[0];
-    const std::string output = args.required("output");
+    expectPositional(o.positional, 1, "the input file (freeform convert IN -o OUT)");
+    const std::string input = o.positional[0];
+    const std::string output = o.output;
     const std::string in = lowerExtension(input), out = lowerExtension(output);
     Json result;
     if (in == ".json" && out == ".obj") {
         const Document doc = readDocument(input);
-        const std::string name = args.get("object").value_or("");
+        const std::string name = given(o.objectGiven) ? o.object : std::string();
         writeObjFreeform(doc, output, name);
         Json names = Json::array();
         for (const DocumentObject& o : doc.objects)
@@ -36,7 +36,7 @@ int convertObjFreeform(const Args& args)
         result["output"] = output;
         result["objects"] = std::move(names);
     } else if (in == ".obj" && out == ".json") {
-        if (args.has("object")) throw UsageError("option --object applies to a document input");
+        if (given(o.objectGiven)) throw UsageError("option --object applies to a document input");
         const Document doc = readObjFreeform(input);
         if (doc.objects.empty()) throw Error(input + ": no free-form Bézier curves or surfaces (cstype bezier) found");
         writeDocument(doc, output);
@@ -48,8 +48,7 @@ int convertObjFreeform(const Args& args)
         throw UsageError("convert without --to goes from .json to .obj or from .obj to .json (got " +
                          (in.empty() ? std::string("no extension") : in) + " to " + (out.empty() ? std::string("no extension") : out) + ")");
     }
-    printJson(result);
-    return 0;
+    return result;
 }
 
 } // namespace freeform::cli

@@ -44,8 +44,12 @@ Json evalAnySpline(const Document& doc, const DocumentObject& object, const std:
                                              : evalSpline<3>(doc, object, at, order);
 }
 
-const RegisterEvaluator regBezier("bezier_spline", evalAnySpline);
-const RegisterEvaluator regDeBoor("deboor_spline", evalAnySpline);
-
 } // namespace
+
+void addSplineEvaluators(std::map<std::string, Evaluator>& table)
+{
+    table["bezier_spline"] = evalAnySpline;
+    table["deboor_spline"] = evalAnySpline;
+}
+
 } // namespace freeform::cli

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <random>
 
 #include "command.h"
@@ -42,27 +43,24 @@ double medianMs(const Lattice& lattice, const Eigen::Matrix<double, 3, Eigen::Dy
     return ms.size() % 2 ? ms[ms.size() / 2] : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
 }
 
-int runBench(const std::vector<std::string>& argv)
-{
-    const Args args(argv, {"vertices", "degree", "threads", "runs"}, {"float", "normals"});
-    args.expectPositional(0, "");
+struct BenchOptions {
     long vertices = 1000000;
-    if (const auto v = args.get("vertices")) {
-        vertices = parseInteger(*v, "--vertices");
-        if (vertices < 1) throw UsageError("option --vertices: must be at least 1");
-    }
-    const std::array<int, 3> degree = parseDegrees(args.get("degree").value_or("3,3,3"), "--degree");
+    std::string degree = "3,3,3";
     int threads = 0;
-    if (const auto t = args.get("threads")) {
-        threads = parseInteger(*t, "--threads");
-        if (threads < 0) throw UsageError("option --threads: must not be negative");
-    }
     int runs = 21;
-    if (const auto r = args.get("runs")) {
-        runs = parseInteger(*r, "--runs");
-        if (runs < 1) throw UsageError("option --runs: must be at least 1");
-    }
-    const bool useFloat = args.has("float"), normals = args.has("normals");
+    bool useFloat = false, normals = false;
+};
+
+Json bench(const BenchOptions& o)
+{
+    const long vertices = o.vertices;
+    if (vertices < 1) throw UsageError("option --vertices: must be at least 1");
+    const std::array<int, 3> degree = parseDegrees(o.degree, "--degree");
+    const int threads = o.threads;
+    if (threads < 0) throw UsageError("option --threads: must not be negative");
+    const int runs = o.runs;
+    if (runs < 1) throw UsageError("option --runs: must be at least 1");
+    const bool useFloat = o.useFloat, normals = o.normals;
 
     // Uniform points in [-1, 1]^3, the identity lattice around them, every control point moved.
     std::mt19937 rng(7);
@@ -86,28 +84,27 @@ int runBench(const std::vector<std::string>& argv)
     out["scalar"] = useFloat ? "float" : "double";
     out["normals"] = normals;
     out["runs"] = runs;
-    printJson(out);
-    return 0;
+    return out;
 }
 
-const RegisterCommand reg({"bench", "measure free-form deformation speed on this machine",
-                           "usage: freeform bench [--vertices N] [--degree L,M,N] [--threads T] [--float]\n"
-                           "                      [--normals] [--runs R]\n"
-                           "\n"
-                           "Deforms N generated vertices (uniform in a cube) through a lattice of degrees\n"
-                           "(L, M, N) with every control point moved, R times, and prints the median time of\n"
-                           "one deformation (lattice coordinates are bound once, as in the editor).\n"
-                           "\n"
-                           "  --vertices N      vertex count (default 1000000)\n"
-                           "  --degree L,M,N    lattice degrees (default 3,3,3)\n"
-                           "  --threads T       worker threads (default 0: all cores)\n"
-                           "  --float           the single-precision path (default double)\n"
-                           "  --normals         also transform per-vertex normals (cof(J) n)\n"
-                           "  --runs R          timed runs after one warm-up (default 21)\n"
-                           "\n"
-                           "Prints {\"vertices\", \"degree\", \"threads\", \"median_ms\", \"vertices_per_second\",\n"
-                           "\"scalar\", \"normals\", \"runs\"}.\n",
-                           runBench});
-
 } // namespace
+
+Action defineBench(CLI::App& app)
+{
+    auto o = std::make_shared<BenchOptions>();
+    app.footer("Deforms N generated vertices (uniform in a cube) through a lattice of degrees\n"
+               "(L, M, N) with every control point moved, R times, and prints the median time of\n"
+               "one deformation (lattice coordinates are bound once, as in the editor).\n"
+               "\n"
+               "Prints {\"vertices\", \"degree\", \"threads\", \"median_ms\", \"vertices_per_second\",\n"
+               "\"scalar\", \"normals\", \"runs\"}.");
+    addNumber(app, "--vertices", o->vertices, "vertex count (at least 1)")->type_name("N")->capture_default_str();
+    app.add_option("--degree", o->degree, "lattice degrees")->type_name("L,M,N")->capture_default_str();
+    addNumber(app, "--threads", o->threads, "worker threads (0: all cores)")->type_name("T")->capture_default_str();
+    addFlag(app, "--float", o->useFloat, "the single-precision path (default double)");
+    addFlag(app, "--normals", o->normals, "also transform per-vertex normals (cof(J) n)");
+    addNumber(app, "--runs", o->runs, "timed runs after one warm-up (at least 1)")->type_name("R")->capture_default_str();
+    return [o] { return bench(*o); };
+}
+
 } // namespace freeform::cli

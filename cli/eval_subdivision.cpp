@@ -40,7 +40,11 @@ Json evalSubdivision(const Document& doc, const DocumentObject& object, const st
     return out;
 }
 
-const RegisterEvaluator reg("subdivision_surface", evalSubdivision);
-
 } // namespace
+
+void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table)
+{
+    table["subdivision_surface"] = evalSubdivision;
+}
+
 } // namespace freeform::cli

@@ -33,7 +33,11 @@ Json evalBezierCurve(const Document& doc, const DocumentObject& object, const st
     return data.points.rows() == 2 ? evalCurve<2>(object, t, order) : evalCurve<3>(object, t, order);
 }
 
-const RegisterEvaluator reg("bezier_curve", evalBezierCurve);
-
 } // namespace
+
+void addCurveEvaluators(std::map<std::string, Evaluator>& table)
+{
+    table["bezier_curve"] = evalBezierCurve;
+}
+
 } // namespace freeform::cli

@@ -37,7 +37,11 @@ Json evalLattice(const Document& doc, const DocumentObject& object, const std::s
     return out;
 }
 
-const RegisterEvaluator reg("lattice", evalLattice);
-
 } // namespace
+
+void addLatticeEvaluators(std::map<std::string, Evaluator>& table)
+{
+    table["lattice"] = evalLattice;
+}
+
 } // namespace freeform::cli

@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "command.h"
+#include "convert.h"
 #include "freeform/core/error.h"
 #include "spline_object.h"
 
@@ -53,22 +53,23 @@ ObjectData toDeBoor(const Document& doc, const DocumentObject& object, std::opti
 
 } // namespace
 
-int convertSpline(const Args& args)
+Json convertSpline(const ConvertOptions& o)
 {
-    args.expectPositional(1, "the document (freeform convert DOC.json --object NAME --to FORM -o OUT.json)");
-    const std::string name = args.required("object");
-    const std::string to = args.required("to");
-    const std::string output = args.required("output");
+    expectPositional(o.positional, 1, "the document (freeform convert DOC.json --object NAME --to FORM -o OUT.json)");
+    if (!given(o.objectGiven)) throw UsageError("option --object is required");
+    const std::string& name = o.object;
+    const std::string& to = o.to;
+    const std::string& output = o.output;
     if (to != "bezier_spline" && to != "deboor_spline")
         throw UsageError("option --to: \"" + to + "\" is not one of bezier_spline, deboor_spline");
     std::optional<EndCondition> end;
-    if (const auto e = args.get("end")) {
+    if (given(o.endGiven)) {
         if (to != "deboor_spline") throw UsageError("option --end: goes with --to deboor_spline only");
-        if (*e != "open" && *e != "clamped" && *e != "closed")
-            throw UsageError("option --end: \"" + *e + "\" is not one of open, clamped, closed");
-        end = parseEndCondition(*e, "--end");
+        if (o.end != "open" && o.end != "clamped" && o.end != "closed")
+            throw UsageError("option --end: \"" + o.end + "\" is not one of open, clamped, closed");
+        end = parseEndCondition(o.end, "--end");
     }
-    Document doc = readDocument(args.positional()[0]);
+    Document doc = readDocument(o.positional[0]);
     const DocumentObject& object = doc.object(name);
     const int dim = splineDimension(doc, object);
     const std::string from = objectType(object.data);
@@ -90,8 +91,7 @@ int convertSpline(const Args& args)
     } else {
         out["points"] = std::get<BezierSplineData>(target->data).points.cols();
     }
-    printJson(out);
-    return 0;
+    return out;
 }
 
 } // namespace freeform::cli

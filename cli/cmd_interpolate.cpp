@@ -2,6 +2,7 @@
 // document with one bezier_spline object named "interpolant".
 
 #include <cmath>
+#include <memory>
 
 #include "command.h"
 #include "freeform/core/error.h"
@@ -92,33 +93,40 @@ BezierSplineData interpolate(const PointsFile& in, InterpolationOptions<double, 
     return data;
 }
 
-int runInterpolate(const std::vector<std::string>& argv)
+struct InterpolateOptions {
+    std::vector<std::string> positional;
+    std::string output, end = "natural", param = "chord", startDerivative, endDerivative;
+    const CLI::Option* paramGiven = nullptr;
+    const CLI::Option* startGiven = nullptr;
+    const CLI::Option* endGiven = nullptr;
+};
+
+Json interpolate(const InterpolateOptions& o)
 {
-    const Args args(argv, {"output", "end", "param", "start-derivative", "end-derivative"}, {});
-    args.expectPositional(1, "the points file (freeform interpolate POINTS.json -o OUT.json)");
-    const std::string output = args.required("output");
+    expectPositional(o.positional, 1, "the points file (freeform interpolate POINTS.json -o OUT.json)");
+    const std::string& output = o.output;
     InterpolationOptions<double, 3> base;
     try {
-        base.end = parseInterpolationEnd(args.get("end").value_or("natural"), "option --end");
-        base.parametrization = parseParametrization(args.get("param").value_or("chord"), "option --param");
+        base.end = parseInterpolationEnd(o.end, "option --end");
+        base.parametrization = parseParametrization(o.param, "option --param");
     } catch (const Error& e) {
         throw UsageError(e.what());
     }
     const bool clamped = base.end == InterpolationEnd::Clamped;
-    const bool hasStart = args.has("start-derivative"), hasEnd = args.has("end-derivative");
+    const bool hasStart = given(o.startGiven), hasEnd = given(o.endGiven);
     if (clamped && !(hasStart && hasEnd))
         throw UsageError("--end clamped needs --start-derivative and --end-derivative");
     if (!clamped && (hasStart || hasEnd))
         throw UsageError("--start-derivative and --end-derivative go with --end clamped only");
     std::vector<double> start, end;
     if (clamped) {
-        start = parseNumberList(*args.get("start-derivative"), "--start-derivative", 0);
-        end = parseNumberList(*args.get("end-derivative"), "--end-derivative", 0);
+        start = parseNumberList(o.startDerivative, "--start-derivative", 0);
+        end = parseNumberList(o.endDerivative, "--end-derivative", 0);
     }
 
-    const std::string source = args.positional()[0];
+    const std::string source = o.positional[0];
     const PointsFile in = readPointsFile(source);
-    if (!in.params.empty() && args.has("param"))
+    if (!in.params.empty() && given(o.paramGiven))
         throw UsageError("give the parameters either in the points file (\"params\") or by --param, not both");
 
     BezierSplineData data;
@@ -141,34 +149,41 @@ int runInterpolate(const std::vector<std::string>& argv)
     out["segments"] = data.intervals.size();
     out["end"] = toString(base.end);
     out["param"] = in.params.empty() ? toString(base.parametrization) : std::string("given");
-    printJson(out);
-    return 0;
+    return out;
 }
 
-const RegisterCommand reg({"interpolate", "C2 cubic spline through points (natural, clamped, periodic ends)",
-                           "usage: freeform interpolate POINTS.json -o OUT.json [--end natural|clamped|periodic]\n"
-                           "         [--param uniform|chord|centripetal]\n"
-                           "         [--start-derivative x,y[,z] --end-derivative x,y[,z]]\n"
-                           "\n"
-                           "POINTS.json is {\"points\": [[x, y(, z)], ...]} with optionally \"params\": [...], the\n"
-                           "parameter values (strictly increasing; for periodic one more than there are distinct\n"
-                           "points: where the curve returns to the first point). Writes a document with one\n"
-                           "bezier_spline object \"interpolant\" whose intervals are the parameter gaps.\n"
-                           "\n"
-                           "  -o, --output F          the document to write (atomically)\n"
-                           "  --end E                 natural (default): zero second derivative at both ends;\n"
-                           "                          clamped: the end derivatives are given; periodic: a closed\n"
-                           "                          spline, C2 at the first point too (a last point equal to the\n"
-                           "                          first is dropped)\n"
-                           "  --param P               chord (default), uniform or centripetal (square root of the\n"
-                           "                          chord); not together with \"params\" in the file\n"
-                           "  --start-derivative V    f' at the first point (with --end clamped), comma-separated\n"
-                           "  --end-derivative V      f' at the last point (with --end clamped)\n"
-                           "\n"
-                           "Output: {\"object\": \"interpolant\", \"output\": F, \"points\": N, \"segments\": L,\n"
-                           "\"end\": E, \"param\": P or \"given\"}.\n"
-                           "Exit status: 0 ok, 1 bad input, 2 bad usage.\n",
-                           runInterpolate});
-
 } // namespace
+
+Action defineInterpolate(CLI::App& app)
+{
+    auto o = std::make_shared<InterpolateOptions>();
+    app.footer("POINTS.json is {\"points\": [[x, y(, z)], ...]} with optionally \"params\": [...], the\n"
+               "parameter values (strictly increasing; for periodic one more than there are distinct\n"
+               "points: where the curve returns to the first point). Writes a document with one\n"
+               "bezier_spline object \"interpolant\" whose intervals are the parameter gaps.\n"
+               "\n"
+               "Output: {\"object\": \"interpolant\", \"output\": F, \"points\": N, \"segments\": L,\n"
+               "\"end\": E, \"param\": P or \"given\"}.\n"
+               "Exit status: 0 ok, 1 bad input, 2 bad usage.");
+    addPositionals(app, "POINTS.json", o->positional, "the points to interpolate");
+    app.add_option("-o,--output", o->output, "the document to write (atomically)")->type_name("FILE")->required();
+    // --end and --param are checked by the library's parsers (their messages name the choices).
+    app.add_option("--end", o->end,
+                   "natural: zero second derivative at both ends; clamped: the end derivatives are given; "
+                   "periodic: a closed spline, C2 at the first point too (a last point equal to the first is dropped)")
+        ->type_name("natural|clamped|periodic")
+        ->capture_default_str();
+    o->paramGiven = app.add_option("--param", o->param,
+                                   "uniform, chord or centripetal (square root of the chord); not together with "
+                                   "\"params\" in the file")
+                        ->type_name("uniform|chord|centripetal")
+                        ->capture_default_str();
+    o->startGiven = app.add_option("--start-derivative", o->startDerivative,
+                                   "f' at the first point (with --end clamped), comma-separated")
+                        ->type_name("x,y[,z]");
+    o->endGiven = app.add_option("--end-derivative", o->endDerivative, "f' at the last point (with --end clamped)")
+                      ->type_name("x,y[,z]");
+    return [o] { return interpolate(*o); };
+}
+
 } // namespace freeform::cli

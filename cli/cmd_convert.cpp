@@ -1,0 +1,49 @@
+// freeform convert: between representations of the same geometry.
+//   - spline forms inside a document (--to bezier_spline|deboor_spline), see cmd_convert_spline.cpp
+//   - documents and OBJ free-form geometry (cstype bezier), by the file extensions, see
+//     cmd_convert_obj.cpp
+
+#include <memory>
+
+#include "convert.h"
+
+namespace freeform::cli {
+
+namespace {
+
+Json convert(const ConvertOptions& o)
+{
+    if (given(o.toGiven)) return convertSpline(o);
+    if (given(o.endGiven)) throw UsageError("option --end: goes with --to deboor_spline only");
+    return convertObjFreeform(o);
+}
+
+} // namespace
+
+Action defineConvert(CLI::App& app)
+{
+    auto o = std::make_shared<ConvertOptions>();
+    // --to and --end are checked by convertSpline: docs/cli.md and the tests pin their messages.
+    app.footer("Three forms:\n"
+               "  freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
+               "                   [--end open|clamped|closed] -o OUT.json\n"
+               "  freeform convert DOC.json -o OUT.obj   (Bézier curves and surfaces as OBJ cstype bezier)\n"
+               "  freeform convert IN.obj -o OUT.json    (OBJ free-form Bézier geometry to a document)\n"
+               "Exit status: 0 ok, 1 bad input, 2 bad usage.");
+    addPositionals(app, "IN", o->positional, "the document (DOC.json) or OBJ file (IN.obj) to convert");
+    o->objectGiven = app.add_option("--object", o->object, "the spline to convert (with --to)")->type_name("NAME");
+    o->toGiven = app.add_option("--to", o->to,
+                                "bezier_spline: the A-frame turns a deboor_spline into Bézier segments; "
+                                "deboor_spline: recovers the de Boor points of a C2 cubic bezier_spline")
+                     ->type_name("bezier_spline|deboor_spline");
+    o->endGiven = app.add_option("--end", o->end,
+                                 "with --to deboor_spline: the end condition of the de Boor form, open or clamped "
+                                 "for an open spline (default clamped), closed for a closed one (the default there)")
+                      ->type_name("open|clamped|closed");
+    app.add_option("-o,--output", o->output, "the file to write (written to a temporary file, then renamed)")
+        ->type_name("FILE")
+        ->required();
+    return [o] { return convert(*o); };
+}
+
+} // namespace freeform::cli

@@ -1,0 +1,108 @@
+#pragma once
+// The `freeform` command-line tool as a library: one file per command (cmd_*.cpp), each declaring
+// its options on a CLI11 subcommand and turning the parsed options into the JSON it prints. The
+// list of commands is cli/commands.cpp; cli/main.cpp only calls run().
+//
+// Contract (docs/cli.md): results are JSON on stdout; errors are one line "error: ..." on stderr
+// with exit status 1 for bad input and 2 for bad usage, and then nothing is written to stdout and
+// no output file is left behind.
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "freeform/io/document.h"
+
+namespace freeform::cli {
+
+using Json = nlohmann::ordered_json;
+
+/// Bad usage found after parsing (a value out of its range, options that do not go together):
+/// exit status 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// What a command does once its options are parsed: the JSON result it prints. Throws UsageError
+/// (exit 2) or freeform::Error (exit 1); it never writes to stdout itself.
+using Action = std::function<Json()>;
+
+struct Command {
+    std::string name;
+    std::string summary; // one line, listed by `freeform --help`
+    /// Declares the command's options on `app` (the subcommand) and returns the action that runs
+    /// on the values CLI11 parsed into them. `freeform NAME --help` is generated from `app`.
+    Action (*define)(CLI::App& app);
+};
+
+/// The commands, in the order `freeform --help` lists them (cli/commands.cpp).
+const std::vector<Command>& commands();
+
+/// Runs the tool on `args` (without the program name): the JSON result on `out`, an error line
+/// on `err`; returns the exit status (0 ok, 1 bad input, 2 bad usage).
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+// --- option helpers ----------------------------------------------------------------------------
+
+/// The positional arguments of a command, collected by CLI11; the command checks their count.
+CLI::Option* addPositionals(CLI::App& app, const std::string& name, std::vector<std::string>& values,
+                            const std::string& description);
+
+/// Exactly `count` positional arguments, else UsageError ("missing WHAT" / "unexpected argument").
+void expectPositional(const std::vector<std::string>& positional, std::size_t count, const std::string& what);
+
+/// A numeric option: an integer must be written in decimal, a floating-point number must be
+/// finite (CLI11 would also read hex, octal and nan); CLI11 reports anything else as bad usage.
+CLI::Option* addNumber(CLI::App& app, const std::string& name, int& value, const std::string& description);
+CLI::Option* addNumber(CLI::App& app, const std::string& name, long& value, const std::string& description);
+CLI::Option* addNumber(CLI::App& app, const std::string& name, double& value, const std::string& description);
+
+/// A switch: no value (--flag=x is bad usage) and not given twice, like every other option.
+CLI::Option* addFlag(CLI::App& app, const std::string& name, bool& value, const std::string& description);
+
+/// Whether the option was given on the command line.
+inline bool given(const CLI::Option* option) { return option->count() > 0; }
+
+/// A number from a string argument (e.g. --at); UsageError naming the option when it is not finite.
+double parseNumber(const std::string& text, const std::string& option);
+/// "a,b,c" into exactly `count` numbers (count 0: any positive count).
+std::vector<double> parseNumberList(const std::string& text, const std::string& option, std::size_t count);
+
+/// A point as a JSON array.
+Json pointJson(const double* p, int dim);
+
+/// The lattice object `name` of the document, or its only lattice when no name is given; Error
+/// naming the document when it is not a lattice, when there are several, or none.
+const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name);
+
+/// `freeform eval` dispatches on the object type. Each geometry supplies one evaluator:
+/// given the object, the text of --at and the derivative order K, it returns the JSON result.
+using Evaluator = Json (*)(const Document& doc, const DocumentObject& object, const std::string& at, int order);
+const std::map<std::string, Evaluator>& evaluators(); // cli/commands.cpp
+
+void addCurveEvaluators(std::map<std::string, Evaluator>& table);       // eval_curve.cpp
+void addLatticeEvaluators(std::map<std::string, Evaluator>& table);     // eval_lattice.cpp
+void addSplineEvaluators(std::map<std::string, Evaluator>& table);      // eval_spline.cpp
+void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table); // eval_subdivision.cpp
+void addSurfaceEvaluators(std::map<std::string, Evaluator>& table);     // eval_surface.cpp
+
+// The commands (one file each).
+Action defineBench(CLI::App& app);       // cmd_bench.cpp
+Action defineContinuity(CLI::App& app);  // cmd_continuity.cpp
+Action defineConvert(CLI::App& app);     // cmd_convert.cpp
+Action defineEval(CLI::App& app);        // cmd_eval.cpp
+Action defineFfd(CLI::App& app);         // cmd_ffd.cpp
+Action defineInfo(CLI::App& app);        // cmd_info.cpp
+Action defineInterpolate(CLI::App& app); // cmd_interpolate.cpp
+Action defineLattice(CLI::App& app);     // cmd_lattice.cpp
+Action defineSubdivide(CLI::App& app);   // cmd_subdivide.cpp
+Action defineTessellate(CLI::App& app);  // cmd_tessellate.cpp
+
+} // namespace freeform::cli

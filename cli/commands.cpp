@@ -1,0 +1,40 @@
+// The commands of `freeform`, in the order `freeform --help` lists them, and the object types
+// `freeform eval` knows. A new command is a new cmd_NAME.cpp with a defineNAME (declared in
+// command.h) and one line here.
+
+#include "command.h"
+
+namespace freeform::cli {
+
+const std::vector<Command>& commands()
+{
+    static const std::vector<Command> list = {
+        {"eval", "evaluate an object at a parameter (point, derivatives)", defineEval},
+        {"continuity", "continuity of every joint of a spline (C and G levels, jumps)", defineContinuity},
+        {"interpolate", "C2 cubic spline through points (natural, clamped, periodic ends)", defineInterpolate},
+        {"convert", "convert splines between forms, documents to and from OBJ free-form", defineConvert},
+        {"tessellate", "surfaces (document or .bpt) to a triangle mesh (OBJ with normals and uv)", defineTessellate},
+        {"subdivide", "the limit surface of a control cage (Catmull-Clark or Loop) as a triangle mesh", defineSubdivide},
+        {"info", "topology of a mesh file (counts, boundary, manifoldness, genus)", defineInfo},
+        {"lattice", "write the identity FFD lattice around a mesh", defineLattice},
+        {"ffd", "deform a mesh file or a document through a lattice (free-form deformation)", defineFfd},
+        {"bench", "measure free-form deformation speed on this machine", defineBench},
+    };
+    return list;
+}
+
+const std::map<std::string, Evaluator>& evaluators()
+{
+    static const std::map<std::string, Evaluator> table = [] {
+        std::map<std::string, Evaluator> t;
+        addCurveEvaluators(t);
+        addSplineEvaluators(t);
+        addSurfaceEvaluators(t);
+        addLatticeEvaluators(t);
+        addSubdivisionEvaluators(t);
+        return t;
+    }();
+    return table;
+}
+
+} // namespace freeform::cli
