@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "freeform/io/geometry_data.h"
 #include "freeform/core/error.h"
 #include "freeform/curve/interpolation.h"
 #include "freeform/surface/bezier_surface.h"
@@ -254,7 +255,7 @@ void updateLinks(ToolContext& c, State& s)
         FfdLink& link = s.links[name];
         const auto& data = std::get<LatticeData>(scene.object(li).data);
         try {
-            const Lattice lattice = Lattice::fromData(data);
+            const Lattice lattice = latticeFromData(data);
             const bool rebind = !link.session || link.mesh != settings.ffd.mesh || link.meshKey != mesh.key ||
                                 !link.session->matches(lattice);
             if (rebind) {
@@ -701,7 +702,7 @@ bool fitLattice(ToolContext& c, State& s, int meshItem)
         settings.ffd.mesh = mesh.name;
         const std::string meshName = mesh.name;
         c.scene.beginMerge();
-        const int i = c.scene.addObject({meshName + "_lattice", lattice.toData(), ""}, "fit lattice");
+        const int i = c.scene.addObject({meshName + "_lattice", latticeToData(lattice), ""}, "fit lattice");
         c.scene.setSettings(i, settings, "fit lattice");
         c.scene.endMerge();
         c.selection.selectItem(i);
@@ -719,7 +720,7 @@ bool resetLattice(ToolContext& c, State& s, int latticeItem)
     try {
         requireLattice(c.scene, latticeItem);
         DocumentObject o = c.scene.object(latticeItem);
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(o.data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(o.data));
         auto& d = std::get<LatticeData>(o.data);
         d.points = lattice.restPoints();
         c.scene.replaceObject(latticeItem, o, "reset lattice");
@@ -738,7 +739,7 @@ bool exportDeformed(ToolContext& c, State& s, int latticeItem, const std::string
         const int m = findItem(c.scene, item.settings.ffd.mesh);
         if (m < 0 || c.scene.item(m).kind != SceneItem::Kind::ImportedMesh)
             throw Error("the lattice is bound to no imported mesh");
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const DeformReport report = exportDeformedMesh(meshFilePath(c.scene, m), lattice, item.settings.ffd.strength, path);
         s.message = "wrote " + path + " (" + std::to_string(report.vertices) + " positions)";
         return true;
@@ -752,7 +753,7 @@ bool applyLatticeToObjects(ToolContext& c, State& s, int latticeItem)
 {
     try {
         requireLattice(c.scene, latticeItem);
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const double w = c.scene.item(latticeItem).settings.ffd.strength;
         int done = 0, skipped = 0;
         std::string why;
@@ -822,7 +823,7 @@ bool certifyLattice(ToolContext& c, State& s, int latticeItem)
     try {
         requireLattice(c.scene, latticeItem);
         const std::string& name = c.scene.item(latticeItem).name;
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const Certificate cert = certify(lattice, c.scene.item(latticeItem).settings.ffd.strength);
         if (auto it = s.links.find(name); it != s.links.end()) it->second.certificate = cert;
         s.message = "certificate: " + toString(cert.verdict);
@@ -937,11 +938,11 @@ bool Tools::onPointer(ToolContext& c, const PointerEvent& e)
                 scene.replaceObject(s.dragItem, next, "move de Boor point");
                 s.modeSnapshot = std::get<BezierSplineData>(next.data);
             } else {
-                const Lattice start = Lattice::fromData(std::get<LatticeData>(s.dragObject.data));
+                const Lattice start = latticeFromData(std::get<LatticeData>(s.dragObject.data));
                 s.directTarget = *hit + s.dragOffset;
                 const DirectManipulation dm = directManipulation(start, s.directRest, s.directTarget,
                                                                  scene.item(s.dragItem).settings.ffd.strength);
-                next.data = dm.lattice.toData();
+                next.data = dm.latticeToData(lattice);
                 scene.replaceObject(s.dragItem, next, "direct manipulation");
             }
         } catch (const Error& err) {

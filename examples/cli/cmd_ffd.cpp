@@ -5,9 +5,10 @@
 #include <cctype>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/volume/deform.h"
-#include "freeform/volume/deform_file.h"
+#include "freeform/io/deform_file.h"
 #include "spline_object.h"
 
 namespace freeform::cli {
@@ -182,7 +183,7 @@ int runFfd(const std::vector<std::string>& argv)
 
     const Document doc = readDocument(latticePath);
     const DocumentObject& object = findLattice(doc, args.get("object"));
-    const Lattice lattice = Lattice::fromData(std::get<LatticeData>(object.data));
+    const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/volume/lattice.h"
 
@@ -50,7 +51,7 @@ int runLattice(const std::vector<std::string>& argv)
     const PolygonMesh mesh = readPolygonMesh(meshPath);
     const Lattice lattice = Lattice::fit(mesh.positions, degree, margin, outside);
     Document doc;
-    doc.objects.push_back({name, lattice.toData(), ""});
+    doc.objects.push_back({name, latticeToData(lattice), ""});
     writeDocument(doc, output);
 
     Json out;

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/subdivision/subdivision_surface.h"
 
@@ -45,7 +46,7 @@ int runSubdivide(const std::vector<std::string>& argv)
         const Document doc = readDocument(*latticePath);
         const DocumentObject& object = findLattice(doc, args.get("object"));
         latticeName = object.name;
-        cage = deformCage(cage, Lattice::fromData(std::get<LatticeData>(object.data)));
+        cage = deformCage(cage, latticeFromData(std::get<LatticeData>(object.data)));
     }
     const SubdivisionSurface surface = [&] {
         try {

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "command.h"
+#include "freeform/io/bpt.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/tessellate/tessellate.h"
 #include "surface_objects.h"
