@@ -942,7 +942,7 @@ bool Tools::onPointer(ToolContext& c, const PointerEvent& e)
                 s.directTarget = *hit + s.dragOffset;
                 const DirectManipulation dm = directManipulation(start, s.directRest, s.directTarget,
                                                                  scene.item(s.dragItem).settings.ffd.strength);
-                next.data = dm.latticeToData(lattice);
+                next.data = latticeToData(dm.lattice);
                 scene.replaceObject(s.dragItem, next, "direct manipulation");
             }
         } catch (const Error& err) {
