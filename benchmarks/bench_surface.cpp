@@ -10,6 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include <freeform/surface/bezier_surface.h>
+#include <freeform/io/bpt.h>
 #include <freeform/tessellate/tessellate.h>
 
 #include <cmath>

@@ -6,9 +6,10 @@
 #include <memory>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/volume/deform.h"
-#include "freeform/volume/deform_file.h"
+#include "freeform/io/deform_file.h"
 #include "spline_object.h"
 
 namespace freeform::cli {
@@ -184,7 +185,7 @@ Json ffd(const FfdOptions& o)
     const Document doc = readDocument(o.lattice);
     const DocumentObject& object =
         findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
-    const Lattice lattice = Lattice::fromData(std::get<LatticeData>(object.data));
+    const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);
 

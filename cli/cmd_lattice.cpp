@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/volume/lattice.h"
 
@@ -46,7 +47,7 @@ Json lattice(const LatticeOptions& o)
     const PolygonMesh mesh = readPolygonMesh(meshPath);
     const Lattice fitted = Lattice::fit(mesh.positions, degree, margin, outside);
     Document doc;
-    doc.objects.push_back({name, fitted.toData(), ""});
+    doc.objects.push_back({name, latticeToData(fitted), ""});
     writeDocument(doc, output);
 
     Json out;

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/subdivision/subdivision_surface.h"
 
@@ -50,7 +51,7 @@ Json subdivide(const SubdivideOptions& o)
         const DocumentObject& object =
             findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
         latticeName = object.name;
-        cage = deformCage(cage, Lattice::fromData(std::get<LatticeData>(object.data)));
+        cage = deformCage(cage, latticeFromData(std::get<LatticeData>(object.data)));
     }
     const SubdivisionSurface surface = [&] {
         try {

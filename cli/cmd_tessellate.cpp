@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.h"
+#include "freeform/io/bpt.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/tessellate/tessellate.h"
 #include "surface_objects.h"

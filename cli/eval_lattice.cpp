@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/volume/lattice.h"
 
 namespace freeform::cli {
@@ -19,7 +20,7 @@ Json evalLattice(const Document& doc, const DocumentObject& object, const std::s
     if (order > 1)
         throw Error(doc.source + ": object \"" + object.name + "\": a lattice has --derivatives 0 or 1, not " +
                     std::to_string(order));
-    const Lattice lattice = Lattice::fromData(std::get<LatticeData>(object.data));
+    const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
     const auto jet = lattice.map(Eigen::Vector3d(stu[0], stu[1], stu[2]));
     Json out;
     out["object"] = object.name;

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "command.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/subdivision_surface.h"
 
 namespace freeform::cli {

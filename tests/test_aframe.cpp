@@ -72,7 +72,7 @@ Eigen::Matrix<long double, Dim, 1> deBoorEvaluate(const PointMatrix<double, Dim>
 
 } // namespace
 
-TEST_CASE("uniform open A-frame: the hand formulas of MATH.md section 3", "[aframe]")
+TEST_CASE("uniform open A-frame: the hand formulas of docs/math.md (A-frame)", "[aframe]")
 {
     PointMatrix<double, 2> d(2, 4);
     d << 0, 6, 12, 18, 0, 6, -6, 0;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "freeform/io/geometry_data.h"
 #include "support/random.h"
 
 using freeform::Lattice;
@@ -42,7 +43,7 @@ Points randomPointsIn(const Lattice& lat, int count, std::uint32_t seed, double 
 
 } // namespace
 
-TEST_CASE("lattice coordinates follow the MATH.md formulas and invert the frame", "[unit]")
+TEST_CASE("lattice coordinates follow the docs/math.md formulas and invert the frame", "[unit]")
 {
     for (const Frame& f : frames()) {
         CAPTURE(f.name);
@@ -127,11 +128,11 @@ TEST_CASE("document data round trip and validation", "[unit]")
          "axes": [[2, 0, 0], [0, 2, 0], [0, 0, 2]],
          "points": [[0,0,0],[0,0,2],[0,2,0],[0,2,2],[2,0,0],[2,0,2],[2,2,0],[3,2,2]],
          "outside": "keep"}]})");
-    const Lattice lat = Lattice::fromData(std::get<freeform::LatticeData>(doc.object("L").data));
+    const Lattice lat = latticeFromData(std::get<freeform::LatticeData>(doc.object("L").data));
     CHECK(lat.outside() == OutsidePolicy::Keep);
     CHECK(lat.displacements().col(7) == Eigen::Vector3d(1, 0, 0));
     CHECK(lat.displacements().leftCols(7).isZero(0.0));
-    const freeform::LatticeData back = lat.toData();
+    const freeform::LatticeData back = latticeToData(lat);
     CHECK(back.points == std::get<freeform::LatticeData>(doc.object("L").data).points);
     CHECK(back.outside == "keep");
     CHECK(back.axes == Eigen::Matrix3d(Eigen::Vector3d(2, 2, 2).asDiagonal()));

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "freeform/io/bpt.h"
 #include "freeform/surface/patch_complex.h"
 #include "support/process.h"
 #include "support/random.h"

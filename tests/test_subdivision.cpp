@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "freeform/io/geometry_data.h"
 #include "freeform/mesh/topology.h"
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/tessellate/tessellate.h"

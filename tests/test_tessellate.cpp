@@ -9,6 +9,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "freeform/io/bpt.h"
 #include "freeform/tessellate/tessellate.h"
 #include "support/random.h"
 

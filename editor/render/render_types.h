@@ -13,7 +13,7 @@ using Vec3f = Eigen::Vector3f;
 using Mat4f = Eigen::Matrix4f;
 using Mat3f = Eigen::Matrix3f;
 
-/// How surfaces are lit (MATH.md section 8; docs/editor.md says how each is realised on the GPU).
+/// How surfaces are lit (docs/math.md, "Lighting and shading"; docs/editor.md says how each is realised on the GPU).
 enum class Shading { Flat, Gouraud, Phong };
 /// The specular term: Phong (v . r) or Blinn-Phong (n . h).
 enum class SpecularModel { Phong, Blinn };

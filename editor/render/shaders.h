@@ -1,7 +1,7 @@
 #pragma once
 // GLSL 330 core shaders of the OpenGL backend, as raw strings. Each program is listed with its
 // uniforms. The mesh programs share one source compiled three times with a define in front
-// (FLAT, GOURAUD or PHONG); MATH.md section 8 gives the formulas, docs/editor.md the choices.
+// (FLAT, GOURAUD or PHONG); docs/math.md ("Lighting and shading") gives the formulas, docs/editor.md the choices.
 //
 // Eye space throughout: the camera at the origin looking down -z, lights given in eye space.
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <map>
 
+#include "freeform/io/geometry_data.h"
 #include "freeform/core/error.h"
 #include "scene/scene.h"
 
@@ -70,7 +71,7 @@ void Scene::updateDerived()
         const auto& data = std::get<LatticeData>(document_.objects[static_cast<std::size_t>(li)].data);
         const double strength = latticeItem.settings.ffd.strength;
         try {
-            const Lattice lattice = Lattice::fromData(data);
+            const Lattice lattice = latticeFromData(data);
             const bool rebind = !link.session || link.meshId != mesh.id || link.meshKey != mesh.key || !link.session->matches(lattice);
             if (rebind) {
                 // The rest mesh: the item's geometry as read, unless this link deformed it.

@@ -7,6 +7,7 @@
 #include <set>
 #include <type_traits>
 
+#include "freeform/io/geometry_data.h"
 #include "freeform/curve/aframe.h"
 #include "freeform/curve/bezier_curve.h"
 #include "freeform/curve/bezier_spline.h"

@@ -6,6 +6,8 @@
 #include <map>
 #include <set>
 
+#include "freeform/io/bpt.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/file.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/subdivision/subdivision_surface.h"

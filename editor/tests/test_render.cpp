@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string>
 
+#include "freeform/io/bpt.h"
 #include "image_compare.h"
 #include "support/process.h"
 

@@ -62,14 +62,14 @@ struct LinkedScene {
         mesh = scene.indexOf(std::string("ids-box"));
         REQUIRE(mesh >= 0);
         const Lattice fitted = Lattice::fit(scene.item(mesh).geometry.surface->positions, {1, 1, 1}, 0.1);
-        lattice = scene.addObject({"cage", fitted.toData(), ""});
+        lattice = scene.addObject({"cage", latticeToData(fitted), ""});
         mesh = scene.indexOf(std::string("ids-box")); // document objects come before meshes
         ObjectSettings settings;
         settings.ffd.mesh = "ids-box";
         scene.setSettings(lattice, settings);
         scene.updateGeometry();
     }
-    Lattice latticeNow() const { return Lattice::fromData(std::get<LatticeData>(scene.object(lattice).data)); }
+    Lattice latticeNow() const { return latticeFromData(std::get<LatticeData>(scene.object(lattice).data)); }
     double maxError() const
     {
         const Lattice l = latticeNow();

@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/io/geometry_data.h"
 #include "support/process.h"
 #include "tools/tools.h"
 
@@ -353,9 +354,9 @@ TEST_CASE("Subdivision: applying a lattice moves every cage vertex through Latti
     // A degree (2, 2, 2) lattice around the cube with its top centre point lifted and pushed in x:
     // not affine, so the cage's vertices move by different amounts.
     const Lattice rest = Lattice::identity({2, 2, 2}, Eigen::Vector3d(-1.5, -1.5, -1.5), 3 * Eigen::Matrix3d::Identity());
-    const int li = b.scene.addObject({"box", rest.toData(), ""});
+    const int li = b.scene.addObject({"box", latticeToData(rest), ""});
     b.scene.setControlPoint(li, rest.index(1, 1, 2), rest.restPoint(1, 1, 2) + Eigen::Vector3d(0.3, 0, 0.8));
-    const Lattice lattice = Lattice::fromData(std::get<LatticeData>(b.scene.object(li).data));
+    const Lattice lattice = latticeFromData(std::get<LatticeData>(b.scene.object(li).data));
     const std::string before = b.scene.text();
     const std::size_t steps = b.scene.history().size();
 

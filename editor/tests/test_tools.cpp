@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform/io/geometry_data.h"
 #include "interaction/picking.h"
 #include "support/process.h"
 #include "tools/tools.h"
@@ -684,7 +685,7 @@ Eigen::Vector3d boxVertex(int v) { return {kBox[v][0], kBox[v][1], kBox[v][2]}; 
 
 Lattice latticeOf(const Scene& scene, int item)
 {
-    return Lattice::fromData(std::get<LatticeData>(scene.object(item).data));
+    return latticeFromData(std::get<LatticeData>(scene.object(item).data));
 }
 
 } // namespace

@@ -8,7 +8,7 @@
 #include "freeform/core/parallel.h"
 #include "freeform/curve/bezier_spline.h"
 #include "freeform/io/mesh_io.h"
-#include "freeform/volume/deform_file.h"
+#include "freeform/io/deform_file.h"
 #include "freeform/surface/bezier_surface.h"
 
 namespace freeform::editor {

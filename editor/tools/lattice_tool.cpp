@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "freeform/io/geometry_data.h"
 #include "freeform/core/error.h"
 #include "freeform/volume/deform.h"
 #include "interaction/picking.h"
@@ -64,10 +65,10 @@ bool LatticeTool::onPointer(ToolContext& c, const PointerEvent& e)
         if (!hit || li < 0) return true;
         try {
             DocumentObject next = dragObject_;
-            const Lattice start = Lattice::fromData(std::get<LatticeData>(dragObject_.data));
+            const Lattice start = latticeFromData(std::get<LatticeData>(dragObject_.data));
             directTarget_ = *hit;
             const DirectManipulation dm = directManipulation(start, directRest_, directTarget_, scene.item(li).settings.ffd.strength);
-            next.data = dm.lattice.toData();
+            next.data = latticeToData(dm.lattice);
             scene.replaceObject(li, next, "direct manipulation");
         } catch (const Error& err) {
             status() = err.what();
@@ -138,7 +139,7 @@ bool LatticeTool::fitLattice(ToolContext& c, int meshItem)
         settings.ffd.mesh = mesh.name; // the document's form; the scene links by the mesh's id
         const std::string meshName = mesh.name;
         c.scene.beginMerge();
-        const int i = c.scene.addObject({meshName + "_lattice", lattice.toData(), ""}, "fit lattice");
+        const int i = c.scene.addObject({meshName + "_lattice", latticeToData(lattice), ""}, "fit lattice");
         c.scene.setSettings(i, settings, "fit lattice");
         c.scene.endMerge();
         c.selection.selectItem(i);
@@ -156,7 +157,7 @@ bool LatticeTool::resetLattice(ToolContext& c, int latticeItem)
     try {
         requireLattice(c.scene, latticeItem);
         DocumentObject o = c.scene.object(latticeItem);
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(o.data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(o.data));
         auto& d = std::get<LatticeData>(o.data);
         d.points = lattice.restPoints();
         c.scene.replaceObject(latticeItem, o, "reset lattice");
@@ -174,7 +175,7 @@ bool LatticeTool::exportDeformed(ToolContext& c, int latticeItem, const std::str
         const SceneItem& item = c.scene.item(latticeItem);
         const int m = c.scene.indexOf(item.deforms);
         if (m < 0 || c.scene.item(m).kind != SceneItem::Kind::ImportedMesh) throw Error("the lattice is bound to no imported mesh");
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const DeformReport report = exportDeformedMesh(meshFilePath(c.scene, m), lattice, item.settings.ffd.strength, path);
         status() = "wrote " + path + " (" + std::to_string(report.vertices) + " positions)";
         return true;
@@ -188,7 +189,7 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
 {
     try {
         requireLattice(c.scene, latticeItem);
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const double w = c.scene.item(latticeItem).settings.ffd.strength;
         int done = 0, skipped = 0;
         std::string why;
@@ -236,7 +237,7 @@ bool LatticeTool::certifyLattice(ToolContext& c, int latticeItem)
 {
     try {
         requireLattice(c.scene, latticeItem);
-        const Lattice lattice = Lattice::fromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         const Certificate cert = certify(lattice, c.scene.item(latticeItem).settings.ffd.strength);
         c.scene.setCertificate(latticeItem, cert);
         status() = "certificate: " + toString(cert.verdict);

@@ -95,22 +95,6 @@ Lattice Lattice::fit(const Points& positions, std::array<int, 3> degree, double 
     return identity(degree, lo, axes, outside);
 }
 
-Lattice Lattice::fromData(const LatticeData& data)
-{
-    return Lattice(data.degree, data.origin, data.axes, data.points, parseOutsidePolicy(data.outside, "lattice: outside"));
-}
-
-LatticeData Lattice::toData() const
-{
-    LatticeData d;
-    d.degree = degree_;
-    d.origin = origin_;
-    d.axes = axes_;
-    d.points = points_;
-    d.outside = toString(outside_);
-    return d;
-}
-
 void Lattice::setControlPoint(int i, int j, int k, const Eigen::Vector3d& p)
 {
     if (i < 0 || i > degree_[0] || j < 0 || j > degree_[1] || k < 0 || k > degree_[2])

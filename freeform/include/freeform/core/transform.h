@@ -1,7 +1,7 @@
 #pragma once
 // Homogeneous 4x4 transforms for drawing geometry: model transforms (translation, scaling, rotation
 // about any unit axis), the camera (look-at), the projections (perspective frustum, orthographic)
-// and the viewport, plus the normal matrix. Formulas: docs/math (MATH.md section 7).
+// and the viewport, plus the normal matrix. Formulas: docs/math.md ("Transforms and projection").
 //
 // Conventions (those of OpenGL): column vectors, right-handed eye space with the camera at the
 // origin looking down -z, projections map the view volume to the cube [-1,1]^3 (near plane to
@@ -111,7 +111,7 @@ Matrix4<Scalar> lookAt(const Vector3<Scalar>& eye, const Vector3<Scalar>& target
 }
 
 /// The perspective projection of the frustum with the near-plane rectangle [l,r] x [b,t] at
-/// distance n and the far plane at f (MATH.md section 7). Error unless l != r, b != t, 0 < n < f.
+/// distance n and the far plane at f (docs/math.md, "Transforms and projection"). Error unless l != r, b != t, 0 < n < f.
 template <typename Scalar>
 Matrix4<Scalar> frustum(Scalar l, Scalar r, Scalar b, Scalar t, Scalar n, Scalar f)
 {

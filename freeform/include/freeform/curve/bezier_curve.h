@@ -424,4 +424,12 @@ typename BezierCurve<Scalar, Dim>::Reduction BezierCurve<Scalar, Dim>::reduced()
     return {BezierCurve(std::move(c)), bound};
 }
 
+// Instantiated once in the library (src/curve/instantiations.cpp); user code links them.
+extern template class BezierCurve<float, 2>;
+extern template class BezierCurve<float, 3>;
+extern template class BezierCurve<double, 2>;
+extern template class BezierCurve<double, 3>;
+extern template class BezierCurve<long double, 2>;
+extern template class BezierCurve<long double, 3>;
+
 } // namespace freeform

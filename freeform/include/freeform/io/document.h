@@ -8,7 +8,8 @@
 // The reader is strict: an unknown type or field, a wrong array shape, a non-integer degree or a
 // number that is not finite is a freeform::Error naming the source, the object and the field.
 // The document holds plain data (points in double, dimension known at run time); the geometry
-// classes are built from it by the code that uses an object (see io/objects.h).
+// classes are built from it by the document layer (document/document.h: TypedDocument) and by
+// io/geometry_data.h (latticeFromData, cageFromData).
 
 #include <Eigen/Core>
 

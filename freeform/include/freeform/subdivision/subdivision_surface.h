@@ -27,7 +27,6 @@
 #include <string>
 #include <vector>
 
-#include "freeform/io/document.h"
 #include "freeform/mesh/polygon_mesh.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/volume/deform.h"
@@ -79,16 +78,7 @@ SubdivisionScheme defaultScheme(const PolygonMesh& mesh);
 /// header comment).
 void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const std::string& what = "cage");
 
-/// Reads a cage from any mesh file the library reads (io/mesh_io.h). In OBJ files the crease tags
-/// of OpenSubdiv's shape format are read too, with 0-based vertex indices:
-///   t crease 2/1 V0 V1 SHARPNESS      (several pairs: 2k/k V0 V1 V2 V3 ... S1 .. Sk, or 2k/1: one S)
-///   t corner 1/1 V SHARPNESS          (likewise k/k or k/1)
-/// Other tags are an Error naming the line. MeshFile keeps `t` lines verbatim, so a cage deformed
-/// with `freeform ffd` keeps its creases.
-SubdivisionCage readCage(const std::string& path);
-
-/// Parses the `t` lines of an OBJ text into the cage's creases and corners (see readCage).
-void parseCreaseTags(const std::string& objText, const std::string& source, SubdivisionCage& cage);
+// Reading a cage from a mesh file (OBJ crease tags) and from a document object: io/geometry_data.h.
 
 /// Position, first partial derivatives and unit normal of the limit surface at a point.
 struct LimitPoint {
@@ -170,16 +160,6 @@ private:
     SubdivisionCage cage_;
     std::vector<double> patchPoints_; // all faces' patch points, xyz, at topology offsets
 };
-
-/// The cage of a document's subdivision_surface object: the mesh file (a relative path is taken
-/// relative to documentDirectory; OBJ crease tags are read) or the inline vertices and faces, then
-/// the object's own creases and corners appended. Error prefixed with `what`.
-SubdivisionCage cageFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
-                             const std::string& what);
-
-/// The surface of a document's subdivision_surface object (cageFromData, its scheme and boundary).
-SubdivisionSurface surfaceFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
-                                   const std::string& what);
 
 /// The cage with its vertices moved through the lattice (deformPoints); faces and creases kept.
 /// The limit surface of the deformed cage equals the deformed limit surface only when the

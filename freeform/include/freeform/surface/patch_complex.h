@@ -7,8 +7,7 @@
 // that agree (exactly, or within a given tolerance) in the same or the opposite order; an edge
 // whose control points all coincide is "collapsed" (a pole, as at the teapot's lid) and is shared
 // with nothing. Nothing else is assumed: the tessellator and the continuity report find the
-// shared edges themselves (sharedEdges()). The .bpt reader is strict and names the line of every
-// error. Math and conventions: docs/surfaces.md.
+// shared edges themselves (sharedEdges()). (The .bpt reader is in io/bpt.h.) Math and conventions: docs/surfaces.md.
 
 #include <array>
 #include <string>
@@ -71,18 +70,7 @@ struct EdgeContinuity {
 std::vector<EdgeContinuity> edgeContinuity(const PatchComplex& complex, double tolerance = 1e-9,
                                            double angleTolerance = 1e-6);
 
-/// Parses the .bpt text format: the number of patches on the first line, then per patch a line
-/// "m n" (degrees) and (m+1)(n+1) lines "x y z", point (i, j) on line i*(n+1) + j of the patch.
-/// Blank lines are skipped; anything else that does not fit (a missing or extra number, a
-/// non-number, a degree outside 1..67, fewer or more patches than announced) is an Error naming
-/// `source` and the line.
-PatchComplex parseBpt(const std::string& text, const std::string& source = "bpt");
-
-/// Reads a .bpt file (Error naming the path when it cannot be read or parsed).
-PatchComplex readBpt(const std::string& path);
-
-/// The complex in .bpt form (numbers in shortest round-trip form).
-std::string formatBpt(const PatchComplex& complex);
+// The .bpt text format (parseBpt, readBpt, formatBpt): io/bpt.h.
 
 /// The C2 bicubic spline surface with the de Boor points `points` (3 x rows*cols, point (r, c) at
 /// column r*cols + c; rows along u, cols along v) as Bézier patches: the tensor-product A-frame

@@ -238,4 +238,9 @@ private:
     Points points_;
 };
 
+// Instantiated once in the library (src/volume/instantiations.cpp); user code links them.
+extern template class BezierVolume<float>;
+extern template class BezierVolume<double>;
+extern template class BezierVolume<long double>;
+
 } // namespace freeform

@@ -3,7 +3,7 @@
 //
 // The frame is an origin X0 and three edge vectors S, T, U (columns of axes(); any linearly
 // independent triple, orthogonal or not, right- or left-handed). A world point p has the lattice
-// coordinates (MATH.md section 5)
+// coordinates (docs/math.md, "Free-form deformation")
 //     s = (T x U)^T (p - X0) / ((T x U)^T S),  t = (S x U)^T (p - X0) / ((S x U)^T T),
 //     u = (S x T)^T (p - X0) / ((S x T)^T U),
 // and the rest (undeformed) control point (i, j, k) is X0 + (i/l) S + (j/m) T + (k/n) U. Control
@@ -20,7 +20,6 @@
 #include <string>
 
 #include "freeform/core/types.h"
-#include "freeform/io/document.h"
 #include "freeform/volume/bezier_volume.h"
 
 namespace freeform {
@@ -62,17 +61,13 @@ public:
     static Lattice fit(const Points& positions, std::array<int, 3> degree, double margin = 0.05,
                        OutsidePolicy outside = OutsidePolicy::Clamp);
 
-    /// From / to the document's lattice object (points, frame, outside policy).
-    static Lattice fromData(const LatticeData& data);
-    LatticeData toData() const;
-
     const std::array<int, 3>& degrees() const { return degree_; }
     int degree(int axis) const { return degree_[static_cast<std::size_t>(axis)]; }
     const Eigen::Vector3d& origin() const { return origin_; }
     /// Edge vectors S, T, U as columns.
     const Eigen::Matrix3d& axes() const { return axes_; }
     /// The map world -> lattice coordinates is (s,t,u) = dual() * (p - X0); row a is the
-    /// normalised cross product of the other two edges (the inverse of axes(), formed as in MATH.md).
+    /// normalised cross product of the other two edges (the inverse of axes(), formed as in docs/math.md).
     const Eigen::Matrix3d& dual() const { return dual_; }
     OutsidePolicy outside() const { return outside_; }
     void setOutside(OutsidePolicy policy) { outside_ = policy; }
@@ -92,7 +87,7 @@ public:
     const Points& displacements() const { return displacement_; }
     bool isRest() const { return displacement_.isZero(0.0); }
 
-    /// Lattice coordinates of a world point (the MATH.md formulas).
+    /// Lattice coordinates of a world point (the docs/math.md formulas).
     Eigen::Vector3d toLattice(const Eigen::Vector3d& p) const;
     /// X0 + s S + t T + u U.
     Eigen::Vector3d toWorld(const Eigen::Vector3d& stu) const { return origin_ + axes_ * stu; }

@@ -1,5 +1,6 @@
 #pragma once
-// Free-form deformation of a mesh file in place, losing nothing (docs/ffd.md, docs/mesh-io.md):
+// Free-form deformation of a mesh file in place, losing nothing (docs/ffd.md, docs/mesh-io.md; in
+// io/ since it works on files, moved from volume/):
 // the file's vertex positions move through the lattice; its normals and tangents, each anchored to
 // a position, follow the map there; every other part of the file (faces, texture coordinates,
 // groups, materials, colours, the order of everything) stays as read. `freeform ffd` and the

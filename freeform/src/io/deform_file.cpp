@@ -1,6 +1,6 @@
-// Free-form deformation of a mesh file in place (volume/deform_file.h).
+// Free-form deformation of a mesh file in place (io/deform_file.h).
 
-#include "freeform/volume/deform_file.h"
+#include "freeform/io/deform_file.h"
 
 namespace freeform {
 

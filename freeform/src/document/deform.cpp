@@ -1,0 +1,218 @@
+// deformDocument (document/operations.h): one rule for every object type under free-form
+// deformation, written out in docs/ffd.md ("Documents").
+
+#include <cmath>
+
+#include "freeform/core/error.h"
+#include "freeform/document/operations.h"
+
+namespace freeform {
+namespace {
+
+bool controlPointsInside(const Lattice& lattice, const Eigen::Ref<const Eigen::Matrix<double, 3, Eigen::Dynamic>>& points)
+{
+    for (Eigen::Index i = 0; i < points.cols(); ++i)
+        if (!Lattice::insideBox(lattice.toLattice(points.col(i)))) return false;
+    return true;
+}
+
+/// A spline's segments pushed through the lattice exactly, as a bezier_spline of degree
+/// d (l+m+n) on the same intervals (joints shared, as the format stores them).
+BezierSplineData deformSpline(const Lattice& lattice, const BezierSpline<double, 3>& spline, double strength)
+{
+    BezierSplineData out;
+    out.closed = spline.closed();
+    out.intervals = spline.intervals();
+    const int segments = spline.segmentCount();
+    for (int i = 0; i < segments; ++i) {
+        const BezierCurve<double, 3> piece = deformCurve(lattice, spline.segment(i), strength);
+        const int d = piece.degree();
+        if (i == 0) {
+            out.degree = d;
+            out.points.resize(3, static_cast<Eigen::Index>(spline.closed() ? segments * d : segments * d + 1));
+        }
+        // Segment i owns its first d points; the last open segment also its end point.
+        out.points.middleCols(static_cast<Eigen::Index>(i) * d, d) = piece.controlPoints().leftCols(d);
+        if (!spline.closed() && i + 1 == segments) out.points.col(out.points.cols() - 1) = piece.controlPoints().col(d);
+    }
+    return out;
+}
+
+/// Points moved by the lattice polynomial (displacement form, no outside policy).
+PointColumns mapPolynomial(const Lattice& lattice, const PointColumns& points, double strength)
+{
+    Lattice continued = lattice;
+    continued.setOutside(OutsidePolicy::Extrapolate);
+    PointColumns out(3, points.cols());
+    for (Eigen::Index i = 0; i < points.cols(); ++i) out.col(i) = continued.deform(points.col(i), strength).point;
+    return out;
+}
+
+bool allPatchesInside(const Lattice& lattice, const PatchComplex& complex)
+{
+    for (const Patch& p : complex.patches)
+        if (!controlPointsInside(lattice, p.controlPoints())) return false;
+    return true;
+}
+
+} // namespace
+
+bool isAffineLattice(const Lattice& lattice, double strength)
+{
+    if (strength == 0 || lattice.isRest()) return true;
+    const auto& deg = lattice.degrees();
+    const Lattice::Points& d = lattice.displacements();
+    const Eigen::Vector3d d0 = d.col(lattice.index(0, 0, 0));
+    const Eigen::Vector3d ds = d.col(lattice.index(deg[0], 0, 0)) - d0;
+    const Eigen::Vector3d dt = d.col(lattice.index(0, deg[1], 0)) - d0;
+    const Eigen::Vector3d du = d.col(lattice.index(0, 0, deg[2])) - d0;
+    double scale = lattice.axes().colwise().norm().maxCoeff();
+    scale = std::max(scale, d.colwise().norm().maxCoeff());
+    for (int i = 0; i <= deg[0]; ++i)
+        for (int j = 0; j <= deg[1]; ++j)
+            for (int k = 0; k <= deg[2]; ++k) {
+                // Bernstein polynomials reproduce linear functions with coefficients at i/l, j/m, k/n.
+                const Eigen::Vector3d affine = d0 + (double(i) / deg[0]) * ds + (double(j) / deg[1]) * dt + (double(k) / deg[2]) * du;
+                if ((d.col(lattice.index(i, j, k)) - affine).norm() > 1e-12 * scale) return false;
+            }
+    return true;
+}
+
+DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, const DeformDocumentOptions& options)
+{
+    const double w = options.strength;
+    const bool extrapolate = lattice.outside() == OutsidePolicy::Extrapolate;
+    const bool affine = isAffineLattice(lattice, w);
+    DeformDocumentReport report;
+    std::vector<std::pair<ObjectId, ObjectData>> changes;
+
+    for (const TypedObject& o : doc.objects()) {
+        const std::string type = o.type();
+        auto skip = [&](const std::string& reason) { report.skipped.push_back({o.id(), o.name(), type, reason}); };
+        if (std::holds_alternative<Lattice>(o.geometry())) {
+            skip("no exact deformation for a " + type);
+            continue;
+        }
+        if (o.dimension() != 3) {
+            skip("a 2D object (the lattice deforms 3D space)");
+            continue;
+        }
+        DeformedObject r;
+        r.id = o.id();
+        r.name = o.name();
+        r.from = type;
+        ObjectData result;
+        std::string note;
+        try {
+            const Geometry& g = o.geometry();
+            if (const auto* c = std::get_if<BezierCurve<double, 3>>(&g)) {
+                r.inside = controlPointsInside(lattice, c->controlPoints());
+                BezierCurveData d;
+                d.points = deformCurve(lattice, *c, w).controlPoints();
+                r.degree = {static_cast<int>(d.points.cols()) - 1};
+                result = std::move(d);
+            } else if (const auto* s = std::get_if<BezierSurface<double, 3>>(&g)) {
+                r.inside = controlPointsInside(lattice, s->controlPoints());
+                const BezierSurface<double, 3> moved = deformSurface(lattice, *s, w);
+                BezierSurfaceData d;
+                d.degree = {moved.degreeU(), moved.degreeV()};
+                d.points = moved.controlPoints();
+                r.degree = {moved.degreeU(), moved.degreeV()};
+                result = std::move(d);
+            } else if (const auto* b = std::get_if<BezierSpline<double, 3>>(&g)) {
+                r.inside = controlPointsInside(lattice, b->controlPoints());
+                BezierSplineData d = deformSpline(lattice, *b, w);
+                r.degree = {d.degree};
+                result = std::move(d);
+            } else if (const auto* db = std::get_if<DeBoorSpline<3>>(&g)) {
+                r.inside = controlPointsInside(lattice, db->bezier.controlPoints());
+                if (affine) {
+                    // An affine map commutes with the A-frame: the image is the cubic C2 spline on the
+                    // same intervals whose de Boor points are the mapped de Boor points.
+                    DeBoorSplineData d = std::get<DeBoorSplineData>(o.data());
+                    d.points = mapPolynomial(lattice, d.points, w);
+                    r.degree = {3};
+                    result = std::move(d);
+                } else {
+                    BezierSplineData d = deformSpline(lattice, db->bezier, w);
+                    r.degree = {d.degree};
+                    note = "the lattice is not affine: the composition raises the degree to " + std::to_string(d.degree) +
+                           ", so the result is a bezier_spline, not a cubic deboor_spline";
+                    result = std::move(d);
+                }
+            } else if (const auto* ds = std::get_if<DeBoorSurface>(&g)) {
+                if (!affine) {
+                    skip("no exact deformation for a " + type);
+                    continue;
+                }
+                r.inside = allPatchesInside(lattice, ds->patches);
+                DeBoorSurfaceData d = std::get<DeBoorSurfaceData>(o.data());
+                d.points = mapPolynomial(lattice, d.points, w);
+                r.degree = {3, 3};
+                result = std::move(d);
+            } else if (const auto* sub = std::get_if<SubdivisionObject>(&g)) {
+                const SubdivisionCage& cage = sub->cage();
+                const auto& data = std::get<SubdivisionSurfaceData>(o.data());
+                r.inside = controlPointsInside(lattice, cage.mesh.positions);
+                SubdivisionSurfaceData d = data;
+                Eigen::Matrix<double, 3, Eigen::Dynamic> v;
+                if (data.mesh.empty()) {
+                    v = data.vertices;
+                } else {
+                    // A cage from a mesh file is written inline (its OBJ crease tags become the
+                    // object's creases and corners), so the document holds the deformed cage.
+                    v = cage.mesh.positions;
+                    d.mesh.clear();
+                    d.faces.clear();
+                    for (int f = 0; f < cage.mesh.faceCount(); ++f)
+                        d.faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
+                    d.creases.clear();
+                    d.corners.clear();
+                    for (const EdgeCrease& e : cage.creases)
+                        d.creases.push_back({double(e.v0), double(e.v1), e.sharpness});
+                    for (const VertexCorner& c : cage.corners) d.corners.push_back({double(c.vertex), c.sharpness});
+                    note = "the cage from \"" + data.mesh + "\" is written inline; ";
+                }
+                DeformOptions deform;
+                deform.strength = w;
+                deform.threads = options.threads;
+                deformPoints(lattice, v, deform);
+                d.vertices = v;
+                result = std::move(d);
+                note += affine ? "cage deformed as a cage (the lattice is affine: the limit surface moves exactly)"
+                               : "cage deformed as a cage: its limit surface is not the deformed limit surface "
+                                 "(exact only for affine lattices)";
+            } else {
+                skip("no exact deformation for a " + type);
+                continue;
+            }
+        } catch (const Error& e) {
+            throw Error(doc.what(o) + ": " + e.what());
+        }
+        const bool isCage = std::holds_alternative<SubdivisionObject>(o.geometry());
+        // Subdivision cages follow the outside policy point by point (as meshes); everything else is
+        // the polynomial continued, which equals point-wise FFD inside the box or under extrapolate.
+        r.exact = isCage ? affine && (r.inside || extrapolate) : (r.inside || extrapolate);
+        if (!isCage && !r.exact) {
+            if (options.skipInexact) {
+                skip("control points outside the lattice box (exact only inside, or with the extrapolate policy)");
+                continue;
+            }
+            if (!note.empty()) note += "; ";
+            note += "control points outside the lattice box: the lattice polynomial is continued there, not the " +
+                    toString(lattice.outside()) + " policy";
+        }
+        r.type = objectType(result);
+        r.note = std::move(note);
+        report.objects.push_back(std::move(r));
+        changes.emplace_back(o.id(), std::move(result));
+    }
+    report.certificate = certify(lattice, w);
+    // Build every new geometry before changing the document, so an error leaves it as it was.
+    TypedDocument next = doc;
+    for (auto& [id, data] : changes) next.replace(id, std::move(data));
+    doc = std::move(next);
+    return report;
+}
+
+} // namespace freeform
