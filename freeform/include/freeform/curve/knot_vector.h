@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
 
@@ -211,6 +213,31 @@ public:
             for (int j = 0; j <= p; ++j) ders[kk * P + j] *= factor;
             factor *= Scalar(p - kk);
         }
+    }
+
+    /// The Bézier extraction operator of knot span `span` over [a, b] = [u_span, u_(span+1)]: the
+    /// (p+1) x (p+1) matrix E with Bézier point i of that span = sum_j E(i, j) P_(span-p+j). Row i
+    /// is the blossom at (a^(p-i), b^i) applied to unit control points (de Boor's algorithm with a
+    /// different argument at each level).
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> extractionOperator(int span) const
+    {
+        const int p = degree_;
+        const Scalar a = knots_[span], b = knots_[span + 1];
+        Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> e(p + 1, p + 1);
+        std::vector<Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> d(static_cast<std::size_t>(p + 1));
+        for (int i = 0; i <= p; ++i) {
+            for (int j = 0; j <= p; ++j) d[j] = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Unit(p + 1, j);
+            for (int r = 1; r <= p; ++r) {
+                const Scalar x = r - 1 < p - i ? a : b;
+                for (int j = p; j >= r; --j) {
+                    const int k = span - p + j;
+                    const Scalar al = (x - knots_[k]) / (knots_[k + p + 1 - r] - knots_[k]);
+                    d[j] = (Scalar(1) - al) * d[j - 1] + al * d[j];
+                }
+            }
+            e.row(i) = d[p].transpose();
+        }
+        return e;
     }
 
 private:
