@@ -16,8 +16,10 @@
 //   - bezierPieces(): Bézier extraction, one rational Bézier piece per non-empty knot span, its
 //     points the blossom values at (a^(p-i), b^i);
 //   - evaluateMany()/evaluateManyWithDerivative(): the batch path; the spans' Bézier pieces are
-//     extracted once in the constructor, each run of parameters inside one span goes through the
-//     polynomial Bézier batch kernel (curve/batch.h) and one division.
+//     extracted once in the constructor and turned into Taylor coefficients about the span
+//     midpoint (|s - 1/2| <= 1/2 in the local parameter s, so the power form is well conditioned at
+//     the degrees NURBS use); each run of parameters inside one span costs one Horner scheme of p
+//     steps in Dim + 1 coordinates and one division per point.
 
 #include <algorithm>
 #include <cmath>
@@ -462,8 +464,16 @@ private:
                 pieces_.col(k * (p + 1) + i) = blossom(span, args);
             }
         }
-        if (!rational_) {
-            polyPieces_ = pieces_.template topRows<Dim>();
+        // Taylor coefficients of each homogeneous piece about s = 1/2: c_j = A^(j)(1/2) / j!.
+        taylor_.resize(Dim + 1, count * (p + 1));
+        for (int k = 0; k < count; ++k) {
+            const BezierCurve<Scalar, Dim + 1> piece(HPoints(pieces_.middleCols(k * (p + 1), p + 1)));
+            const auto d = piece.derivatives(Scalar(0.5), p);
+            Scalar fact(1);
+            for (int j = 0; j <= p; ++j) {
+                if (j > 0) fact *= Scalar(j);
+                taylor_.col(k * (p + 1) + j) = d.col(j) / fact;
+            }
         }
     }
 
@@ -496,39 +506,48 @@ private:
     }
 
     /// Evaluates piece k at len local parameters s; positions to pos, and when order 1 the first
-    /// derivatives (with respect to u) to d1.
+    /// derivatives (with respect to u) to d1. Horner on the piece's Taylor coefficients about its
+    /// midpoint (|s - 1/2| <= 1/2), fully unrolled for degrees up to 7.
     void evalRun(int k, const Scalar* s, std::size_t len, Scalar* pos, Scalar* d1, int order) const
     {
         const int p = degree();
-        const Scalar h = breaks_[k + 1] - breaks_[k];
-        if (!rational_ && order == 0) {
-            evaluateBezierBatch<Scalar, Dim>(polyPieces_.data() + static_cast<std::size_t>(k * (p + 1) * Dim), p, s, len, pos);
-            return;
+        const Scalar* c = taylor_.data() + static_cast<std::size_t>(k * (p + 1) * (Dim + 1));
+        const Scalar invH = Scalar(1) / (breaks_[k + 1] - breaks_[k]);
+        switch (p) {
+        case 1: return hornerRun<1>(c, s, len, pos, d1, order, invH);
+        case 2: return hornerRun<2>(c, s, len, pos, d1, order, invH);
+        case 3: return hornerRun<3>(c, s, len, pos, d1, order, invH);
+        case 4: return hornerRun<4>(c, s, len, pos, d1, order, invH);
+        case 5: return hornerRun<5>(c, s, len, pos, d1, order, invH);
+        case 6: return hornerRun<6>(c, s, len, pos, d1, order, invH);
+        case 7: return hornerRun<7>(c, s, len, pos, d1, order, invH);
+        default: return hornerRun<-1>(c, s, len, pos, d1, order, invH);
         }
-        const Scalar* ctrl = pieces_.data() + static_cast<std::size_t>(k * (p + 1) * (Dim + 1));
-        std::vector<Scalar> homValues(len * (Dim + 1)), hodValues;
-        evaluateBezierBatch<Scalar, Dim + 1>(ctrl, p, s, len, homValues.data());
+    }
+
+    template <int P>
+    void hornerRun(const Scalar* c, const Scalar* s, std::size_t len, Scalar* pos, Scalar* d1, int order,
+                   Scalar invH) const
+    {
+        constexpr int H = Dim + 1;
+        const int p = P > 0 ? P : degree();
         for (std::size_t j = 0; j < len; ++j) {
-            const Scalar* hj = homValues.data() + j * (Dim + 1);
-            const Scalar inv = Scalar(1) / hj[Dim];
-            for (int d = 0; d < Dim; ++d) pos[j * Dim + d] = hj[d] * inv;
-        }
-        if (order == 0) return;
-        if (p == 0) {
-            for (std::size_t j = 0; j < len * Dim; ++j) d1[j] = Scalar(0);
-            return;
-        }
-        Scalar hod[(kMaxDegree + 1) * (Dim + 1)];
-        for (int i = 0; i < p; ++i)
-            for (int d = 0; d <= Dim; ++d)
-                hod[i * (Dim + 1) + d] = Scalar(p) / h * (ctrl[(i + 1) * (Dim + 1) + d] - ctrl[i * (Dim + 1) + d]);
-        hodValues.resize(len * (Dim + 1));
-        evaluateBezierBatch<Scalar, Dim + 1>(hod, p - 1, s, len, hodValues.data());
-        for (std::size_t j = 0; j < len; ++j) {
-            const Scalar* hj = homValues.data() + j * (Dim + 1);
-            const Scalar* dj = hodValues.data() + j * (Dim + 1);
-            const Scalar inv = Scalar(1) / hj[Dim];
-            for (int d = 0; d < Dim; ++d) d1[j * Dim + d] = (dj[d] - dj[Dim] * pos[j * Dim + d]) * inv;
+            const Scalar x = s[j] - Scalar(0.5);
+            Scalar acc[H], dacc[H];
+            for (int d = 0; d < H; ++d) {
+                acc[d] = c[p * H + d];
+                dacc[d] = Scalar(0);
+            }
+            for (int i = p - 1; i >= 0; --i)
+                for (int d = 0; d < H; ++d) {
+                    dacc[d] = dacc[d] * x + acc[d];
+                    acc[d] = acc[d] * x + c[i * H + d];
+                }
+            const Scalar inv = Scalar(1) / acc[Dim];
+            for (int d = 0; d < Dim; ++d) pos[j * Dim + d] = acc[d] * inv;
+            if (order)
+                for (int d = 0; d < Dim; ++d)
+                    d1[j * Dim + d] = (dacc[d] - dacc[Dim] * pos[j * Dim + d]) * inv * invH;
         }
     }
 
@@ -538,7 +557,7 @@ private:
     std::vector<Scalar> breaks_;
     std::vector<int> spanOf_;
     HPoints pieces_;                 // Bézier pieces, (p+1) homogeneous points each
-    Points polyPieces_;              // the same without the weight row, for polynomial curves
+    HPoints taylor_;                 // their Taylor coefficients about the span midpoints
 };
 
 extern template class NurbsCurve<double, 2>;

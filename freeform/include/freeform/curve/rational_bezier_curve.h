@@ -161,11 +161,14 @@ public:
             return c + scale * (std::cos(angle) * a + std::sin(angle) * b);
         };
         // Homogeneous quadratic: (p0, 1), (w * apex, w) with w * apex = w c + (cos mid a + sin mid b).
-        Eigen::Matrix<Scalar, Dim + 1, 3> h;
-        h.col(0) << at(start, 1), Scalar(1);
-        h.col(1) << PointType(w * c + (std::cos(mid) * a + std::sin(mid) * b)), w;
-        h.col(2) << at(start + sweep, 1), Scalar(1);
-        const Homogeneous quad((HPoints(h)));
+        HPoints h(Dim + 1, 3);
+        h.col(0).template head<Dim>() = at(start, 1);
+        h.col(1).template head<Dim>() = w * c + (std::cos(mid) * a + std::sin(mid) * b);
+        h.col(2).template head<Dim>() = at(start + sweep, 1);
+        h(Dim, 0) = Scalar(1);
+        h(Dim, 1) = w;
+        h(Dim, 2) = Scalar(1);
+        const Homogeneous quad(std::move(h));
         if (std::abs(sweep) <= 2 * pi / 3) return RationalBezierCurve(std::move(quad));
         return RationalBezierCurve(quad.elevated(1));
     }
