@@ -303,3 +303,52 @@ TEST_CASE("polynomial Bézier curves as NURBS evaluate identically", "[nurbs]")
     for (int i = 0; i <= 10; ++i) CHECK(maxDiff(c(i / 10.0), b(i / 10.0)) <= 1e-15);
     CHECK(c(0.5) == Eigen::Vector2d(2, 1.5));
 }
+
+TEST_CASE("knot removal undoes insertion and reports the deviation; elevation and reduction", "[nurbs][elevation]")
+{
+    for (int p = 1; p <= 6; ++p)
+        for (int variant = 0; variant < 4; ++variant) {
+            const auto c = randomCurve<3>(p, variant & 1, variant & 2, 7000u * p + variant);
+            const double a = c.domainStart(), b = c.domainEnd();
+            const double scale = c.controlPoints().cwiseAbs().maxCoeff();
+            const double u = a + (b - a) * 0.43;
+            CAPTURE(p, variant);
+            // Insert then remove: error ~ 0 and the same control points.
+            const auto back = c.insertKnot(u, 1).removeKnot(u);
+            CHECK(back.error <= 1e-12 * (1 + c.homogeneousPoints().cwiseAbs().maxCoeff()));
+            REQUIRE(back.curve.controlCount() == c.controlCount());
+            CHECK(maxDiff(back.curve.homogeneousPoints(), c.homogeneousPoints()) <= 1e-12 * (1 + c.homogeneousPoints().cwiseAbs().maxCoeff()));
+            // Elevation keeps the curve and raises every interior multiplicity by the count.
+            const auto e = c.elevated(2);
+            CHECK(e.degree() == p + 2);
+            for (double x : c.breakpoints())
+                if (x > a && x < b) CHECK(e.knotVector().multiplicity(x) == c.knotVector().multiplicity(x) + 2);
+            for (int s = 0; s <= 60; ++s) {
+                const double v = a + (b - a) * s / 60.0;
+                CHECK(maxDiff(e.evaluate(v), c.evaluate(v)) <= 1e-12 * scale);
+            }
+            // Reducing an elevated curve gives it back (error ~ 0, polynomial case measured).
+            if (p >= 1 && !(variant & 2)) {
+                const auto r = c.elevated(1).reduced(1e-9);
+                CHECK(r.error <= 1e-9);
+                CHECK(r.curve.degree() == p);
+                for (int s = 0; s <= 60; ++s) {
+                    const double v = a + (b - a) * s / 60.0;
+                    CHECK(maxDiff(r.curve.evaluate(v), c.evaluate(v)) <= 1e-10 * scale);
+                }
+            }
+        }
+    // Removing a knot that is not removable: the reported error bounds the measured deviation.
+    const auto c = randomCurve<2>(3, true, false, 99);
+    const double u = c.breakpoints()[1];
+    const auto removed = c.removeKnot(u);
+    CHECK(removed.error > 1e-6);
+    double worst = 0;
+    for (int s = 0; s <= 400; ++s) {
+        const double v = c.domainStart() + (c.domainEnd() - c.domainStart()) * s / 400.0;
+        worst = std::max(worst, (removed.curve(v) - c(v)).norm());
+    }
+    CHECK(worst <= removed.error * (1 + 1e-12));
+    CHECK(worst > 0);
+    CHECK_THROWS_WITH(c.removeKnot(c.domainStart() + 1e-9), Catch::Contains("is not a knot"));
+}

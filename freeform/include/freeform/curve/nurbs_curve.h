@@ -322,6 +322,27 @@ public:
         return NurbsCurve(Knots(std::move(R), degree(), "NurbsCurve::reversed"), HPoints(hom_.rowwise().reverse()));
     }
 
+    /// Result of removeKnot() and reduced(): the new curve and the error the operation reports.
+    struct Approximation;
+
+    /// Removes one occurrence of the interior knot u (The NURBS Book, A5.8, in homogeneous
+    /// coordinates). The result always has one knot and one control point less; `error` is the
+    /// mismatch of the two estimates of the changed control points, which bounds max |new - old|
+    /// over the curve for a polynomial curve (for a rational one it bounds the homogeneous curves'
+    /// difference). 0 up to rounding when u is removable (for example after insertKnot(u)).
+    Approximation removeKnot(Scalar u) const;
+
+    /// The same curve with degree p + times: Bézier extraction, elevation of every piece, and knot
+    /// removal back to the original continuity (each interior knot's multiplicity grows by times).
+    /// The result is clamped on the same domain.
+    NurbsCurve elevated(int times = 1) const;
+
+    /// Degree p - 1 (p >= 2): every piece reduced (BezierCurve::reduced on the homogeneous piece, ends
+    /// kept), joined C0, then interior knots removed towards the original multiplicities while the
+    /// accumulated error stays within `tolerance`. `error` bounds max |new - old| for polynomial
+    /// curves (homogeneous for rational ones).
+    Approximation reduced(Scalar tolerance = Scalar(0)) const;
+
     // ---------------------------------------------------------------- measures
 
     /// Tight axis-aligned bounding box over the domain: the ends of every Bézier piece and its
@@ -559,6 +580,136 @@ private:
     HPoints pieces_;                 // Bézier pieces, (p+1) homogeneous points each
     HPoints taylor_;                 // their Taylor coefficients about the span midpoints
 };
+
+template <typename Scalar, int Dim>
+struct NurbsCurve<Scalar, Dim>::Approximation {
+    NurbsCurve curve;
+    Scalar error;
+};
+
+template <typename Scalar, int Dim>
+typename NurbsCurve<Scalar, Dim>::Approximation NurbsCurve<Scalar, Dim>::removeKnot(Scalar u) const
+{
+    const int p = degree();
+    const std::vector<Scalar>& U = knots();
+    if (!(u > domainStart() && u < domainEnd()))
+        throw Error("NurbsCurve::removeKnot: " + num(u) + " is not an interior knot");
+    const int s = knots_.multiplicity(u);
+    if (s == 0) throw Error("NurbsCurve::removeKnot: " + num(u) + " is not a knot");
+    const int r = static_cast<int>(std::upper_bound(U.begin(), U.end(), u) - U.begin()) - 1; // last index of u
+    const int first = r - p, last = r - s;
+    const int n = controlCount() - 1;
+    std::vector<HPoint> temp(static_cast<std::size_t>(last - first + 3));
+    HPoints P = hom_;
+    temp[0] = first - 1 >= 0 ? HPoint(P.col(first - 1)) : HPoint::Zero();
+    temp[static_cast<std::size_t>(last - first + 2)] = last + 1 <= n ? HPoint(P.col(last + 1)) : HPoint::Zero();
+    int i = first, j = last, ii = 1, jj = last - first + 1;
+    while (j - i > 0) {
+        const Scalar ai = (u - U[i]) / (U[i + p + 1] - U[i]);
+        const Scalar aj = (u - U[j]) / (U[j + p + 1] - U[j]);
+        temp[ii] = (P.col(i) - (Scalar(1) - ai) * temp[ii - 1]) / ai;
+        temp[jj] = (P.col(j) - aj * temp[jj + 1]) / (Scalar(1) - aj);
+        ++i; ++ii; --j; --jj;
+    }
+    Scalar error;
+    if (j - i < 0) {
+        error = (temp[ii - 1] - temp[jj + 1]).norm();
+    } else {
+        const Scalar ai = (u - U[i]) / (U[i + p + 1] - U[i]);
+        error = (HPoint(P.col(i)) - (ai * temp[ii + 1] + (Scalar(1) - ai) * temp[ii - 1])).norm();
+    }
+    i = first;
+    j = last;
+    while (j - i > 0) {
+        P.col(i) = temp[i - first + 1];
+        P.col(j) = temp[j - first + 1];
+        ++i;
+        --j;
+    }
+    const int fout = (2 * r - s - p) / 2;
+    HPoints Q(Dim + 1, n);
+    Q.leftCols(fout) = P.leftCols(fout);
+    Q.rightCols(n - fout) = P.rightCols(n - fout);
+    std::vector<Scalar> V = U;
+    V.erase(V.begin() + r);
+    for (Eigen::Index c = 0; c < Q.cols(); ++c)
+        if (!(Q(Dim, c) > Scalar(0)))
+            throw Error("NurbsCurve::removeKnot: removing " + num(u) + " would give a non-positive weight");
+    return {NurbsCurve(Knots(std::move(V), p, "NurbsCurve::removeKnot"), std::move(Q)), error};
+}
+
+namespace detail {
+/// Joins homogeneous Bézier pieces of degree d over the breakpoints into a NURBS in Bézier form:
+/// shared joints (interior multiplicity d) except where `broken[k]` (multiplicity d + 1).
+template <typename Scalar, int Dim>
+NurbsCurve<Scalar, Dim> joinPieces(const std::vector<PointMatrix<Scalar, Dim + 1>>& pieces, const std::vector<Scalar>& br,
+                                   const std::vector<bool>& broken, int d)
+{
+    std::vector<Scalar> knots(static_cast<std::size_t>(d + 1), br.front());
+    std::vector<Point<Scalar, Dim + 1>> pts;
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+        for (int i = (k == 0 || broken[k]) ? 0 : 1; i <= d; ++i) pts.push_back(pieces[k].col(i));
+        if (k + 1 < pieces.size())
+            knots.insert(knots.end(), static_cast<std::size_t>(broken[k + 1] ? d + 1 : d), br[k + 1]);
+    }
+    knots.insert(knots.end(), static_cast<std::size_t>(d + 1), br.back());
+    PointMatrix<Scalar, Dim + 1> h(Dim + 1, static_cast<Eigen::Index>(pts.size()));
+    for (std::size_t i = 0; i < pts.size(); ++i) h.col(static_cast<Eigen::Index>(i)) = pts[i];
+    return NurbsCurve<Scalar, Dim>(KnotVector<Scalar>(std::move(knots), d, "NurbsCurve (Bézier form)"), std::move(h));
+}
+} // namespace detail
+
+template <typename Scalar, int Dim>
+NurbsCurve<Scalar, Dim> NurbsCurve<Scalar, Dim>::elevated(int times) const
+{
+    if (times < 0) throw Error("NurbsCurve::elevated: count " + std::to_string(times) + " is negative");
+    const int p = degree();
+    requireDegree(p + times, "NurbsCurve::elevated");
+    if (times == 0) return *this;
+    std::vector<HPoints> pieces;
+    for (const Piece& piece : bezierPieces()) pieces.push_back(piece.homogeneous().elevated(times).controlPoints());
+    std::vector<bool> broken(breaks_.size(), false);
+    std::vector<int> mult(breaks_.size(), 0);
+    for (std::size_t k = 1; k + 1 < breaks_.size(); ++k) {
+        mult[k] = knots_.multiplicity(breaks_[k]);
+        broken[k] = mult[k] > p;
+    }
+    NurbsCurve c = detail::joinPieces<Scalar, Dim>(pieces, breaks_, broken, p + times);
+    for (std::size_t k = 1; k + 1 < breaks_.size(); ++k)
+        for (int r = 0; r < p - mult[k]; ++r) c = c.removeKnot(breaks_[k]).curve;
+    return c;
+}
+
+template <typename Scalar, int Dim>
+typename NurbsCurve<Scalar, Dim>::Approximation NurbsCurve<Scalar, Dim>::reduced(Scalar tolerance) const
+{
+    const int p = degree();
+    if (p < 2) throw Error("NurbsCurve::reduced: degree " + std::to_string(p) + " cannot be reduced (needs 2 or more)");
+    for (std::size_t k = 1; k + 1 < breaks_.size(); ++k)
+        if (knots_.multiplicity(breaks_[k]) > p)
+            throw Error("NurbsCurve::reduced: the curve is broken at knot " + num(breaks_[k]));
+    std::vector<HPoints> pieces;
+    Scalar error(0);
+    for (const Piece& piece : bezierPieces()) {
+        const auto red = piece.homogeneous().reduced();
+        pieces.push_back(red.curve.controlPoints());
+        error = std::max(error, red.errorBound);
+    }
+    for (const HPoints& h : pieces)
+        for (Eigen::Index i = 0; i < h.cols(); ++i)
+            if (!(h(Dim, i) > Scalar(0))) throw Error("NurbsCurve::reduced: a reduced weight is not positive");
+    NurbsCurve c = detail::joinPieces<Scalar, Dim>(pieces, breaks_, std::vector<bool>(breaks_.size(), false), p - 1);
+    for (std::size_t k = 1; k + 1 < breaks_.size(); ++k) {
+        const int target = std::max(knots_.multiplicity(breaks_[k]), 1);
+        for (int r = 0; r < (p - 1) - target; ++r) {
+            const auto removed = c.removeKnot(breaks_[k]);
+            if (error + removed.error > tolerance) break;
+            error += removed.error;
+            c = removed.curve;
+        }
+    }
+    return {std::move(c), error};
+}
 
 extern template class NurbsCurve<double, 2>;
 extern template class NurbsCurve<double, 3>;
