@@ -171,3 +171,19 @@ TEST_CASE("rational Bézier patches: NURBS round trip, weights, validation", "[r
     CHECK_THROWS_WITH((Surface(2, 2, {0, 0, 0, 1, 1, 1}, {0, 0, 0, 0.5, 0.2, 1, 1, 1}, randomPoints<double, 3>(15, 1))),
                       Catch::Contains("knots in v") && Catch::Contains("knot 4"));
 }
+
+TEST_CASE("surface knot refinement in u and v keeps the surface", "[nurbs][surface]")
+{
+    for (int p = 1; p <= 4; ++p) {
+        const Surface s = randomSurface(p, 5 - p, p % 2, true, 600u + p);
+        const double a = s.knotsU().front(), b = s.knotsU().back(), c = s.knotsV().front(), d = s.knotsV().back();
+        const Surface r = s.refinedU({a + 0.3 * (b - a), a + 0.3 * (b - a), a + 0.8 * (b - a)}).refinedV({c + 0.55 * (d - c)});
+        CHECK(r.countU() == s.countU() + 3);
+        CHECK(r.countV() == s.countV() + 1);
+        for (int i = 0; i <= 10; ++i)
+            for (int j = 0; j <= 10; ++j) {
+                const double u = a + (b - a) * i / 10.0, v = c + (d - c) * j / 10.0;
+                CHECK((r(u, v) - s(u, v)).norm() <= 1e-13);
+            }
+    }
+}

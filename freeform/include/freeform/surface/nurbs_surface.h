@@ -277,6 +277,47 @@ public:
         return out;
     }
 
+    /// Knot refinement in u (or v): every value of `extra` (inside the domain) added to that knot
+    /// vector, by the Oslo algorithm of NurbsCurve::refined applied to every column (row) of the
+    /// homogeneous net. The surface is unchanged.
+    NurbsSurface refinedU(const std::vector<Scalar>& extra) const
+    {
+        std::vector<NurbsCurve<Scalar, Dim>> cols;
+        for (int j = 0; j < countV(); ++j) {
+            HPoints c(Dim + 1, countU());
+            for (int i = 0; i < countU(); ++i) c.col(i) = hom_.col(index(i, j));
+            cols.push_back(NurbsCurve<Scalar, Dim>(ku_, std::move(c)).refined(extra));
+        }
+        const int nu = cols.front().controlCount();
+        HPoints h(Dim + 1, nu * countV());
+        for (int i = 0; i < nu; ++i)
+            for (int j = 0; j < countV(); ++j) h.col(i * countV() + j) = cols[j].homogeneousPoints().col(i);
+        return NurbsSurface(cols.front().knotVector(), kv_, std::move(h));
+    }
+    NurbsSurface refinedV(const std::vector<Scalar>& extra) const
+    {
+        std::vector<NurbsCurve<Scalar, Dim>> rows;
+        for (int i = 0; i < countU(); ++i)
+            rows.push_back(NurbsCurve<Scalar, Dim>(kv_, HPoints(hom_.middleCols(i * countV(), countV()))).refined(extra));
+        const int nv = rows.front().controlCount();
+        HPoints h(Dim + 1, countU() * nv);
+        for (int i = 0; i < countU(); ++i) h.middleCols(i * nv, nv) = rows[i].homogeneousPoints();
+        return NurbsSurface(ku_, rows.front().knotVector(), std::move(h));
+    }
+
+    /// From knot vectors and homogeneous points (w P, w), point (i, j) at column i * countV + j.
+    NurbsSurface(Knots ku, Knots kv, HPoints hom) : ku_(std::move(ku)), kv_(std::move(kv)), hom_(std::move(hom))
+    {
+        if (hom_.cols() != static_cast<Eigen::Index>(countU()) * countV())
+            throw Error("NurbsSurface: the knot vectors need " + std::to_string(countU()) + " x " +
+                        std::to_string(countV()) + " control points, got " + std::to_string(hom_.cols()));
+        requireFinite(hom_, "NurbsSurface");
+        for (Eigen::Index i = 0; i < hom_.cols(); ++i) {
+            if (!(hom_(Dim, i) > Scalar(0))) throw Error("NurbsSurface: weight " + std::to_string(i) + " is not positive");
+            if (hom_(Dim, i) != Scalar(1)) rational_ = true;
+        }
+    }
+
     /// The isocurve v = const as a NURBS curve in u, and u = const as one in v.
     NurbsCurve<Scalar, Dim> curveAtV(Scalar v) const
     {
