@@ -4,6 +4,7 @@
 #include "freeform/tessellate/tessellate.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -338,6 +339,38 @@ double buildTree(const Patch& patch, double tolerance, std::int32_t minWidth, st
     return worst;
 }
 
+/// Sorts (key, payload) pairs by key, key = a << 32 | b: two stable counting passes (b, then a) on
+/// the coordinates divided by their largest common power of two when that leaves at most 2^16 + 1
+/// buckets (always for the default maxSegments), std::sort otherwise.
+void sortPairs(std::vector<std::pair<std::uint64_t, int>>& v, std::vector<std::pair<std::uint64_t, int>>& tmp,
+               std::vector<int>& counts)
+{
+    std::uint64_t bitsA = 0, bitsB = 0, maxA = 0, maxB = 0;
+    for (const auto& e : v) {
+        const std::uint64_t a = e.first >> 32, b = e.first & 0xffffffffu;
+        bitsA |= a;
+        bitsB |= b;
+        maxA = std::max(maxA, a);
+        maxB = std::max(maxB, b);
+    }
+    const int shiftA = bitsA ? std::countr_zero(bitsA) : 0, shiftB = bitsB ? std::countr_zero(bitsB) : 0;
+    const std::uint64_t bucketsA = (maxA >> shiftA) + 1, bucketsB = (maxB >> shiftB) + 1;
+    if (bucketsA > 65537 || bucketsB > 65537) {
+        std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        return;
+    }
+    tmp.resize(v.size());
+    auto pass = [&](std::vector<std::pair<std::uint64_t, int>>& from, std::vector<std::pair<std::uint64_t, int>>& to,
+                    std::uint64_t buckets, auto bucketOf) {
+        counts.assign(buckets + 1, 0);
+        for (const auto& e : from) ++counts[bucketOf(e.first) + 1];
+        for (std::size_t k = 1; k < counts.size(); ++k) counts[k] += counts[k - 1];
+        for (const auto& e : from) to[static_cast<std::size_t>(counts[bucketOf(e.first)]++)] = e;
+    };
+    pass(v, tmp, bucketsB, [&](std::uint64_t key) { return static_cast<std::size_t>((key & 0xffffffffu) >> shiftB); });
+    pass(tmp, v, bucketsA, [&](std::uint64_t key) { return static_cast<std::size_t>((key >> 32) >> shiftA); });
+}
+
 std::uint64_t packKey(std::int64_t a, std::int64_t b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b); }
 
 /// The adaptive mesh with local bounds (docs/surfaces.md, "Local refinement").
@@ -440,7 +473,8 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     std::vector<int> ids;                                    // mesh vertex of each key
     std::vector<Eigen::Vector3d> keyPos;                     // its position
     std::vector<int> ring;                                   // ring of a leaf: indices into keys, or -1 (centre)
-    std::vector<std::pair<std::uint64_t, int>> items;        // (key, corner slot)
+    std::vector<std::pair<std::uint64_t, int>> items, scratch; // (key, corner slot)
+    std::vector<int> counts;
     std::vector<int> cornerIndex, positionV;                 // slot -> key index; key index -> place in byV
     for (int p = 0; p < count; ++p) {
         const Patch& patch = complex.patches[p];
@@ -459,7 +493,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         for (std::int32_t t : sidePoints[4 * p + 1]) items.push_back({packKey(S, t), -1});
         for (std::int32_t t : sidePoints[4 * p + 2]) items.push_back({packKey(t, 0), -1});
         for (std::int32_t t : sidePoints[4 * p + 3]) items.push_back({packKey(t, S), -1});
-        std::sort(items.begin(), items.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        sortPairs(items, scratch, counts);
         keys.clear();
         cornerIndex.resize(leaves.size() * 4);
         for (const auto& [key, slot] : items) {
@@ -515,7 +549,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             normals.push_back(nrm);
             texcoords.emplace_back(u * inv, v * inv);
         }
-        std::sort(byV.begin(), byV.end());
+        sortPairs(byV, scratch, counts);
         positionV.resize(static_cast<std::size_t>(nk));
         for (int k = 0; k < nk; ++k) positionV[static_cast<std::size_t>(byV[k].second)] = k;
         auto uvOf = [&](int k) {
