@@ -248,14 +248,15 @@ std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
 {
     double uu = 0, uv = 0, vv = 0;
     const int w = n + 1;
+    for (int i = 0; i + 2 <= m; ++i)
+        for (int j = 0; j <= n; ++j)
+            uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]).squaredNorm());
     for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            const Eigen::Vector3d& b = net[i * w + j];
-            if (i + 2 <= m) uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + b).squaredNorm());
-            if (j + 2 <= n) vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + b).squaredNorm());
-            if (i + 1 <= m && j + 1 <= n)
-                uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + b).squaredNorm());
-        }
+        for (int j = 0; j + 2 <= n; ++j)
+            vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]).squaredNorm());
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j < n; ++j)
+            uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]).squaredNorm());
     return {m * (m - 1.0) * std::sqrt(uu), 2.0 * m * n * std::sqrt(uv), n * (n - 1.0) * std::sqrt(vv)};
 }
 
@@ -275,18 +276,18 @@ struct Leaf {
 void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
 {
     Eigen::Vector3d w[kMaxDegree + 1];
-    const int w1 = n + 1;
-    const int outer = inU ? n : m, deg = inU ? m : n;
+    const int deg = inU ? m : n, outer = inU ? n : m;
+    const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
     const double s = 1 - t;
     for (int o = 0; o <= outer; ++o) {
-        auto at = [&](int k) -> int { return inU ? k * w1 + o : o * w1 + k; };
-        for (int k = 0; k <= deg; ++k) w[k] = net[at(k)];
-        lower[at(0)] = w[0];
-        net[at(deg)] = w[deg];
+        Eigen::Vector3d* line = net + o * step;
+        Eigen::Vector3d* low = lower + o * step;
+        for (int k = 0; k <= deg; ++k) w[k] = line[k * stride];
+        low[0] = w[0];
         for (int r = 1; r <= deg; ++r) {
             for (int k = 0; k <= deg - r; ++k) w[k] = s * w[k] + t * w[k + 1];
-            lower[at(r)] = w[0];
-            net[at(deg - r)] = w[deg - r];
+            low[r * stride] = w[0];
+            line[(deg - r) * stride] = w[deg - r];
         }
     }
 }
