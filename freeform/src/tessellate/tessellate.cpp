@@ -395,12 +395,13 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             const double nv = std::max(1.0, std::ceil(std::sqrt((t[2] + t[1] / 2) / 8 / (options.tolerance / 2))));
             grid += 2 * std::min(nu, double(options.maxSegments)) * std::min(nv, double(options.maxSegments));
         }
-        char buffer[64];
-        std::snprintf(buffer, sizeof buffer, "%.3g", grid);
-        budgetMessage = "tessellate: tolerance " + std::to_string(options.tolerance) + " needs more than maxTriangles = " +
-                        std::to_string(options.maxTriangles) + " triangles (estimate: more than " +
-                        std::to_string(2 * leafBudget) + " counted before stopping, about " + buffer +
-                        " with one grid per patch); raise the limit (--max-triangles) or the tolerance";
+        char buffer[160];
+        std::snprintf(buffer, sizeof buffer, "tolerance %g needs more than maxTriangles = %lld triangles (estimate: ", options.tolerance,
+                      options.maxTriangles);
+        budgetMessage = std::string("tessellate: ") + buffer;
+        std::snprintf(buffer, sizeof buffer, "more than %lld counted before stopping, about %.3g with one grid per patch", 2 * leafBudget,
+                      grid);
+        budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
     }
     for (int p = 0; p < count; ++p) {
         const double b = buildTree(complex.patches[p], options.tolerance, minWidth, S, trees[p], leafCount, leafBudget,
@@ -777,10 +778,25 @@ PolygonMesh tessellateGrid(const PatchComplex& complex, const TessellationOption
                 const int tri[2][3] = {{a, b, c}, {a, c, d}};
                 const int alt[2][3] = {{a, b, d}, {b, c, d}};
                 const auto& use = d1 <= d2 ? tri : alt;
-                for (const auto& t : use) {
+                const int gtri[2][3] = {{g00, g10, g11}, {g00, g11, g01}}, galt[2][3] = {{g00, g10, g01}, {g10, g11, g01}};
+                const auto& guse = d1 <= d2 ? gtri : galt;
+                for (int h = 0; h < 2; ++h) {
+                    const auto& t = use[h];
                     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue; // at a collapsed side
                     if (options.flipNormals) faces.insert(faces.end(), {t[0], t[2], t[1]});
                     else faces.insert(faces.end(), {t[0], t[1], t[2]});
+                    if (options.measure) {
+                        std::array<Eigen::Vector2d, 3> uv;
+                        std::array<Eigen::Vector3d, 3> xyz;
+                        for (int c = 0; c < 3; ++c) {
+                            const int g = guse[h][c];
+                            uv[c] = Eigen::Vector2d(us[g / rowLength], vs[g % rowLength]);
+                            xyz[c] = gridPos.col(g);
+                        }
+                        const TriangleDeviation dev = sampleTriangleDeviation(patch, uv, xyz);
+                        rep.measuredParametric = std::max(rep.measuredParametric, dev.parametric);
+                        rep.measuredGeometric = std::max(rep.measuredGeometric, dev.geometric);
+                    }
                 }
             }
         }
