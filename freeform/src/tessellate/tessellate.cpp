@@ -242,10 +242,65 @@ Jet1 jet1(const Patch& patch, double u, double v)
     return r;
 }
 
+/// f, f_u, f_v along a line u = const: the sums over i done once (the curves c(v) = f(u, v) and
+/// d(v) = f_u(u, v)), then per v only the sums over j.
+struct PatchRow {
+    int n = 0;
+    Eigen::Vector3d c[kMaxDegree + 1], d[kMaxDegree + 1];
+    void set(const Patch& patch, double u)
+    {
+        const int m = patch.degreeU();
+        n = patch.degreeV();
+        double bu[kMaxDegree + 1], dbu[kMaxDegree + 1];
+        basisWithDerivative(m, u, bu, dbu);
+        const double* P = patch.controlPoints().data();
+        for (int j = 0; j <= n; ++j) {
+            c[j].setZero();
+            d[j].setZero();
+        }
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) {
+                const Eigen::Map<const Eigen::Vector3d> q(P + 3 * (i * (n + 1) + j));
+                c[j] += bu[i] * q;
+                d[j] += dbu[i] * q;
+            }
+    }
+    Jet1 at(double v) const
+    {
+        double bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
+        basisWithDerivative(n, v, bv, dbv);
+        Jet1 r{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+        for (int j = 0; j <= n; ++j) {
+            r.p += bv[j] * c[j];
+            r.fu += bv[j] * d[j];
+            r.fv += dbv[j] * c[j];
+        }
+        return r;
+    }
+};
+
 /// The three terms of the local bound of a net (m+1) x (n+1), point (i, j) at net[i*(n+1)+j]:
 /// m(m-1) max|D_uu|, 2 m n max|D_uv|, n(n-1) max|D_vv| (their sum / 8 is the bound).
+template <int M, int N>
+std::array<double, 3> netTermsFixed(const Eigen::Vector3d* net)
+{
+    double uu = 0, uv = 0, vv = 0;
+    constexpr int w = N + 1;
+    for (int i = 0; i + 2 <= M; ++i)
+        for (int j = 0; j <= N; ++j)
+            uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]).squaredNorm());
+    for (int i = 0; i <= M; ++i)
+        for (int j = 0; j + 2 <= N; ++j)
+            vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]).squaredNorm());
+    for (int i = 0; i < M; ++i)
+        for (int j = 0; j < N; ++j)
+            uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]).squaredNorm());
+    return {M * (M - 1.0) * std::sqrt(uu), 2.0 * M * N * std::sqrt(uv), N * (N - 1.0) * std::sqrt(vv)};
+}
+
 std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
 {
+    if (m == 3 && n == 3) return netTermsFixed<3, 3>(net);
     double uu = 0, uv = 0, vv = 0;
     const int w = n + 1;
     for (int i = 0; i + 2 <= m; ++i)
@@ -273,8 +328,30 @@ struct Leaf {
 };
 
 /// De Casteljau split of net at t, in u or in v: lower gets [0, t], net (in place) [t, 1].
+template <int Deg>
+void splitLines(Eigen::Vector3d* net, Eigen::Vector3d* lower, int outer, int stride, int step, double t)
+{
+    const double s = 1 - t;
+    for (int o = 0; o <= outer; ++o) {
+        Eigen::Vector3d* line = net + o * step;
+        Eigen::Vector3d* low = lower + o * step;
+        Eigen::Vector3d w[Deg + 1];
+        for (int k = 0; k <= Deg; ++k) w[k] = line[k * stride];
+        low[0] = w[0];
+        for (int r = 1; r <= Deg; ++r) {
+            for (int k = 0; k <= Deg - r; ++k) w[k] = s * w[k] + t * w[k + 1];
+            low[r * stride] = w[0];
+            line[(Deg - r) * stride] = w[Deg - r];
+        }
+    }
+}
+
 void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
 {
+    if ((inU ? m : n) == 3) {
+        splitLines<3>(net, lower, inU ? n : m, inU ? n + 1 : 1, inU ? 1 : n + 1, t);
+        return;
+    }
     Eigen::Vector3d w[kMaxDegree + 1];
     const int deg = inU ? m : n, outer = inU ? n : m;
     const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
@@ -322,7 +399,7 @@ double buildTree(const Patch& patch, double tolerance, std::int32_t minWidth, st
             worst = std::max(worst, b);
             leaves.push_back(box);
             stack.pop_back();
-            if (leafBudget > 0 && ++leafCount > leafBudget) throw Error(budgetMessage);
+            if (++leafCount > leafBudget && leafBudget > 0) throw Error(budgetMessage);
             continue;
         }
         // Halve in the direction that lowers the bound more: after a cut in u the terms are
@@ -469,6 +546,12 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     std::vector<Eigen::Vector2d> texcoords;
     std::unordered_map<PositionKey, int, PositionHash> welded;
     std::vector<int> faces;
+    // About 2.05 triangles and 1.05 vertices per leaf on the teapot: reserved, so that the arrays
+    // are written once instead of being copied as they grow (fresh pages cost, docs/performance.md).
+    faces.reserve(static_cast<std::size_t>(3 * (2.2 * leafCount + 64)));
+    positions.reserve(static_cast<std::size_t>(1.2 * leafCount + 64));
+    normals.reserve(positions.capacity());
+    texcoords.reserve(positions.capacity());
     const double inv = 1.0 / S;
     std::vector<std::uint64_t> keys;                         // (u << 32 | v), sorted: the lines u = const
     std::vector<std::pair<std::uint64_t, int>> byV;          // (v << 32 | u, index into keys)
@@ -478,6 +561,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     std::vector<std::pair<std::uint64_t, int>> items, scratch; // (key, corner slot)
     std::vector<int> counts;
     std::vector<int> cornerIndex, positionV;                 // slot -> key index; key index -> place in byV
+    PatchRow row;
     for (int p = 0; p < count; ++p) {
         const Patch& patch = complex.patches[p];
         const auto& leaves = trees[p];
@@ -506,9 +590,14 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         byV.resize(static_cast<std::size_t>(nk));
         ids.resize(static_cast<std::size_t>(nk));
         keyPos.resize(static_cast<std::size_t>(nk));
+        std::int32_t rowU = -1;
         for (int k = 0; k < nk; ++k) {
             const std::int32_t u = static_cast<std::int32_t>(keys[k] >> 32), v = static_cast<std::int32_t>(keys[k] & 0xffffffffu);
             byV[k] = {packKey(v, u), k};
+            if (u != rowU) { // keys run along lines u = const: the u sums once per line
+                row.set(patch, u * inv);
+                rowU = u;
+            }
             // Position: on a side from its canonical curve (bit-identical in every patch that shares it).
             int side = -1;
             std::int32_t t = 0;
@@ -516,7 +605,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             else if (u == S) side = 1, t = v;
             else if (v == 0) side = 2, t = u;
             else if (v == S) side = 3, t = u;
-            const Jet1 j = jet1(patch, u * inv, v * inv);
+            const Jet1 j = row.at(v * inv);
             Eigen::Vector3d q = j.p;
             bool onCollapsed = false;
             if (side >= 0) {
