@@ -267,7 +267,7 @@ TEST_CASE("local refinement: the teapot at 1e-3", "[tessellate][local][teapot]")
     const PatchComplex teapot = readBpt(kTeapot);
     TessellationOptions o;
     o.tolerance = 1e-3;
-    o.measure = true;
+    o.sampleDeviation = true;
     TessellationReport report;
     const PolygonMesh mesh = tessellate(teapot, o, &report);
     mesh.validate("teapot");
@@ -294,7 +294,7 @@ TEST_CASE("local refinement: the teapot at 1e-3", "[tessellate][local][teapot]")
     CHECK(mesh.faceCount() <= 86000);
     TessellationOptions grid = o;
     grid.refinement = TessellationRefinement::PatchGrid;
-    grid.measure = false;
+    grid.sampleDeviation = false;
     CHECK(mesh.faceCount() * 1.9 < tessellate(teapot, grid).faceCount());
 }
 

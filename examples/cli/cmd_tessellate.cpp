@@ -44,7 +44,7 @@ int runTessellate(const std::vector<std::string>& argv)
         if (*r == "patch-grid") options.refinement = TessellationRefinement::PatchGrid;
         else if (*r != "local") throw UsageError("option --refinement: local or patch-grid");
     }
-    options.measure = true;
+    options.sampleDeviation = true;
 
     PatchComplex complex;
     if (hasExtension(input, ".bpt")) {

@@ -375,8 +375,65 @@ void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool i
 /// Throws when the running total of leaves passes leafBudget (> 0). (Cutting near the tolerance at
 /// 1/k instead of 1/2, so that leaves end just under it, gave 18 % fewer leaves on the teapot at
 /// 1e-3 but 3 % more triangles: neighbours no longer line up and need fans.)
-double buildTree(const Patch& patch, double tolerance, std::int32_t minWidth, std::int32_t S, std::vector<Leaf>& leaves,
-                 long long& leafCount, long long leafBudget, const std::string& budgetMessage)
+/// The geometric bound of a leaf (docs/surfaces.md, "The geometric measure"): every triangle point
+/// T(x) of the leaf lies within the returned distance of a surface point f(y), y = x + delta in the
+/// patch's domain, chosen so that T(x) - f(y) runs along the normal n0 at the leaf's centre up to
+/// second-order terms. Infinity where the argument does not apply (a near-singular or strongly
+/// turning leaf, or delta could leave the patch's domain). net: the leaf's sub-net (local
+/// parameters s, t in [0, 1]); terms: its netTerms; root: the netTerms of the whole patch; box: the
+/// leaf in units of 1/S.
+double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms,
+                      const std::array<double, 3>& root, const Leaf& box, std::int32_t S)
+{
+    const int w = n + 1;
+    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
+    basisWithDerivative(m, 0.5, bu, dbu);
+    basisWithDerivative(n, 0.5, bv, dbv);
+    Eigen::Vector3d gs = Eigen::Vector3d::Zero(), gt = Eigen::Vector3d::Zero();
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            gs += dbu[i] * bv[j] * net[i * w + j];
+            gt += bu[i] * dbv[j] * net[i * w + j];
+        }
+    const Eigen::Vector3d cross = gs.cross(gt);
+    const double len = cross.norm();
+    if (!(len > 0)) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d n0 = cross / len;
+    // Bounds of n0 . g_ss, n0 . g_st, n0 . g_tt over the leaf (convex hull of the projected nets).
+    double nss = 0, nst = 0, ntt = 0;
+    for (int i = 0; i + 2 <= m; ++i)
+        for (int j = 0; j <= n; ++j)
+            nss = std::max(nss, std::abs(n0.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j + 2 <= n; ++j)
+            ntt = std::max(ntt, std::abs(n0.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j < n; ++j)
+            nst = std::max(nst, std::abs(n0.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
+    const double Nss = m * (m - 1.0) * nss, Nst = double(m) * n * nst, Ntt = n * (n - 1.0) * ntt;
+    const double Mss = terms[0], Mst = terms[1] / 2, Mtt = terms[2];
+    const double eps = (terms[0] + terms[1] + terms[2]) / 8;     // |T(x) - g(x)|
+    const double epsN = (Nss + 2 * Nst + Ntt) / 8;                // |n0 . (T(x) - g(x))|
+    // Smallest singular value of the projected Jacobian over the leaf: at the centre, less the
+    // largest change of (g_s, g_t) from the centre (Frobenius norm).
+    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm();
+    const double lambda = 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12));
+    const double sigma = std::sqrt(std::max(0.0, lambda)) - std::hypot((Mss + Mst) / 2, (Mst + Mtt) / 2);
+    if (!(sigma > 0)) return std::numeric_limits<double>::infinity();
+    const double delta = eps / sigma; // |y - x| in the leaf's (s, t)
+    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
+    if (static_cast<double>(box.u0) / S - delta * hu < 0 || static_cast<double>(box.u1) / S + delta * hu > 1 ||
+        static_cast<double>(box.v0) / S - delta * hv < 0 || static_cast<double>(box.v1) / S + delta * hv > 1)
+        return std::numeric_limits<double>::infinity();
+    // |n0 . g_s(x)| <= (Nss + Nst)/2, |n0 . g_t(x)| <= (Nst + Ntt)/2 (zero at the centre); the
+    // remainder of g(x + delta) over the segment, which may leave the leaf: the whole patch's bounds.
+    const double slope = std::hypot((Nss + Nst) / 2, (Nst + Ntt) / 2);
+    const double Gss = root[0] * hu * hu, Gst = root[1] / 2 * hu * hv, Gtt = root[2] * hv * hv;
+    return epsN + slope * delta + 0.5 * (std::max(Gss, Gtt) + Gst) * delta * delta;
+}
+
+double buildTree(const Patch& patch, double tolerance, bool geometric, std::int32_t minWidth, std::int32_t S,
+                 std::vector<Leaf>& leaves, long long& leafCount, long long leafBudget, const std::string& budgetMessage)
 {
     const int m = patch.degreeU(), n = patch.degreeV();
     const int size = (m + 1) * (n + 1);
@@ -384,6 +441,7 @@ double buildTree(const Patch& patch, double tolerance, std::int32_t minWidth, st
     std::vector<Leaf> stack;
     for (int k = 0; k < size; ++k) pool[k] = patch.controlPoints().col(k);
     stack.push_back({0, S, 0, S});
+    const auto root = netTerms(pool.data(), m, n);
     double worst = 0;
     while (!stack.empty()) {
         const int k = static_cast<int>(stack.size()) - 1;
@@ -391,7 +449,8 @@ double buildTree(const Patch& patch, double tolerance, std::int32_t minWidth, st
         if (pool.size() < static_cast<std::size_t>((k + 2) * size)) pool.resize(static_cast<std::size_t>(2 * (k + 2) * size));
         Eigen::Vector3d* net = pool.data() + static_cast<std::size_t>(k) * size;
         const auto t = netTerms(net, m, n);
-        const double b = (t[0] + t[1] + t[2]) / 8;
+        double b = (t[0] + t[1] + t[2]) / 8;
+        if (geometric && b > tolerance) b = std::min(b, geometricBound(net, m, n, t, root, box, S));
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
         const bool canU = wu >= 2 * minWidth && (t[0] > 0 || t[1] > 0);
         const bool canV = wv >= 2 * minWidth && (t[2] > 0 || t[1] > 0);
@@ -481,7 +540,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
     }
     for (int p = 0; p < count; ++p) {
-        const double b = buildTree(complex.patches[p], options.tolerance, minWidth, S, trees[p], leafCount, leafBudget,
+        const double b = buildTree(complex.patches[p], options.tolerance, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p], leafCount, leafBudget,
                                    budgetMessage);
         rep.errorBound = std::max(rep.errorBound, b);
         std::int32_t finestU = S, finestV = S;
@@ -676,7 +735,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 if (ia == ib || ib == ic || ia == ic) return; // at a collapsed side
                 if (options.flipNormals) faces.insert(faces.end(), {ia, ic, ib});
                 else faces.insert(faces.end(), {ia, ib, ic});
-                if (options.measure) {
+                if (options.sampleDeviation) {
                     const std::array<Eigen::Vector2d, 3> uv{a < 0 ? *centreUv : uvOf(a), uvOf(b), uvOf(c)};
                     const std::array<Eigen::Vector3d, 3> xyz{a < 0 ? *centrePos : keyPos[a], keyPos[b], keyPos[c]};
                     const TriangleDeviation d = sampleTriangleDeviation(patch, uv, xyz);
@@ -874,7 +933,7 @@ PolygonMesh tessellateGrid(const PatchComplex& complex, const TessellationOption
                     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue; // at a collapsed side
                     if (options.flipNormals) faces.insert(faces.end(), {t[0], t[2], t[1]});
                     else faces.insert(faces.end(), {t[0], t[1], t[2]});
-                    if (options.measure) {
+                    if (options.sampleDeviation) {
                         std::array<Eigen::Vector2d, 3> uv;
                         std::array<Eigen::Vector3d, 3> xyz;
                         for (int c = 0; c < 3; ++c) {

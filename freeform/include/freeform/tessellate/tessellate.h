@@ -41,6 +41,7 @@ namespace freeform {
 /// How adaptive mode refines: a tree of sub-nets per patch (local bounds), or one grid per patch
 /// from the bound of the whole net (the method before issue 15, kept for comparison).
 enum class TessellationRefinement { Local, PatchGrid };
+enum class TessellationMeasure { Parametric, Geometric };
 
 struct TessellationOptions {
     /// > 0: adaptive to this distance (certified, see above); 0: the fixed counts below.
@@ -54,8 +55,14 @@ struct TessellationOptions {
     int maxSegments = 4096;
     /// Refuse (Error, with the estimate) a mesh of more triangles than this; 0: no limit.
     long long maxTriangles = 10'000'000;
+    /// What the tolerance bounds (adaptive modes): Parametric (the default) |T(x) - f(x)| for the
+    /// triangle point T(x) and the surface point with the same (u, v), which bounds the distance
+    /// both ways (mesh to surface and surface to mesh); Geometric: the distance from every triangle
+    /// point to the surface only (one way), a bound that ignores the tangential part of the error
+    /// (Local refinement only; PatchGrid treats it as Parametric). docs/surfaces.md.
+    TessellationMeasure measure = TessellationMeasure::Parametric;
     /// Sample every triangle against its patch and report the largest deviations found.
-    bool measure = false;
+    bool sampleDeviation = false;
     /// Reverse the triangles and negate the normals.
     bool flipNormals = false;
 };
@@ -65,10 +72,10 @@ struct TessellationReport {
     std::vector<std::array<int, 2>> segments; // per patch: (nu, nv) used (after matching shared sides)
     double errorBound = 0;                    // the largest certified bound over the patches
     long long leaves = 0;                     // Local: sub-rectangles (leaves of the trees)
-    /// With options.measure: the largest distances found at 10 points per triangle (corners'
-    /// midpoints, centroid, ...), from the triangle point at (u, v) to f(u, v) (parametric) and to
-    /// its foot point on the patch found by Newton's method (geometric). Samples, so lower bounds
-    /// of the true maxima; both at most errorBound.
+    /// With options.sampleDeviation: the largest distances found at 12 points per triangle, from
+    /// the triangle point at (u, v) to f(u, v) (parametric) and to its foot point on the patch
+    /// found by Newton's method (geometric). Samples, so lower bounds of the true maxima; the
+    /// geometric one is at most errorBound, the parametric one too with the parametric measure.
     double measuredParametric = 0, measuredGeometric = 0;
 };
 
