@@ -49,6 +49,14 @@ TEST_CASE("tessellate reports the measured deviations beside the certified bound
     const Json b = Json::parse(grid.out);
     CHECK(b["error_bound"].get<double>() <= 1e-3);
     CHECK(b["triangles"].get<long>() > a["triangles"].get<long>());
+    // --measure geometric: every mesh point within the tolerance of the surface, fewer triangles.
+    const auto geo = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --measure geometric");
+    REQUIRE(geo.status == 0);
+    const Json g = Json::parse(geo.out);
+    CHECK(g["error_bound"].get<double>() <= 1e-3);
+    CHECK(g["measured_geometric"].get<double>() <= 1e-3);
+    CHECK(g["triangles"].get<long>() < a["triangles"].get<long>());
+    requireError(cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --measure hausdorff"), 2, "--measure");
 }
 
 TEST_CASE("tessellate --max-triangles refuses with the estimate and writes nothing", "[cli][tessellate][limits]")

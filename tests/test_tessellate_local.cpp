@@ -155,6 +155,35 @@ double parametricDeviation(const Patch& patch, const PolygonMesh& mesh)
     return worst;
 }
 
+/// Largest distance from the points (i, j, k)/4 of every triangle of a one-patch mesh to the patch,
+/// each by Gauss-Newton on |p - f(y)|^2 from the point's own (u, v) with the patch's jet (y kept in
+/// [0, 1]^2), so at most the distance to the point found: an upper bound of the true distance.
+double meshToSurface(const Patch& patch, const PolygonMesh& mesh)
+{
+    double worst = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        for (int i = 0; i <= 4; ++i)
+            for (int j = 0; i + j <= 4; ++j) {
+                const double a = i / 4.0, b = j / 4.0, c = 1 - a - b;
+                V2 y = a * V2(mesh.texcoords.col(v[0])) + b * V2(mesh.texcoords.col(v[1])) + c * V2(mesh.texcoords.col(v[2]));
+                const V3 p = a * V3(mesh.positions.col(v[0])) + b * V3(mesh.positions.col(v[1])) + c * V3(mesh.positions.col(v[2]));
+                double best = (p - patch.evaluate(y.x(), y.y())).norm();
+                for (int it = 0; it < 8; ++it) {
+                    const auto jet = patch.jet(y.x(), y.y(), 1);
+                    const V3 r = V3(jet.col(0)) - p, fu = jet.col(1), fv = jet.col(2);
+                    Eigen::Matrix2d h;
+                    h << fu.dot(fu), fu.dot(fv), fu.dot(fv), fv.dot(fv);
+                    if (!(std::abs(h.determinant()) > 0)) break;
+                    y = (y - h.inverse() * V2(fu.dot(r), fv.dot(r))).cwiseMax(0.0).cwiseMin(1.0);
+                    best = std::min(best, (p - patch.evaluate(y.x(), y.y())).norm());
+                }
+                worst = std::max(worst, best);
+            }
+    }
+    return worst;
+}
+
 /// Largest distance from f(u, v) on an irregular n x n grid (and the sides) to the mesh (up to
 /// radius; cell: the bucket size, about the triangles' size).
 double surfaceToMesh(const Patch& patch, const PolygonMesh& mesh, int n, double radius, double cell = 0.02)
@@ -235,6 +264,48 @@ TEST_CASE("local refinement: the bound holds on random patches of degrees 1-7", 
         const auto grid = adaptiveSegments(patch, tolerance);
         if (m > 1 || n > 1) CHECK(mesh.faceCount() < 2 * grid[0] * grid[1]);
     }
+}
+
+TEST_CASE("the geometric measure: every triangle point within the tolerance of the surface, fewer triangles",
+          "[tessellate][local][geometric]")
+{
+    const std::array<int, 2> degrees[] = {{1, 2}, {2, 2}, {3, 3}, {4, 5}, {7, 3}};
+    std::uint32_t seed = 300;
+    for (const auto& [m, n] : degrees) {
+        ++seed;
+        CAPTURE(m, n, seed);
+        PointMatrix<double, 3> pts = test::randomPoints<double, 3>((m + 1) * (n + 1), seed, -0.2, 0.2);
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) pts.col(i * (n + 1) + j) += V3(double(i) / m, double(j) / n, 0);
+        const Patch patch(m, n, pts);
+        for (double tolerance : {1e-2, 1e-3}) {
+            CAPTURE(tolerance);
+            TessellationOptions o;
+            o.tolerance = tolerance;
+            o.measure = TessellationMeasure::Geometric;
+            TessellationReport report;
+            const PolygonMesh mesh = tessellate(PatchComplex{{patch}}, o, &report);
+            CHECK(report.errorBound <= tolerance);
+            CHECK(meshToSurface(patch, mesh) <= tolerance);
+            checkConformingInUv(mesh);
+            o.measure = TessellationMeasure::Parametric;
+            CHECK(mesh.faceCount() <= tessellate(PatchComplex{{patch}}, o).faceCount());
+        }
+    }
+    // The teapot: within the tolerance, tight within 2x, and the count (56,070 when written; the
+    // issue's goal of 46,000 is not reached).
+    const PatchComplex teapot = readBpt(kTeapot);
+    TessellationOptions o;
+    o.tolerance = 1e-3;
+    o.measure = TessellationMeasure::Geometric;
+    o.sampleDeviation = true;
+    TessellationReport report;
+    const PolygonMesh mesh = tessellate(teapot, o, &report);
+    CHECK(report.errorBound <= 1e-3);
+    CHECK(report.measuredGeometric <= 1e-3);
+    CHECK(report.measuredGeometric >= 0.5e-3);
+    CHECK(mesh.faceCount() <= 57000);
+    CHECK(topology(mesh).nonManifoldEdges == 0);
 }
 
 TEST_CASE("local refinement: refines where the curvature is, not uniformly", "[tessellate][local]")

@@ -19,7 +19,7 @@ bool hasExtension(const std::string& path, const std::string& ext)
 
 int runTessellate(const std::vector<std::string>& argv)
 {
-    const Args args(argv, {"output", "tolerance", "segments", "object", "max-triangles", "refinement"}, {"outward"});
+    const Args args(argv, {"output", "tolerance", "segments", "object", "max-triangles", "refinement", "measure"}, {"outward"});
     args.expectPositional(1, "the input (freeform tessellate IN.json|IN.bpt -o OUT.obj)");
     const std::string input = args.positional()[0];
     const std::string output = args.required("output");
@@ -43,6 +43,10 @@ int runTessellate(const std::vector<std::string>& argv)
     if (const auto r = args.get("refinement")) {
         if (*r == "patch-grid") options.refinement = TessellationRefinement::PatchGrid;
         else if (*r != "local") throw UsageError("option --refinement: local or patch-grid");
+    }
+    if (const auto m = args.get("measure")) {
+        if (*m == "geometric") options.measure = TessellationMeasure::Geometric;
+        else if (*m != "parametric") throw UsageError("option --measure: parametric or geometric");
     }
     options.sampleDeviation = true;
 
@@ -82,7 +86,7 @@ int runTessellate(const std::vector<std::string>& argv)
 const RegisterCommand reg({"tessellate", "surfaces (document or .bpt) to a triangle mesh (OBJ with normals and uv)",
                            "usage: freeform tessellate IN.json|IN.bpt -o OUT.obj [--tolerance E | --segments N]\n"
                            "                          [--object NAME] [--outward] [--max-triangles N]\n"
-                           "                          [--refinement local|patch-grid]\n"
+                           "                          [--refinement local|patch-grid] [--measure parametric|geometric]\n"
                            "\n"
                            "Tessellates every bezier_surface and deboor_surface of the document (or the one named by\n"
                            "--object), or every patch of a .bpt file, into one triangle mesh. Patches that share a side\n"
@@ -95,6 +99,9 @@ const RegisterCommand reg({"tessellate", "surfaces (document or .bpt) to a trian
                            "                    control nets, docs/surfaces.md)\n"
                            "  --refinement R    local (default): each patch refined where its curvature needs it;\n"
                            "                    patch-grid: one grid per patch from the bound of its whole net\n"
+                           "  --measure M       parametric (default): the bound holds both ways, as above;\n"
+                           "                    geometric: only every mesh point lies within E of the surface\n"
+                           "                    (fewer triangles: the tangential part of the error is not counted)\n"
                            "  --max-triangles N refuse (exit 1, with the estimate) a mesh of more than N triangles\n"
                            "                    (default 10000000; 0: no limit)\n"
                            "  --segments N      uniform: N x N cells per patch (default 8; 1..4096)\n"

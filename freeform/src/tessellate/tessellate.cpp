@@ -450,7 +450,8 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         Eigen::Vector3d* net = pool.data() + static_cast<std::size_t>(k) * size;
         const auto t = netTerms(net, m, n);
         double b = (t[0] + t[1] + t[2]) / 8;
-        if (geometric && b > tolerance) b = std::min(b, geometricBound(net, m, n, t, root, box, S));
+        // (Far above the tolerance the geometric bound cannot help either: its offset term grows with b.)
+        if (geometric && b > tolerance && b < 16 * tolerance) b = std::min(b, geometricBound(net, m, n, t, root, box, S));
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
         const bool canU = wu >= 2 * minWidth && (t[0] > 0 || t[1] > 0);
         const bool canV = wv >= 2 * minWidth && (t[2] > 0 || t[1] > 0);
