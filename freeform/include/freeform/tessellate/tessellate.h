@@ -70,8 +70,10 @@ struct TessellationOptions {
 };
 
 struct TessellationReport {
-    std::vector<std::array<int, 2>> required; // per patch: (nu, nv) its own bound asks for
-    std::vector<std::array<int, 2>> segments; // per patch: (nu, nv) used (after matching shared sides)
+    // Grid modes: per patch the (nu, nv) its own bound asks for, and the (nu, nv) used (after
+    // matching shared sides). Local: both are the finest leaf's (1/width in u, 1/width in v).
+    std::vector<std::array<int, 2>> required;
+    std::vector<std::array<int, 2>> segments;
     double errorBound = 0;                    // the largest certified bound over the patches
     long long leaves = 0;                     // Local: sub-rectangles (leaves of the trees)
     /// With options.sampleDeviation: the largest distances found at 12 points per triangle, from
