@@ -25,6 +25,8 @@ struct TessellateOptions {
     double tolerance = 0;
     int segments = 8;
     bool outward = false;
+    long maxTriangles = 10'000'000;
+    std::string refinement = "local", measure = "parametric";
     const CLI::Option* toleranceGiven = nullptr;
     const CLI::Option* segmentsGiven = nullptr;
     const CLI::Option* objectGiven = nullptr;
@@ -47,6 +49,11 @@ Json tessellateCommand(const TessellateOptions& o)
         options.segmentsU = options.segmentsV = n;
     }
     options.flipNormals = o.outward;
+    if (o.maxTriangles < 0) throw UsageError("option --max-triangles: must be 0 (no limit) or positive");
+    options.maxTriangles = o.maxTriangles;
+    if (o.refinement == "patch-grid") options.refinement = TessellationRefinement::PatchGrid;
+    if (o.measure == "geometric") options.measure = TessellationMeasure::Geometric;
+    options.sampleDeviation = true;
 
     PatchComplex complex;
     if (hasExtension(input, ".bpt")) {
@@ -75,6 +82,8 @@ Json tessellateCommand(const TessellateOptions& o)
     out["vertices"] = mesh.vertexCount();
     out["triangles"] = mesh.faceCount();
     out["error_bound"] = report.errorBound;
+    out["measured_parametric"] = report.measuredParametric;
+    out["measured_geometric"] = report.measuredGeometric;
     return out;
 }
 
@@ -88,21 +97,39 @@ Action defineTessellate(CLI::App& app)
                "(identical control points) share its vertices, so a closed complex gives a closed mesh.\n"
                "The OBJ has v, vt (u, v of the patch), vn (the surface's unit normal) and f v/vt/vn.\n"
                "\n"
-               "Output: {\"output\": F, \"patches\": P, \"vertices\": V, \"triangles\": T, \"error_bound\": B}\n"
-               "with B the largest certified distance bound over the patches.\n"
+               "Output: {\"output\": F, \"patches\": P, \"vertices\": V, \"triangles\": T, \"error_bound\": B,\n"
+               "\"measured_parametric\": MP, \"measured_geometric\": MG} with B the largest certified distance\n"
+               "bound over the patches, MP and MG the largest deviations found at 12 points per triangle\n"
+               "(triangle point to the surface point with the same (u, v); to its foot point).\n"
                "Exit status: 0 ok, 1 bad input, 2 bad usage.");
     addPositionals(app, "IN", o->positional, "the document (IN.json) or Bézier patch file (IN.bpt)");
     app.add_option("-o,--output", o->output, "the .obj file to write (written to a temporary file, then renamed)")
         ->type_name("OUT.obj")
         ->required();
     o->toleranceGiven = addNumber(app, "--tolerance", o->tolerance,
-                                  "adaptive: every surface point lies within E of the mesh (certified bound from "
-                                  "the control net, docs/surfaces.md)")
+                                  "adaptive: every surface point lies within E of the mesh and every mesh point "
+                                  "within E of the surface (certified bound from the control nets, docs/surfaces.md)")
                             ->type_name("E");
     o->segmentsGiven = addNumber(app, "--segments", o->segments, "uniform: N x N cells per patch (1..4096)")
                            ->type_name("N")
                            ->capture_default_str();
     o->objectGiven = app.add_option("--object", o->object, "only this surface object of the document")->type_name("NAME");
+    addNumber(app, "--max-triangles", o->maxTriangles,
+              "refuse (exit 1, with the estimate) a mesh of more than N triangles (0: no limit)")
+        ->type_name("N")
+        ->capture_default_str();
+    app.add_option("--refinement", o->refinement,
+                   "local: each patch refined where its curvature needs it; patch-grid: one grid per patch from "
+                   "the bound of its whole net")
+        ->type_name("R")
+        ->check(CLI::IsMember({"local", "patch-grid"}))
+        ->capture_default_str();
+    app.add_option("--measure", o->measure,
+                   "parametric: the bound holds both ways; geometric: only every mesh point lies within E of the "
+                   "surface (fewer triangles: the tangential part of the error is not counted)")
+        ->type_name("M")
+        ->check(CLI::IsMember({"parametric", "geometric"}))
+        ->capture_default_str();
     addFlag(app, "--outward", o->outward,
                  "reverse the triangles and the normals: normals along -(f_u x f_v) (outward for teapot.bpt, whose "
                  "f_u x f_v points inwards)");

@@ -344,6 +344,7 @@ TEST_CASE("no cracks between a flat and a strongly curved patch sharing an edge"
     REQUIRE(sharedEdges(pair).size() == 1);
     TessellationOptions o;
     o.tolerance = 1e-3;
+    o.refinement = TessellationRefinement::PatchGrid; // one grid per patch (local refinement: test_tessellate_local.cpp)
     TessellationReport report;
     const auto mesh = tessellate(pair, o, &report);
     // The patches ask for very different refinements along the shared side...

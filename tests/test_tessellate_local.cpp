@@ -1,0 +1,475 @@
+// Local refinement (issue 15): the certified bound on random patches of degrees 1-7, the teapot, a
+// de Boor torus and a subdivision cage, checked against independent computations (the library's
+// de Casteljau evaluate at the triangles' (u, v), point-triangle distances from the surface);
+// conformity counted from the face list (in (u, v): every edge with one face lies on the square's
+// boundary, the others have two, the triangles tile the square); closed inputs give closed meshes;
+// the triangle count at 1e-3 as a regression guard; the maxTriangles refusal.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "freeform/subdivision/subdivision_surface.h"
+#include "freeform/tessellate/tessellate.h"
+#include "support/random.h"
+
+using namespace freeform;
+using V3 = Eigen::Vector3d;
+using V2 = Eigen::Vector2d;
+
+namespace {
+const std::string kTeapot = std::string(FREEFORM_SOURCE_DIR) + "/data/teapot.bpt";
+
+/// Topology counted from the face list alone (independent of the library's mesh code).
+struct Topology {
+    long vertices = 0, edges = 0, faces = 0;
+    long boundaryEdges = 0, nonManifoldEdges = 0;
+    std::vector<std::pair<int, int>> boundary;
+    long euler() const { return vertices - edges + faces; }
+};
+
+Topology topology(const PolygonMesh& mesh)
+{
+    std::map<std::pair<int, int>, int> incidence;
+    std::vector<bool> used(static_cast<std::size_t>(mesh.vertexCount()), false);
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        for (int k = 0; k < mesh.faceSize(f); ++k) {
+            const int a = v[k], b = v[(k + 1) % mesh.faceSize(f)];
+            ++incidence[{std::min(a, b), std::max(a, b)}];
+            used[static_cast<std::size_t>(a)] = true;
+        }
+    }
+    Topology t;
+    t.vertices = std::count(used.begin(), used.end(), true);
+    t.faces = mesh.faceCount();
+    t.edges = static_cast<long>(incidence.size());
+    for (const auto& [e, n] : incidence) {
+        if (n == 1) {
+            ++t.boundaryEdges;
+            t.boundary.push_back(e);
+        }
+        if (n > 2) ++t.nonManifoldEdges;
+    }
+    return t;
+}
+
+/// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+V3 closestOnTriangle(const V3& p, const V3& a, const V3& b, const V3& c)
+{
+    const V3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const V3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+    const V3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    const double denom = 1 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+/// Triangles bucketed in a uniform grid of cells, for distance queries up to a radius.
+class TriangleGrid {
+public:
+    TriangleGrid(const PolygonMesh& mesh, double cell) : mesh_(mesh), cell_(cell)
+    {
+        for (int f = 0; f < mesh.faceCount(); ++f) {
+            Eigen::AlignedBox3d box;
+            for (int k = 0; k < 3; ++k) box.extend(V3(mesh.positions.col(mesh.face(f)[k])));
+            const auto lo = key(box.min()), hi = key(box.max());
+            for (long x = lo[0]; x <= hi[0]; ++x)
+                for (long y = lo[1]; y <= hi[1]; ++y)
+                    for (long z = lo[2]; z <= hi[2]; ++z) cells_[pack(x, y, z)].push_back(f);
+        }
+    }
+    /// Distance from p to the nearest triangle, or infinity when none is within radius.
+    double distance(const V3& p, double radius) const
+    {
+        double best = std::numeric_limits<double>::infinity();
+        const auto lo = key(p - V3::Constant(radius)), hi = key(p + V3::Constant(radius));
+        for (long x = lo[0]; x <= hi[0]; ++x)
+            for (long y = lo[1]; y <= hi[1]; ++y)
+                for (long z = lo[2]; z <= hi[2]; ++z) {
+                    const auto it = cells_.find(pack(x, y, z));
+                    if (it == cells_.end()) continue;
+                    for (int f : it->second) {
+                        const int* v = mesh_.face(f);
+                        const V3 q = closestOnTriangle(p, mesh_.positions.col(v[0]), mesh_.positions.col(v[1]),
+                                                       mesh_.positions.col(v[2]));
+                        best = std::min(best, (q - p).norm());
+                    }
+                }
+        return best;
+    }
+
+private:
+    std::array<long, 3> key(const V3& p) const
+    {
+        return {static_cast<long>(std::floor(p.x() / cell_)), static_cast<long>(std::floor(p.y() / cell_)),
+                static_cast<long>(std::floor(p.z() / cell_))};
+    }
+    static long pack(long x, long y, long z) { return ((x + 4096) * 8192 + (y + 4096)) * 8192 + (z + 4096); }
+    const PolygonMesh& mesh_;
+    double cell_;
+    std::unordered_map<long, std::vector<int>> cells_;
+};
+
+/// A closed torus-like de Boor grid: rows around the tube's axis, cols around the tube.
+PatchComplex torus(int rows, int cols)
+{
+    PointMatrix<double, 3> d(3, rows * cols);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const double a = 2 * M_PI * r / rows, b = 2 * M_PI * c / cols;
+            const double rad = 3 + std::cos(b);
+            d.col(r * cols + c) = V3(rad * std::cos(a), rad * std::sin(a), std::sin(b));
+        }
+    return deboorSurfacePatches(d, rows, cols, EndCondition::Closed, EndCondition::Closed);
+}
+
+/// Largest |T(x) - f(x)| over the points (i, j, k)/6 of every triangle of a one-patch mesh (its
+/// texcoords are the patch's (u, v)), f by the patch's de Casteljau evaluate.
+double parametricDeviation(const Patch& patch, const PolygonMesh& mesh)
+{
+    double worst = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        for (int i = 0; i <= 6; ++i)
+            for (int j = 0; i + j <= 6; ++j) {
+                const double a = i / 6.0, b = j / 6.0, c = 1 - a - b;
+                const V2 uv = a * V2(mesh.texcoords.col(v[0])) + b * V2(mesh.texcoords.col(v[1])) + c * V2(mesh.texcoords.col(v[2]));
+                const V3 t = a * V3(mesh.positions.col(v[0])) + b * V3(mesh.positions.col(v[1])) + c * V3(mesh.positions.col(v[2]));
+                worst = std::max(worst, (t - patch.evaluate(uv.x(), uv.y())).norm());
+            }
+    }
+    return worst;
+}
+
+/// Largest distance from the points (i, j, k)/4 of every triangle of a one-patch mesh to the patch,
+/// each by Gauss-Newton on |p - f(y)|^2 from the point's own (u, v) with the patch's jet (y kept in
+/// [0, 1]^2), so at most the distance to the point found: an upper bound of the true distance.
+double meshToSurface(const Patch& patch, const PolygonMesh& mesh)
+{
+    double worst = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        for (int i = 0; i <= 4; ++i)
+            for (int j = 0; i + j <= 4; ++j) {
+                const double a = i / 4.0, b = j / 4.0, c = 1 - a - b;
+                V2 y = a * V2(mesh.texcoords.col(v[0])) + b * V2(mesh.texcoords.col(v[1])) + c * V2(mesh.texcoords.col(v[2]));
+                const V3 p = a * V3(mesh.positions.col(v[0])) + b * V3(mesh.positions.col(v[1])) + c * V3(mesh.positions.col(v[2]));
+                double best = (p - patch.evaluate(y.x(), y.y())).norm();
+                for (int it = 0; it < 8; ++it) {
+                    const auto jet = patch.jet(y.x(), y.y(), 1);
+                    const V3 r = V3(jet.col(0)) - p, fu = jet.col(1), fv = jet.col(2);
+                    Eigen::Matrix2d h;
+                    h << fu.dot(fu), fu.dot(fv), fu.dot(fv), fv.dot(fv);
+                    if (!(std::abs(h.determinant()) > 0)) break;
+                    y = (y - h.inverse() * V2(fu.dot(r), fv.dot(r))).cwiseMax(0.0).cwiseMin(1.0);
+                    best = std::min(best, (p - patch.evaluate(y.x(), y.y())).norm());
+                }
+                worst = std::max(worst, best);
+            }
+    }
+    return worst;
+}
+
+/// Largest distance from f(u, v) on an irregular n x n grid (and the sides) to the mesh (up to
+/// radius; cell: the bucket size, about the triangles' size).
+double surfaceToMesh(const Patch& patch, const PolygonMesh& mesh, int n, double radius, double cell = 0.02)
+{
+    const TriangleGrid tri(mesh, cell);
+    double worst = 0;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const double u = i == n ? 1.0 : std::fmod(i * 0.6180339887 / n * 1.7 + 0.0013, 1.0);
+            const double v = j == n ? 1.0 : std::fmod(j * 0.7071067811 / n * 1.9 + 0.0007, 1.0);
+            worst = std::max(worst, tri.distance(patch.evaluate(u, v), radius));
+        }
+    return worst;
+}
+
+/// Conformity of a one-patch mesh in (u, v): every triangle counter-clockwise and not degenerate,
+/// the areas sum to 1, every edge has one or two faces and the edges with one face lie on the
+/// boundary of the unit square (a vertex inside another triangle's edge would leave that edge
+/// with one face inside the square).
+void checkConformingInUv(const PolygonMesh& mesh)
+{
+    std::map<std::pair<int, int>, int> incidence;
+    double area = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* v = mesh.face(f);
+        const V2 a = mesh.texcoords.col(v[0]), b = mesh.texcoords.col(v[1]), c = mesh.texcoords.col(v[2]);
+        const double twice = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+        REQUIRE(twice > 0);
+        area += twice / 2;
+        for (int k = 0; k < 3; ++k) ++incidence[{std::min(v[k], v[(k + 1) % 3]), std::max(v[k], v[(k + 1) % 3])}];
+    }
+    CHECK(area == Approx(1).epsilon(1e-12));
+    long inside = 0;
+    for (const auto& [e, n] : incidence) {
+        REQUIRE(n <= 2);
+        if (n == 2) continue;
+        const V2 a = mesh.texcoords.col(e.first), b = mesh.texcoords.col(e.second);
+        const bool onSide = (a.x() == 0 && b.x() == 0) || (a.x() == 1 && b.x() == 1) || (a.y() == 0 && b.y() == 0) ||
+                            (a.y() == 1 && b.y() == 1);
+        if (!onSide) ++inside;
+    }
+    CHECK(inside == 0);
+}
+} // namespace
+
+TEST_CASE("local refinement: the bound holds on random patches of degrees 1-7", "[tessellate][local]")
+{
+    const std::array<int, 2> degrees[] = {{1, 1}, {1, 7}, {2, 3}, {3, 3}, {4, 2}, {5, 5}, {6, 4}, {7, 7}};
+    std::uint32_t seed = 100;
+    for (const auto& [m, n] : degrees) {
+        ++seed;
+        CAPTURE(m, n, seed);
+        PointMatrix<double, 3> pts = test::randomPoints<double, 3>((m + 1) * (n + 1), seed, -0.25, 0.25);
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) pts.col(i * (n + 1) + j) += V3(double(i) / m, double(j) / n, 0);
+        const Patch patch(m, n, pts);
+        const double tolerance = 2e-3;
+        TessellationOptions o;
+        o.tolerance = tolerance;
+        TessellationReport report;
+        const PolygonMesh mesh = tessellate(PatchComplex{{patch}}, o, &report);
+        mesh.validate("random patch");
+        CHECK(report.errorBound <= tolerance);
+        // Both directions of the certificate, computed independently.
+        const double meshToSurface = parametricDeviation(patch, mesh);
+        CHECK(meshToSurface <= tolerance);
+        CHECK(meshToSurface <= report.errorBound * (1 + 1e-9));
+        CHECK(surfaceToMesh(patch, mesh, 60, 2 * tolerance) <= tolerance);
+        checkConformingInUv(mesh);
+        // Vertices and normals lie on the surface.
+        for (int k = 0; k < mesh.vertexCount(); ++k) {
+            const V2 uv = mesh.texcoords.col(k);
+            CHECK((V3(mesh.positions.col(k)) - patch.evaluate(uv.x(), uv.y())).norm() < 1e-12);
+            CHECK((V3(mesh.normals.col(k)) - patch.normal(uv.x(), uv.y())).norm() < 1e-9);
+        }
+        // Adaptive inside the patch: fewer triangles than the one grid the whole net's bound asks for
+        // (except for a bilinear patch, whose one grid is already what it needs).
+        const auto grid = adaptiveSegments(patch, tolerance);
+        if (m > 1 || n > 1) CHECK(mesh.faceCount() < 2 * grid[0] * grid[1]);
+    }
+}
+
+TEST_CASE("the geometric measure: every triangle point within the tolerance of the surface, fewer triangles",
+          "[tessellate][local][geometric]")
+{
+    const std::array<int, 2> degrees[] = {{1, 2}, {2, 2}, {3, 3}, {4, 5}, {7, 3}};
+    std::uint32_t seed = 300;
+    for (const auto& [m, n] : degrees) {
+        ++seed;
+        CAPTURE(m, n, seed);
+        PointMatrix<double, 3> pts = test::randomPoints<double, 3>((m + 1) * (n + 1), seed, -0.2, 0.2);
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) pts.col(i * (n + 1) + j) += V3(double(i) / m, double(j) / n, 0);
+        const Patch patch(m, n, pts);
+        for (double tolerance : {1e-2, 1e-3}) {
+            CAPTURE(tolerance);
+            TessellationOptions o;
+            o.tolerance = tolerance;
+            o.measure = TessellationMeasure::Geometric;
+            TessellationReport report;
+            const PolygonMesh mesh = tessellate(PatchComplex{{patch}}, o, &report);
+            CHECK(report.errorBound <= tolerance);
+            CHECK(meshToSurface(patch, mesh) <= tolerance);
+            checkConformingInUv(mesh);
+            o.measure = TessellationMeasure::Parametric;
+            CHECK(mesh.faceCount() <= tessellate(PatchComplex{{patch}}, o).faceCount());
+        }
+    }
+    // The teapot: within the tolerance, tight within 2x, and the count (56,070 when written; the
+    // issue's goal of 46,000 is not reached).
+    const PatchComplex teapot = readBpt(kTeapot);
+    TessellationOptions o;
+    o.tolerance = 1e-3;
+    o.measure = TessellationMeasure::Geometric;
+    o.sampleDeviation = true;
+    TessellationReport report;
+    const PolygonMesh mesh = tessellate(teapot, o, &report);
+    CHECK(report.errorBound <= 1e-3);
+    CHECK(report.measuredGeometric <= 1e-3);
+    CHECK(report.measuredGeometric >= 0.5e-3);
+    CHECK(mesh.faceCount() <= 57000);
+    CHECK(topology(mesh).nonManifoldEdges == 0);
+}
+
+TEST_CASE("local refinement: refines where the curvature is, not uniformly", "[tessellate][local]")
+{
+    // Flat except for a bump near the corner u = v = 0: (i, j, z) with z only at point (1, 1).
+    PointMatrix<double, 3> pts(3, 16);
+    for (int i = 0; i <= 3; ++i)
+        for (int j = 0; j <= 3; ++j) pts.col(i * 4 + j) = V3(i / 3.0, j / 3.0, i == 1 && j == 1 ? 0.5 : 0);
+    const Patch patch(3, 3, pts);
+    TessellationOptions o;
+    o.tolerance = 1e-4;
+    const PolygonMesh mesh = tessellate(PatchComplex{{patch}}, o);
+    checkConformingInUv(mesh);
+    CHECK(parametricDeviation(patch, mesh) <= 1e-4);
+    // More triangles in the quarter at the bump than in the far quarter (u, v > 1/2), where the
+    // surface is z = 0.5 B_1(u) B_1(v): small but not zero.
+    long nearBump = 0, far = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        V2 c = V2::Zero();
+        for (int k = 0; k < 3; ++k) c += V2(mesh.texcoords.col(mesh.face(f)[k])) / 3;
+        if (c.x() < 0.5 && c.y() < 0.5) ++nearBump;
+        if (c.x() > 0.5 && c.y() > 0.5) ++far;
+    }
+    INFO("near the bump " << nearBump << ", far " << far);
+    CHECK(nearBump > 3 * far); // one grid: equal counts
+}
+
+TEST_CASE("local refinement: the teapot at 1e-3", "[tessellate][local][teapot]")
+{
+    const PatchComplex teapot = readBpt(kTeapot);
+    TessellationOptions o;
+    o.tolerance = 1e-3;
+    o.sampleDeviation = true;
+    TessellationReport report;
+    const PolygonMesh mesh = tessellate(teapot, o, &report);
+    mesh.validate("teapot");
+    CHECK(report.errorBound <= 1e-3);
+    // Surface to mesh, 33 x 33 parameters per patch off any dyadic grid.
+    const TriangleGrid tri(mesh, 0.05);
+    double worst = 0;
+    for (const Patch& p : teapot.patches)
+        for (int i = 0; i <= 32; ++i)
+            for (int j = 0; j <= 32; ++j) {
+                const double u = std::fmod(i * 0.030901699 + 0.0071, 1.0), v = std::fmod(j * 0.0314159 + 0.0029, 1.0);
+                worst = std::max(worst, tri.distance(p.evaluate(i == 32 ? 1.0 : u, j == 32 ? 1.0 : v), 1e-3));
+            }
+    INFO("worst surface-to-mesh distance " << worst);
+    CHECK(worst <= 1e-3);
+    // The bound is tight within 2x: triangle points 0.5e-3 and more from the surface exist.
+    CHECK(report.measuredParametric <= report.errorBound);
+    CHECK(report.measuredGeometric <= report.measuredParametric);
+    CHECK(report.measuredGeometric >= 0.5e-3);
+    const Topology t = topology(mesh);
+    CHECK(t.nonManifoldEdges == 0);
+    // Regression guard on the count (83,570 when written; one grid per patch: 161,144; the
+    // issue's goal, 46,000, is not reached: docs/performance.md).
+    CHECK(mesh.faceCount() <= 86000);
+    TessellationOptions grid = o;
+    grid.refinement = TessellationRefinement::PatchGrid;
+    grid.sampleDeviation = false;
+    CHECK(mesh.faceCount() * 1.9 < tessellate(teapot, grid).faceCount());
+}
+
+TEST_CASE("local refinement: a de Boor torus and a subdivision cage give closed meshes within the bound",
+          "[tessellate][local][closed]")
+{
+    SECTION("closed x closed de Boor torus")
+    {
+        const PatchComplex t = torus(6, 5);
+        for (double tolerance : {1e-2, 1e-3}) {
+            TessellationOptions o;
+            o.tolerance = tolerance;
+            const PolygonMesh mesh = tessellate(t, o);
+            const TriangleGrid tri(mesh, 0.25);
+            const Topology top = topology(mesh);
+            CHECK(top.boundaryEdges == 0);
+            CHECK(top.nonManifoldEdges == 0);
+            CHECK(top.euler() == 0);
+            double worst = 0;
+            for (const Patch& p : t.patches)
+                for (int i = 0; i <= 16; ++i)
+                    for (int j = 0; j <= 16; ++j)
+                        worst = std::max(worst, tri.distance(p.evaluate(std::fmod(i * 0.0613 + 0.001, 1.0),
+                                                                        std::fmod(j * 0.0587 + 0.002, 1.0)),
+                                                             2 * tolerance));
+            CHECK(worst <= tolerance);
+        }
+    }
+    SECTION("the Bézier patches of a regular Catmull-Clark torus cage")
+    {
+        const SubdivisionSurface s(readCage(std::string(FREEFORM_SOURCE_DIR) + "/data/cages/torus.obj"),
+                                   SubdivisionScheme::Catmark);
+        const PatchComplex patches = s.regularBezierPatches();
+        REQUIRE(static_cast<int>(patches.patches.size()) == s.faceCount()); // every face regular
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        const PolygonMesh mesh = tessellate(patches, o);
+        const Topology top = topology(mesh);
+        CHECK(top.boundaryEdges == 0);
+        CHECK(top.nonManifoldEdges == 0);
+        CHECK(top.euler() == 0);
+        const TriangleGrid tri(mesh, 0.1);
+        double worst = 0;
+        for (const Patch& p : patches.patches)
+            for (int i = 0; i <= 12; ++i)
+                for (int j = 0; j <= 12; ++j)
+                    worst = std::max(worst, tri.distance(p.evaluate(std::fmod(i * 0.0813 + 0.001, 1.0),
+                                                                    std::fmod(j * 0.0787 + 0.002, 1.0)),
+                                                         2e-3));
+        CHECK(worst <= 1e-3);
+    }
+}
+
+TEST_CASE("local refinement: no cracks or T-junctions where a flat and a curved patch meet", "[tessellate][local][cracks]")
+{
+    PointMatrix<double, 3> a(3, 16), b(3, 16);
+    for (int i = 0; i <= 3; ++i)
+        for (int j = 0; j <= 3; ++j) {
+            const double y = j / 3.0, z = 0.05 * j * (3 - j);
+            a.col(i * 4 + j) = V3(-1 + i / 3.0, y, z * (i / 3.0));
+            b.col(i * 4 + j) = V3(i / 3.0, y, z + (i == 0 ? 0 : 3.0 * std::sin(2.0 * i + j)));
+        }
+    // B reversed in v, so the shared side runs opposite ways in the two patches.
+    PointMatrix<double, 3> br(3, 16);
+    for (int i = 0; i <= 3; ++i)
+        for (int j = 0; j <= 3; ++j) br.col(i * 4 + j) = b.col(i * 4 + (3 - j));
+    for (const auto& second : {b, br}) {
+        const PatchComplex pair{{Patch(3, 3, a), Patch(3, 3, second)}};
+        REQUIRE(sharedEdges(pair).size() == 1);
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        const PolygonMesh mesh = tessellate(pair, o);
+        const Topology top = topology(mesh);
+        CHECK(top.nonManifoldEdges == 0);
+        const auto shared = edgeCurve(pair.patches[0], PatchSide::U1);
+        for (const auto& [p, q] : top.boundary) {
+            const V3 mid = (V3(mesh.positions.col(p)) + V3(mesh.positions.col(q))) / 2;
+            CHECK(shared.closestPoint(mid).distance > 1e-6);
+        }
+        CHECK(top.euler() == 1);
+    }
+}
+
+TEST_CASE("maxTriangles: a huge patch is refused with the estimate, before the mesh is built", "[tessellate][limits]")
+{
+    PointMatrix<double, 3> pts = test::randomPoints<double, 3>(16, 7, -0.3, 0.3);
+    for (int i = 0; i <= 3; ++i)
+        for (int j = 0; j <= 3; ++j) pts.col(i * 4 + j) += V3(i / 3.0, j / 3.0, 0);
+    const Patch huge(3, 3, 1e6 * pts); // a patch a million units large
+    TessellationOptions o;
+    o.tolerance = 1e-2;
+    o.maxTriangles = 200000;
+    CHECK_THROWS_WITH(tessellate(PatchComplex{{huge}}, o),
+                      Catch::Contains("maxTriangles = 200000") && Catch::Contains("estimate") &&
+                          Catch::Contains("--max-triangles"));
+    // One grid per patch: the count is known before anything is built (default limit 10^7).
+    o.maxTriangles = TessellationOptions{}.maxTriangles;
+    o.refinement = TessellationRefinement::PatchGrid;
+    CHECK_THROWS_WITH(tessellate(PatchComplex{{huge}}, o), Catch::Contains("33554432 triangles"));
+    // Within the limit nothing changes; 0 means no limit; negative is an error.
+    o.refinement = TessellationRefinement::Local;
+    o.tolerance = 1e5;
+    o.maxTriangles = 0;
+    CHECK(tessellate(PatchComplex{{huge}}, o).faceCount() > 0);
+    o.maxTriangles = -1;
+    CHECK_THROWS_WITH(tessellate(PatchComplex{{huge}}, o), Catch::Contains("maxTriangles"));
+}
