@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <variant>
 #include <vector>
 
 namespace ffpy {
@@ -237,10 +238,69 @@ py::array_t<double, py::array::c_style> controlBlock(py::handle h, const Lattice
     return py::array_t<double, py::array::c_style>(a);
 }
 
+/// Points bound to a lattice's frame (FfdBinding): lattice coordinates computed once, deform()
+/// re-evaluates only the deformation as control points move (an optimisation loop's inner call).
+struct PyBinding {
+    std::variant<freeform::FfdBinding<double>, freeform::FfdBinding<float>> binding;
+    bool isFloat = false;
+    std::size_t count = 0;
+};
+
+template <typename Scalar>
+py::array bindingDeform(const freeform::FfdBinding<Scalar>& b, const Lattice& lat, double strength, int threads,
+                        py::handle outArg)
+{
+    const auto n = static_cast<py::ssize_t>(b.size());
+    py::array_t<Scalar> out;
+    if (outArg.is_none()) {
+        out = py::array_t<Scalar>({n, py::ssize_t{3}});
+    } else {
+        py::array a = py::array::ensure(outArg);
+        if (!a || !a.dtype().is(py::dtype::of<Scalar>()) || !isCContiguous(a) || a.ndim() != 2 || a.shape(0) != n ||
+            a.shape(1) != 3 || !a.writeable())
+            throw freeform::Error("out: expected a writable C-contiguous (" + std::to_string(n) + ", 3) array of " +
+                                  std::string(py::str(py::dtype::of<Scalar>())));
+        out = py::array_t<Scalar>(a);
+    }
+    freeform::FfdOutputs<Scalar> o;
+    o.positions = out.mutable_data();
+    freeform::DeformOptions options;
+    options.strength = strength;
+    options.threads = threads;
+    {
+        py::gil_scoped_release release;
+        b.deform(lat, o, options);
+    }
+    return out;
+}
+
 } // namespace
 
 void bindLattice(py::module_& m)
 {
+    py::class_<PyBinding>(m, "Binding", R"doc(
+Points bound to a lattice (Lattice.bind): their lattice coordinates are computed once, and
+deform(lattice) re-evaluates only the deformation, for any lattice with the same degrees, frame and
+outside policy (control points and strength may change).)doc")
+        .def_property_readonly("size", [](const PyBinding& b) { return b.count; })
+        .def_property_readonly("dtype", [](const PyBinding& b) {
+            return b.isFloat ? py::dtype::of<float>() : py::dtype::of<double>();
+        })
+        .def(
+            "deform",
+            [](const PyBinding& b, PyLattice& lat, int threads, py::handle out) {
+                const Lattice l = lat.snapshot();
+                return std::visit([&](const auto& x) { return bindingDeform(x, l, lat.strength, threads, out); },
+                                  b.binding);
+            },
+            py::arg("lattice"), py::arg("threads") = 0, py::arg("out") = py::none(),
+            "The bound points deformed through lattice (N, 3) in the bound dtype; out= a preallocated "
+            "C-contiguous array of that shape and dtype to write into (no allocation). Error when the lattice's "
+            "degrees, frame or outside policy differ from the bound one.")
+        .def("__repr__", [](const PyBinding& b) {
+            return "Binding(size=" + std::to_string(b.count) + ", dtype=" + (b.isFloat ? "float32" : "float64") + ")";
+        });
+
     py::class_<PyLattice>(m, "Lattice", R"doc(
 A free-form deformation lattice: a Bézier volume of degrees (l, m, n) placed in space by a frame
 (origin X0 and edge vectors S, T, U). A point moves by p' = p + strength * sum_q B_q(s,t,u) (P_q - R_q)
@@ -347,6 +407,26 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             py::arg("points"), py::arg("threads") = 0,
             "The deformed points (N, 3), same dtype as points (float32 stays float32; other dtypes and layouts "
             "are converted once to float64). threads=0: the library's default (hardware concurrency).")
+        .def(
+            "bind",
+            [](PyLattice& self, py::handle points) {
+                const Lattice lat = self.snapshot();
+                const py::array a = rows(points, "points", 3);
+                const auto n = static_cast<std::size_t>(a.shape(0));
+                if (isFloat(a)) {
+                    const auto* p = static_cast<const float*>(a.data());
+                    py::gil_scoped_release release;
+                    requireFiniteRows(p, n, 3, "points");
+                    return PyBinding{freeform::FfdBinding<float>(lat, p, n), true, n};
+                }
+                const auto* p = static_cast<const double*>(a.data());
+                py::gil_scoped_release release;
+                requireFiniteRows(p, n, 3, "points");
+                return PyBinding{freeform::FfdBinding<double>(lat, p, n), false, n};
+            },
+            py::arg("points"),
+            "Binds points (N, 3) float64 or float32 to this lattice's frame: a Binding whose deform(lattice) "
+            "skips the lattice coordinates (the fast path for loops that move control points).")
         .def(
             "deform_normals",
             [](PyLattice& self, py::handle points, py::handle normals, int threads) {

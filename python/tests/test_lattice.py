@@ -291,3 +291,22 @@ def test_repr_and_docstrings():
     assert repr(lat) == "Lattice(name='lattice', degree=(1, 2, 3), control_points=24, outside='clamp', strength=1)"
     assert "Bernstein" in ff.Lattice.__doc__ or "Bézier" in ff.Lattice.__doc__
     assert ff.Lattice.weights.__doc__ and ff.Lattice.deform.__doc__
+
+
+def test_binding_reuses_coordinates_and_writes_into_out():
+    lat = random_lattice(ff)
+    for dtype in (np.float64, np.float32):
+        p = MIXED.astype(dtype)
+        b = lat.bind(p)
+        assert b.size == len(p) and b.dtype == dtype
+        lat.control_points[10] += [0.05, -0.02, 0.01]
+        lat.strength = 0.5
+        out = np.empty_like(p)
+        res = b.deform(lat, out=out)
+        assert np.shares_memory(res, out)  # written in place, no new array
+        np.testing.assert_array_equal(out, lat.deform(p))
+        with pytest.raises(ff.Error, match="out: expected"):
+            b.deform(lat, out=np.empty((3, 3), dtype=dtype))
+        other = ff.Lattice.fit(p, degree=2)
+        with pytest.raises(ff.Error):
+            b.deform(other)
