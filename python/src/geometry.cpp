@@ -333,7 +333,7 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                  return PyPatch{freeform::BezierSurface<double, 3>(p, q, cols)};
              }),
              py::arg("points"))
-        .def_property_readonly("degree", [](const PyPatch& s) { return std::make_pair(s.p.degreeU(), s.p.degreeV()); })
+        .def_property_readonly("degree", [](const PyPatch& s) { return py::make_tuple(s.p.degreeU(), s.p.degreeV()); })
         .def_property_readonly("control_points", [](const PyPatch& s) {
             return fromColumns(s.p.controlPoints()).attr("reshape")(s.p.degreeU() + 1, s.p.degreeV() + 1, 3);
         })

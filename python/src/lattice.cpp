@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -22,11 +23,6 @@ namespace ffpy {
 namespace {
 
 using freeform::Lattice;
-
-Points3 pointsOf(const py::array_t<double>& a)
-{
-    return Eigen::Map<const Points3>(a.data(), 3, a.shape(0));
-}
 
 py::array_t<double> pointArray(const Points3& p)
 {
@@ -328,8 +324,12 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
                 if (p.cols() == 0) throw freeform::Error("points: no points to fit a lattice around");
                 const auto d = degreeOf(degree);
                 const auto policy = freeform::parseOutsidePolicy(outside, "outside");
-                py::gil_scoped_release release;
-                return PyLattice(Lattice::fit(p, d, margin, policy));
+                std::optional<Lattice> lat;
+                {
+                    py::gil_scoped_release release;
+                    lat.emplace(Lattice::fit(p, d, margin, policy));
+                }
+                return PyLattice(std::move(*lat)); // makes NumPy arrays: with the GIL
             },
             py::arg("points"), py::arg("degree") = std::make_tuple(3, 3, 3), py::arg("margin") = 0.05,
             py::arg("outside") = "clamp",
@@ -348,10 +348,19 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             },
             py::arg("path"), py::arg("name") = py::none(),
             "Writes a document with this lattice as its one object (atomically; the name given at load, or 'lattice').")
-        .def_property_readonly("degree", [](const PyLattice& s) { return s.lattice.degrees(); })
+        .def_property_readonly("degree", [](const PyLattice& s) {
+            const auto& d = s.lattice.degrees();
+            return py::make_tuple(d[0], d[1], d[2]);
+        })
         .def_property_readonly("origin", [](const PyLattice& s) { return fromVector(s.lattice.origin()); })
         .def_property_readonly(
-            "axes", [](const PyLattice& s) { return fromColumns(s.lattice.axes()).attr("T"); },
+            "axes",
+            [](const PyLattice& s) {
+                py::array_t<double> out({py::ssize_t{3}, py::ssize_t{3}});
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 3; ++c) out.mutable_at(r, c) = s.lattice.axes()(r, c);
+                return out;
+            },
             "(3, 3) array whose columns are the edge vectors S, T, U.")
         .def_property(
             "control_points", [](const PyLattice& s) { return s.points; },

@@ -154,7 +154,7 @@ def test_det_j_and_normals_against_finite_differences():
     n = RNG.normal(size=p.shape)
     n /= np.linalg.norm(n, axis=1)[:, None]
     out, nn = lat.deform_normals(p, n)
-    np.testing.assert_array_equal(out, lat.deform(p))
+    np.testing.assert_allclose(out, lat.deform(p), rtol=0, atol=1e-14)
     cof = np.linalg.det(J)[:, None, None] * np.linalg.inv(J).transpose(0, 2, 1)
     expected = np.einsum("pij,pj->pi", cof, n)
     expected /= np.linalg.norm(expected, axis=1)[:, None]
@@ -225,8 +225,9 @@ def test_fit_load_save_and_cli_round_trip(tmp_path):
     again = ff.Lattice.load(str(moved))
     np.testing.assert_array_equal(again.control_points, from_cli.control_points)
     assert again.name == "lattice" and again.outside == "clamp"
-    info = json.loads(run_cli("info", moved))
-    assert "lattice" in json.dumps(info)
+    ev = json.loads(run_cli("eval", moved, "--object", "lattice", "--at", "0.25,0.5,0.75"))
+    world = from_cli.origin + from_cli.axes @ np.array([0.25, 0.5, 0.75])
+    np.testing.assert_allclose(from_cli.deform(world[None, :])[0], ev["point"], rtol=0, atol=1e-13)
 
 
 def test_mesh_file_deform_matches_cli(tmp_path):
