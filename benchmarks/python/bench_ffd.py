@@ -11,7 +11,7 @@ with
   - the plain NumPy FFD measured in the same run: the vectorised Bernstein tensor sum PyGeM-style
     code does (per-axis Bernstein matrices, then an einsum over the 64 control points).
 
-Prints one line per case (best of --repeat runs, seconds and M points/s) and the speed-up over
+Prints one line per case (the median of --repeat runs after a warm-up, seconds and M points/s) and the speed-up over
 NumPy. Run from the repository root after building the module:
 
     PYTHONPATH=build/python python3 benchmarks/python/bench_ffd.py [--points N] [--repeat R]
@@ -45,13 +45,16 @@ def numpy_ffd(points, origin, axes, control, rest, degree):
     return points + np.einsum("ni,nj,nk,ijkc->nc", b[0], b[1], b[2], d, optimize=True)
 
 
-def best(f, repeat):
+def median_time(f, repeat):
+    """Median wall-clock seconds of repeat calls (after one warm-up call), as Google Benchmark's
+    real_time median of the C++ benchmark."""
+    f()
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
         f()
         times.append(time.perf_counter() - t0)
-    return min(times)
+    return float(np.median(times))
 
 
 def main():
@@ -83,11 +86,11 @@ def main():
         ("ff.weights_matvec", lambda: lat.weights_matvec(p64, dP, threads=args.threads)),
         ("ff.weights_rmatvec", lambda: lat.weights_rmatvec(p64, g, threads=args.threads)),
     ]
-    print(f"{n} points, cubic lattice, threads={args.threads or os.cpu_count()}, best of {args.repeat}")
+    print(f"{n} points, cubic lattice, threads={args.threads or os.cpu_count()}, median of {args.repeat} (NumPy: one timed run after a warm-up)")
     results = {}
     for name, f in cases:
-        repeat = max(1, args.repeat // 2) if name.startswith("numpy") else args.repeat
-        t = best(f, repeat)
+        repeat = 1 if name.startswith("numpy") else args.repeat
+        t = median_time(f, repeat)
         results[name] = t
         print(f"{name:22s} {t * 1e3:9.2f} ms  {n / t / 1e6:8.2f} M points/s")
     base = results["numpy_ffd float64"]
