@@ -368,6 +368,7 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                 const double* p = static_cast<const double*>(arr.data());
                 py::array_t<double> out({n, py::ssize_t{3}});
                 double* o = out.mutable_data();
+                py::gil_scoped_release release;
                 for (py::ssize_t i = 0; i < n; ++i) {
                     const Eigen::Vector3d x = s.p.partial(a, b, p[2 * i], p[2 * i + 1]);
                     o[3 * i] = x[0];
@@ -384,7 +385,10 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                 const auto n = arr.shape(0);
                 const double* p = static_cast<const double*>(arr.data());
                 Points3 out(3, n);
-                for (py::ssize_t i = 0; i < n; ++i) out.col(i) = s.p.normal(p[2 * i], p[2 * i + 1]);
+                {
+                    py::gil_scoped_release release;
+                    for (py::ssize_t i = 0; i < n; ++i) out.col(i) = s.p.normal(p[2 * i], p[2 * i + 1]);
+                }
                 return fromColumns(out);
             },
             py::arg("uv"))
@@ -442,7 +446,13 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
         .def(
             "evaluate",
             [](const freeform::TypedDocument& d, const std::string& name, std::vector<double> at, int order) {
-                return evaluationDict(freeform::evaluate(d, d.object(name), at, order));
+                const auto& o = d.object(name);
+                freeform::Evaluation e;
+                {
+                    py::gil_scoped_release release;
+                    e = freeform::evaluate(d, o, at, order);
+                }
+                return evaluationDict(e);
             },
             py::arg("name"), py::arg("at"), py::arg("order") = 0,
             "As `freeform eval`: at = [t], [u, v], [s, t, u] or [face, u, v] (subdivision limit surface); "
@@ -585,7 +595,14 @@ else of the file as read.)doc")
                 m.file.write(path);
             },
             py::arg("path"), "Writes the file back (same format: only positions/normals/tangents changed; atomic).")
-        .def("to_arrays", [](const PyMesh& m) { return meshArrays(m.file.toPolygonMesh()); },
+        .def("to_arrays", [](const PyMesh& m) {
+                freeform::PolygonMesh mesh;
+                {
+                    py::gil_scoped_release release;
+                    mesh = m.file.toPolygonMesh();
+                }
+                return meshArrays(mesh);
+            },
              "(V (n, 3), faces ((F, k) int32 when every face has k corners, else a list), normals or None).")
         .def(
             "deform",
@@ -613,7 +630,11 @@ else of the file as read.)doc")
             "Deforms the file in place as `freeform ffd MESH` does (io/deform_file.h): positions through the "
             "lattice, normals by cof(J) ('jacobian') or recomputed ('recompute'), tangents by J; returns the report.")
         .def("info", [](const PyMesh& m) {
-            const auto mesh = m.file.toPolygonMesh();
+            freeform::PolygonMesh mesh;
+            {
+                py::gil_scoped_release release;
+                mesh = m.file.toPolygonMesh();
+            }
             py::dict d;
             d["format"] = m.file.format();
             d["positions"] = m.file.positions().cols();

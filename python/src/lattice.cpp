@@ -402,7 +402,10 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
                 const Lattice lat = self.snapshot();
                 const Points3 p = toPoints(points, "points");
                 Points3 out(3, p.cols());
-                for (Eigen::Index i = 0; i < p.cols(); ++i) out.col(i) = lat.toLattice(p.col(i));
+                {
+                    py::gil_scoped_release release;
+                    for (Eigen::Index i = 0; i < p.cols(); ++i) out.col(i) = lat.toLattice(p.col(i));
+                }
                 return fromColumns(out);
             },
             py::arg("points"), "Lattice coordinates (s, t, u) of world points (N, 3) (no outside policy).")
