@@ -15,6 +15,7 @@
 #include <freeform/tessellate/tessellate.h>
 
 #include <sstream>
+#include <type_traits>
 #include <variant>
 
 namespace ffpy {
@@ -223,25 +224,49 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
              py::arg("degree"), py::arg("points"), py::arg("closed") = false, py::arg("intervals") = py::none())
         .def_static(
             "interpolate",
-            [](py::handle points, const std::string& end, const std::string& parametrization) {
+            [](py::handle points, const std::string& end, const std::string& parametrization, py::handle params,
+               py::handle startDerivative, py::handle endDerivative) {
                 int dim = 0;
                 py::array a = pointsAnyDim(points, "points", dim);
                 const auto e = freeform::parseInterpolationEnd(end, "end");
                 const auto p = freeform::parseParametrization(parametrization, "parametrization");
-                if (dim == 2) {
-                    freeform::InterpolationOptions<double, 2> o;
+                if (e != freeform::InterpolationEnd::Clamped && (!startDerivative.is_none() || !endDerivative.is_none()))
+                    throw freeform::Error("start_derivative / end_derivative: only with end='clamped'");
+                std::vector<double> given;
+                if (!params.is_none()) {
+                    const auto v = vector(params, "params");
+                    given.assign(v.data(), v.data() + v.size());
+                }
+                auto solve = [&](auto tag) {
+                    constexpr int D = decltype(tag)::value;
+                    freeform::InterpolationOptions<double, D> o;
                     o.end = e;
                     o.parametrization = p;
-                    return PySpline{freeform::interpolateCubic<double, 2>(columns<2>(a, "points"), o)};
-                }
-                freeform::InterpolationOptions<double, 3> o;
-                o.end = e;
-                o.parametrization = p;
-                return PySpline{freeform::interpolateCubic<double, 3>(columns<3>(a, "points"), o)};
+                    o.params = given;
+                    auto derivative = [&](py::handle h, const char* what) {
+                        freeform::Point<double, D> d = freeform::Point<double, D>::Zero();
+                        if (h.is_none()) return d;
+                        const auto v = vector(h, what);
+                        if (v.size() != D)
+                            throw freeform::Error(std::string(what) + ": expected " + std::to_string(D) + " numbers, got " +
+                                                  std::to_string(v.size()));
+                        for (int i = 0; i < D; ++i) d[i] = v.data()[i];
+                        return d;
+                    };
+                    o.startDerivative = derivative(startDerivative, "start_derivative");
+                    o.endDerivative = derivative(endDerivative, "end_derivative");
+                    return PySpline{freeform::interpolateCubic<double, D>(columns<D>(a, "points"), o)};
+                };
+                if (dim == 2) return solve(std::integral_constant<int, 2>{});
+                return solve(std::integral_constant<int, 3>{});
             },
             py::arg("points"), py::arg("end") = "natural", py::arg("parametrization") = "chord",
-            "The C2 cubic spline through points (N, D); end 'natural', 'clamped' (zero end derivatives) or "
-            "'periodic'; parametrization 'uniform', 'chord' or 'centripetal'.")
+            py::arg("params") = py::none(), py::arg("start_derivative") = py::none(),
+            py::arg("end_derivative") = py::none(),
+            "The C2 cubic spline through points (N, D) (as `freeform interpolate`); end 'natural', 'clamped' "
+            "(f' at the ends: start_derivative, end_derivative, zero when not given) or 'periodic'; "
+            "parametrization 'uniform', 'chord' or 'centripetal', or the parameter values params (strictly "
+            "increasing; for 'periodic' one more than the points).")
         .def_property_readonly("degree", [](const PySpline& s) { return std::visit([](const auto& c) { return c.degree(); }, s.s); })
         .def_property_readonly("dimension", [](const PySpline& s) { return s.s.index() == 0 ? 2 : 3; })
         .def_property_readonly("closed", [](const PySpline& s) { return std::visit([](const auto& c) { return c.closed(); }, s.s); })

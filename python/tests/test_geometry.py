@@ -162,3 +162,22 @@ def test_mesh_file_errors(tmp_path):
         ff.MeshFile.read(str(bad))
     with pytest.raises(ff.Error):
         ff.MeshFile.read(str(tmp_path / "x.unknown"))
+
+
+def test_clamped_interpolation_against_cli(tmp_path):
+    pts = [[0, 0, 0], [1, 1, 0], [2, 0, 1], [3, 1, 1]]
+    src = tmp_path / "pts.json"
+    src.write_text(json.dumps({"points": pts}))
+    out = tmp_path / "s.json"
+    run_cli("interpolate", src, "-o", out, "--end", "clamped", "--start-derivative", "1,0,0",
+            "--end-derivative", "0,2,0", "--param", "centripetal")
+    cli = ff.Document.load(str(out)).curve("interpolant")
+    s = ff.Spline.interpolate(pts, end="clamped", parametrization="centripetal", start_derivative=[1, 0, 0],
+                              end_derivative=[0, 2, 0])
+    np.testing.assert_allclose(s.control_points, cli.control_points, atol=1e-12)
+    # the end derivatives are the ones asked for (by the Bézier end points: f'(0) = 3 (P1 - P0) / h0)
+    np.testing.assert_allclose(s.derivatives([0.0, s.domain_end], 1)[:, 1], [[1, 0, 0], [0, 2, 0]], atol=1e-12)
+    with pytest.raises(ff.Error, match="only with end='clamped'"):
+        ff.Spline.interpolate(pts, start_derivative=[1, 0, 0])
+    with pytest.raises(ff.Error, match="expected 3 numbers"):
+        ff.Spline.interpolate(pts, end="clamped", start_derivative=[1, 0])
