@@ -111,6 +111,40 @@ struct WeightEvaluator {
             }
     }
 
+    static constexpr int kLanes = 8; ///< points per block of the matrix-free products
+
+    /// The weights of up to kLanes points p[0..count) lane by lane: out[q * kLanes + lane]
+    /// (zero for lanes past count and for points that do not move), strength included. The loops
+    /// over lanes have a fixed length, so the compiler vectorises them.
+    void blockWeights(const double* p, std::size_t count, double w, double* out) const
+    {
+        constexpr int L = kLanes;
+        constexpr int M = freeform::kMaxDegree + 1;
+        alignas(64) double bs[M][L], bt[M][L], bu[M][L];
+        double tmp[M];
+        for (int lane = 0; lane < L; ++lane) {
+            Eigen::Vector3d stu = Eigen::Vector3d::Zero();
+            double scale = 0;
+            if (static_cast<std::size_t>(lane) < count &&
+                coordinates(Eigen::Vector3d(p[3 * lane], p[3 * lane + 1], p[3 * lane + 2]), stu))
+                scale = w;
+            bernstein(d[0], stu[0], tmp);
+            for (int i = 0; i <= d[0]; ++i) bs[i][lane] = scale * tmp[i];
+            bernstein(d[1], stu[1], tmp);
+            for (int i = 0; i <= d[1]; ++i) bt[i][lane] = tmp[i];
+            bernstein(d[2], stu[2], tmp);
+            for (int i = 0; i <= d[2]; ++i) bu[i][lane] = tmp[i];
+        }
+        int q = 0;
+        for (int i = 0; i <= d[0]; ++i)
+            for (int j = 0; j <= d[1]; ++j) {
+                alignas(64) double a[L];
+                for (int lane = 0; lane < L; ++lane) a[lane] = bs[i][lane] * bt[j][lane];
+                for (int k = 0; k <= d[2]; ++k, ++q)
+                    for (int lane = 0; lane < L; ++lane) out[q * L + lane] = a[lane] * bu[k][lane];
+            }
+    }
+
     const Lattice& lat;
     std::array<int, 3> d;
 };
@@ -578,19 +612,26 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
                     requireFiniteRows(p, n, 3, "points");
                     requireFiniteRows(dp, K, 3, "dP");
                     const WeightEvaluator e(lat);
+                    constexpr int L = WeightEvaluator::kLanes;
                     freeform::parallelFor(0, n, kGrain, threads, [&](int, std::size_t first, std::size_t last) {
-                        std::vector<double> w(K);
-                        for (std::size_t i = first; i < last; ++i) {
-                            e.weights(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]), strength, w.data());
-                            double x = 0, y = 0, z = 0;
+                        std::vector<double> w(K * L);
+                        for (std::size_t i0 = first; i0 < last; i0 += L) {
+                            const std::size_t count = std::min<std::size_t>(L, last - i0);
+                            e.blockWeights(p + 3 * i0, count, strength, w.data());
+                            alignas(64) double x[L] = {}, y[L] = {}, z[L] = {};
                             for (std::size_t q = 0; q < K; ++q) {
-                                x += w[q] * dp[3 * q];
-                                y += w[q] * dp[3 * q + 1];
-                                z += w[q] * dp[3 * q + 2];
+                                const double* wq = w.data() + q * L;
+                                for (int lane = 0; lane < L; ++lane) {
+                                    x[lane] += wq[lane] * dp[3 * q];
+                                    y[lane] += wq[lane] * dp[3 * q + 1];
+                                    z[lane] += wq[lane] * dp[3 * q + 2];
+                                }
                             }
-                            o[3 * i] = x;
-                            o[3 * i + 1] = y;
-                            o[3 * i + 2] = z;
+                            for (std::size_t lane = 0; lane < count; ++lane) {
+                                o[3 * (i0 + lane)] = x[lane];
+                                o[3 * (i0 + lane) + 1] = y[lane];
+                                o[3 * (i0 + lane) + 2] = z[lane];
+                            }
                         }
                     });
                 }
@@ -624,16 +665,32 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
                     // depend on the thread count.
                     const std::size_t blocks = (n + kGrain - 1) / kGrain;
                     std::vector<double> partial(blocks * 3 * K, 0.0);
+                    constexpr int L = WeightEvaluator::kLanes;
                     freeform::parallelFor(0, blocks, 1, threads, [&](int, std::size_t first, std::size_t last) {
-                        std::vector<double> w(K);
+                        std::vector<double> w(K * L);
                         for (std::size_t b = first; b < last; ++b) {
                             double* acc = partial.data() + b * 3 * K;
-                            for (std::size_t i = b * kGrain; i < std::min(n, (b + 1) * kGrain); ++i) {
-                                e.weights(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]), strength, w.data());
+                            const std::size_t end = std::min(n, (b + 1) * kGrain);
+                            for (std::size_t i0 = b * kGrain; i0 < end; i0 += L) {
+                                const std::size_t count = std::min<std::size_t>(L, end - i0);
+                                e.blockWeights(p + 3 * i0, count, strength, w.data());
+                                alignas(64) double gx[L] = {}, gy[L] = {}, gz[L] = {};
+                                for (std::size_t lane = 0; lane < count; ++lane) {
+                                    gx[lane] = gp[3 * (i0 + lane)];
+                                    gy[lane] = gp[3 * (i0 + lane) + 1];
+                                    gz[lane] = gp[3 * (i0 + lane) + 2];
+                                }
                                 for (std::size_t q = 0; q < K; ++q) {
-                                    acc[3 * q] += w[q] * gp[3 * i];
-                                    acc[3 * q + 1] += w[q] * gp[3 * i + 1];
-                                    acc[3 * q + 2] += w[q] * gp[3 * i + 2];
+                                    const double* wq = w.data() + q * L;
+                                    double sx = 0, sy = 0, sz = 0;
+                                    for (int lane = 0; lane < L; ++lane) {
+                                        sx += wq[lane] * gx[lane];
+                                        sy += wq[lane] * gy[lane];
+                                        sz += wq[lane] * gz[lane];
+                                    }
+                                    acc[3 * q] += sx;
+                                    acc[3 * q + 1] += sy;
+                                    acc[3 * q + 2] += sz;
                                 }
                             }
                         }
