@@ -19,6 +19,8 @@ packages=(
   libglfw3-dev libgl-dev libepoxy-dev   # editor: window, OpenGL, GL function loader
   libimgui-dev libstb-dev               # editor: Dear ImGui 1.86 (+ GLFW/OpenGL3 backends), stb
   xvfb xauth libgl1-mesa-dri            # headless rendering (render tests, screenshots)
+  pybind11-dev python3-dev python3-numpy   # the Python module (python/, docs/python.md)
+  python3-pytest                        # its tests (run by ctest)
 )
 
 missing=()

@@ -1,0 +1,677 @@
+// Curves, splines, patches, documents and mesh files for Python (docs/python.md). Many parameters
+// at once: a 1-D array of t gives an (T, D) array; derivatives an (T, K+1, D) array.
+
+#include "arrays.h"
+#include "lattice.h"
+
+#include <pybind11/stl.h>
+
+#include <freeform/curve/continuity.h>
+#include <freeform/curve/interpolation.h>
+#include <freeform/document/document.h>
+#include <freeform/io/document.h>
+#include <freeform/io/deform_file.h>
+#include <freeform/io/mesh_io.h>
+#include <freeform/tessellate/tessellate.h>
+
+#include <sstream>
+#include <type_traits>
+#include <variant>
+
+namespace ffpy {
+
+namespace {
+
+using Curve2 = freeform::BezierCurve<double, 2>;
+using Curve3 = freeform::BezierCurve<double, 3>;
+using Spline2 = freeform::BezierSpline<double, 2>;
+using Spline3 = freeform::BezierSpline<double, 3>;
+
+struct PyCurve {
+    std::variant<Curve2, Curve3> c;
+};
+struct PySpline {
+    std::variant<Spline2, Spline3> s;
+};
+struct PyPatch {
+    freeform::BezierSurface<double, 3> p;
+};
+
+/// (N, D) array of control points (D = 2 or 3) as a D x N matrix.
+template <int D>
+freeform::PointMatrix<double, D> columns(const py::array& a, const std::string& what)
+{
+    const auto n = static_cast<std::size_t>(a.shape(0));
+    const double* p = static_cast<const double*>(a.data());
+    requireFiniteRows(p, n, D, what);
+    return Eigen::Map<const freeform::PointMatrix<double, D>>(p, D, static_cast<Eigen::Index>(n));
+}
+
+py::array pointsAnyDim(py::handle h, const std::string& what, int& dim)
+{
+    py::array a = numericArray(h, what);
+    if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
+        throw freeform::Error(what + ": expected an array of shape (N, 2) or (N, 3), got shape " + shapeText(a));
+    dim = static_cast<int>(a.shape(1));
+    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
+/// f(t) -> Dim x (K+1) for every t: an (T, K+1, D) array (or (T, D) when K is None).
+template <int D, typename F>
+py::array_t<double> sampleJets(const py::array_t<double, py::array::c_style>& ts, int order, bool squeeze, F&& f)
+{
+    const auto n = static_cast<py::ssize_t>(ts.size());
+    py::array_t<double> out = squeeze ? py::array_t<double>({n, py::ssize_t{D}})
+                                      : py::array_t<double>({n, py::ssize_t{order + 1}, py::ssize_t{D}});
+    const double* t = ts.data();
+    double* o = out.mutable_data();
+    {
+        py::gil_scoped_release release;
+        for (py::ssize_t i = 0; i < n; ++i) {
+            const Eigen::Matrix<double, D, Eigen::Dynamic> j = f(t[i], order);
+            std::copy(j.data(), j.data() + j.size(), o + i * D * (order + 1));
+        }
+    }
+    return out;
+}
+
+void requireInDomain(const py::array_t<double, py::array::c_style>& ts, double end, const std::string& what)
+{
+    for (py::ssize_t i = 0; i < ts.size(); ++i) {
+        const double t = ts.data()[i];
+        if (!(t >= 0 && t <= end))
+            throw freeform::Error(what + ": parameter " + std::to_string(t) + " (index " + std::to_string(i) +
+                                  ") outside [0, " + std::to_string(end) + "]");
+    }
+}
+
+py::dict continuityDict(const freeform::JointContinuity<double>& j)
+{
+    py::dict d;
+    d["joint"] = j.joint;
+    d["t"] = j.t;
+    d["C"] = j.C;
+    d["G"] = j.G;
+    d["jumps"] = j.jumps;
+    return d;
+}
+
+py::tuple meshArrays(const freeform::PolygonMesh& mesh)
+{
+    // Faces: (F, k) int32 when every face has k corners, else a list of lists.
+    py::object faces;
+    bool uniform = mesh.faceCount() > 0;
+    for (int f = 1; f < mesh.faceCount() && uniform; ++f) uniform = mesh.faceSize(f) == mesh.faceSize(0);
+    if (uniform) {
+        const int k = mesh.faceSize(0);
+        py::array_t<int> F({static_cast<py::ssize_t>(mesh.faceCount()), static_cast<py::ssize_t>(k)});
+        std::copy(mesh.faceVertices.begin(), mesh.faceVertices.end(), F.mutable_data());
+        faces = F;
+    } else {
+        py::list l;
+        for (int f = 0; f < mesh.faceCount(); ++f)
+            l.append(std::vector<int>(mesh.face(f), mesh.face(f) + mesh.faceSize(f)));
+        faces = l;
+    }
+    py::object normals = mesh.normals.cols() ? py::object(fromColumns(mesh.normals)) : py::object(py::none());
+    return py::make_tuple(fromColumns(mesh.positions), faces, normals);
+}
+
+py::dict evaluationDict(const freeform::Evaluation& e)
+{
+    py::dict d;
+    d["point"] = fromVector(e.point);
+    py::list der;
+    for (const auto& v : e.derivatives) der.append(fromVector(v));
+    d["derivatives"] = der;
+    d["keys"] = e.keys;
+    if (e.normal) d["normal"] = fromVector(*e.normal);
+    if (e.det) d["det"] = *e.det;
+    if (e.face >= 0) d["face"] = e.face;
+    return d;
+}
+
+struct PyMesh {
+    freeform::MeshFile file;
+};
+
+} // namespace
+
+void bindGeometry(py::module_& m)
+{
+    // ------------------------------------------------------------ BezierCurve
+    py::class_<PyCurve>(m, "BezierCurve", "A Bézier curve in 2D or 3D on [0, 1] (control points (n+1, D)).")
+        .def(py::init([](py::handle points) {
+                 int dim = 0;
+                 py::array a = pointsAnyDim(points, "points", dim);
+                 if (dim == 2) return PyCurve{Curve2(columns<2>(a, "points"))};
+                 return PyCurve{Curve3(columns<3>(a, "points"))};
+             }),
+             py::arg("points"))
+        .def_property_readonly("degree", [](const PyCurve& s) { return std::visit([](const auto& c) { return c.degree(); }, s.c); })
+        .def_property_readonly("dimension", [](const PyCurve& s) { return s.c.index() == 0 ? 2 : 3; })
+        .def_property_readonly(
+            "control_points",
+            [](const PyCurve& s) { return std::visit([](const auto& c) { return fromColumns(c.controlPoints()); }, s.c); },
+            "(n+1, D) float64 (a copy).")
+        .def(
+            "evaluate",
+            [](const PyCurve& s, py::handle t) {
+                const auto ts = vector(t, "t");
+                requireInDomain(ts, 1.0, "BezierCurve.evaluate");
+                return std::visit(
+                    [&](const auto& c) {
+                        using C = std::decay_t<decltype(c)>;
+                        constexpr int D = C::PointType::RowsAtCompileTime;
+                        typename C::Points out;
+                        {
+                            py::gil_scoped_release release;
+                            c.evaluateMany(ts.data(), static_cast<std::size_t>(ts.size()), out);
+                        }
+                        (void)D;
+                        return fromColumns(out);
+                    },
+                    s.c);
+            },
+            py::arg("t"), "Points at many parameters t in [0, 1] at once (SIMD batch de Casteljau): (T, D).")
+        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); })
+        .def(
+            "derivatives",
+            [](const PyCurve& s, py::handle t, int order) {
+                if (order < 0) throw freeform::Error("BezierCurve.derivatives: order " + std::to_string(order) + " is negative");
+                const auto ts = vector(t, "t");
+                requireInDomain(ts, 1.0, "BezierCurve.derivatives");
+                return std::visit(
+                    [&](const auto& c) {
+                        using C = std::decay_t<decltype(c)>;
+                        constexpr int D = C::PointType::RowsAtCompileTime;
+                        return sampleJets<D>(ts, order, false, [&](double x, int k) { return c.derivatives(x, k); });
+                    },
+                    s.c);
+            },
+            py::arg("t"), py::arg("order"), "(T, order+1, D): the point and derivatives 1..order at each t.")
+        .def(
+            "split",
+            [](const PyCurve& s, double t) {
+                return std::visit(
+                    [&](const auto& c) {
+                        auto [a, b] = c.split(t);
+                        return py::make_tuple(PyCurve{a}, PyCurve{b});
+                    },
+                    s.c);
+            },
+            py::arg("t"), "The pieces on [0, t] and [t, 1].")
+        .def(
+            "elevated",
+            [](const PyCurve& s, int times) { return std::visit([&](const auto& c) { return PyCurve{c.elevated(times)}; }, s.c); },
+            py::arg("times") = 1, "The same curve with the degree raised.")
+        .def("__repr__", [](const PyCurve& s) {
+            return "BezierCurve(degree=" + std::to_string(std::visit([](const auto& c) { return c.degree(); }, s.c)) +
+                   ", dimension=" + std::to_string(s.c.index() == 0 ? 2 : 3) + ")";
+        });
+
+    // ------------------------------------------------------------ Spline
+    py::class_<PySpline>(m, "Spline", R"doc(
+A piecewise Bézier spline (2D or 3D): degree, closed, Bézier points (as the bezier_spline format
+stores them, docs/splines.md) and intervals; global parameter T in [0, sum of intervals].)doc")
+        .def(py::init([](int degree, py::handle points, bool closed, std::optional<std::vector<double>> intervals) {
+                 int dim = 0;
+                 py::array a = pointsAnyDim(points, "points", dim);
+                 const auto iv = intervals.value_or(std::vector<double>{});
+                 if (dim == 2) return PySpline{Spline2(degree, closed, columns<2>(a, "points"), iv)};
+                 return PySpline{Spline3(degree, closed, columns<3>(a, "points"), iv)};
+             }),
+             py::arg("degree"), py::arg("points"), py::arg("closed") = false, py::arg("intervals") = py::none())
+        .def_static(
+            "interpolate",
+            [](py::handle points, const std::string& end, const std::string& parametrization, py::handle params,
+               py::handle startDerivative, py::handle endDerivative) {
+                int dim = 0;
+                py::array a = pointsAnyDim(points, "points", dim);
+                const auto e = freeform::parseInterpolationEnd(end, "end");
+                const auto p = freeform::parseParametrization(parametrization, "parametrization");
+                if (e != freeform::InterpolationEnd::Clamped && (!startDerivative.is_none() || !endDerivative.is_none()))
+                    throw freeform::Error("start_derivative / end_derivative: only with end='clamped'");
+                std::vector<double> given;
+                if (!params.is_none()) {
+                    const auto v = vector(params, "params");
+                    given.assign(v.data(), v.data() + v.size());
+                }
+                auto solve = [&](auto tag) {
+                    constexpr int D = decltype(tag)::value;
+                    freeform::InterpolationOptions<double, D> o;
+                    o.end = e;
+                    o.parametrization = p;
+                    o.params = given;
+                    auto derivative = [&](py::handle h, const char* what) {
+                        freeform::Point<double, D> d = freeform::Point<double, D>::Zero();
+                        if (h.is_none()) return d;
+                        const auto v = vector(h, what);
+                        if (v.size() != D)
+                            throw freeform::Error(std::string(what) + ": expected " + std::to_string(D) + " numbers, got " +
+                                                  std::to_string(v.size()));
+                        for (int i = 0; i < D; ++i) d[i] = v.data()[i];
+                        return d;
+                    };
+                    o.startDerivative = derivative(startDerivative, "start_derivative");
+                    o.endDerivative = derivative(endDerivative, "end_derivative");
+                    return PySpline{freeform::interpolateCubic<double, D>(columns<D>(a, "points"), o)};
+                };
+                if (dim == 2) return solve(std::integral_constant<int, 2>{});
+                return solve(std::integral_constant<int, 3>{});
+            },
+            py::arg("points"), py::arg("end") = "natural", py::arg("parametrization") = "chord",
+            py::arg("params") = py::none(), py::arg("start_derivative") = py::none(),
+            py::arg("end_derivative") = py::none(),
+            "The C2 cubic spline through points (N, D) (as `freeform interpolate`); end 'natural', 'clamped' "
+            "(f' at the ends: start_derivative, end_derivative, zero when not given) or 'periodic'; "
+            "parametrization 'uniform', 'chord' or 'centripetal', or the parameter values params (strictly "
+            "increasing; for 'periodic' one more than the points).")
+        .def_property_readonly("degree", [](const PySpline& s) { return std::visit([](const auto& c) { return c.degree(); }, s.s); })
+        .def_property_readonly("dimension", [](const PySpline& s) { return s.s.index() == 0 ? 2 : 3; })
+        .def_property_readonly("closed", [](const PySpline& s) { return std::visit([](const auto& c) { return c.closed(); }, s.s); })
+        .def_property_readonly("segment_count", [](const PySpline& s) { return std::visit([](const auto& c) { return c.segmentCount(); }, s.s); })
+        .def_property_readonly("domain_end", [](const PySpline& s) { return std::visit([](const auto& c) { return c.domainEnd(); }, s.s); })
+        .def_property_readonly("knots", [](const PySpline& s) { return std::visit([](const auto& c) { return c.knots(); }, s.s); })
+        .def_property_readonly("intervals", [](const PySpline& s) { return std::visit([](const auto& c) { return c.intervals(); }, s.s); })
+        .def_property_readonly(
+            "control_points",
+            [](const PySpline& s) { return std::visit([](const auto& c) { return fromColumns(c.controlPoints()); }, s.s); })
+        .def(
+            "evaluate",
+            [](const PySpline& s, py::handle t) {
+                const auto ts = vector(t, "T");
+                return std::visit(
+                    [&](const auto& c) {
+                        using C = std::decay_t<decltype(c)>;
+                        constexpr int D = C::PointType::RowsAtCompileTime;
+                        requireInDomain(ts, c.domainEnd(), "Spline.evaluate");
+                        return sampleJets<D>(ts, 0, true, [&](double x, int k) { return c.derivatives(x, k); });
+                    },
+                    s.s);
+            },
+            py::arg("T"), "Points at many global parameters: (T, D).")
+        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); })
+        .def(
+            "derivatives",
+            [](const PySpline& s, py::handle t, int order) {
+                if (order < 0) throw freeform::Error("Spline.derivatives: order " + std::to_string(order) + " is negative");
+                const auto ts = vector(t, "T");
+                return std::visit(
+                    [&](const auto& c) {
+                        using C = std::decay_t<decltype(c)>;
+                        constexpr int D = C::PointType::RowsAtCompileTime;
+                        requireInDomain(ts, c.domainEnd(), "Spline.derivatives");
+                        return sampleJets<D>(ts, order, false, [&](double x, int k) { return c.derivatives(x, k); });
+                    },
+                    s.s);
+            },
+            py::arg("T"), py::arg("order"), "(T, order+1, D).")
+        .def(
+            "segment", [](const PySpline& s, int i) {
+                return std::visit([&](const auto& c) {
+                    if (i < 0 || i >= c.segmentCount()) throw freeform::Error("Spline.segment: no segment " + std::to_string(i));
+                    return PyCurve{c.segment(i)};
+                }, s.s);
+            },
+            py::arg("i"), "Segment i as a BezierCurve on [0, 1].")
+        .def(
+            "split_segment",
+            [](const PySpline& s, int i, double t) {
+                return std::visit([&](const auto& c) {
+                    if (i < 0 || i >= c.segmentCount()) throw freeform::Error("Spline.split_segment: no segment " + std::to_string(i));
+                    return PySpline{c.splitSegment(i, t)};
+                }, s.s);
+            },
+            py::arg("i"), py::arg("t"), "The same spline with segment i split at local t (one more joint).")
+        .def(
+            "elevated", [](const PySpline& s, int times) { return std::visit([&](const auto& c) { return PySpline{c.elevated(times)}; }, s.s); },
+            py::arg("times") = 1)
+        .def(
+            "continuity",
+            [](const PySpline& s) {
+                py::list out;
+                std::visit([&](const auto& c) {
+                    for (const auto& j : freeform::continuityReport(c)) out.append(continuityDict(j));
+                }, s.s);
+                return out;
+            },
+            "Per joint: {joint, t, C (parametric, -1..n), G (geometric, -1..2), jumps}.")
+        .def("__repr__", [](const PySpline& s) {
+            return std::visit([&](const auto& c) {
+                return "Spline(degree=" + std::to_string(c.degree()) + ", segments=" + std::to_string(c.segmentCount()) +
+                       ", closed=" + (c.closed() ? "True" : "False") + ", dimension=" +
+                       std::to_string(s.s.index() == 0 ? 2 : 3) + ")";
+            }, s.s);
+        });
+
+    // ------------------------------------------------------------ Patch
+    py::class_<PyPatch>(m, "Patch", "A Bézier patch in 3D of degrees (p, q): control points (p+1, q+1, 3) on [0,1]^2.")
+        .def(py::init([](py::handle points) {
+                 py::array a = numericArray(points, "points");
+                 if (a.ndim() != 3 || a.shape(2) != 3)
+                     throw freeform::Error("points: expected an array of shape (p+1, q+1, 3), got shape " + shapeText(a));
+                 const int p = static_cast<int>(a.shape(0)) - 1, q = static_cast<int>(a.shape(1)) - 1;
+                 auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+                 requireFiniteRows(d.data(), static_cast<std::size_t>((p + 1) * (q + 1)), 3, "points");
+                 freeform::PointMatrix<double, 3> cols = Eigen::Map<const freeform::PointMatrix<double, 3>>(d.data(), 3, (p + 1) * (q + 1));
+                 return PyPatch{freeform::BezierSurface<double, 3>(p, q, cols)};
+             }),
+             py::arg("points"))
+        .def_property_readonly("degree", [](const PyPatch& s) { return py::make_tuple(s.p.degreeU(), s.p.degreeV()); })
+        .def_property_readonly("control_points", [](const PyPatch& s) {
+            return fromColumns(s.p.controlPoints()).attr("reshape")(s.p.degreeU() + 1, s.p.degreeV() + 1, 3);
+        })
+        .def(
+            "evaluate",
+            [](const PyPatch& s, py::handle uv) {
+                const py::array a = rows(uv, "uv", 2, false);
+                const auto n = a.shape(0);
+                const double* p = static_cast<const double*>(a.data());
+                for (py::ssize_t i = 0; i < 2 * n; ++i)
+                    if (!(p[i] >= 0 && p[i] <= 1))
+                        throw freeform::Error("Patch.evaluate: uv row " + std::to_string(i / 2) + " outside [0, 1]^2");
+                py::array_t<double> out({n, py::ssize_t{3}});
+                double* o = out.mutable_data();
+                {
+                    py::gil_scoped_release release;
+                    for (py::ssize_t i = 0; i < n; ++i) {
+                        const Eigen::Vector3d x = s.p.evaluate(p[2 * i], p[2 * i + 1]);
+                        o[3 * i] = x[0];
+                        o[3 * i + 1] = x[1];
+                        o[3 * i + 2] = x[2];
+                    }
+                }
+                return out;
+            },
+            py::arg("uv"), "Points at many (u, v) (N, 2): (N, 3).")
+        .def(
+            "partial",
+            [](const PyPatch& s, int a, int b, py::handle uv) {
+                const py::array arr = rows(uv, "uv", 2, false);
+                const auto n = arr.shape(0);
+                const double* p = static_cast<const double*>(arr.data());
+                py::array_t<double> out({n, py::ssize_t{3}});
+                double* o = out.mutable_data();
+                py::gil_scoped_release release;
+                for (py::ssize_t i = 0; i < n; ++i) {
+                    const Eigen::Vector3d x = s.p.partial(a, b, p[2 * i], p[2 * i + 1]);
+                    o[3 * i] = x[0];
+                    o[3 * i + 1] = x[1];
+                    o[3 * i + 2] = x[2];
+                }
+                return out;
+            },
+            py::arg("a"), py::arg("b"), py::arg("uv"), "d^(a+b) f / du^a dv^b at many (u, v): (N, 3).")
+        .def(
+            "normal",
+            [](const PyPatch& s, py::handle uv) {
+                const py::array arr = rows(uv, "uv", 2, false);
+                const auto n = arr.shape(0);
+                const double* p = static_cast<const double*>(arr.data());
+                Points3 out(3, n);
+                {
+                    py::gil_scoped_release release;
+                    for (py::ssize_t i = 0; i < n; ++i) out.col(i) = s.p.normal(p[2 * i], p[2 * i + 1]);
+                }
+                return fromColumns(out);
+            },
+            py::arg("uv"))
+        .def("split_u", [](const PyPatch& s, double t) { auto [a, b] = s.p.splitU(t); return py::make_tuple(PyPatch{a}, PyPatch{b}); })
+        .def("split_v", [](const PyPatch& s, double t) { auto [a, b] = s.p.splitV(t); return py::make_tuple(PyPatch{a}, PyPatch{b}); })
+        .def("elevated", [](const PyPatch& s, int du, int dv) { return PyPatch{s.p.elevatedU(du).elevatedV(dv)}; },
+             py::arg("du") = 1, py::arg("dv") = 1)
+        .def(
+            "tessellate",
+            [](const PyPatch& s, int segments) {
+                freeform::PatchComplex c;
+                c.patches.push_back(s.p);
+                freeform::TessellationOptions o;
+                o.segmentsU = o.segmentsV = segments;
+                freeform::PolygonMesh mesh;
+                {
+                    py::gil_scoped_release release;
+                    mesh = freeform::tessellate(c, o);
+                }
+                return meshArrays(mesh);
+            },
+            py::arg("segments") = 8, "(V (n, 3), F (m, 3) int32, N (n, 3)).")
+        .def("__repr__", [](const PyPatch& s) {
+            return "Patch(degree=(" + std::to_string(s.p.degreeU()) + ", " + std::to_string(s.p.degreeV()) + "))";
+        });
+
+    // ------------------------------------------------------------ Document
+    py::class_<freeform::TypedDocument>(m, "Document", R"doc(
+A freeform document (docs/format.md) read through the document layer: every object's geometry built
+and validated on load (freeform.Error with the library's message otherwise).)doc")
+        .def_static(
+            "load",
+            [](const std::string& path) {
+                py::gil_scoped_release release;
+                return freeform::TypedDocument::read(path);
+            },
+            py::arg("path"))
+        .def(
+            "save",
+            [](const freeform::TypedDocument& d, const std::string& path) {
+                const freeform::Document doc = d.toDocument();
+                py::gil_scoped_release release;
+                freeform::writeDocument(doc, path);
+            },
+            py::arg("path"), "Writes the document (atomically).")
+        .def_property_readonly("names", [](const freeform::TypedDocument& d) {
+            std::vector<std::string> n;
+            for (const auto& o : d.objects()) n.push_back(o.name());
+            return n;
+        })
+        .def("type", [](const freeform::TypedDocument& d, const std::string& name) { return d.object(name).type(); },
+             py::arg("name"), "The object's type string ('bezier_curve', 'lattice', ...).")
+        .def("__len__", [](const freeform::TypedDocument& d) { return d.objects().size(); })
+        .def("__contains__", [](const freeform::TypedDocument& d, const std::string& n) { return d.find(n) != nullptr; })
+        .def(
+            "evaluate",
+            [](const freeform::TypedDocument& d, const std::string& name, std::vector<double> at, int order) {
+                const auto& o = d.object(name);
+                freeform::Evaluation e;
+                {
+                    py::gil_scoped_release release;
+                    e = freeform::evaluate(d, o, at, order);
+                }
+                return evaluationDict(e);
+            },
+            py::arg("name"), py::arg("at"), py::arg("order") = 0,
+            "As `freeform eval`: at = [t], [u, v], [s, t, u] or [face, u, v] (subdivision limit surface); "
+            "returns {point, derivatives, keys, normal?, det?, face?}.")
+        .def(
+            "continuity",
+            [](const freeform::TypedDocument& d, const std::string& name) {
+                py::list out;
+                for (const auto& j : freeform::continuity(d, d.object(name))) out.append(continuityDict(j));
+                return out;
+            },
+            py::arg("name"))
+        .def(
+            "curve",
+            [](const freeform::TypedDocument& d, const std::string& name) -> py::object {
+                const auto& o = d.object(name);
+                auto c = freeform::AnyCurve::of(o);
+                if (!c) throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a curve or spline");
+                return std::visit(
+                    [](const auto& v) -> py::object {
+                        using V = std::decay_t<decltype(v)>;
+                        if constexpr (std::is_same_v<V, Curve2> || std::is_same_v<V, Curve3>) return py::cast(PyCurve{v});
+                        else return py::cast(PySpline{v});
+                    },
+                    c->variant());
+            },
+            py::arg("name"), "A curve object as a BezierCurve, a spline (bezier or de Boor) as a Spline (Bézier form).")
+        .def(
+            "patch",
+            [](const freeform::TypedDocument& d, const std::string& name) {
+                const auto& o = d.object(name);
+                const auto* s = std::get_if<freeform::BezierSurface<double, 3>>(&o.geometry());
+                if (!s) throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a bezier_surface");
+                return PyPatch{*s};
+            },
+            py::arg("name"))
+        .def(
+            "lattice",
+            [](const freeform::TypedDocument& d, const std::string& name) {
+                const auto& o = d.object(name);
+                const auto* l = std::get_if<freeform::Lattice>(&o.geometry());
+                if (!l) throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a lattice");
+                return PyLattice(*l, o.name());
+            },
+            py::arg("name"))
+        .def(
+            "tessellate",
+            [](const freeform::TypedDocument& d, const std::string& name, int segments, double tolerance) {
+                const auto& o = d.object(name);
+                freeform::ObjectTessellation t;
+                t.segments = segments;
+                t.tolerance = tolerance;
+                std::optional<freeform::PolygonMesh> mesh;
+                {
+                    py::gil_scoped_release release;
+                    mesh = freeform::tessellateObject(o, t);
+                }
+                if (!mesh) throw freeform::Error(d.what(o) + ": a " + o.type() + " is not tessellated (surfaces and subdivision surfaces are)");
+                return meshArrays(*mesh);
+            },
+            py::arg("name"), py::arg("segments") = 8, py::arg("tolerance") = 0.0,
+            "A surface (its patches) or subdivision surface (its limit surface, `segments` the level) as "
+            "(V (n, 3), F (m, 3) int32, N (n, 3) or None).")
+        .def(
+            "deform",
+            [](freeform::TypedDocument& d, PyLattice& lat) {
+                const freeform::Lattice l = lat.snapshot();
+                freeform::DeformDocumentOptions o;
+                o.strength = lat.strength;
+                freeform::DeformDocumentReport r;
+                {
+                    py::gil_scoped_release release;
+                    r = freeform::deformDocument(d, l, o);
+                }
+                py::list objects, skipped;
+                for (const auto& x : r.objects) {
+                    py::dict e;
+                    e["name"] = x.name; e["from"] = x.from; e["type"] = x.type; e["degree"] = x.degree;
+                    e["inside"] = x.inside; e["exact"] = x.exact; e["note"] = x.note;
+                    objects.append(e);
+                }
+                for (const auto& x : r.skipped) {
+                    py::dict e;
+                    e["name"] = x.name; e["type"] = x.type; e["reason"] = x.reason;
+                    skipped.append(e);
+                }
+                py::dict out;
+                out["objects"] = objects;
+                out["skipped"] = skipped;
+                out["certificate"] = freeform::toString(r.certificate.verdict);
+                return out;
+            },
+            py::arg("lattice"), "Deforms every object in place, one rule per type (docs/ffd.md, as `freeform ffd DOC`).")
+        .def("__repr__", [](const freeform::TypedDocument& d) {
+            return "Document(source='" + d.source + "', objects=" + std::to_string(d.objects().size()) + ")";
+        });
+
+    // ------------------------------------------------------------ MeshFile
+    py::class_<PyMesh>(m, "MeshFile", R"doc(
+A mesh file read losslessly (OBJ, PLY, STL, OFF, glTF/GLB; docs/mesh-io.md): positions (and
+normals) are writable (P, 3) float64 views of the file's own numbers; write() keeps everything
+else of the file as read.)doc")
+        .def_static(
+            "read",
+            [](const std::string& path) {
+                py::gil_scoped_release release;
+                return PyMesh{freeform::MeshFile::read(path)};
+            },
+            py::arg("path"))
+        .def_property(
+            "positions",
+            [](py::object self) {
+                auto& f = self.cast<PyMesh&>().file;
+                auto& p = f.positions();
+                return py::array_t<double>({static_cast<py::ssize_t>(p.cols()), py::ssize_t{3}}, p.data(), self);
+            },
+            [](PyMesh& self, py::handle v) {
+                const py::array a = rows(v, "positions", 3, false);
+                if (a.shape(0) != self.file.positions().cols())
+                    throw freeform::Error("positions: expected " + std::to_string(self.file.positions().cols()) + " rows, got " +
+                                          std::to_string(a.shape(0)));
+                std::copy(static_cast<const double*>(a.data()), static_cast<const double*>(a.data()) + a.size(),
+                          self.file.positions().data());
+            },
+            "(P, 3) float64 view of the file's positions (no copy; in file order).")
+        .def_property_readonly(
+            "normals",
+            [](py::object self) {
+                auto& n = self.cast<PyMesh&>().file.normals();
+                return py::array_t<double>({static_cast<py::ssize_t>(n.cols()), py::ssize_t{3}}, n.data(), self);
+            },
+            "(N, 3) float64 view of the file's normal records (may be empty).")
+        .def_property_readonly("normal_anchors", [](const PyMesh& m) { return m.file.normalAnchors(); })
+        .def_property_readonly("format", [](const PyMesh& m) { return m.file.format(); })
+        .def_property_readonly("path", [](const PyMesh& m) { return m.file.path(); })
+        .def(
+            "write",
+            [](const PyMesh& m, const std::string& path) {
+                py::gil_scoped_release release;
+                m.file.write(path);
+            },
+            py::arg("path"), "Writes the file back (same format: only positions/normals/tangents changed; atomic).")
+        .def("to_arrays", [](const PyMesh& m) {
+                freeform::PolygonMesh mesh;
+                {
+                    py::gil_scoped_release release;
+                    mesh = m.file.toPolygonMesh();
+                }
+                return meshArrays(mesh);
+            },
+             "(V (n, 3), faces ((F, k) int32 when every face has k corners, else a list), normals or None).")
+        .def(
+            "deform",
+            [](PyMesh& m, PyLattice& lat, const std::string& normals, int threads) {
+                const freeform::Lattice l = lat.snapshot();
+                const auto mode = freeform::parseNormalMode(normals, "normals");
+                freeform::DeformOptions opt;
+                opt.strength = lat.strength;
+                opt.threads = threads;
+                freeform::MeshFileDeformation r;
+                {
+                    py::gil_scoped_release release;
+                    r = freeform::deformMeshFile(l, m.file, opt, mode);
+                }
+                py::dict d;
+                d["vertices"] = r.report.vertices;
+                d["outside"] = r.report.outside;
+                d["min_det_j"] = r.report.minDetJ;
+                d["max_det_j"] = r.report.maxDetJ;
+                d["fold_count"] = r.report.foldCount;
+                d["folds"] = r.report.folds;
+                return d;
+            },
+            py::arg("lattice"), py::arg("normals") = "jacobian", py::arg("threads") = 0,
+            "Deforms the file in place as `freeform ffd MESH` does (io/deform_file.h): positions through the "
+            "lattice, normals by cof(J) ('jacobian') or recomputed ('recompute'), tangents by J; returns the report.")
+        .def("info", [](const PyMesh& m) {
+            freeform::PolygonMesh mesh;
+            {
+                py::gil_scoped_release release;
+                mesh = m.file.toPolygonMesh();
+            }
+            py::dict d;
+            d["format"] = m.file.format();
+            d["positions"] = m.file.positions().cols();
+            d["normals"] = m.file.normals().cols();
+            d["tangents"] = m.file.tangents().cols();
+            d["faces"] = mesh.faceCount();
+            return d;
+        }, "Counts: format, positions, normals, tangents, faces.")
+        .def("__repr__", [](const PyMesh& m) {
+            return "MeshFile(path='" + m.file.path() + "', format='" + m.file.format() + "', positions=" +
+                   std::to_string(m.file.positions().cols()) + ")";
+        });
+}
+
+} // namespace ffpy

@@ -1,0 +1,22 @@
+// The Python module `freeform` (docs/python.md): freeform.Error and the bindings of lattice.cpp
+// and geometry.cpp. A front end on the document layer (docs/architecture.md), like cli/.
+
+#include <pybind11/pybind11.h>
+
+#include <freeform/core/error.h>
+
+namespace ffpy {
+void bindLattice(pybind11::module_& m);
+void bindGeometry(pybind11::module_& m);
+} // namespace ffpy
+
+PYBIND11_MODULE(freeform, m)
+{
+    m.doc() = "freeform: Bézier curves, splines, surfaces, meshes and free-form deformation lattices "
+              "on NumPy arrays (docs/python.md).";
+    // freeform::Error -> freeform.Error (a ValueError, carrying the library's message as is).
+    pybind11::register_exception<freeform::Error>(m, "Error", PyExc_ValueError);
+    m.attr("__version__") = "0.1.0";
+    ffpy::bindLattice(m);
+    ffpy::bindGeometry(m);
+}

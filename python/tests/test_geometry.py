@@ -1,0 +1,183 @@
+# Curves, splines, patches, documents and mesh files from Python, checked against NumPy
+# reimplementations, hand values, identities and the command-line tool.
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+import freeform as ff
+from conftest import ROOT, bernstein, run_cli
+
+ARCH = np.array([[0, 0], [1, 2], [3, 2], [4, 0]], dtype=float)
+
+
+def test_curve_hand_values_and_bernstein_sum():
+    c = ff.BezierCurve(ARCH)
+    assert c.degree == 3 and c.dimension == 2
+    np.testing.assert_allclose(c.evaluate([0.5]), [[2.0, 1.5]])  # README's hand value
+    t = np.linspace(0, 1, 101)
+    np.testing.assert_allclose(c.evaluate(t), bernstein(3, t) @ ARCH, atol=1e-14)
+    np.testing.assert_allclose(c(t), c.evaluate(t))
+    jet = c.derivatives([0.5], 2)
+    assert jet.shape == (1, 3, 2)
+    np.testing.assert_allclose(jet[0], [[2, 1.5], [4.5, 0], [0, -12]], atol=1e-14)  # docs/cli.md example
+
+
+def test_curve_split_and_elevate_are_the_same_curve():
+    rng = np.random.default_rng(2)
+    c = ff.BezierCurve(rng.normal(size=(6, 3)))
+    a, b = c.split(0.3)
+    t = np.linspace(0, 1, 17)
+    np.testing.assert_allclose(a.evaluate(t), c.evaluate(0.3 * t), atol=1e-13)
+    np.testing.assert_allclose(b.evaluate(t), c.evaluate(0.3 + 0.7 * t), atol=1e-13)
+    e = c.elevated(2)
+    assert e.degree == 7
+    np.testing.assert_allclose(e.evaluate(t), c.evaluate(t), atol=1e-13)
+    # derivative by central differences
+    h = 1e-6
+    d = c.derivatives(t[1:-1], 1)[:, 1]
+    np.testing.assert_allclose(d, (c.evaluate(t[1:-1] + h) - c.evaluate(t[1:-1] - h)) / (2 * h), rtol=1e-6, atol=1e-7)
+
+
+def test_curve_bad_input():
+    with pytest.raises(ff.Error, match=r"shape \(N, 2\) or \(N, 3\)"):
+        ff.BezierCurve(np.zeros((3, 4)))
+    with pytest.raises(ff.Error, match="not finite"):
+        ff.BezierCurve([[0, 0], [np.nan, 1]])
+    with pytest.raises(ff.Error, match="outside"):
+        ff.BezierCurve(ARCH).evaluate([1.5])
+    with pytest.raises(TypeError):
+        ff.BezierCurve("abc")
+
+
+def test_interpolating_spline_is_c2_and_passes_through_the_points():
+    pts = np.array([[0, 0, 0], [1, 2, 0], [3, 3, 1], [4, 0, 2], [6, 1, 1]], dtype=float)
+    s = ff.Spline.interpolate(pts)
+    assert s.degree == 3 and s.segment_count == 4 and not s.closed
+    np.testing.assert_allclose(s.evaluate(s.knots), pts, atol=1e-12)
+    # chord-length parameters: the intervals are the distances between the points
+    np.testing.assert_allclose(s.intervals, np.linalg.norm(np.diff(pts, axis=0), axis=1), rtol=1e-14)
+    for joint in s.continuity()[1:-1]:
+        assert joint["C"] >= 2
+    # second derivatives agree from both sides of every interior knot; natural ends: f'' = 0
+    eps = 1e-9
+    for k in s.knots[1:-1]:
+        left = s.derivatives([k - eps], 2)[0, 2]
+        right = s.derivatives([k + eps], 2)[0, 2]
+        np.testing.assert_allclose(left, right, atol=1e-5)
+    np.testing.assert_allclose(s.derivatives([0.0, s.domain_end], 2)[:, 2], 0, atol=1e-12)
+
+
+def test_spline_against_cli_interpolate(tmp_path):
+    pts = [[0, 0], [1, 1], [2, 0], [3, 1]]
+    src = tmp_path / "pts.json"
+    src.write_text(json.dumps({"points": pts}))
+    out = tmp_path / "s.json"
+    run_cli("interpolate", src, "-o", out)
+    doc = ff.Document.load(str(out))
+    spline = doc.curve("interpolant")
+    np.testing.assert_allclose(spline.control_points, ff.Spline.interpolate(np.array(pts, float)).control_points,
+                               atol=1e-12)
+
+
+def test_patch_against_tensor_bernstein_sum():
+    rng = np.random.default_rng(3)
+    P = rng.normal(size=(3, 4, 3))
+    p = ff.Patch(P)
+    assert p.degree == (2, 3)
+    uv = rng.uniform(0, 1, (50, 2))
+    expected = np.einsum("ni,nj,ijc->nc", bernstein(2, uv[:, 0]), bernstein(3, uv[:, 1]), P)
+    np.testing.assert_allclose(p.evaluate(uv), expected, atol=1e-13)
+    a, b = p.split_u(0.4)
+    np.testing.assert_allclose(a.evaluate([[1.0, 0.3]]), p.evaluate([[0.4, 0.3]]), atol=1e-13)
+    V, F, N = p.tessellate(4)
+    assert V.shape == (25, 3) and F.shape == (32, 3) and N.shape == (25, 3)
+    np.testing.assert_allclose(np.linalg.norm(N, axis=1), 1, atol=1e-12)
+
+
+def test_document_evaluate_matches_cli():
+    path = ROOT / "examples" / "data" / "demo.json"
+    doc = ff.Document.load(str(path))
+    assert doc.names == ["arch", "helix"] and doc.type("arch") == "bezier_curve" and "helix" in doc
+    e = doc.evaluate("arch", [0.5], 2)
+    cli = json.loads(run_cli("eval", path, "--object", "arch", "--at", "0.5", "--derivatives", "2"))
+    np.testing.assert_array_equal(e["point"], cli["point"])
+    np.testing.assert_array_equal(np.array(e["derivatives"]), np.array(cli["derivatives"]))
+    with pytest.raises(ff.Error, match="arch"):
+        doc.evaluate("arch", [2.0])
+    with pytest.raises(ff.Error, match="nope"):
+        doc.evaluate("nope", [0.5])
+
+
+def test_document_tessellate_subdivision_and_deform(tmp_path):
+    doc = ff.Document.load(str(ROOT / "data" / "cages" / "torus.json"))
+    name = doc.names[0]
+    V, F, N = doc.tessellate(name, segments=2)
+    assert V.shape[1] == 3 and len(F) > 0
+    e = doc.evaluate(name, [0, 0.5, 0.5], 1)
+    assert e["face"] == 0 and len(e["point"]) == 3
+    # the limit surface lies in the convex hull of the cage, so inside its bounding box
+    cage = ff.MeshFile.read(str(ROOT / "data" / "cages" / "torus.obj")).positions
+    lo, hi = cage.min(0) - 1e-12, cage.max(0) + 1e-12
+    assert np.all((V >= lo) & (V <= hi)) and np.all((e["point"] >= lo) & (e["point"] <= hi))
+    assert np.linalg.norm(e["derivatives"][0]) > 0
+    lat = ff.Lattice.load(str(ROOT / "data" / "cages" / "bend_lattice.json"))
+    report = doc.deform(lat)
+    assert report["certificate"] in ("certified injective", "folds", "undecided")
+    doc.save(str(tmp_path / "out.json"))
+    assert ff.Document.load(str(tmp_path / "out.json")).names == doc.names
+
+
+@pytest.mark.parametrize("name", ["cube.obj", "sphere.obj", "sphere.ply", "sphere.stl", "sphere.off",
+                                  "sphere.gltf", "sphere.glb"])
+def test_mesh_files_round_trip_bit_for_bit(tmp_path, name):
+    src = ROOT / "data" / "meshes" / name
+    for extra in ["cube.mtl", "sphere.bin"]:
+        shutil.copy(ROOT / "data" / "meshes" / extra, tmp_path / extra)
+    m = ff.MeshFile.read(str(src))
+    assert m.format == name.split(".")[1]
+    pos = m.positions
+    assert pos.shape[1] == 3 and np.shares_memory(pos, m.positions)  # a view of the file's numbers
+    out = tmp_path / name
+    m.write(str(out))
+    assert out.read_bytes() == src.read_bytes()
+    # an edit through the view is written, and read back
+    pos[0] += [0.25, 0.5, 0.125]
+    m.write(str(out))
+    # (STL and glTF store float32: the nearest float32 is written)
+    np.testing.assert_allclose(ff.MeshFile.read(str(out)).positions[0], pos[0], rtol=1e-7)
+    info = m.info()
+    cli = json.loads(run_cli("info", src))
+    assert info["positions"] == pos.shape[0]
+    assert json.dumps(cli)  # the CLI reads the same file
+    V, F, N = m.to_arrays()
+    assert V.shape == pos.shape and len(F) == info["faces"]
+
+
+def test_mesh_file_errors(tmp_path):
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0\nf 1 2 3\n")
+    with pytest.raises(ff.Error, match="bad.obj"):
+        ff.MeshFile.read(str(bad))
+    with pytest.raises(ff.Error):
+        ff.MeshFile.read(str(tmp_path / "x.unknown"))
+
+
+def test_clamped_interpolation_against_cli(tmp_path):
+    pts = [[0, 0, 0], [1, 1, 0], [2, 0, 1], [3, 1, 1]]
+    src = tmp_path / "pts.json"
+    src.write_text(json.dumps({"points": pts}))
+    out = tmp_path / "s.json"
+    run_cli("interpolate", src, "-o", out, "--end", "clamped", "--start-derivative", "1,0,0",
+            "--end-derivative", "0,2,0", "--param", "centripetal")
+    cli = ff.Document.load(str(out)).curve("interpolant")
+    s = ff.Spline.interpolate(pts, end="clamped", parametrization="centripetal", start_derivative=[1, 0, 0],
+                              end_derivative=[0, 2, 0])
+    np.testing.assert_allclose(s.control_points, cli.control_points, atol=1e-12)
+    # the end derivatives are the ones asked for (by the Bézier end points: f'(0) = 3 (P1 - P0) / h0)
+    np.testing.assert_allclose(s.derivatives([0.0, s.domain_end], 1)[:, 1], [[1, 0, 0], [0, 2, 0]], atol=1e-12)
+    with pytest.raises(ff.Error, match="only with end='clamped'"):
+        ff.Spline.interpolate(pts, start_derivative=[1, 0, 0])
+    with pytest.raises(ff.Error, match="expected 3 numbers"):
+        ff.Spline.interpolate(pts, end="clamped", start_derivative=[1, 0])

@@ -1,0 +1,313 @@
+# freeform.Lattice against independent computations: a NumPy Bernstein tensor sum, finite
+# differences for the sensitivities and det J, the command-line tool's outputs on the same files.
+import json
+
+import numpy as np
+import pytest
+
+import freeform as ff
+from conftest import ROOT, reference_deform, reference_weights, random_lattice, run_cli
+
+RNG = np.random.default_rng(5)
+INSIDE = RNG.uniform(-1, 1, (200, 3)) * [1.0, 1.1, 0.85]
+MIXED = RNG.uniform(-1.6, 1.6, (200, 3))  # many points outside the box
+
+
+def test_rest_lattice_is_identity_bit_for_bit():
+    lat = ff.Lattice.fit(INSIDE, degree=(2, 3, 1))
+    assert lat.is_rest()
+    assert np.array_equal(lat.deform(INSIDE), INSIDE)
+
+
+@pytest.mark.parametrize("outside", ["clamp", "keep", "extrapolate"])
+def test_deform_matches_numpy_bernstein_sum(outside):
+    lat = random_lattice(ff, outside=outside)
+    lat.strength = 0.7
+    out = lat.deform(MIXED)
+    assert out.dtype == np.float64 and out.shape == MIXED.shape
+    np.testing.assert_allclose(out, reference_deform(lat, MIXED), rtol=0, atol=1e-13)
+
+
+def test_float32_stays_float32():
+    lat = random_lattice(ff)
+    p32 = INSIDE.astype(np.float32)
+    out = lat.deform(p32)
+    assert out.dtype == np.float32
+    np.testing.assert_allclose(out, reference_deform(lat, p32.astype(np.float64)), rtol=0, atol=2e-6)
+
+
+def test_other_layouts_are_converted():
+    lat = random_lattice(ff)
+    expected = lat.deform(INSIDE)
+    fortran = np.asfortranarray(INSIDE)
+    np.testing.assert_array_equal(lat.deform(fortran), expected)
+    strided = np.zeros((len(INSIDE), 6))
+    strided[:, ::2] = INSIDE
+    np.testing.assert_array_equal(lat.deform(strided[:, ::2]), expected)
+    np.testing.assert_array_equal(lat.deform(INSIDE.tolist()), expected)
+    ints = np.array([[0, 0, 0], [1, -1, 0]])
+    np.testing.assert_allclose(lat.deform(ints), reference_deform(lat, ints), atol=1e-13)
+
+
+def test_empty_input():
+    lat = random_lattice(ff)
+    assert lat.deform(np.zeros((0, 3))).shape == (0, 3)
+    assert lat.weights(np.zeros((0, 3))).shape == (0, lat.point_count)
+
+
+def test_control_points_are_a_writable_view():
+    lat = random_lattice(ff)
+    cp = lat.control_points
+    assert cp.shape == (64, 3) and cp.dtype == np.float64
+    assert np.shares_memory(cp, lat.control_points)  # the same buffer every time: no copy
+    before = lat.deform(INSIDE)
+    cp[lat.index(1, 2, 1)] += [0.3, 0, 0]  # edit in place ...
+    after = lat.deform(INSIDE)  # ... the next call sees it
+    np.testing.assert_allclose(after, reference_deform(lat, INSIDE), atol=1e-13)
+    assert not np.allclose(before, after)
+    # index order i*(m+1)*(n+1) + j*(n+1) + k
+    lat2 = ff.Lattice((1, 2, 3), origin=[0, 0, 0], axes=np.eye(3))
+    assert lat2.index(1, 2, 3) == 1 * 3 * 4 + 2 * 4 + 3
+    np.testing.assert_allclose(lat2.rest_points[lat2.index(1, 2, 3)], [1, 1, 1])
+    np.testing.assert_allclose(lat2.rest_points[lat2.index(0, 1, 2)], [0, 0.5, 2 / 3])
+
+
+def test_weights_match_numpy_and_finite_differences():
+    for outside in ["clamp", "keep", "extrapolate"]:
+        lat = random_lattice(ff, degree=(3, 2, 2), outside=outside)
+        lat.strength = 0.8
+        W = lat.weights(MIXED)
+        assert W.shape == (len(MIXED), lat.point_count)
+        np.testing.assert_allclose(W, reference_weights(lat, MIXED), rtol=0, atol=1e-14)
+        # central differences of deform with respect to every control point and coordinate
+        h = 1e-3
+        base = lat.control_points.copy()
+        scale = np.abs(lat.deform(MIXED)).max()
+        for q in range(0, lat.point_count, 5):
+            for c in range(3):
+                lat.control_points[:] = base
+                lat.control_points[q, c] += h
+                plus = lat.deform(MIXED)
+                lat.control_points[:] = base
+                lat.control_points[q, c] -= h
+                minus = lat.deform(MIXED)
+                fd = (plus - minus) / (2 * h)
+                # the map is linear in P: only rounding is left, scaled by |p| / h
+                np.testing.assert_allclose(fd[:, c], W[:, q], rtol=0, atol=1e-7 * max(1.0, scale / h * 1e-6))
+                other = [a for a in range(3) if a != c]
+                assert np.abs(fd[:, other]).max() < 1e-7
+        lat.control_points[:] = base
+
+
+def test_weights_finite_differences_relative():
+    # 1e-7 relative on the entries that matter (W > 1e-3), points inside the box
+    lat = random_lattice(ff)
+    W = lat.weights(INSIDE)
+    base = lat.control_points.copy()
+    h = 1e-4
+    for q in [0, 21, 42, 63]:
+        lat.control_points[:] = base
+        lat.control_points[q, 1] += h
+        plus = lat.deform(INSIDE)
+        lat.control_points[:] = base
+        lat.control_points[q, 1] -= h
+        minus = lat.deform(INSIDE)
+        fd = (plus[:, 1] - minus[:, 1]) / (2 * h)
+        big = W[:, q] > 1e-3
+        assert big.sum() > 10
+        np.testing.assert_allclose(fd[big], W[big, q], rtol=1e-7)
+    lat.control_points[:] = base
+
+
+def test_matrix_free_products():
+    lat = random_lattice(ff, outside="keep")
+    lat.strength = 1.3
+    W = lat.weights(MIXED)
+    dP = RNG.normal(size=(lat.point_count, 3))
+    g = RNG.normal(size=MIXED.shape)
+    np.testing.assert_allclose(lat.weights_matvec(MIXED, dP), W @ dP, rtol=1e-12, atol=1e-13)
+    np.testing.assert_allclose(lat.weights_rmatvec(MIXED, g), W.T @ g, rtol=1e-12, atol=1e-12)
+    # the thread count does not change the result
+    big = RNG.uniform(-1, 1, (20000, 3))
+    gb = RNG.normal(size=big.shape)
+    assert np.array_equal(lat.weights_rmatvec(big, gb, threads=1), lat.weights_rmatvec(big, gb, threads=3))
+    # W dP is the change of deform when the control points move by dP (linear in P)
+    moved = lat.copy()
+    moved.control_points += dP
+    np.testing.assert_allclose(moved.deform(MIXED) - lat.deform(MIXED), lat.weights_matvec(MIXED, dP), atol=1e-12)
+
+
+def finite_difference_jacobian(lat, p, h=1e-5):
+    J = np.zeros((len(p), 3, 3))
+    for c in range(3):
+        e = np.zeros(3)
+        e[c] = h
+        J[:, :, c] = (lat.deform(p + e) - lat.deform(p - e)) / (2 * h)
+    return J
+
+
+def test_det_j_and_normals_against_finite_differences():
+    lat = random_lattice(ff, scale=0.2)
+    p = INSIDE * 0.9
+    J = finite_difference_jacobian(lat, p)
+    np.testing.assert_allclose(lat.det_j(p), np.linalg.det(J), rtol=1e-7)
+    n = RNG.normal(size=p.shape)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    out, nn = lat.deform_normals(p, n)
+    np.testing.assert_allclose(out, lat.deform(p), rtol=0, atol=1e-14)
+    cof = np.linalg.det(J)[:, None, None] * np.linalg.inv(J).transpose(0, 2, 1)
+    expected = np.einsum("pij,pj->pi", cof, n)
+    expected /= np.linalg.norm(expected, axis=1)[:, None]
+    np.testing.assert_allclose(nn, expected, atol=1e-7)
+
+
+def test_certificate_and_report():
+    lat = random_lattice(ff, scale=0.05)
+    assert lat.certify()["verdict"] == "certified injective"
+    # push the middle layer through its neighbours along x: the lattice folds
+    folded = ff.Lattice((2, 1, 1), origin=[0, 0, 0], axes=np.eye(3))
+    for j in range(2):
+        for k in range(2):
+            folded.control_points[folded.index(1, j, k), 0] = 2.0
+    c = folded.certify()
+    assert c["verdict"] == "folds"
+    s, t, u = c["witness"]
+    # det J at the witness, by finite differences of the map, is <= 0
+    w = folded.origin + folded.axes @ np.array([s, t, u])
+    w = np.clip(w, 1e-3, 1 - 1e-3)[None, :]
+    assert np.linalg.det(finite_difference_jacobian(folded, w, 1e-6))[0] <= 1e-6
+    r = folded.report(np.array([[0.1, 0.5, 0.5], [0.9, 0.5, 0.5], [2, 2, 2]]))
+    assert r["vertices"] == 3 and r["outside"] == 1
+    assert r["fold_count"] >= 1 and r["min_det_j"] <= 0
+
+
+def test_direct_manipulation_hits_targets():
+    lat = random_lattice(ff)
+    p = INSIDE[:5]
+    targets = lat.deform(p) + RNG.uniform(-0.05, 0.05, p.shape)
+    r = lat.direct_manipulation(p, targets)
+    assert r["rank"] == 5 and r["residual"] < 1e-10
+    np.testing.assert_allclose(r["lattice"].deform(p), targets, atol=1e-10)
+    np.testing.assert_allclose(r["lattice"].control_points - lat.control_points, r["change"], atol=1e-14)
+
+
+def test_fit_load_save_and_cli_round_trip(tmp_path):
+    mesh = ROOT / "data" / "meshes" / "sphere.obj"
+    lat_json = tmp_path / "lat.json"
+    run_cli("lattice", "--fit", mesh, "--degree", "2,3,2", "--margin", "0.1", "-o", lat_json)
+    from_cli = ff.Lattice.load(str(lat_json))
+    positions = ff.MeshFile.read(str(mesh)).positions
+    fitted = ff.Lattice.fit(positions, degree=(2, 3, 2), margin=0.1)
+    assert from_cli.degree == (2, 3, 2) and fitted.degree == (2, 3, 2)
+    np.testing.assert_array_equal(from_cli.control_points, fitted.control_points)
+    np.testing.assert_array_equal(from_cli.origin, fitted.origin)
+    # bounding box by hand: margin 0.1 of the largest extent on every side
+    lo, hi = positions.min(0), positions.max(0)
+    pad = 0.1 * (hi - lo).max()
+    np.testing.assert_allclose(fitted.origin, lo - pad, atol=1e-12)
+
+    # deform in Python and through `freeform ffd` on the same lattice and mesh
+    from_cli.control_points[from_cli.index(1, 2, 1)] += [0.2, -0.1, 0.3]
+    from_cli.control_points[from_cli.index(0, 0, 0)] += [0.1, 0.1, 0.0]
+    moved = tmp_path / "moved.json"
+    from_cli.save(str(moved))
+    out = tmp_path / "out.obj"
+    report = json.loads(run_cli("ffd", mesh, "--lattice", moved, "-o", out))
+    cli_positions = ff.MeshFile.read(str(out)).positions
+    np.testing.assert_array_equal(from_cli.deform(positions), cli_positions)
+    np.testing.assert_allclose(cli_positions, reference_deform(from_cli, positions), atol=1e-13)
+    r = from_cli.report(positions)
+    assert r["outside"] == report["outside"] and r["fold_count"] == report["fold_count"]
+    assert r["min_det_j"] == pytest.approx(report["min_det_j"], rel=1e-12)
+    assert from_cli.certify()["verdict"] == report["certificate"]["verdict"]
+
+    # save -> load keeps everything bit for bit, and the file is a document the CLI reads
+    again = ff.Lattice.load(str(moved))
+    np.testing.assert_array_equal(again.control_points, from_cli.control_points)
+    assert again.name == "lattice" and again.outside == "clamp"
+    ev = json.loads(run_cli("eval", moved, "--object", "lattice", "--at", "0.25,0.5,0.75"))
+    world = from_cli.origin + from_cli.axes @ np.array([0.25, 0.5, 0.75])
+    np.testing.assert_allclose(from_cli.deform(world[None, :])[0], ev["point"], rtol=0, atol=1e-13)
+
+
+def test_mesh_file_deform_matches_cli(tmp_path):
+    mesh = ROOT / "data" / "meshes" / "sphere.ply"
+    lat = ff.Lattice.fit(ff.MeshFile.read(str(mesh)).positions, degree=2)
+    lat.control_points[lat.index(2, 1, 1)] += [0.4, 0.1, 0]
+    lat.save(str(tmp_path / "lat.json"))
+    run_cli("ffd", mesh, "--lattice", tmp_path / "lat.json", "-o", tmp_path / "cli.ply")
+    m = ff.MeshFile.read(str(mesh))
+    m.deform(lat)
+    m.write(str(tmp_path / "py.ply"))
+    assert (tmp_path / "py.ply").read_bytes() == (tmp_path / "cli.ply").read_bytes()
+
+
+def test_bad_input_raises_with_a_clear_message(tmp_path):
+    lat = random_lattice(ff)
+    with pytest.raises(ff.Error, match=r"points: expected an array of shape \(N, 3\), got shape \(4, 2\)"):
+        lat.deform(np.zeros((4, 2)))
+    with pytest.raises(ff.Error, match=r"shape \(3,\)"):
+        lat.deform(np.zeros(3))
+    bad = INSIDE.copy()
+    bad[7, 1] = np.nan
+    with pytest.raises(ff.Error, match="points: row 7 is not finite"):
+        lat.deform(bad)
+    with pytest.raises(ff.Error, match="row 7 is not finite"):
+        lat.weights(bad)
+    with pytest.raises(TypeError, match="dtype"):
+        lat.deform(np.array([["a", "b", "c"]]))
+    with pytest.raises(TypeError, match="dtype"):
+        lat.deform(np.zeros((2, 3), dtype=np.complex128))
+    with pytest.raises(TypeError):
+        lat.deform(None)
+    with pytest.raises(ff.Error, match="dP: expected 64 rows"):
+        lat.weights_matvec(INSIDE, np.zeros((3, 3)))
+    with pytest.raises(ff.Error, match="g: 2 rows for 200 points"):
+        lat.weights_rmatvec(INSIDE, np.zeros((2, 3)))
+    with pytest.raises(ff.Error, match="outside"):
+        lat.outside = "wrap"
+    with pytest.raises(ff.Error):
+        ff.Lattice.fit(INSIDE, degree=(0, 1, 1))
+    with pytest.raises(ff.Error):
+        ff.Lattice.fit(np.zeros((0, 3)))
+    lat.control_points[3, 2] = np.inf
+    with pytest.raises(ff.Error, match="control_points: row 3 is not finite"):
+        lat.deform(INSIDE)
+    # corrupt and missing files: the library's message names the file
+    corrupt = tmp_path / "corrupt.json"
+    corrupt.write_text('{"format": "freeform", "version": 1, "objects": [{"name": "l", "type": "lattice"')
+    with pytest.raises(ff.Error, match="corrupt.json"):
+        ff.Lattice.load(str(corrupt))
+    with pytest.raises(ff.Error, match="missing.json"):
+        ff.Lattice.load(str(tmp_path / "missing.json"))
+    with pytest.raises(ff.Error, match="no lattice object"):
+        ff.Lattice.load(str(ROOT / "examples" / "data" / "demo.json"))
+    with pytest.raises(ff.Error, match="not a lattice"):
+        ff.Lattice.load(str(ROOT / "examples" / "data" / "demo.json"), name="arch")
+    assert issubclass(ff.Error, ValueError)
+
+
+def test_repr_and_docstrings():
+    lat = ff.Lattice.fit(INSIDE, degree=(1, 2, 3))
+    assert repr(lat) == "Lattice(name='lattice', degree=(1, 2, 3), control_points=24, outside='clamp', strength=1)"
+    assert "Bernstein" in ff.Lattice.__doc__ or "Bézier" in ff.Lattice.__doc__
+    assert ff.Lattice.weights.__doc__ and ff.Lattice.deform.__doc__
+
+
+def test_binding_reuses_coordinates_and_writes_into_out():
+    lat = random_lattice(ff)
+    for dtype in (np.float64, np.float32):
+        p = MIXED.astype(dtype)
+        b = lat.bind(p)
+        assert b.size == len(p) and b.dtype == dtype
+        lat.control_points[10] += [0.05, -0.02, 0.01]
+        lat.strength = 0.5
+        out = np.empty_like(p)
+        res = b.deform(lat, out=out)
+        assert np.shares_memory(res, out)  # written in place, no new array
+        np.testing.assert_array_equal(out, lat.deform(p))
+        with pytest.raises(ff.Error, match="out: expected"):
+            b.deform(lat, out=np.empty((3, 3), dtype=dtype))
+        other = ff.Lattice.fit(p, degree=2)
+        with pytest.raises(ff.Error):
+            b.deform(other)
