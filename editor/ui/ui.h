@@ -53,6 +53,23 @@ struct UiState {
     // Path dialog: which action it serves and the text being edited.
     enum class PathDialog { None, Open, SaveAs, Import, Export } pathDialog = PathDialog::None;
     char pathBuffer[1024] = {};
+    // Dialogs answer only keys pressed after they appeared (the Enter that confirms one dialog must
+    // not close the next one in the same frame, nor while it is held): the frame each appeared in.
+    int errorFrame = -1;
+    int recoveryFrame = -1;
+    // Panel layout: laid out again against the window's size whenever that changes (the user's
+    // moves and resizes hold until then). The size last laid out for, and where each panel is
+    // (name, x, y, width, height in pixels), for the state dump (--state).
+    float layoutWidth = 0, layoutHeight = 0;
+    bool relayout = true;
+    struct PanelRect {
+        std::string name;
+        float x = 0, y = 0, width = 0, height = 0;
+    };
+    std::vector<PanelRect> panels;
+    /// The status bar's text: the active tool or mode and what the next click does (set by the app
+    /// each frame).
+    std::string statusHint;
 };
 
 /// Builds every panel for this frame (between ImGui::NewFrame and ImGui::Render). Returns true
