@@ -914,6 +914,12 @@ void App::replay(const std::vector<ReplayEvent>& events)
         case ReplayEvent::Type::Open:
             open(e.text);
             break;
+        case ReplayEvent::Type::Resize:
+            // As a window resized by the user: the view and the panels get the new size.
+            options_.width = e.width;
+            options_.height = e.height;
+            glfwSetWindowSize(window_, e.width, e.height);
+            break;
         }
         render();
         if (quitting_) break;
