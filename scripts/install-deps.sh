@@ -18,6 +18,7 @@ packages=(
   libglfw3-dev libgl-dev libepoxy-dev   # editor: window, OpenGL, GL function loader
   libimgui-dev libstb-dev               # editor: Dear ImGui 1.86 (+ GLFW/OpenGL3 backends), stb
   xvfb xauth libgl1-mesa-dri            # headless rendering (render tests, screenshots)
+  xdotool                               # editor test driving the real window under Xvfb (x11 label)
 )
 
 missing=()

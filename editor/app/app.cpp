@@ -230,7 +230,7 @@ std::string App::statusHint()
     return hint;
 }
 
-void App::writeState(const std::string& path) const
+std::string App::stateText() const
 {
     nlohmann::ordered_json j;
     int w = 1, h = 1;
@@ -238,6 +238,8 @@ void App::writeState(const std::string& path) const
     j["window"] = {w, h};
     j["error"] = ui_.error;
     j["path_dialog"] = ui_.pathDialog != UiState::PathDialog::None;
+    j["unsaved_dialog"] = ui_.pending != PendingAction::None;
+    j["modified"] = scene_.modified();
     nlohmann::ordered_json panels = nlohmann::ordered_json::object();
     for (const auto& p : ui_.panels) panels[p.name] = {p.x, p.y, p.width, p.height};
     j["panels"] = panels;
@@ -245,9 +247,21 @@ void App::writeState(const std::string& path) const
                    {"target", {scene_.camera.target.x(), scene_.camera.target.y(), scene_.camera.target.z()}}};
     j["status"] = ui_.statusHint;
     j["objects"] = scene_.itemCount();
-    std::ofstream out(path, std::ios::binary);
-    out << j.dump(1) << "\n";
-    if (!out) throw Error("cannot write the state to " + path);
+    return j.dump(1) + "\n";
+}
+
+void App::writeState(const std::string& path) const
+{
+    // Written whole under another name, then renamed: a reader never sees half a file.
+    const std::string temporary = path + ".part";
+    {
+        std::ofstream out(temporary, std::ios::binary);
+        out << stateText();
+        if (!out) throw Error("cannot write the state to " + temporary);
+    }
+    std::error_code ec;
+    fs::rename(temporary, path, ec);
+    if (ec) throw Error("cannot write the state to " + path + ": " + ec.message());
 }
 
 void App::viewSize(int& width, int& height) const
@@ -341,6 +355,18 @@ int App::run()
         renderer_->presentToWindow(w, h);
         glfwSwapBuffers(window_);
         maybeAutosave();
+        // --state in a window: the state file follows every change (tests driving the window read it).
+        if (!options_.state.empty()) {
+            std::string text = stateText();
+            if (text != lastState_) {
+                lastState_ = std::move(text);
+                try {
+                    writeState(options_.state);
+                } catch (const Error& e) {
+                    std::cerr << "error: " << e.what() << "\n";
+                }
+            }
+        }
     }
     if (quitting_) removeAutosave(); // a confirmed quit: nothing unsaved is wanted any more
     return 0;

@@ -98,6 +98,8 @@ private:
     void dispatchInput();    // after NewFrame: the same events to the view's handlers
     std::vector<InputEvent> input_, frameInput_;
     std::string statusHint();
+    std::string stateText() const;
+    std::string lastState_;   // interactive --state: the text last written
 
     void frame(int width, int height, bool withUi);
     void buildUi();
