@@ -1060,3 +1060,34 @@ TEST_CASE("Tools: mixed modes (C2, aligned, mirrored) all hold after a handle is
         CHECK(jointReport(b.scene, "m", 3).C >= 1);
     }
 }
+
+TEST_CASE("Tools: First steps, the C0 patch pair: the edge is C0 only, rows made collinear make it C1 and G1", "[tools]")
+{
+    // examples/data/c0-patches.json (docs/editor.md, "First steps"): "left" rises to the shared
+    // edge x = 0 by 0.3 per row of 0.5 in x, "right" falls from it likewise: a crease whose
+    // tangent planes meet at 2 atan(0.6) where the edge is level (v = 1/2), less elsewhere.
+    Bench b{Scene::load(std::string(FREEFORM_SOURCE_DIR) + "/examples/data/c0-patches.json")};
+    REQUIRE(b.tools.patch().computeEdgeContinuity(b.context));
+    REQUIRE(b.tools.patch().edges().size() == 1);
+    const EdgeContinuity& e = b.tools.patch().edges()[0];
+    CHECK(e.c0);
+    CHECK_FALSE(e.g1);
+    CHECK_FALSE(e.c1);
+    CHECK(e.angle <= 2 * std::atan(0.6) + 1e-9);
+    CHECK(e.angle > 1.0); // 2 atan(0.6) = 1.0808
+    // The task's step: the net rows on both sides of the edge (row 2 of left, row 1 of right) moved
+    // in z until the points across the edge are collinear (each to its edge point's height).
+    const int left = findItem(b.scene, "left"), right = findItem(b.scene, "right");
+    for (int j = 0; j < 4; ++j) {
+        const Eigen::Vector3d edge = b.scene.controlPoints(left).col(3 * 4 + j);
+        Eigen::Vector3d p = b.scene.controlPoints(left).col(2 * 4 + j);
+        b.scene.setControlPoint(left, 2 * 4 + j, Eigen::Vector3d(p.x(), p.y(), edge.z()));
+        p = b.scene.controlPoints(right).col(1 * 4 + j);
+        b.scene.setControlPoint(right, 1 * 4 + j, Eigen::Vector3d(p.x(), p.y(), edge.z()));
+    }
+    REQUIRE(b.tools.patch().computeEdgeContinuity(b.context));
+    REQUIRE(b.tools.patch().edges().size() == 1);
+    CHECK(b.tools.patch().edges()[0].g1);
+    CHECK(b.tools.patch().edges()[0].c1); // equal row spacing on both sides
+    CHECK(b.tools.patch().edges()[0].angle < 1e-6); // an angle from a cosine near 1: resolution about 1.5e-8
+}
