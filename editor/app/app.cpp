@@ -17,6 +17,7 @@
 #include <iostream>
 #include <numeric>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "freeform/core/error.h"
@@ -248,6 +249,39 @@ std::string App::stateText() const
     j["status"] = ui_.statusHint;
     j["objects"] = scene_.itemCount();
     return j.dump(1) + "\n";
+}
+
+std::optional<std::string> App::chooseFile(bool save, const std::string& title, const std::string& initial)
+{
+    // zenity (a Debian package) where there is a desktop display; never in headless runs, nor
+    // when FREEFORM_NO_ZENITY=1 (tests driving the window); the typed path otherwise.
+    if (options_.headless()) return std::nullopt;
+    if (const char* no = std::getenv("FREEFORM_NO_ZENITY"); no && std::string(no) == "1") return std::nullopt;
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland)) return std::nullopt;
+    static const bool haveZenity = std::system("command -v zenity >/dev/null 2>&1") == 0;
+    if (!haveZenity) return std::nullopt;
+    auto quoted = [](const std::string& text) {
+        std::string q = "'";
+        for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        return q + "'";
+    };
+    std::string command = "zenity --file-selection --title=" + quoted("freeform editor: " + title);
+    if (save) command += " --save --confirm-overwrite";
+    if (!initial.empty()) command += " --filename=" + quoted(initial);
+    command += " 2>/dev/null";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return std::nullopt;
+    std::string out;
+    char buffer[512];
+    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
+    const int status = pclose(pipe);
+    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+    if (status == -1 || !WIFEXITED(status)) return std::nullopt;
+    if (WEXITSTATUS(status) == 1) return std::string(); // cancelled
+    if (WEXITSTATUS(status) != 0 || out.empty()) return std::nullopt; // zenity failed: type the path
+    return out;
 }
 
 void App::writeState(const std::string& path) const
@@ -796,10 +830,7 @@ void App::onKey(int key, int action, int mods)
 void App::perform(KeyAction action)
 {
     DisplaySettings& d = scene_.display;
-    auto dialog = [&](UiState::PathDialog which, const std::string& text) {
-        ui_.pathDialog = which;
-        std::snprintf(ui_.pathBuffer, sizeof ui_.pathBuffer, "%s", text.c_str());
-    };
+    auto dialog = [&](UiState::PathDialog which, const std::string& text) { askPath(ui_, *this, which, text); };
     switch (action) {
     // Files
     case KeyAction::NewDocument: newDocument(); break;

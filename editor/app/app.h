@@ -70,6 +70,7 @@ public:
     void redo() override;
     void recover(bool accept) override;
     void toolPanels() override;
+    std::optional<std::string> chooseFile(bool save, const std::string& title, const std::string& initial) override;
 
     // Input (GLFW callbacks forward here).
     void onMouseButton(int button, int action, int mods);

@@ -93,32 +93,46 @@ bool materialEditor(Material& m)
     return changed;
 }
 
-void openPathDialog(UiState& s, UiState::PathDialog which, const std::string& initial)
+} // namespace
+
+void askPath(UiState& s, UiActions& actions, UiState::PathDialog which, const std::string& initial)
 {
+    const char* titles[] = {"", "Open", "Save as", "Import mesh or .bpt", "Export OBJ"};
+    const bool save = which == UiState::PathDialog::SaveAs || which == UiState::PathDialog::Export;
+    if (const std::optional<std::string> chosen = actions.chooseFile(save, titles[static_cast<int>(which)], initial)) {
+        if (chosen->empty()) return; // cancelled
+        if (which == UiState::PathDialog::Open) actions.open(*chosen);
+        else if (which == UiState::PathDialog::SaveAs) actions.saveAs(*chosen);
+        else if (which == UiState::PathDialog::Import) actions.importFile(*chosen);
+        else actions.exportMesh(*chosen);
+        return;
+    }
     s.pathDialog = which;
     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
 }
+
+namespace {
 
 void mainMenu(Scene& scene, UiState& s, UiActions& actions)
 {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
-        if (ImGui::MenuItem("Open...", "Ctrl+O")) openPathDialog(s, UiState::PathDialog::Open, scene.path());
+        if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
         if (ImGui::BeginMenu("Open recent", !actions.recentFiles().empty())) {
             for (const std::string& path : actions.recentFiles())
                 if (ImGui::MenuItem(path.c_str())) actions.open(path);
             ImGui::EndMenu();
         }
         if (ImGui::MenuItem("Save", "Ctrl+S")) {
-            if (scene.path().empty()) openPathDialog(s, UiState::PathDialog::SaveAs, "scene.json");
+            if (scene.path().empty()) askPath(s, actions, UiState::PathDialog::SaveAs, "scene.json");
             else actions.save();
         }
         if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
-            openPathDialog(s, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
+            askPath(s, actions, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
         ImGui::Separator();
-        if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) openPathDialog(s, UiState::PathDialog::Import, "");
-        if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) openPathDialog(s, UiState::PathDialog::Export, "scene.obj");
+        if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) askPath(s, actions, UiState::PathDialog::Import, "");
+        if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) askPath(s, actions, UiState::PathDialog::Export, "scene.obj");
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         ImGui::EndMenu();

@@ -4,6 +4,7 @@
 // changes, errors, help). The panels edit the Scene directly through its methods and ask the app
 // for everything that touches files or the window through UiActions.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,14 @@ public:
     virtual void redo() = 0;                              // Ctrl+Shift+Z, Ctrl+Y
     virtual void recover(bool accept) = 0;                // the autosave recovery dialog's answer
     virtual void toolPanels() = 0;                        // the tools' sections of the Properties window
+    /// The desktop's file chooser (zenity, where one is installed and a desktop display is there):
+    /// nullopt when there is none (the typed-path dialog is used instead), an empty string when the
+    /// user cancelled it, else the chosen path.
+    virtual std::optional<std::string> chooseFile(bool save, const std::string& title, const std::string& initial)
+    {
+        (void)save, (void)title, (void)initial;
+        return std::nullopt;
+    }
 };
 
 enum class PendingAction { None, New, Open, Quit };
@@ -71,6 +80,10 @@ struct UiState {
     /// each frame).
     std::string statusHint;
 };
+
+/// Asks for a path for `which` (Open, Save as, Import, Export): the desktop's file chooser when
+/// there is one (the action is then carried out at once), else the typed-path dialog.
+void askPath(UiState& state, UiActions& actions, UiState::PathDialog which, const std::string& initial);
 
 /// Builds every panel for this frame (between ImGui::NewFrame and ImGui::Render). Returns true
 /// when the user resolved a pending action with "Discard" or after a successful "Save": the
