@@ -224,7 +224,7 @@ std::string App::statusHint()
         else if (type == "lattice") hint += "; D drags the deformed mesh directly";
         hint += "; Escape deselects";
     } else {
-        hint = "Select: click a curve, surface or point; C draws a curve, Shift+C a C2 spline; drag empty space to orbit, scroll to zoom; F1 help";
+        hint = "Select: click an object or point; C: curve, Shift+C: C2 spline; drag: orbit, wheel: zoom; F1: help";
     }
     const std::string& message = tools_.message();
     if (!message.empty()) hint += "   |   " + message;

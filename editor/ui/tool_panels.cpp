@@ -153,14 +153,17 @@ void PatchTool::drawPanel(ToolContext& c)
     if (!edges_.empty()) {
         int g1 = 0, c1 = 0;
         for (const EdgeContinuity& e : edges_) g1 += e.g1, c1 += e.c1;
-        ImGui::Text("%zu edges: %d C1, %d G1, %zu G0 only", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
+        ImGui::Text("%zu edges: %d C1, %d G1, %zu C0", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
+                              "(the table follows every change of the patches)");
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
         if (ImGui::BeginTable("edges", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit,
                               ImVec2(0, 180))) {
             ImGui::TableSetupColumn("edge");
             ImGui::TableSetupColumn("level");
-            ImGui::TableSetupColumn("angle");
-            ImGui::TableSetupColumn("gap");
+            ImGui::TableSetupColumn("angle (deg)");
+            ImGui::TableSetupColumn("gap (units)");
             ImGui::TableHeadersRow();
             for (const EdgeContinuity& e : edges_) {
                 ImGui::TableNextRow();
@@ -171,7 +174,7 @@ void PatchTool::drawPanel(ToolContext& c)
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(e.c1 ? "C1" : e.g1 ? "G1" : "C0");
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2e", e.angle);
+                ImGui::Text("%.3g", e.angle * 180.0 / 3.14159265358979323846);
                 ImGui::TableNextColumn();
                 ImGui::Text("%.1e", e.gap);
             }

@@ -324,7 +324,9 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
         notePanel(s, "Properties");
         const int selected = s.selection.item;
         if (selected < 0 || selected >= scene.itemCount()) {
+            ImGui::PushTextWrapPos(0);
             ImGui::TextDisabled("select an object in the Scene panel or the view");
+            ImGui::PopTextWrapPos();
         } else {
             SceneItem& item = scene.item(selected);
             ImGui::Text("%s", item.name.c_str());
@@ -392,6 +394,8 @@ void displayPanel(Scene& scene, UiState& s)
     ImGui::SetNextWindowSize(l.displaySize, cond);
     if (ImGui::Begin("Display", &s.showDisplay)) {
         notePanel(s, "Display");
+        // Room for the longest label ("point size", "tolerance") beside the widgets.
+        ImGui::PushItemWidth(-ImGui::GetFontSize() * 6.5f);
         DisplaySettings d = scene.display;
         int shading = static_cast<int>(d.shading);
         ImGui::Combo("shading", &shading, "flat\0Gouraud\0Phong\0");
@@ -451,6 +455,7 @@ void displayPanel(Scene& scene, UiState& s)
             scene.touch();
             if (retessellate) scene.invalidateGeometry();
         }
+        ImGui::PopItemWidth();
     }
     ImGui::End();
 }
