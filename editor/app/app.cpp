@@ -531,6 +531,7 @@ void App::importFile(const std::string& path)
 {
     try {
         scene_.importFile(path);
+        fit(false); // the camera takes in the scene with the imported object
     } catch (const Error& e) {
         ui_.error = e.what();
     }

@@ -15,9 +15,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Geometry>
+
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/process.h"
 
@@ -46,13 +49,14 @@ std::string document()
 }
 
 /// Runs a replay and returns the state written on exit.
-Json replayState(const std::string& name, const Json& events, const std::string& size = "1280x800")
+Json replayState(const std::string& name, const Json& events, const std::string& size = "1280x800", std::string doc = "")
 {
     const std::string file = cat(kTmp, "/dialogs_", name, ".events.json"), state = cat(kTmp, "/dialogs_", name, ".state.json"),
                       out = cat(kTmp, "/dialogs_", name, ".out.json");
     freeform::test::writeText(file, Json{{"events", events}}.dump(1));
     fs::remove(state);
-    const auto r = freeform::test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' '", document(),
+    if (doc.empty()) doc = document();
+    const auto r = freeform::test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' '", doc,
                                            "' --replay '", file, "' --state '", state, "' --save '", out, "' --size ", size));
     INFO(r.err);
     REQUIRE(r.status == 0);
@@ -152,4 +156,41 @@ TEST_CASE("issue 12: a scroll over a panel leaves the camera alone; over the vie
     CHECK(panel["camera"]["distance"].get<double>() == start);
     const Json view = replayState("scroll_view", Json::array({{{"type", "scroll"}, {"dy", 2}, {"x", 640}, {"y", 400}}}));
     CHECK(view["camera"]["distance"].get<double>() < 0.9 * start); // 0.85^2 of it, about 0.72
+}
+
+TEST_CASE("issue 12: importing a mesh fits the camera to it", "[render][replay]")
+{
+    // An empty document whose camera looks far away from the mesh; File > Import (Ctrl+I), the
+    // path typed, Enter: the camera's target is the centre of the mesh's bounding box, read here
+    // from the OBJ's vertex lines (before: it stayed at (40, -30, 20)).
+    const std::string mesh = std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/sphere.obj";
+    Eigen::AlignedBox3d box;
+    std::istringstream in(freeform::test::slurp(mesh));
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("v ", 0) == 0) {
+            std::istringstream v(line.substr(2));
+            double x = 0, y = 0, z = 0;
+            v >> x >> y >> z;
+            box.extend(Eigen::Vector3d(x, y, z));
+        }
+    REQUIRE(!box.isEmpty());
+    Json events = Json::array();
+    events.push_back(key("I", {"ctrl"}));
+    events.push_back(key("A", {"ctrl"}));
+    events.push_back({{"type", "text"}, {"text", mesh}});
+    events.push_back(key("Enter"));
+    events.push_back({{"type", "frame"}, {"count", 2}});
+    const std::string empty = kTmp + "/dialogs_empty.json";
+    freeform::test::writeText(empty, R"({"format": "freeform", "version": 1, "objects": [],
+      "editor": {"camera": {"target": [40, -30, 20], "distance": 200, "orientation": [1, 0, 0, 0], "fovy": 35,
+                            "projection": "perspective", "orbit": "turntable"}}})");
+    const Json state = replayState("import_fit", events, "1280x800", empty);
+    CHECK(state["error"] == "");
+    CHECK(state["objects"] == 1);
+    const Json& t = state["camera"]["target"];
+    const Eigen::Vector3d centre = box.center();
+    INFO("target " << t.dump() << ", expected " << centre.transpose());
+    CHECK(std::abs(t[0].get<double>() - centre.x()) < 1e-6);
+    CHECK(std::abs(t[1].get<double>() - centre.y()) < 1e-6);
+    CHECK(std::abs(t[2].get<double>() - centre.z()) < 1e-6);
 }
