@@ -73,9 +73,21 @@ void SplineTool::drawPanel(ToolContext& c)
     ImGui::Separator();
     ImGui::TextUnformatted("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
     static const char* names[] = {"free", "aligned", "mirrored", "C2"};
-    int all = -1;
+    // The combo shows the inner joints' common mode, or "mixed".
+    int common = -2;
+    const std::vector<JointMode> current = jointModes(c.scene, item);
+    for (int j = 0; j < static_cast<int>(current.size()); ++j) {
+        if (!isInnerJoint(d, j)) continue;
+        const int m = static_cast<int>(current[static_cast<std::size_t>(j)]);
+        common = common == -2 ? m : common == m ? m : -1;
+    }
     ImGui::SetNextItemWidth(120);
-    if (ImGui::Combo("all joints", &all, names, 4)) setAllJointModes(c, static_cast<JointMode>(all));
+    if (ImGui::BeginCombo("all joints", common >= 0 ? names[common] : common == -1 ? "mixed" : "-")) {
+        for (int m = 0; m < 4; ++m)
+            if (ImGui::Selectable(names[m], m == common)) setAllJointModes(c, static_cast<JointMode>(m));
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("set every inner joint to one mode (the current common mode, or mixed)");
     std::vector<JointContinuity<double>> report;
     try {
         report = splineContinuity(d);
