@@ -21,6 +21,7 @@ packages=(
   xvfb xauth libgl1-mesa-dri            # headless rendering (render tests, screenshots)
   pybind11-dev python3-dev python3-numpy   # the Python module (python/, docs/python.md)
   python3-pytest                        # its tests (run by ctest)
+  xdotool                               # editor test driving the real window under Xvfb (x11 label)
 )
 
 missing=()

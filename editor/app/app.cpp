@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <iostream>
 #include <numeric>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "freeform/core/error.h"
@@ -88,11 +90,6 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     }
     glfwSwapInterval(1);
     glfwSetWindowUserPointer(window_, this);
-    // Our callbacks first: the ImGui backend chains to them.
-    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int b, int a, int m) { appOf(w)->onMouseButton(b, a, m); });
-    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { appOf(w)->onCursor(x, y); });
-    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { appOf(w)->onScroll(dy); });
-    glfwSetKeyCallback(window_, [](GLFWwindow* w, int k, int, int a, int m) { appOf(w)->onKey(k, a, m); });
     glfwSetDropCallback(window_, [](GLFWwindow* w, int n, const char** p) { appOf(w)->onDrop(n, p); });
     glfwSetWindowCloseCallback(window_, [](GLFWwindow* w) { appOf(w)->onClose(); });
 
@@ -105,6 +102,14 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 4.0f;
     ImGui_ImplGlfw_InitForOpenGL(window_, true);
+    // Then the input callbacks are ours (replacing the backend's, which takeInput calls each frame
+    // with the queued events): everything goes through the queue.
+    using Type = InputEvent::Type;
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int k, int sc, int a, int m) { appOf(w)->queueInput({Type::Key, k, sc, a, m, 0, 0, 0}); });
+    glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int c) { appOf(w)->queueInput({Type::Char, 0, 0, 0, 0, 0, 0, c}); });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int b, int a, int m) { appOf(w)->queueInput({Type::Button, b, 0, a, m, 0, 0, 0}); });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) { appOf(w)->queueInput({Type::Scroll, 0, 0, 0, 0, dx, dy, 0}); });
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { appOf(w)->queueInput({Type::Cursor, 0, 0, 0, 0, x, y, 0}); });
     ImGui_ImplOpenGL3_Init("#version 330 core");
     imgui_ = true;
     replaying_ = !options_.replay.empty();
@@ -153,11 +158,144 @@ void App::buildUi()
         io.DisplayFramebufferScale = ImVec2(1, 1);
         io.DeltaTime = 1.0f / 60.0f;
     } else {
+        takeInput();
         ImGui_ImplGlfw_NewFrame();
     }
     ImGui::NewFrame();
+    if (!options_.headless()) dispatchInput();
+    ui_.statusHint = statusHint();
     if (drawUi(scene_, ui_, *this)) carryOutPending();
     ImGui::Render();
+}
+
+void App::takeInput()
+{
+    // In order, until a key or button would change a second time in this frame: the rest waits.
+    std::vector<std::pair<InputEvent::Type, int>> changed;
+    std::size_t taken = 0;
+    for (; taken < input_.size(); ++taken) {
+        const InputEvent& e = input_[taken];
+        if (e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Button) {
+            const std::pair<InputEvent::Type, int> id{e.type, e.code};
+            if (std::find(changed.begin(), changed.end(), id) != changed.end()) break;
+            changed.push_back(id);
+        }
+        switch (e.type) {
+        case InputEvent::Type::Key: ImGui_ImplGlfw_KeyCallback(window_, e.code, e.scancode, e.action, e.mods); break;
+        case InputEvent::Type::Char: ImGui_ImplGlfw_CharCallback(window_, e.ch); break;
+        case InputEvent::Type::Button: ImGui_ImplGlfw_MouseButtonCallback(window_, e.code, e.action, e.mods); break;
+        case InputEvent::Type::Scroll: ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y); break;
+        case InputEvent::Type::Cursor: break; // the backend reads the pointer itself
+        }
+        frameInput_.push_back(e);
+    }
+    input_.erase(input_.begin(), input_.begin() + static_cast<std::ptrdiff_t>(taken));
+}
+
+void App::dispatchInput()
+{
+    for (const InputEvent& e : frameInput_) {
+        switch (e.type) {
+        case InputEvent::Type::Key: onKey(e.code, e.action, e.mods); break;
+        case InputEvent::Type::Char: break;
+        case InputEvent::Type::Button: onMouseButton(e.code, e.action, e.mods); break;
+        case InputEvent::Type::Scroll: onScroll(e.y); break;
+        case InputEvent::Type::Cursor: onCursor(e.x, e.y); break;
+        }
+    }
+    frameInput_.clear();
+}
+
+std::string App::statusHint()
+{
+    std::string hint;
+    if (tools_.curve().creating()) {
+        hint = tools_.curve().creatingSpline()
+                   ? "Create C2 spline (Shift+C): click a point the spline passes through; Enter finishes, Backspace removes the last, Escape cancels"
+                   : "Create curve (C): click to add a control point; Enter finishes, Backspace removes the last, Escape cancels";
+    } else if (interaction_.busy()) {
+        hint = "Move: the selected points follow the pointer; X/Y/Z constrain, click or Enter confirms, Escape or right click cancels";
+    } else if (tools_.spline().dragging()) {
+        hint = "Move de Boor point: the spline is rebuilt from its de Boor points and stays C2";
+    } else if (ui_.selection.item >= 0 && ui_.selection.item < scene_.itemCount()) {
+        const std::string& type = scene_.item(ui_.selection.item).type;
+        hint = "Select (" + scene_.item(ui_.selection.item).name + ", " + type + "): click a point to select it, drag to move it";
+        if (type == "bezier_spline") hint += "; 1-4 set the joint's mode (free, aligned, mirrored, C2)";
+        else if (type == "lattice") hint += "; D drags the deformed mesh directly";
+        hint += "; Escape deselects";
+    } else {
+        hint = "Select: click an object or point; C: curve, Shift+C: C2 spline; drag: orbit, wheel: zoom; F1: help";
+    }
+    const std::string& message = tools_.message();
+    if (!message.empty()) hint += "   |   " + message;
+    return hint;
+}
+
+std::string App::stateText() const
+{
+    nlohmann::ordered_json j;
+    int w = 1, h = 1;
+    viewSize(w, h);
+    j["window"] = {w, h};
+    j["error"] = ui_.error;
+    j["path_dialog"] = ui_.pathDialog != UiState::PathDialog::None;
+    j["unsaved_dialog"] = ui_.pending != PendingAction::None;
+    j["modified"] = scene_.modified();
+    nlohmann::ordered_json panels = nlohmann::ordered_json::object();
+    for (const auto& p : ui_.panels) panels[p.name] = {p.x, p.y, p.width, p.height};
+    j["panels"] = panels;
+    j["camera"] = {{"distance", scene_.camera.distance},
+                   {"target", {scene_.camera.target.x(), scene_.camera.target.y(), scene_.camera.target.z()}}};
+    j["status"] = ui_.statusHint;
+    j["objects"] = scene_.itemCount();
+    return j.dump(1) + "\n";
+}
+
+std::optional<std::string> App::chooseFile(bool save, const std::string& title, const std::string& initial)
+{
+    // zenity (a Debian package) where there is a desktop display; never in headless runs, nor
+    // when FREEFORM_NO_ZENITY=1 (tests driving the window); the typed path otherwise.
+    if (options_.headless()) return std::nullopt;
+    if (const char* no = std::getenv("FREEFORM_NO_ZENITY"); no && std::string(no) == "1") return std::nullopt;
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland)) return std::nullopt;
+    static const bool haveZenity = std::system("command -v zenity >/dev/null 2>&1") == 0;
+    if (!haveZenity) return std::nullopt;
+    auto quoted = [](const std::string& text) {
+        std::string q = "'";
+        for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        return q + "'";
+    };
+    std::string command = "zenity --file-selection --title=" + quoted("freeform editor: " + title);
+    if (save) command += " --save --confirm-overwrite";
+    if (!initial.empty()) command += " --filename=" + quoted(initial);
+    command += " 2>/dev/null";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return std::nullopt;
+    std::string out;
+    char buffer[512];
+    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
+    const int status = pclose(pipe);
+    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+    if (status == -1 || !WIFEXITED(status)) return std::nullopt;
+    if (WEXITSTATUS(status) == 1) return std::string(); // cancelled
+    if (WEXITSTATUS(status) != 0 || out.empty()) return std::nullopt; // zenity failed: type the path
+    return out;
+}
+
+void App::writeState(const std::string& path) const
+{
+    // Written whole under another name, then renamed: a reader never sees half a file.
+    const std::string temporary = path + ".part";
+    {
+        std::ofstream out(temporary, std::ios::binary);
+        out << stateText();
+        if (!out) throw Error("cannot write the state to " + temporary);
+    }
+    std::error_code ec;
+    fs::rename(temporary, path, ec);
+    if (ec) throw Error("cannot write the state to " + path + ": " + ec.message());
 }
 
 void App::viewSize(int& width, int& height) const
@@ -251,6 +389,18 @@ int App::run()
         renderer_->presentToWindow(w, h);
         glfwSwapBuffers(window_);
         maybeAutosave();
+        // --state in a window: the state file follows every change (tests driving the window read it).
+        if (!options_.state.empty()) {
+            std::string text = stateText();
+            if (text != lastState_) {
+                lastState_ = std::move(text);
+                try {
+                    writeState(options_.state);
+                } catch (const Error& e) {
+                    std::cerr << "error: " << e.what() << "\n";
+                }
+            }
+        }
     }
     if (quitting_) removeAutosave(); // a confirmed quit: nothing unsaved is wanted any more
     return 0;
@@ -381,6 +531,7 @@ void App::importFile(const std::string& path)
 {
     try {
         scene_.importFile(path);
+        fit(false); // the camera takes in the scene with the imported object
     } catch (const Error& e) {
         ui_.error = e.what();
     }
@@ -680,10 +831,7 @@ void App::onKey(int key, int action, int mods)
 void App::perform(KeyAction action)
 {
     DisplaySettings& d = scene_.display;
-    auto dialog = [&](UiState::PathDialog which, const std::string& text) {
-        ui_.pathDialog = which;
-        std::snprintf(ui_.pathBuffer, sizeof ui_.pathBuffer, "%s", text.c_str());
-    };
+    auto dialog = [&](UiState::PathDialog which, const std::string& text) { askPath(ui_, *this, which, text); };
     switch (action) {
     // Files
     case KeyAction::NewDocument: newDocument(); break;
@@ -823,6 +971,12 @@ void App::replay(const std::vector<ReplayEvent>& events)
             break;
         case ReplayEvent::Type::Open:
             open(e.text);
+            break;
+        case ReplayEvent::Type::Resize:
+            // As a window resized by the user: the view and the panels get the new size.
+            options_.width = e.width;
+            options_.height = e.height;
+            glfwSetWindowSize(window_, e.width, e.height);
             break;
         }
         render();

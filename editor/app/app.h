@@ -49,6 +49,8 @@ public:
     void printFrameStats(int frames);
     /// Feeds the events through the input handlers, rendering a frame after each.
     void replay(const std::vector<ReplayEvent>& events);
+    /// Writes the state --state dumps (the error dialog, window and panels, camera) as JSON.
+    void writeState(const std::string& path) const;
     /// Saves the document as it is now (File > Save as); Error when it cannot be written.
     void saveDocument(const std::string& path) { scene_.save(path); }
     const Scene& scene() const { return scene_; }
@@ -68,6 +70,7 @@ public:
     void redo() override;
     void recover(bool accept) override;
     void toolPanels() override;
+    std::optional<std::string> chooseFile(bool save, const std::string& title, const std::string& initial) override;
 
     // Input (GLFW callbacks forward here).
     void onMouseButton(int button, int action, int mods);
@@ -80,6 +83,25 @@ public:
     void onClose();
 
 private:
+    // Input of the interactive window, queued by the GLFW callbacks (glfwPollEvents) and taken
+    // each frame: ImGui 1.86 reads key and button state once per frame, so a press and a release
+    // of one key in the same frame would be lost; such a release waits for the next frame. The
+    // view's handlers get the events after ImGui::NewFrame, when io.WantCapture* describe the
+    // pointer's current place (a scroll over a panel is the panel's).
+    struct InputEvent {
+        enum class Type { Key, Char, Button, Scroll, Cursor } type = Type::Key;
+        int code = 0, scancode = 0, action = 0, mods = 0;
+        double x = 0, y = 0;
+        unsigned int ch = 0;
+    };
+    void queueInput(const InputEvent& e) { input_.push_back(e); }
+    void takeInput();        // before NewFrame: this frame's events to ImGui's backend
+    void dispatchInput();    // after NewFrame: the same events to the view's handlers
+    std::vector<InputEvent> input_, frameInput_;
+    std::string statusHint();
+    std::string stateText() const;
+    std::string lastState_;   // interactive --state: the text last written
+
     void frame(int width, int height, bool withUi);
     void buildUi();
     void carryOutPending();

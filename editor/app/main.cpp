@@ -106,6 +106,7 @@ int main(int argc, char** argv)
         if (!options.replay.empty()) {
             App app(std::move(scene), options);
             app.replay(events);
+            if (!options.state.empty()) app.writeState(options.state);
             if (!options.save.empty()) app.saveDocument(options.save);
             if (!options.screenshot.empty()) writePng(options.screenshot, app.renderImage());
             return 0;
@@ -129,7 +130,9 @@ int main(int argc, char** argv)
             return 1;
         }
         if (!loadError.empty()) app->showError(loadError);
-        return app->run();
+        const int status = app->run();
+        if (!options.state.empty()) app->writeState(options.state);
+        return status;
     } catch (const Error& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 1;

@@ -48,6 +48,7 @@ Options parseOptions(const std::vector<std::string>& args)
         else if (a == "--screenshot") o.screenshot = value();
         else if (a == "--save") o.save = value();
         else if (a == "--replay") o.replay = value();
+        else if (a == "--state") o.state = value();
         else if (a == "--size") {
             const std::string v = value();
             const auto x = v.find('x');
@@ -95,6 +96,9 @@ headless use:
                          to a hidden window of --size, rendering a frame after each; then --save
                          and/or --screenshot write the result, and the editor exits
   --size WxH             image size in pixels (default 1280x800; also the window size)
+  --state OUT.json       when the editor exits (after --replay, or when its window closes) write its
+                         state: the error dialog's message, the window and panel rectangles, the
+                         camera (docs/editor.md, "Replaying input"); for tests
   --no-ui                leave the panels out of the screenshot
 
 view (override what the document says):

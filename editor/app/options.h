@@ -19,6 +19,7 @@ struct Options {
     std::string screenshot;                // write a PNG and exit
     std::string save;                      // write the document and exit (after --replay)
     std::string replay;                    // feed the events of this file, then save/screenshot and exit
+    std::string state;                     // --state OUT.json: the editor's state written on exit
     int width = 1280, height = 800;        // --size (screenshot), window size otherwise
     bool sizeGiven = false;
     std::optional<std::string> shading;    // flat | gouraud | phong

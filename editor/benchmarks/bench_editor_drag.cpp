@@ -9,6 +9,8 @@
 //     items: the FFD link notices the new control points and deforms positions, normals and det J
 //     of every vertex through the binding made at fit time (no lattice coordinates are computed
 //     again), the det J colour scalars and the bounds.
+// Spline and patch drags (issue 12): a handle of a cubic spline of 4, 16 and 64 segments dragged, its joints
+// all C2, all mirrored, or mixed; each frame the spline tool enforces every joint's mode.
 // Uploading to the GPU is not included (the driver's work). A second benchmark times the
 // FfdSession::deform call alone. Nothing here is a test: docs/performance.md has the figures.
 //
@@ -104,6 +106,109 @@ void BM_DragFrame(benchmark::State& state)
     if (!links.empty()) state.counters["deform_ms_last"] = links.begin()->second.deformMs;
 }
 BENCHMARK(BM_DragFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+/// A cubic spline of `segments` segments (a zigzag in the xy plane) whose inner joints are all in
+/// `mode` ("c2", "mirrored", "aligned") or, for "mixed", C2, aligned and mirrored in turn, as a
+/// document file: the spline tool keeps every joint in its mode while a handle is dragged
+/// (issue 12). Each iteration is one frame of the drag: the handle moved, Tools::update (the
+/// joint modes enforced on the whole spline), Scene::updateGeometry.
+std::string splineFile(int segments, const std::string& mode)
+{
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("freeform_bench_spline_" + mode + "_" + std::to_string(segments) + ".json")).string();
+    std::ofstream out(path);
+    out << R"({"format": "freeform", "version": 1, "objects": [{"name": "s", "type": "bezier_spline", "degree": 3, "points": [)";
+    for (int k = 0; k <= 3 * segments; ++k) {
+        const double x = k / 3.0, y = (k % 6 < 3 ? 1.0 : -1.0) * (k % 3 == 0 ? 0.5 : 1.0) + 0.1 * std::sin(k);
+        out << (k ? ", " : "") << "[" << x << ", " << y << ", " << 0.05 * std::cos(2.0 * k) << "]";
+    }
+    out << R"(], "editor": {"joints": ["free")";
+    const char* cycle[] = {"c2", "aligned", "mirrored"};
+    for (int j = 1; j < segments; ++j) out << ", \"" << (mode == "mixed" ? cycle[j % 3] : mode.c_str()) << "\"";
+    out << R"(, "free"]}}]})";
+    return path;
+}
+
+void BM_SplineHandleDrag(benchmark::State& state, const std::string& mode)
+{
+    const int segments = static_cast<int>(state.range(0));
+    Scene scene = Scene::load(splineFile(segments, mode));
+    Selection selection;
+    Tools tools;
+    Overlay overlay;
+    ToolContext context{scene, selection};
+    selection.selectItem(0);
+    tools.update(context, overlay);
+    const int k = 3 * (segments / 2) + 1; // the handle after the middle joint
+    selection.setPoints({k});
+    const Eigen::Vector3d rest = scene.controlPoints(0).col(k);
+    scene.beginMerge();
+    int frame = 0;
+    for (auto _ : state) {
+        const double offset = 0.05 * std::sin(0.05 * ++frame);
+        scene.setControlPoint(0, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        overlay = Overlay{};
+        tools.update(context, overlay);
+        scene.updateGeometry();
+        benchmark::DoNotOptimize(scene.controlPoints(0).data());
+    }
+    scene.endMerge();
+}
+BENCHMARK_CAPTURE(BM_SplineHandleDrag, c2, std::string("c2"))->Arg(4)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_SplineHandleDrag, mirrored, std::string("mirrored"))->Arg(4)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_SplineHandleDrag, mixed, std::string("mixed"))->Arg(4)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// A document of `n` x `n` bicubic patches (a wavy sheet), each an object, written once.
+std::string patchFile(int n)
+{
+    const std::string path = (std::filesystem::temp_directory_path() / ("freeform_bench_patches_" + std::to_string(n) + ".json")).string();
+    std::ofstream out(path);
+    out << R"({"format": "freeform", "version": 1, "objects": [)";
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            out << (a || b ? ", " : "") << R"({"name": "p)" << a << "_" << b << R"(", "type": "bezier_surface", "degree": [3, 3], "points": [)";
+            for (int i = 0; i <= 3; ++i) {
+                out << (i ? ", [" : "[");
+                for (int j = 0; j <= 3; ++j) {
+                    const double x = a + i / 3.0, y = b + j / 3.0;
+                    out << (j ? ", " : "") << "[" << x << ", " << y << ", " << 0.3 * std::sin(x) * std::cos(y) << "]";
+                }
+                out << "]";
+            }
+            out << "]}";
+        }
+    out << "]}";
+    return path;
+}
+
+/// One frame of dragging an inner control point of one patch of an 8 x 8 sheet (the patch is
+/// tessellated again at the display tolerance; the others are not touched).
+void BM_PatchDrag(benchmark::State& state)
+{
+    Scene scene = Scene::load(patchFile(8));
+    Selection selection;
+    Tools tools;
+    Overlay overlay;
+    ToolContext context{scene, selection};
+    scene.updateGeometry();
+    const int item = 27, k = 5;
+    selection.selectItem(item);
+    selection.setPoints({k});
+    tools.update(context, overlay);
+    const Eigen::Vector3d rest = scene.controlPoints(item).col(k);
+    scene.beginMerge();
+    int frame = 0;
+    for (auto _ : state) {
+        const double offset = 0.2 * std::sin(0.05 * ++frame);
+        scene.setControlPoint(item, k, rest + Eigen::Vector3d(0, 0, offset));
+        overlay = Overlay{};
+        tools.update(context, overlay);
+        scene.updateGeometry();
+        benchmark::DoNotOptimize(scene.item(item).geometry.surface->positions.data());
+    }
+    scene.endMerge();
+}
+BENCHMARK(BM_PatchDrag)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 } // namespace
 

@@ -167,8 +167,17 @@ std::vector<ReplayEvent> parseReplay(const std::string& text, const std::string&
             onlyFields(e, where, {"type", "path"});
             ev.type = ReplayEvent::Type::Open;
             ev.text = string(e, "path", where);
+        } else if (type == "resize") {
+            onlyFields(e, where, {"type", "width", "height"});
+            ev.type = ReplayEvent::Type::Resize;
+            for (const char* field : {"width", "height"}) {
+                if (!e.contains(field) || !e[field].is_number_integer() || e[field].get<long long>() < 16 || e[field].get<long long>() > 8192)
+                    fail(where + "." + field, "expected an integer in 16..8192");
+            }
+            ev.width = e["width"].get<int>();
+            ev.height = e["height"].get<int>();
         } else {
-            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open)");
+            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, resize)");
         }
         ev.mods = mods(e, where);
         events.push_back(std::move(ev));

@@ -14,7 +14,7 @@ namespace freeform::editor {
 class Scene;
 
 struct ReplayEvent {
-    enum class Type { Move, Press, Release, Key, KeyPress, KeyRelease, Text, Scroll, Frame, Open };
+    enum class Type { Move, Press, Release, Key, KeyPress, KeyRelease, Text, Scroll, Frame, Open, Resize };
     Type type = Type::Frame;
     double x = 0, y = 0;        // pixels, origin top left (move, press, release, scroll)
     bool hasPosition = false;   // scroll: x and y given
@@ -23,6 +23,7 @@ struct ReplayEvent {
     int mods = 0;               // GLFW modifier bits
     double dy = 0;              // scroll
     int count = 1;              // frame
+    int width = 0, height = 0;  // resize: the window's new size in pixels
     std::string text;           // text (UTF-8), open (path)
 };
 

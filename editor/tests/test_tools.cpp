@@ -993,3 +993,102 @@ TEST_CASE("Tools: operations on the wrong object or an empty selection fail with
     CHECK(b.scene.text() == withLine);
     CHECK(b.scene.history().size() == steps);
 }
+
+// ------------------------------------------------------------------ issue 12: joint modes
+
+namespace {
+
+/// A cubic spline "m" of four segments, mirror-symmetric about the plane x = 0 (point k and point
+/// 12 - k are reflections of each other, intervals 1, 2, 2, 1), with corners at its inner joints.
+Scene mirrorScene(const std::string& name)
+{
+    const std::string path = cat(kTmp, "/", name);
+    test::writeText(path, R"({"format": "freeform", "version": 1, "objects": [
+      {"name": "m", "type": "bezier_spline", "degree": 3, "intervals": [1, 2, 2, 1], "points": [
+        [-4, 0, 0], [-3.6, 1, 0.2], [-3.2, 1.5, 0.1], [-2.5, 0.5, 0], [-2.1, -0.7, 0.3], [-1.2, 0.9, 0.2],
+        [0, 1, 0], [1.2, 0.9, 0.2], [2.1, -0.7, 0.3], [2.5, 0.5, 0], [3.2, 1.5, 0.1], [3.6, 1, 0.2], [4, 0, 0]]}]})");
+    return Scene::load(path);
+}
+
+} // namespace
+
+TEST_CASE("Tools: all joints aligned or mirrored at once prefer no side (a symmetric spline stays symmetric)", "[tools]")
+{
+    for (JointMode mode : {JointMode::Aligned, JointMode::Mirrored}) {
+        Bench b{mirrorScene("tools_all_symmetric.json")};
+        const PointColumns before = splineData(b.scene, "m").points;
+        b.select("m", {});
+        REQUIRE(b.tools.spline().setAllJointModes(b.context, mode));
+        b.update();
+        const PointColumns p = splineData(b.scene, "m").points;
+        // The reflection x -> -x with the order reversed gives the same points.
+        for (int k = 0; k <= 12; ++k) {
+            INFO(toString(mode) << ": point " << k << " " << p.col(k).transpose() << ", mirror " << p.col(12 - k).transpose());
+            CHECK(std::abs(p(0, k) + p(0, 12 - k)) < 1e-12);
+            CHECK(std::abs(p(1, k) - p(1, 12 - k)) < 1e-12);
+            CHECK(std::abs(p(2, k) - p(2, 12 - k)) < 1e-12);
+        }
+        for (int j = 0; j <= 4; ++j) CHECK(p.col(3 * j) == before.col(3 * j)); // the joints stay
+        for (int j = 1; j <= 3; ++j) {
+            const JointContinuity<double> c = jointReport(b.scene, "m", j);
+            CHECK(c.G >= 1);
+            if (mode == JointMode::Mirrored) CHECK(c.C >= 1);
+        }
+    }
+}
+
+TEST_CASE("Tools: mixed modes (C2, aligned, mirrored) all hold after a handle is moved through the scene", "[tools]")
+{
+    Bench b{mirrorScene("tools_mixed.json")};
+    const int m = findItem(b.scene, "m");
+    ObjectSettings settings = b.scene.item(m).settings;
+    settings.joints = {JointMode::Free, JointMode::C2, JointMode::Aligned, JointMode::Mirrored, JointMode::Free};
+    b.scene.setSettings(m, settings, "modes");
+    b.select("m", {});
+    b.update(); // the tool sees the spline (the modes are enforced from the first move on)
+    for (int k : {4, 7, 8, 2}) { // the handle after joint 1, after joint 2, before joint 3, before joint 1
+        const Eigen::Vector3d target = b.scene.controlPoints(m).col(k) + Eigen::Vector3d(0.13, -0.21, 0.05);
+        b.selection.setPoints({k});
+        b.scene.beginMerge();
+        b.scene.setControlPoint(m, k, target);
+        b.update();
+        b.scene.endMerge();
+        const Eigen::Matrix3Xd p = b.scene.controlPoints(m);
+        INFO("moved point " << k);
+        CHECK((Eigen::Vector3d(p.col(k)) - target).norm() < 1e-12); // the moved handle stays where it was put
+        CHECK(jointReport(b.scene, "m", 1).C >= 2);
+        CHECK(jointReport(b.scene, "m", 2).G >= 1);
+        CHECK(jointReport(b.scene, "m", 3).C >= 1);
+    }
+}
+
+TEST_CASE("Tools: First steps, the C0 patch pair: the edge is C0 only, rows made collinear make it C1 and G1", "[tools]")
+{
+    // examples/data/c0-patches.json (docs/editor.md, "First steps"): "left" rises to the shared
+    // edge x = 0 by 0.3 per row of 0.5 in x, "right" falls from it likewise: a crease whose
+    // tangent planes meet at 2 atan(0.6) where the edge is level (v = 1/2), less elsewhere.
+    Bench b{Scene::load(std::string(FREEFORM_SOURCE_DIR) + "/examples/data/c0-patches.json")};
+    REQUIRE(b.tools.patch().computeEdgeContinuity(b.context));
+    REQUIRE(b.tools.patch().edges().size() == 1);
+    const EdgeContinuity& e = b.tools.patch().edges()[0];
+    CHECK(e.c0);
+    CHECK_FALSE(e.g1);
+    CHECK_FALSE(e.c1);
+    CHECK(e.angle <= 2 * std::atan(0.6) + 1e-9);
+    CHECK(e.angle > 1.0); // 2 atan(0.6) = 1.0808
+    // The task's step: the net rows on both sides of the edge (row 2 of left, row 1 of right) moved
+    // in z until the points across the edge are collinear (each to its edge point's height).
+    const int left = findItem(b.scene, "left"), right = findItem(b.scene, "right");
+    for (int j = 0; j < 4; ++j) {
+        const Eigen::Vector3d edge = b.scene.controlPoints(left).col(3 * 4 + j);
+        Eigen::Vector3d p = b.scene.controlPoints(left).col(2 * 4 + j);
+        b.scene.setControlPoint(left, 2 * 4 + j, Eigen::Vector3d(p.x(), p.y(), edge.z()));
+        p = b.scene.controlPoints(right).col(1 * 4 + j);
+        b.scene.setControlPoint(right, 1 * 4 + j, Eigen::Vector3d(p.x(), p.y(), edge.z()));
+    }
+    b.update(); // the table follows the change by itself (the tool's per-frame update)
+    REQUIRE(b.tools.patch().edges().size() == 1);
+    CHECK(b.tools.patch().edges()[0].g1);
+    CHECK(b.tools.patch().edges()[0].c1); // equal row spacing on both sides
+    CHECK(b.tools.patch().edges()[0].angle < 1e-6); // an angle from a cosine near 1: resolution about 1.5e-8
+}

@@ -4,8 +4,9 @@
 // nothing changed. Shape-preserving operations (degree elevation, splitting, inserting a spline
 // joint) are exact in the sense of the library functions they call; inserting or deleting a
 // Bézier curve's control point changes the curve (it changes the degree by one). Joint handle
-// modes (JointMode) are enforced by the library's joins (curve/joins.h): aligned = joinG1,
-// mirrored = joinC1, C2 = joinC2 (cubics), each moving only the side opposite the kept handle.
+// modes (JointMode) are applied to one joint by the library's joins (curve/joins.h): aligned =
+// joinG1, mirrored = joinC1, C2 = joinC2 (cubics), each moving only the side opposite the kept
+// handle; enforceJointModes keeps all of them after any edit.
 
 #include <Eigen/Core>
 
@@ -67,10 +68,16 @@ bool isInnerJoint(const BezierSplineData& spline, int joint);
 /// right one; +1 the opposite). Free changes nothing. Error: C2 on a non-cubic spline, aligned with
 /// a handle on the joint.
 BezierSplineData applyJointMode(const BezierSplineData& spline, int joint, JointMode mode, int keepSide);
-/// After control points `moved` changed (the old data `before`, the new `after`), the modes are
-/// enforced again at every inner joint next to a moved point: a moved handle is kept and the
-/// opposite one adjusted; a moved joint point (its handles not moved) carries both handles along
-/// by its displacement, which keeps every mode.
+/// After control points `moved` changed (the old data `before`, whose joints keep their modes, and
+/// the new `after`), every inner joint's mode is enforced again, whichever points moved
+/// (docs/editor.md, "Joints of a bezier_spline"): a joint point moved without its handles carries
+/// them along; the moved (and carried) points stay where they were put when the modes allow it.
+/// Every inner joint C2 on a cubic: the de Boor polygon of `before` is changed least (minimum norm)
+/// so that the moved Bézier points land where they were put (least squares when they cannot all),
+/// and the result is C2 by construction. Otherwise (mixed modes): the mirrored (C1) and C2 joints'
+/// conditions are linear and an aligned joint's is too once its direction is chosen (the moved
+/// handle's when one of its two handles moved, else the bisector of both); the points not moved
+/// change least so that all of them hold, with the joint points kept in place if possible.
 BezierSplineData enforceJointModes(const BezierSplineData& before, const BezierSplineData& after,
                                    const std::vector<JointMode>& modes, const std::vector<int>& moved);
 /// Continuity of every inner joint (continuity.h), in 3D.

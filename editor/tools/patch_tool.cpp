@@ -46,6 +46,17 @@ bool PatchTool::createPatch(ToolContext& c)
 
 bool PatchTool::computeEdgeContinuity(ToolContext& c)
 {
+    return computeEdges(c, true);
+}
+
+void PatchTool::update(ToolContext& c, Overlay&)
+{
+    if (!edges_.empty() && c.scene.changeCount() != edgesChange_) computeEdges(c, false);
+}
+
+bool PatchTool::computeEdges(ToolContext& c, bool report)
+{
+    edgesChange_ = c.scene.changeCount();
     PatchComplex complex;
     edgePatchNames_.clear();
     for (int i = 0; i < c.scene.itemCount(); ++i) {
@@ -57,10 +68,12 @@ bool PatchTool::computeEdgeContinuity(ToolContext& c)
     }
     try {
         edges_ = edgeContinuity(complex);
-        status() = std::to_string(edges_.size()) + " shared edges between " + std::to_string(complex.patches.size()) + " patches";
+        if (report)
+            status() = std::to_string(edges_.size()) + " shared edges between " + std::to_string(complex.patches.size()) + " patches";
         return true;
     } catch (const Error& e) {
-        status() = e.what();
+        edges_.clear();
+        if (report) status() = e.what();
         return false;
     }
 }

@@ -18,6 +18,8 @@ public:
     KeyContext keyContext() const override { return KeyContext::Patch; }
     bool onKey(ToolContext& context, KeyAction action) override;
     void reset() override;
+    /// Keeps the edge continuity table (once computed) up to date with every change of the scene.
+    void update(ToolContext& context, Overlay& overlay) override;
     void drawToolbar(ToolContext& context) override;
     void drawPanel(ToolContext& context) override;
 
@@ -33,6 +35,8 @@ public:
     int degree[2] = {3, 3};     // of new patches (panel "m, n")
 
 private:
+    bool computeEdges(ToolContext& context, bool report);
+    long edgesChange_ = -1;     // Scene::changeCount when edges_ was computed
     std::vector<EdgeContinuity> edges_;
     std::vector<std::string> edgePatchNames_;
 };

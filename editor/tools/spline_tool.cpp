@@ -211,10 +211,23 @@ bool SplineTool::setJointMode(ToolContext& c, JointMode mode, int joint)
     const int side = k >= 0 ? sideOfPoint(*d, joint, k) : -1;
     try {
         DocumentObject next = *object;
-        next.data = applyJointMode(*d, joint, mode, side > 0 ? +1 : -1);
         ObjectSettings settings = c.scene.item(item).settings;
         settings.joints = jointModes(c.scene, item);
         settings.joints[static_cast<std::size_t>(joint)] = mode;
+        // The joint gets its mode keeping the chosen side; what that moved may belong to the
+        // neighbouring joints (C2 moves two points on a side), so every joint's mode is enforced
+        // again with the points of this joint and what it moved held in place.
+        const BezierSplineData applied = applyJointMode(*d, joint, mode, side > 0 ? +1 : -1);
+        std::vector<int> held;
+        for (Eigen::Index k = 0; k < applied.points.cols(); ++k)
+            if (applied.points.col(k) != d->points.col(k)) held.push_back(static_cast<int>(k));
+        const int column = jointColumn(applied, joint);
+        const auto total = static_cast<int>(applied.points.cols());
+        for (int offset = -1; offset <= 1; ++offset) held.push_back(applied.closed ? ((column + offset) % total + total) % total : column + offset);
+        const BezierSplineData enforced = enforceJointModes(applied, applied, settings.joints, held);
+        // Modes that already hold are not re-applied (that would move points by rounding only).
+        const double scale = std::max(1.0, applied.points.cwiseAbs().maxCoeff());
+        next.data = (enforced.points - applied.points).cwiseAbs().maxCoeff() > 1e-12 * scale ? enforced : applied;
         c.scene.beginMerge();
         c.scene.setSettings(item, settings, "handle mode");
         c.scene.replaceObject(item, next, "handle mode");
@@ -242,13 +255,14 @@ bool SplineTool::setAllJointModes(ToolContext& c, JointMode mode)
         BezierSplineData data = *d;
         ObjectSettings settings = c.scene.item(item).settings;
         settings.joints = jointModes(c.scene, item);
-        const bool c2Cubic = mode == JointMode::C2 && data.degree == 3;
-        if (c2Cubic) data = c2ThroughJoints(data);
-        for (int j = 0; j < static_cast<int>(settings.joints.size()); ++j) {
-            if (!isInnerJoint(data, j)) continue;
-            if (!c2Cubic) data = applyJointMode(data, j, mode, -1); // left to right: each joint keeps its left side
-            settings.joints[static_cast<std::size_t>(j)] = mode;
-        }
+        if (mode == JointMode::C2 && data.degree != 3)
+            throw Error("C2 handle mode: the spline must be cubic (elevate or use a deboor_spline)");
+        for (int j = 0; j < static_cast<int>(settings.joints.size()); ++j)
+            if (isInnerJoint(data, j)) settings.joints[static_cast<std::size_t>(j)] = mode;
+        if (mode == JointMode::C2) data = c2ThroughJoints(data);
+        // Aligned and mirrored: every joint at once, no side preferred: the joints stay, and the
+        // handles change least (aligned: along the bisector of the two handle directions).
+        else if (mode != JointMode::Free) data = enforceJointModes(data, data, settings.joints, {});
         DocumentObject next = *object;
         next.data = data;
         c.scene.beginMerge();

@@ -1,6 +1,7 @@
 #pragma once
 // The spline tool: the joint handle modes of Bezier splines (free, aligned G1, mirrored C1, C2;
-// keys 1-4 and the joints table), enforced again after every change of the spline's points, and
+// keys 1-4 and the joints table), enforced again at every joint after every change of the
+// spline's points (enforceJointModes, tools/curve_tools.h; docs/editor.md), and
 // the de Boor points of an all-C2 cubic spline, drawn and dragged (the spline stays C2).
 // Curve operations common to all curve types (insert, delete, split ...) are the curve tool's.
 
@@ -28,7 +29,9 @@ public:
     bool setJointMode(ToolContext& context, JointMode mode, int joint = -1);
     /// All inner joints to `mode`. For C2 on a cubic spline the joints stay where they are and the
     /// handles become those of the C2 interpolant of the joints on the spline's own intervals (the
-    /// end tangents kept; closed: periodic); other modes go joint by joint, left to right.
+    /// end tangents kept; closed: periodic); aligned and mirrored are applied to all joints at once
+    /// (enforceJointModes with nothing moved: the joints stay, the handles change least, no side
+    /// preferred).
     bool setAllJointModes(ToolContext& context, JointMode mode);
 
     bool dragging() const { return dragItem_ >= 0; }

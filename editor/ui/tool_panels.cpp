@@ -73,9 +73,21 @@ void SplineTool::drawPanel(ToolContext& c)
     ImGui::Separator();
     ImGui::TextUnformatted("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
     static const char* names[] = {"free", "aligned", "mirrored", "C2"};
-    int all = -1;
+    // The combo shows the inner joints' common mode, or "mixed".
+    int common = -2;
+    const std::vector<JointMode> current = jointModes(c.scene, item);
+    for (int j = 0; j < static_cast<int>(current.size()); ++j) {
+        if (!isInnerJoint(d, j)) continue;
+        const int m = static_cast<int>(current[static_cast<std::size_t>(j)]);
+        common = common == -2 ? m : common == m ? m : -1;
+    }
     ImGui::SetNextItemWidth(120);
-    if (ImGui::Combo("all joints", &all, names, 4)) setAllJointModes(c, static_cast<JointMode>(all));
+    if (ImGui::BeginCombo("all joints", common >= 0 ? names[common] : common == -1 ? "mixed" : "-")) {
+        for (int m = 0; m < 4; ++m)
+            if (ImGui::Selectable(names[m], m == common)) setAllJointModes(c, static_cast<JointMode>(m));
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("set every inner joint to one mode (the current common mode, or mixed)");
     std::vector<JointContinuity<double>> report;
     try {
         report = splineContinuity(d);
@@ -153,14 +165,17 @@ void PatchTool::drawPanel(ToolContext& c)
     if (!edges_.empty()) {
         int g1 = 0, c1 = 0;
         for (const EdgeContinuity& e : edges_) g1 += e.g1, c1 += e.c1;
-        ImGui::Text("%zu edges: %d C1, %d G1, %zu G0 only", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
+        ImGui::Text("%zu edges: %d C1, %d G1, %zu C0", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
+                              "(the table follows every change of the patches)");
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
         if (ImGui::BeginTable("edges", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit,
                               ImVec2(0, 180))) {
             ImGui::TableSetupColumn("edge");
             ImGui::TableSetupColumn("level");
-            ImGui::TableSetupColumn("angle");
-            ImGui::TableSetupColumn("gap");
+            ImGui::TableSetupColumn("angle (deg)");
+            ImGui::TableSetupColumn("gap (units)");
             ImGui::TableHeadersRow();
             for (const EdgeContinuity& e : edges_) {
                 ImGui::TableNextRow();
@@ -171,7 +186,7 @@ void PatchTool::drawPanel(ToolContext& c)
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(e.c1 ? "C1" : e.g1 ? "G1" : "C0");
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2e", e.angle);
+                ImGui::Text("%.3g", e.angle * 180.0 / 3.14159265358979323846);
                 ImGui::TableNextColumn();
                 ImGui::Text("%.1e", e.gap);
             }

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -26,6 +27,57 @@ bool keyPressed(ImGuiKey key)
     return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key));
 }
 
+/// A key that went down in this frame (no repeat), when the dialog that asks has been up since an
+/// earlier frame (`since`: the frame it appeared in, set here on its first frame).
+bool dialogKey(ImGuiKey key, int& since)
+{
+    if (since < 0) since = ImGui::GetFrameCount();
+    return ImGui::GetFrameCount() > since && ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false);
+}
+
+/// Height of the status bar at the bottom of the window.
+float statusHeight()
+{
+    return ImGui::GetFrameHeight() + 2;
+}
+
+/// The panels' places for a window of the current size: Scene top left, Display below it to the
+/// bottom, Properties top right; the same places as before at 1280 x 800, and none off-screen at
+/// small sizes. Applied on the first frame and whenever the window's size changes.
+struct Layout {
+    ImVec2 scenePos, sceneSize, displayPos, displaySize, propertiesPos, propertiesSize;
+};
+
+Layout panelLayout()
+{
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    const float top = vp->Pos.y + menuHeight() + 8, bottom = vp->Pos.y + vp->Size.y - statusHeight() - 8;
+    const float avail = std::max(bottom - top, 120.0f);
+    const float leftWidth = std::min(kPanelWidth - 60, std::max(150.0f, 0.27f * vp->Size.x));
+    const float rightWidth = std::min(kPanelWidth, std::max(180.0f, 0.34f * vp->Size.x));
+    Layout l;
+    const float sceneHeight = std::min(260.0f, 0.4f * avail);
+    l.scenePos = ImVec2(vp->Pos.x + 8, top);
+    l.sceneSize = ImVec2(leftWidth, sceneHeight);
+    l.displayPos = ImVec2(vp->Pos.x + 8, top + sceneHeight + 8);
+    l.displaySize = ImVec2(leftWidth, std::max(avail - sceneHeight - 8, 60.0f));
+    l.propertiesPos = ImVec2(vp->Pos.x + vp->Size.x - rightWidth - 8, top);
+    l.propertiesSize = ImVec2(rightWidth, std::min(avail, 420.0f * std::max(1.0f, vp->Size.y / 800.0f)));
+    return l;
+}
+
+/// Remembers where the current window is (for --state).
+void notePanel(UiState& s, const char* name)
+{
+    const ImVec2 p = ImGui::GetWindowPos(), z = ImGui::GetWindowSize();
+    for (auto& r : s.panels)
+        if (r.name == name) {
+            r = {name, p.x, p.y, z.x, z.y};
+            return;
+        }
+    s.panels.push_back({name, p.x, p.y, z.x, z.y});
+}
+
 bool colorEdit(const char* label, Vec3f& c)
 {
     return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float);
@@ -41,32 +93,46 @@ bool materialEditor(Material& m)
     return changed;
 }
 
-void openPathDialog(UiState& s, UiState::PathDialog which, const std::string& initial)
+} // namespace
+
+void askPath(UiState& s, UiActions& actions, UiState::PathDialog which, const std::string& initial)
 {
+    const char* titles[] = {"", "Open", "Save as", "Import mesh or .bpt", "Export OBJ"};
+    const bool save = which == UiState::PathDialog::SaveAs || which == UiState::PathDialog::Export;
+    if (const std::optional<std::string> chosen = actions.chooseFile(save, titles[static_cast<int>(which)], initial)) {
+        if (chosen->empty()) return; // cancelled
+        if (which == UiState::PathDialog::Open) actions.open(*chosen);
+        else if (which == UiState::PathDialog::SaveAs) actions.saveAs(*chosen);
+        else if (which == UiState::PathDialog::Import) actions.importFile(*chosen);
+        else actions.exportMesh(*chosen);
+        return;
+    }
     s.pathDialog = which;
     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
 }
+
+namespace {
 
 void mainMenu(Scene& scene, UiState& s, UiActions& actions)
 {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
-        if (ImGui::MenuItem("Open...", "Ctrl+O")) openPathDialog(s, UiState::PathDialog::Open, scene.path());
+        if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
         if (ImGui::BeginMenu("Open recent", !actions.recentFiles().empty())) {
             for (const std::string& path : actions.recentFiles())
                 if (ImGui::MenuItem(path.c_str())) actions.open(path);
             ImGui::EndMenu();
         }
         if (ImGui::MenuItem("Save", "Ctrl+S")) {
-            if (scene.path().empty()) openPathDialog(s, UiState::PathDialog::SaveAs, "scene.json");
+            if (scene.path().empty()) askPath(s, actions, UiState::PathDialog::SaveAs, "scene.json");
             else actions.save();
         }
         if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
-            openPathDialog(s, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
+            askPath(s, actions, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
         ImGui::Separator();
-        if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) openPathDialog(s, UiState::PathDialog::Import, "");
-        if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) openPathDialog(s, UiState::PathDialog::Export, "scene.obj");
+        if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) askPath(s, actions, UiState::PathDialog::Import, "");
+        if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) askPath(s, actions, UiState::PathDialog::Export, "scene.obj");
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         ImGui::EndMenu();
@@ -135,10 +201,12 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
 
 void outliner(Scene& scene, UiState& s)
 {
-    const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 8, vp->Pos.y + menuHeight() + 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kPanelWidth - 60, 260), ImGuiCond_FirstUseEver);
+    const Layout l = panelLayout();
+    const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos(l.scenePos, cond);
+    ImGui::SetNextWindowSize(l.sceneSize, cond);
     if (ImGui::Begin("Scene")) {
+        notePanel(s, "Scene");
         for (int i = 0; i < scene.itemCount(); ++i) {
             SceneItem& item = scene.item(i);
             ImGui::PushID(i);
@@ -248,13 +316,17 @@ void editOptions(Scene& scene, UiState& s)
 
 void properties(Scene& scene, UiState& s, UiActions& actions)
 {
-    const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - kPanelWidth - 8, vp->Pos.y + menuHeight() + 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 420), ImGuiCond_FirstUseEver);
+    const Layout l = panelLayout();
+    const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos(l.propertiesPos, cond);
+    ImGui::SetNextWindowSize(l.propertiesSize, cond);
     if (ImGui::Begin("Properties")) {
+        notePanel(s, "Properties");
         const int selected = s.selection.item;
         if (selected < 0 || selected >= scene.itemCount()) {
+            ImGui::PushTextWrapPos(0);
             ImGui::TextDisabled("select an object in the Scene panel or the view");
+            ImGui::PopTextWrapPos();
         } else {
             SceneItem& item = scene.item(selected);
             ImGui::Text("%s", item.name.c_str());
@@ -316,10 +388,14 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
 void displayPanel(Scene& scene, UiState& s)
 {
     if (!s.showDisplay) return;
-    const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 8, vp->Pos.y + menuHeight() + 276), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kPanelWidth - 60, vp->Size.y - menuHeight() - 290), ImGuiCond_FirstUseEver);
+    const Layout l = panelLayout();
+    const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos(l.displayPos, cond);
+    ImGui::SetNextWindowSize(l.displaySize, cond);
     if (ImGui::Begin("Display", &s.showDisplay)) {
+        notePanel(s, "Display");
+        // Room for the longest label ("point size", "tolerance") beside the widgets.
+        ImGui::PushItemWidth(-ImGui::GetFontSize() * 6.5f);
         DisplaySettings d = scene.display;
         int shading = static_cast<int>(d.shading);
         ImGui::Combo("shading", &shading, "flat\0Gouraud\0Phong\0");
@@ -379,6 +455,7 @@ void displayPanel(Scene& scene, UiState& s)
             scene.touch();
             if (retessellate) scene.invalidateGeometry();
         }
+        ImGui::PopItemWidth();
     }
     ImGui::End();
 }
@@ -460,8 +537,10 @@ void errorDialog(UiState& s)
         ImGui::TextUnformatted(s.error.c_str());
         ImGui::PopTextWrapPos();
         ImGui::TextDisabled("The open document was not changed.");
-        if (ImGui::Button("OK") || keyPressed(ImGuiKey_Enter) || keyPressed(ImGuiKey_Escape)) {
+        const bool enter = dialogKey(ImGuiKey_Enter, s.errorFrame), escape = dialogKey(ImGuiKey_Escape, s.errorFrame);
+        if (ImGui::Button("OK") || enter || escape) {
             s.error.clear();
+            s.errorFrame = -1;
             ImGui::CloseCurrentPopup();
         }
         ImGui::EndPopup();
@@ -471,7 +550,8 @@ void errorDialog(UiState& s)
 void helpWindow(UiState& s)
 {
     if (!s.showHelp) return;
-    ImGui::SetNextWindowSize(ImVec2(700, 600), ImGuiCond_FirstUseEver);
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowSize(ImVec2(std::min(700.0f, vp->Size.x - 40), std::min(600.0f, vp->Size.y - 60)), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Controls", &s.showHelp)) {
         if (ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen)) ImGui::TextUnformatted(firstStepsHelp());
         const std::string controls = controlsHelp();
@@ -484,7 +564,8 @@ void statsWindow(UiState& s)
 {
     if (!s.showStats) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - 8), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - statusHeight() - 8), ImGuiCond_Always,
+                            ImVec2(0.5f, 1.0f));
     ImGui::SetNextWindowBgAlpha(0.6f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
@@ -502,11 +583,14 @@ void recoveryDialog(UiState& s, UiActions& actions)
         ImGui::PushTextWrapPos(560);
         ImGui::TextUnformatted(s.recovery.c_str());
         ImGui::PopTextWrapPos();
-        const bool recover = ImGui::Button("Recover (Enter)") || keyPressed(ImGuiKey_Enter);
+        const bool enter = dialogKey(ImGuiKey_Enter, s.recoveryFrame);
+        const bool recover = ImGui::Button("Recover (Enter)") || enter;
         ImGui::SameLine();
-        const bool discard = ImGui::Button("Discard (Escape)") || keyPressed(ImGuiKey_Escape);
+        const bool escape = dialogKey(ImGuiKey_Escape, s.recoveryFrame);
+        const bool discard = ImGui::Button("Discard (Escape)") || escape;
         if (recover || discard) {
             s.recovery.clear();
+            s.recoveryFrame = -1;
             ImGui::CloseCurrentPopup();
             actions.recover(recover);
         }
@@ -552,9 +636,28 @@ std::string controlsHelp()
     return text;
 }
 
+void statusBar(UiState& s)
+{
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - statusHeight()), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(vp->Size.x, statusHeight()), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBringToFrontOnFocus;
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 2));
+    if (ImGui::Begin("##status", nullptr, flags)) ImGui::TextUnformatted(s.statusHint.c_str());
+    ImGui::End();
+    ImGui::PopStyleVar();
+}
+
 bool drawUi(Scene& scene, UiState& state, UiActions& actions)
 {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    state.relayout = state.relayout || vp->Size.x != state.layoutWidth || vp->Size.y != state.layoutHeight;
+    state.layoutWidth = vp->Size.x;
+    state.layoutHeight = vp->Size.y;
     mainMenu(scene, state, actions);
+    statusBar(state);
     outliner(scene, state);
     properties(scene, state, actions);
     displayPanel(scene, state);
@@ -564,6 +667,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     pathDialog(scene, state, actions);
     const bool proceed = unsavedDialog(scene, state, actions);
     errorDialog(state);
+    state.relayout = false;
     return proceed;
 }
 

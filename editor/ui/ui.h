@@ -4,6 +4,7 @@
 // changes, errors, help). The panels edit the Scene directly through its methods and ask the app
 // for everything that touches files or the window through UiActions.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,14 @@ public:
     virtual void redo() = 0;                              // Ctrl+Shift+Z, Ctrl+Y
     virtual void recover(bool accept) = 0;                // the autosave recovery dialog's answer
     virtual void toolPanels() = 0;                        // the tools' sections of the Properties window
+    /// The desktop's file chooser (zenity, where one is installed and a desktop display is there):
+    /// nullopt when there is none (the typed-path dialog is used instead), an empty string when the
+    /// user cancelled it, else the chosen path.
+    virtual std::optional<std::string> chooseFile(bool save, const std::string& title, const std::string& initial)
+    {
+        (void)save, (void)title, (void)initial;
+        return std::nullopt;
+    }
 };
 
 enum class PendingAction { None, New, Open, Quit };
@@ -53,7 +62,28 @@ struct UiState {
     // Path dialog: which action it serves and the text being edited.
     enum class PathDialog { None, Open, SaveAs, Import, Export } pathDialog = PathDialog::None;
     char pathBuffer[1024] = {};
+    // Dialogs answer only keys pressed after they appeared (the Enter that confirms one dialog must
+    // not close the next one in the same frame, nor while it is held): the frame each appeared in.
+    int errorFrame = -1;
+    int recoveryFrame = -1;
+    // Panel layout: laid out again against the window's size whenever that changes (the user's
+    // moves and resizes hold until then). The size last laid out for, and where each panel is
+    // (name, x, y, width, height in pixels), for the state dump (--state).
+    float layoutWidth = 0, layoutHeight = 0;
+    bool relayout = true;
+    struct PanelRect {
+        std::string name;
+        float x = 0, y = 0, width = 0, height = 0;
+    };
+    std::vector<PanelRect> panels;
+    /// The status bar's text: the active tool or mode and what the next click does (set by the app
+    /// each frame).
+    std::string statusHint;
 };
+
+/// Asks for a path for `which` (Open, Save as, Import, Export): the desktop's file chooser when
+/// there is one (the action is then carried out at once), else the typed-path dialog.
+void askPath(UiState& state, UiActions& actions, UiState::PathDialog which, const std::string& initial);
 
 /// Builds every panel for this frame (between ImGui::NewFrame and ImGui::Render). Returns true
 /// when the user resolved a pending action with "Discard" or after a successful "Save": the
