@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <freeform/volume/lattice.h>
+#include <freeform/io/geometry_data.h>
 
 #include <set>
 #include <string>
