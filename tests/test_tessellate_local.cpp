@@ -11,6 +11,8 @@
 #include <map>
 #include <unordered_map>
 
+#include "freeform/io/bpt.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/tessellate/tessellate.h"
 #include "support/random.h"
