@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <iostream>
 #include <limits>
 #include <ostream>
 
@@ -52,6 +53,25 @@ bool parseInteger(std::string_view token, long long& value)
     if (token.empty() || token.front() == '+') return false;
     const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
     return result.ec == std::errc() && result.ptr == token.data() + token.size();
+}
+
+void warnMesh(const std::string& message)
+{
+    std::cerr << "warning: " << message << '\n';
+}
+
+void requireText(const std::string& path, const std::string& text, const char* format)
+{
+    const auto starts = [&](const char* bom, std::size_t n) { return text.size() >= n && text.compare(0, n, bom, n) == 0; };
+    if (starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2))
+        throw Error(path + ": UTF-16 text (a byte order mark); the " + format + " reader reads ASCII / UTF-8: convert the file");
+    const std::size_t nul = text.find('\0');
+    if (nul != std::string::npos) {
+        std::size_t line = 1;
+        for (std::size_t i = 0; i < nul; ++i) line += text[i] == '\n';
+        throw Error(path + ":" + std::to_string(line) + ": a NUL byte at byte " + std::to_string(nul) + ": binary data, not an " + format +
+                    " text file");
+    }
 }
 
 std::string extensionOf(const std::string& path)

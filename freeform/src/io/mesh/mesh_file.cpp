@@ -15,7 +15,25 @@ namespace {
 
 const char* const kFormats = ".obj .ply .stl .off .gltf .glb";
 
-std::unique_ptr<meshio::Source> readSource(const std::string& path)
+void checkMesh(const PolygonMesh& mesh, const std::string& what);
+
+/// The one validation every reader's result passes, whichever command asked (info, ffd, convert,
+/// the editor): the mesh as readPolygonMesh returns it (finite positions, normals, texture
+/// coordinates; faces of at least 3 vertices inside the vertex range) and finite colours in [0, 1].
+void validateSource(const meshio::Source& source)
+{
+    checkMesh(source.polygonMesh(source.original()), source.path);
+    const Eigen::MatrixXd colors = source.vertexColors();
+    for (Eigen::Index i = 0; i < colors.cols(); ++i)
+        for (Eigen::Index k = 0; k < colors.rows(); ++k) {
+            const double c = colors(k, i);
+            if (!(c >= 0.0 && c <= 1.0))
+                throw Error(source.path + ": vertex " + std::to_string(i) + " colour component " + std::to_string(k) + " is " +
+                            meshio::formatDouble(c) + ", outside [0, 1] (or its type's range)");
+        }
+}
+
+std::unique_ptr<meshio::Source> readSourceUnchecked(const std::string& path)
 {
     const std::string ext = meshio::extensionOf(path);
     const bool known = ext == "obj" || ext == "ply" || ext == "stl" || ext == "off" || ext == "gltf" || ext == "glb";
@@ -28,6 +46,13 @@ std::unique_ptr<meshio::Source> readSource(const std::string& path)
     if (ext == "stl") return meshio::readStl(path, std::move(bytes));
     if (ext == "off") return meshio::readOff(path, std::move(bytes));
     return meshio::readGltf(path, std::move(bytes), ext == "glb");
+}
+
+std::unique_ptr<meshio::Source> readSource(const std::string& path)
+{
+    std::unique_ptr<meshio::Source> source = readSourceUnchecked(path);
+    validateSource(*source);
+    return source;
 }
 
 /// Vertices, attributes and face indices consistent (PolygonMesh::validate without its ban on a
