@@ -19,7 +19,7 @@ if [ $# -gt 0 ]; then targets=("$@"); fi
 echo "== fuzz build (clang, ASan + UBSan + libFuzzer)"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g" \
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only" \
   -DFREEFORM_SANITIZE=ON -DFREEFORM_BUILD_FUZZERS=ON -DFREEFORM_BUILD_TESTS=OFF -DFREEFORM_BUILD_EXAMPLES=OFF \
   -DFREEFORM_BUILD_BENCHMARKS=OFF -DFREEFORM_BUILD_EDITOR=OFF "${launcher[@]}" >/dev/null
 cmake --build build-fuzz -j "$jobs" --target "${targets[@]}"

@@ -423,3 +423,101 @@ TEST_CASE("Every input the fuzzers found reads to an Error or a mesh, never a cr
     }
     CHECK(count >= 0);
 }
+
+// ------------------------------------------------------------------ subdivision cages from the wild
+
+namespace {
+
+/// Runs f with the process's stdout (fd 1) captured; returns what was printed there.
+template <typename F>
+std::string capturedStdout(F&& f)
+{
+    std::fflush(stdout);
+    const std::string file = tmp("stdout.txt");
+    const int saved = dup(1);
+    FILE* sink = std::fopen(file.c_str(), "w");
+    dup2(fileno(sink), 1);
+    try {
+        f();
+    } catch (...) {
+    }
+    std::fflush(stdout);
+    dup2(saved, 1);
+    close(saved);
+    std::fclose(sink);
+    return slurp(file);
+}
+
+std::string squareCage(const std::string& tags)
+{
+    // A 3 x 3 grid of quads (16 vertices), 0-based index of vertex (i, j) = 4 j + i.
+    std::string obj;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) obj += "v " + std::to_string(i) + " " + std::to_string(j) + " 0\n";
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            const int a = 4 * j + i + 1;
+            obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 5) + " " + std::to_string(a + 4) + "\n";
+        }
+    return obj + tags;
+}
+
+} // namespace
+
+TEST_CASE("OpenSubdiv's shape tags: read where OpenSubdiv acts on them, refused by name otherwise", "[hardening][subdivision]")
+{
+    const auto cage = [&](const std::string& name, const std::string& tags) {
+        writeText(tmp(name), squareCage(tags));
+        return freeform::readCage(tmp(name));
+    };
+    const freeform::SubdivisionCage holes = cage("hole.obj", "t hole 1/0/0 4\n");
+    REQUIRE(holes.holes == std::vector<int>{4});
+    const freeform::SubdivisionSurface withHole(holes, freeform::SubdivisionScheme::Catmark);
+    CHECK_FALSE(withHole.hasLimitSurface(4));
+    CHECK(withHole.hasLimitSurface(0));
+
+    // interpolateboundary 0 = none: the boundary faces lose their limit surface, the centre keeps it.
+    const freeform::SubdivisionCage none = cage("ib.obj", "t interpolateboundary 1/0/0 0\n");
+    REQUIRE(none.boundary == freeform::BoundaryInterpolation::None);
+    const freeform::SubdivisionSurface framed(none, freeform::SubdivisionScheme::Catmark);
+    CHECK(framed.boundary() == freeform::BoundaryInterpolation::None);
+    CHECK_FALSE(framed.hasLimitSurface(0));
+    CHECK(framed.hasLimitSurface(4));
+    CHECK_THROWS_WITH(freeform::SubdivisionSurface(none, freeform::SubdivisionScheme::Catmark, freeform::BoundaryInterpolation::EdgeAndCorner),
+                      Contains("interpolateboundary"));
+
+    CHECK(cage("chaikin.obj", "t creasemethod 0/0/1 chaikin\n").chaikin);
+    CHECK(cage("smooth.obj", "t smoothtriangles 0/0/1 smooth\n").smoothTriangles);
+    CHECK_THROWS_WITH(cage("fvp.obj", "t facevaryingpropagatecorners 1/0/0 1\n"), Contains("fvp.obj:26") && Contains("facevaryingpropagatecorners"));
+    CHECK_THROWS_WITH(cage("bad_ib.obj", "t interpolateboundary 1/0/0 7\n"), Contains("bad_ib.obj:26"));
+    CHECK_THROWS_WITH(cage("bad_hole.obj", "t hole 1/0/0 9\n"), Contains("hole face 9"));
+    CHECK_THROWS_WITH(cage("bomb_tag.obj", "t crease 999999/1 0 1 2\n"), Contains("more values than the line holds"));
+}
+
+TEST_CASE("OpenSubdiv never prints on stdout", "[hardening][subdivision]")
+{
+    // A crease tag on an edge the cage does not have is refused before OpenSubdiv sees it (Debian's
+    // 3.5.0 reads uninitialised memory there), and OpenSubdiv's own messages go to stderr.
+    writeText(tmp("nocrease.obj"), squareCage("t crease 2/1 0 5 10\n"));
+    std::string out = capturedStdout([&] {
+        const freeform::SubdivisionCage c = freeform::readCage(tmp("nocrease.obj"));
+        CHECK_THROWS_WITH(freeform::SubdivisionSurface(c, freeform::SubdivisionScheme::Catmark), Contains("no such edge"));
+    });
+    CHECK(out.empty());
+
+    // A vertex of valence 70,000 (a triangle fan): OpenSubdiv complains; not on stdout.
+    freeform::SubdivisionCage fan;
+    const int n = 70000;
+    fan.mesh.positions.resize(3, n + 1);
+    fan.mesh.positions.col(0).setZero();
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * std::numbers::pi * i / n;
+        fan.mesh.positions.col(i + 1) = Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+    }
+    for (int i = 0; i < n; ++i) {
+        const int f[3] = {0, i + 1, (i + 1) % n + 1};
+        fan.mesh.addFace(f, f + 3);
+    }
+    out = capturedStdout([&] { freeform::SubdivisionSurface s(fan, freeform::SubdivisionScheme::Loop); });
+    CHECK(out.empty());
+}
