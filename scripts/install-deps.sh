@@ -18,6 +18,8 @@ packages=(
   libglfw3-dev libgl-dev libepoxy-dev   # editor: window, OpenGL, GL function loader
   libimgui-dev libstb-dev               # editor: Dear ImGui 1.86 (+ GLFW/OpenGL3 backends), stb
   xvfb xauth libgl1-mesa-dri            # headless rendering (render tests, screenshots)
+  clang libfuzzer-14-dev                # fuzzing stage (scripts/fuzz.sh): clang 14 + libFuzzer
+  assimp-testmodels                     # files other tools wrote: fuzz seeds, reader tests
 )
 
 missing=()

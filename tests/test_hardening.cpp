@@ -521,3 +521,13 @@ TEST_CASE("OpenSubdiv never prints on stdout", "[hardening][subdivision]")
     out = capturedStdout([&] { freeform::SubdivisionSurface s(fan, freeform::SubdivisionScheme::Loop); });
     CHECK(out.empty());
 }
+
+TEST_CASE("Results that overflow are an error, never null with exit 0", "[hardening][cli]")
+{
+    writeText(tmp("huge.json"), "{\"format\":\"freeform\",\"version\":1,\"objects\":[{\"name\":\"c\",\"type\":\"bezier_curve\","
+                                "\"points\":[[0,0],[1e308,1e308],[-1e308,-1e308],[1e308,0]]}]}");
+    const auto r = freeform::test::cli("eval '" + tmp("huge.json") + "' --object c --at 0.5 --derivatives 2");
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Contains("not finite"));
+}

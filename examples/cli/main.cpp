@@ -104,8 +104,21 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
     return out;
 }
 
+/// A result that overflowed (inf, nan) would print as null with exit 0: an Error naming the field.
+static void requireFinite(const Json& value, const std::string& where)
+{
+    if (value.is_number_float() && !std::isfinite(value.get<double>()))
+        throw Error("the result " + (where.empty() ? std::string("value") : "field " + where) +
+                    " is not finite (the computation overflowed double precision)");
+    if (value.is_object())
+        for (auto it = value.begin(); it != value.end(); ++it) requireFinite(it.value(), where + "/" + it.key());
+    if (value.is_array())
+        for (std::size_t i = 0; i < value.size(); ++i) requireFinite(value[i], where + "/" + std::to_string(i));
+}
+
 void printJson(const Json& value)
 {
+    requireFinite(value, "");
     std::cout << value.dump() << '\n';
 }
 
