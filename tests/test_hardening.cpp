@@ -23,6 +23,8 @@
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/surface/bezier_surface.h"
 #include "freeform/surface/patch_complex.h"
+#include "freeform/volume/deform_file.h"
+#include "freeform/volume/lattice.h"
 #include "support/bytes.h"
 #include "support/process.h"
 
@@ -530,4 +532,26 @@ TEST_CASE("Results that overflow are an error, never null with exit 0", "[harden
     CHECK(r.status == 1);
     CHECK(r.out.empty());
     CHECK_THAT(r.err, Contains("not finite"));
+}
+
+TEST_CASE("An empty mesh deforms to nothing; a face that repeats a vertex is named by its file", "[hardening][ffd]")
+{
+    freeform::LatticeData data;
+    data.degree = {1, 1, 1};
+    data.points.resize(3, 8);
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+            for (int k = 0; k < 2; ++k) data.points.col(i * 4 + j * 2 + k) = Eigen::Vector3d(i, j, k) * 1.5;
+    const freeform::Lattice lattice = freeform::Lattice::fromData(data);
+
+    writeText(tmp("empty.obj"), "# nothing but a comment\n");
+    MeshFile empty = MeshFile::read(tmp("empty.obj"));
+    CHECK_NOTHROW(freeform::deformMeshFile(lattice, empty));
+
+    // info on a face that repeats a vertex: the topology's message now names the file too.
+    writeText(tmp("repeat.obj"), "v 0.1 0.1 0.1\nv 0.5 0.1 0.1\nv 0.1 0.5 0.1\nf 1 1 2 3\n");
+    const auto r = freeform::test::cli("info '" + tmp("repeat.obj") + "'");
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Contains("repeat.obj") && Contains("twice"));
 }

@@ -34,7 +34,14 @@ int runInfo(const std::vector<std::string>& argv)
 {
     const Args args(argv, {}, {"details"});
     args.expectPositional(1, "the mesh file (freeform info MESH)");
-    const MeshReport r = meshReport(readPolygonMesh(args.positional()[0]));
+    const std::string& path = args.positional()[0];
+    const PolygonMesh mesh = readPolygonMesh(path);
+    MeshReport r;
+    try {
+        r = meshReport(mesh);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what()); // the topology's message names the face, this the file
+    }
     Json j;
     j["vertices"] = r.vertices;
     j["edges"] = r.edges;
