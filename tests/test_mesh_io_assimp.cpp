@@ -6,6 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <filesystem>
+#include <set>
+#include <tuple>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -60,6 +63,8 @@ TEST_CASE("Assimp finds the same points and faces in the sample meshes", "[mesh_
 }
 
 namespace {
+
+std::string dir() { return std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/"; }
 
 /// The faces of an Assimp scene as lists of corner positions (all meshes, in order).
 std::vector<std::vector<Eigen::Vector3d>> assimpFaces(const std::string& path)
@@ -139,6 +144,49 @@ TEST_CASE("Every writer's output reads back through Assimp, face for face and co
             for (std::size_t k = 0; k < ours[f].size(); ++k) CHECK((theirs[f][k] - ours[f][k]).norm() < 1e-5);
         }
     }
+}
+
+TEST_CASE("Other formats come in through Assimp, said plainly", "[mesh_io][assimp]")
+{
+    const std::string models = "/usr/share/assimp/models/";
+    if (!std::filesystem::exists(models + "FBX/box.fbx")) {
+        WARN("assimp-testmodels is not installed: the import of other formats was not tried");
+        return;
+    }
+    // A box in FBX: 6 sides, 12 triangles (or 6 quads), 8 distinct corner positions.
+    const freeform::MeshFile box = freeform::MeshFile::read(models + "FBX/box.fbx");
+    CHECK(box.reader() == "assimp (not lossless)");
+    CHECK(freeform::meshReader(models + "FBX/box.fbx") == "assimp (not lossless)");
+    CHECK(freeform::meshReader(dir() + "sphere.ply") == "freeform (lossless)");
+    const freeform::PolygonMesh mesh = box.toPolygonMesh();
+    std::set<std::tuple<double, double, double>> distinct;
+    for (Eigen::Index i = 0; i < mesh.positions.cols(); ++i)
+        distinct.emplace(mesh.positions(0, i), mesh.positions(1, i), mesh.positions(2, i));
+    CHECK(distinct.size() == 8);
+    int corners = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f) corners += mesh.faceSize(f);
+    CHECK((corners == 36 || corners == 24));
+
+    // Converted into a lossless format: every position exactly (PLY stores doubles).
+    const std::string out = std::string(FREEFORM_TEST_TMP) + "/assimp_import_";
+    box.write(out + "box.ply");
+    CHECK(freeform::MeshFile::read(out + "box.ply").positions() == box.positions());
+
+    // Moved and written back through Assimp's exporter where the format has one (Collada).
+    for (const char* name : {"Collada/duck.dae", "3DS/fels.3ds", "X3D/ComputerKeyboard.x3d"}) {
+        INFO(name);
+        if (!std::filesystem::exists(models + name)) continue;
+        freeform::MeshFile file = freeform::MeshFile::read(models + name);
+        CHECK(file.reader() == "assimp (not lossless)");
+        REQUIRE(file.positions().cols() > 0);
+        CHECK(file.toPolygonMesh().faceCount() > 0);
+    }
+    freeform::MeshFile duck = freeform::MeshFile::read(models + "Collada/duck.dae");
+    duck.positions().row(1).array() += 10.0;
+    duck.write(out + "duck.dae");
+    const freeform::MeshFile back = freeform::MeshFile::read(out + "duck.dae");
+    REQUIRE(back.positions().cols() == duck.positions().cols());
+    CHECK((back.positions() - duck.positions()).cwiseAbs().maxCoeff() < 1e-3);
 }
 
 #else

@@ -199,6 +199,7 @@ int runFfd(const std::vector<std::string>& argv)
 
     Json j;
     j["input"] = meshPath;
+    j["reader"] = file.reader(); // "freeform (lossless)" or "assimp (not lossless)"
     j["output"] = output;
     j["lattice"] = object.name;
     j["vertices"] = report.vertices;

@@ -43,6 +43,9 @@ int runInfo(const std::vector<std::string>& argv)
         throw Error(path + ": " + e.what()); // the topology's message names the face, this the file
     }
     Json j;
+    // Only a file that went through Assimp says so ("assimp (not lossless)"); the lossless readers'
+    // output stays exactly as docs/cli.md shows it.
+    if (const std::string reader = meshReader(path); reader != "freeform (lossless)") j["reader"] = reader;
     j["vertices"] = r.vertices;
     j["edges"] = r.edges;
     j["faces"] = r.faces;

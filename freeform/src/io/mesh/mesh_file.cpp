@@ -37,9 +37,15 @@ std::unique_ptr<meshio::Source> readSourceUnchecked(const std::string& path)
 {
     const std::string ext = meshio::extensionOf(path);
     const bool known = ext == "obj" || ext == "ply" || ext == "stl" || ext == "off" || ext == "gltf" || ext == "glb";
-    if (!known)
+    if (!known) {
+        // Every other format Assimp reads, through Assimp (not lossless: docs/mesh-io.md).
+        if (meshio::assimpReads(ext)) {
+            (void)readFile(path); // the same message as the other formats for a missing file or a folder
+            return meshio::readAssimp(path);
+        }
         throw Error(path + ": unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : "." + ext) +
-                    "' (supported: " + kFormats + ")");
+                    "' (supported: " + kFormats + ", and through Assimp (not lossless) the formats it reads)");
+    }
     std::string bytes = readFile(path);
     if (ext == "obj") return meshio::readObj(path, std::move(bytes));
     if (ext == "ply") return meshio::readPly(path, std::move(bytes));
@@ -141,6 +147,15 @@ void writeMeshAs(const PolygonMesh& mesh, const Eigen::MatrixXd& colors, const s
 
 } // namespace meshio
 
+std::string meshReader(const std::string& path)
+{
+    const std::string ext = meshio::extensionOf(path);
+    if (ext == "obj" || ext == "ply" || ext == "stl" || ext == "off" || ext == "gltf" || ext == "glb") return "freeform (lossless)";
+    if (meshio::assimpReads(ext)) return "assimp (not lossless)";
+    throw Error(path + ": unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : "." + ext) + "' (supported: " +
+                kFormats + ", and through Assimp (not lossless) the formats it reads)");
+}
+
 PolygonMesh readPolygonMesh(const std::string& path)
 {
     const std::unique_ptr<meshio::Source> source = readSource(path);
@@ -171,6 +186,7 @@ const std::vector<int>& MeshFile::normalAnchors() const { return source_->normal
 const std::vector<int>& MeshFile::tangentAnchors() const { return source_->tangentAnchors; }
 const std::string& MeshFile::format() const { return source_->format; }
 const std::string& MeshFile::path() const { return source_->path; }
+const std::string& MeshFile::reader() const { return source_->reader; }
 
 PolygonMesh MeshFile::toPolygonMesh() const
 {

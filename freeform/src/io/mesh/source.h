@@ -129,6 +129,8 @@ public:
     /// Per-vertex colours (3 or 4 rows, in [0, 1]) when the file has them per vertex, else empty;
     /// carried over when converting to another format.
     virtual Eigen::MatrixXd vertexColors() const { return {}; }
+    /// How the file was read, for reports: "freeform (lossless)" or "assimp (not lossless)".
+    std::string reader = "freeform (lossless)";
     /// True when `targetFormat` is written by writeSame (format-preserving).
     virtual bool writesSame(const std::string& targetFormat) const { return targetFormat == format; }
     /// Writes the file back with the current values (atomically).
@@ -141,6 +143,9 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes);
 std::unique_ptr<Source> readStl(const std::string& path, std::string bytes);
 std::unique_ptr<Source> readOff(const std::string& path, std::string text);
 std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary);
+/// Any other format Assimp reads (not lossless; assimp.cpp). assimpReads: whether it reads `extension`.
+std::unique_ptr<Source> readAssimp(const std::string& path);
+bool assimpReads(const std::string& extension);
 
 // ---- writers of a whole mesh (conversion); colors: 3 or 4 x V in [0, 1], or empty.
 // The mesh is valid (checked by the caller).
