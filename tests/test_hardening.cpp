@@ -555,3 +555,18 @@ TEST_CASE("An empty mesh deforms to nothing; a face that repeats a vertex is nam
     CHECK(r.out.empty());
     CHECK_THAT(r.err, Contains("repeat.obj") && Contains("twice"));
 }
+
+TEST_CASE("Integer PLY coordinates stay integers when written back", "[hardening][ply]")
+{
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\nproperty int y\nproperty int z\n"
+                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n";
+    writeText(tmp("int.ply"), ply);
+    MeshFile file = MeshFile::read(tmp("int.ply"));
+    file.positions()(0, 1) = 12.6; // rounds to 13
+    file.write(tmp("int_out.ply"));
+    const std::string out = slurp(tmp("int_out.ply"));
+    CHECK_THAT(out, Contains("\n13 0 0\n"));
+    CHECK(MeshFile::read(tmp("int_out.ply")).positions()(0, 1) == 13.0);
+    file.positions()(0, 1) = 3e9; // beyond int
+    CHECK_THROWS_AS(file.write(tmp("int_out2.ply")), Error);
+}

@@ -92,7 +92,16 @@ void writeText(std::ostream& out, const std::string& text, const std::vector<Tex
         const double value = valueAt(now, s.field, s.column, s.row);
         if (sameBits(value, valueAt(was, s.field, s.column, s.row))) continue;
         out.write(text.data() + at, static_cast<std::streamsize>(s.begin - at));
-        out << (s.single ? formatFloat(static_cast<float>(value)) : formatDouble(value));
+        if (s.integer) {
+            // An integer property keeps an integer: rounded, and an Error when out of its range
+            // (the same rule as the binary writer).
+            char scratch[8];
+            const auto type = static_cast<BinaryType>(s.integerType);
+            writeBinary(scratch, type, false, value, "an integer coordinate of the ASCII PLY file");
+            out << formatDouble(readBinary(scratch, type, false));
+        } else {
+            out << (s.single ? formatFloat(static_cast<float>(value)) : formatDouble(value));
+        }
         at = s.end;
     }
     out.write(text.data() + at, static_cast<std::streamsize>(text.size() - at));

@@ -408,7 +408,8 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
                     if (!std::isfinite(v.value))
                         throw Error(body.where(v) + ": vertex " + std::to_string(r) + " coordinate " + p.name + " is not finite");
                     if (src->encoding == Encoding::Ascii)
-                        src->textSlots.push_back({v.begin, v.end, row, field, k, p.type == BinaryType::Float32});
+                        src->textSlots.push_back({v.begin, v.end, row, field, k, p.type == BinaryType::Float32, isIntegerType(p.type),
+                                                  static_cast<std::uint8_t>(p.type)});
                     else
                         src->binarySlots.push_back({v.begin, row, field, k, p.type, src->encoding == Encoding::Big});
                 };

@@ -54,6 +54,8 @@ struct TextSlot {
     Field field = Field::Position;
     std::uint8_t row = 0;
     bool single = false; // the format declares float32: a changed value is written as the nearest float
+    bool integer = false; // the format declares an integer type (PLY): a changed value is rounded to it
+    std::uint8_t integerType = 0; // that type, a BinaryType (declared below)
 };
 
 /// Writes `text` with the slots whose value changed (now against was) replaced by the new value's
