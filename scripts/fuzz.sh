@@ -16,6 +16,7 @@ targets=(fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_stl fuzz_mesh_off fuzz_mesh_gltf 
          fuzz_document fuzz_bpt fuzz_obj_freeform fuzz_cage)
 if [ $# -gt 0 ]; then targets=("$@"); fi
 
+if [ "${FREEFORM_FUZZ_NO_BUILD:-}" != "1" ]; then   # 1: run what build-fuzz/ already holds
 echo "== fuzz build (clang, ASan + UBSan + libFuzzer)"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
@@ -23,6 +24,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE
   -DFREEFORM_SANITIZE=ON -DFREEFORM_BUILD_FUZZERS=ON -DFREEFORM_BUILD_TESTS=OFF -DFREEFORM_BUILD_EXAMPLES=OFF \
   -DFREEFORM_BUILD_BENCHMARKS=OFF -DFREEFORM_BUILD_EDITOR=OFF "${launcher[@]}" >/dev/null
 cmake --build build-fuzz -j "$jobs" --target "${targets[@]}"
+fi
 
 mkdir -p build-fuzz/findings build-fuzz/logs
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1
