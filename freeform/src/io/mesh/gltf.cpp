@@ -353,6 +353,8 @@ public:
     bool glbHasBin = false;
     std::string glbTrailingChunks;  // chunks after JSON and BIN, kept as they were
     std::string glbJsonChunk;       // the JSON chunk's data including its padding
+    std::string glbBin;             // the BIN chunk as read (written back as it was unless buffer 0 is it)
+    bool binIsBuffer0 = false;      // buffer 0 has no uri: it is the BIN chunk
     std::vector<std::vector<BinarySlot>> slots; // per buffer
     struct PositionAccessor {
         int accessor = 0;
@@ -527,6 +529,7 @@ void loadBuffers(GltfSource& src, const std::string& bin)
             if (!src.binary || j != 0 || !src.glbHasBin)
                 throw Error(src.path + ": " + name + " has no uri and there is no GLB BIN chunk for it");
             data = bin;
+            src.binIsBuffer0 = true;
         } else {
             if (!b.at("uri").is_string()) throw Error(src.path + ": " + name + ": \"uri\" must be a string");
             const std::string uri = b.at("uri").get<std::string>();
@@ -854,8 +857,10 @@ void GltfSource::writeSame(const std::string& target, const std::string& targetF
         writeFileAtomically(target, text);
         return;
     }
+    // The BIN chunk: buffer 0 with its new numbers when buffer 0 is the chunk, else the chunk as it
+    // was (a BIN chunk no buffer refers to: data[0] may not exist, found by fuzz_mesh_glb).
     const bool keepBin = binary && glbHasBin;
-    const std::string* bin = keepBin ? &data[0] : nullptr;
+    const std::string* bin = !keepBin ? nullptr : binIsBuffer0 ? &data[0] : &glbBin;
     if (binary && edits.empty()) writeFileAtomically(target, assembleGlb(glbJsonChunk, true, bin, glbTrailingChunks));
     else writeFileAtomically(target, assembleGlb(text, false, bin, binary ? glbTrailingChunks : std::string()));
 }
@@ -895,6 +900,7 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
             } else if (chunk == 1 && type == kChunkBin) {
                 src->glbHasBin = true;
                 bin = content;
+                src->glbBin = content;
             } else {
                 src->glbTrailingChunks += bytes.substr(at, 8 + static_cast<std::size_t>(chunkLength));
             }
@@ -911,6 +917,9 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
         src->doc = Json::parse(src->json);
     } catch (const Json::parse_error& e) {
         throw Error(path + ": invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+    } catch (const Json::exception& e) {
+        // A number out of double's range (1e99999): found by fuzz_mesh_gltf.
+        throw Error(path + ": invalid JSON: " + e.what());
     }
     try {
         if (!src->doc.is_object()) throw Error(path + ": the glTF JSON is not an object");
