@@ -415,7 +415,11 @@ TEST_CASE("Every input the fuzzers found reads to an Error or a mesh, never a cr
             if (target == "document") (void)freeform::formatDocument(freeform::parseDocument(text, name));
             else if (target == "bpt") (void)freeform::formatBpt(freeform::parseBpt(text, name));
             else if (target == "objfreeform") (void)freeform::formatObjFreeform(freeform::parseObjFreeform(text, name));
-            else if (target == "cage") (void)freeform::readCage(entry.path().string());
+            else if (target == "cage") {
+                const freeform::SubdivisionCage cage = freeform::readCage(entry.path().string());
+                const freeform::SubdivisionSurface surface(cage, freeform::defaultScheme(cage.mesh));
+                (void)surface;
+            }
             else {
                 const MeshFile file = MeshFile::read(entry.path().string());
                 file.write(tmp("regression_out." + entry.path().extension().string().substr(1)));

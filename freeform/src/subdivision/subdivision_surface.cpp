@@ -128,12 +128,31 @@ void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const s
                     " separate fans of faces: the cage is not manifold");
     }
     const int vertices = mesh.vertexCount();
+    // The faces of each edge, and how many edges each pair of faces shares: OpenSubdiv (Debian's
+    // 3.5.0) does not find an edge whose two faces share another edge as well, and reads
+    // uninitialised memory when a crease names it (found by fuzz_cage), so such a crease is refused
+    // here. Holes must name faces.
+    std::unordered_map<std::uint64_t, std::vector<int>> edgeFaceList;
+    if (!cage.creases.empty())
+        for (int f = 0; f < mesh.faceCount(); ++f)
+            for (int k = 0; k < mesh.faceSize(f); ++k)
+                edgeFaceList[edgeKey(mesh.face(f)[k], mesh.face(f)[(k + 1) % mesh.faceSize(f)])].push_back(f);
+    std::unordered_map<std::uint64_t, int> sharedByPair;
+    for (const auto& [edge, faces] : edgeFaceList)
+        if (faces.size() == 2) ++sharedByPair[edgeKey(faces[0], faces[1])];
+    for (std::size_t i = 0; i < cage.holes.size(); ++i)
+        if (cage.holes[i] < 0 || cage.holes[i] >= mesh.faceCount())
+            throw Error(what + ": hole " + std::to_string(i) + ": face " + std::to_string(cage.holes[i]) + " is out of range");
     for (std::size_t i = 0; i < cage.creases.size(); ++i) {
         const EdgeCrease& c = cage.creases[i];
         const std::string name = what + ": crease " + std::to_string(i) + " (" + edgeName(c.v0, c.v1) + ")";
         if (c.v0 < 0 || c.v0 >= vertices || c.v1 < 0 || c.v1 >= vertices)
             throw Error(name + ": vertex index out of range 0.." + std::to_string(vertices - 1));
         if (!undirected.count(edgeKey(c.v0, c.v1))) throw Error(name + ": the cage has no such edge");
+        const auto faces = edgeFaceList.find(edgeKey(c.v0, c.v1));
+        if (faces != edgeFaceList.end() && faces->second.size() == 2 && sharedByPair[edgeKey(faces->second[0], faces->second[1])] > 1)
+            throw Error(name + ": its faces " + std::to_string(faces->second[0]) + " and " + std::to_string(faces->second[1]) +
+                        " share another edge too; OpenSubdiv cannot place a crease there");
         if (!validSharpness(c.sharpness)) throw Error(name + ": sharpness must be finite and >= 0");
     }
     for (std::size_t i = 0; i < cage.corners.size(); ++i) {
