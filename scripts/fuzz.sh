@@ -50,9 +50,9 @@ for t in "${targets[@]}"; do
     fuzz_mesh_gltf|fuzz_mesh_glb) [ -d $models/glTF2 ] && dirs+=($models/glTF2) ;;
   esac
   if build-fuzz/bin/"$t" "${args[@]}" "${dirs[@]}" >build-fuzz/logs/"$t".log 2>&1; then
-    execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' build-fuzz/logs/"$t".log | grep -o '[0-9]*$' || true)
-    rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' build-fuzz/logs/"$t".log | grep -o '[0-9]*$' || true)
-    edges=$(grep -o 'cov: [0-9]*' build-fuzz/logs/"$t".log | tail -1 | grep -o '[0-9]*' || true)
+    execs=$(grep -a -o 'stat::number_of_executed_units: *[0-9]*' build-fuzz/logs/"$t".log | grep -o '[0-9]*$' || true)
+    rate=$(grep -a -o 'stat::average_exec_per_sec: *[0-9]*' build-fuzz/logs/"$t".log | grep -o '[0-9]*$' || true)
+    edges=$(grep -a -o 'cov: [0-9]*' build-fuzz/logs/"$t".log | tail -1 | grep -o '[0-9]*' || true)
     echo "$t: ok, ${execs:-?} runs, ${rate:-?}/s, ${edges:-?} edges"
   else
     echo "$t: FINDING (build-fuzz/logs/$t.log, input in build-fuzz/findings/)"
