@@ -202,6 +202,7 @@ Json ffd(const FfdOptions& o)
 
     Json j;
     j["input"] = meshPath;
+    j["reader"] = file.reader(); // "freeform (lossless)" or "assimp (not lossless)"
     j["output"] = output;
     j["lattice"] = object.name;
     j["vertices"] = report.vertices;

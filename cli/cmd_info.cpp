@@ -40,8 +40,18 @@ struct InfoOptions {
 Json info(const InfoOptions& o)
 {
     expectPositional(o.positional, 1, "the mesh file (freeform info MESH)");
-    const MeshReport r = meshReport(readPolygonMesh(o.positional[0]));
+    const std::string& path = o.positional[0];
+    const PolygonMesh mesh = readPolygonMesh(path);
+    MeshReport r;
+    try {
+        r = meshReport(mesh);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what()); // the topology's message names the face, this the file
+    }
     Json j;
+    // Only a file that went through Assimp says so ("assimp (not lossless)"); the lossless readers'
+    // output stays exactly as docs/cli.md shows it.
+    if (const std::string reader = meshReader(path); reader != "freeform (lossless)") j["reader"] = reader;
     j["vertices"] = r.vertices;
     j["edges"] = r.edges;
     j["faces"] = r.faces;

@@ -8,6 +8,7 @@
 #include "freeform/core/error.h"
 #include "freeform/curve/interpolation.h"
 #include "freeform/io/file.h"
+#include "freeform/io/json_check.h"
 
 namespace freeform::cli {
 namespace {
@@ -21,6 +22,7 @@ struct PointsFile {
 PointsFile readPointsFile(const std::string& path)
 {
     const std::string text = readFile(path);
+    checkJsonText(text, path); // depth limit and duplicate keys before the tree is built
     Json root;
     try {
         root = Json::parse(text);

@@ -13,6 +13,21 @@
 namespace freeform::cli {
 
 namespace {
+/// A result that overflowed (inf, nan) would print as null with exit 0: an Error naming the field.
+void requireFinite(const Json& value, const std::string& where)
+{
+    if (value.is_number_float() && !std::isfinite(value.get<double>()))
+        throw Error("the result " + (where.empty() ? std::string("value") : "field " + where) +
+                    " is not finite (the computation overflowed double precision)");
+    if (value.is_object())
+        for (auto it = value.begin(); it != value.end(); ++it) requireFinite(it.value(), where + "/" + it.key());
+    if (value.is_array())
+        for (std::size_t i = 0; i < value.size(); ++i) requireFinite(value[i], where + "/" + std::to_string(i));
+}
+} // namespace
+
+
+namespace {
 
 /// CLI11 reads integers with base detection (010 is 8, 0x10 is 16) and floating point with
 /// strtold (nan, inf, hex): these validators keep numbers decimal and finite, as documented.
@@ -196,6 +211,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     }
     try {
         const Json result = it->second.second();
+        requireFinite(result, "");
         out << result.dump() << '\n';
         return 0;
     } catch (const UsageError& e) {

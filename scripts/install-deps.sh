@@ -22,6 +22,8 @@ packages=(
   pybind11-dev python3-dev python3-numpy   # the Python module (python/, docs/python.md)
   python3-pytest                        # its tests (run by ctest)
   xdotool                               # editor test driving the real window under Xvfb (x11 label)
+  clang libfuzzer-14-dev                # fuzzing stage (scripts/fuzz.sh): clang 14 + libFuzzer
+  assimp-testmodels                     # files other tools wrote: fuzz seeds, reader tests
 )
 
 missing=()

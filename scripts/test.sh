@@ -4,7 +4,9 @@
 #   1. installs missing Debian packages (scripts/install-deps.sh, idempotent);
 #   2. builds everything in build/ with warnings as errors and runs all tests (unit, cli, render);
 #   3. builds again in build-asan/ with AddressSanitizer + UndefinedBehaviorSanitizer and runs
-#      the tests once more (all but the render tests).
+#      the tests once more (all but the render tests);
+#   4. builds the libFuzzer targets of fuzz/ with clang and runs each for a short fixed time
+#      (scripts/fuzz.sh; FREEFORM_SKIP_FUZZ=1 skips it).
 # Render tests need an X display: when there is none, the whole run goes under xvfb-run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,5 +39,9 @@ if [ "${FREEFORM_SKIP_SANITIZERS:-}" != "1" ]; then
   echo "== tests under sanitizers"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE render
+fi
+if [ "${FREEFORM_SKIP_FUZZ:-}" != "1" ]; then
+  echo "== fuzzing (scripts/fuzz.sh: every reader, ${FREEFORM_FUZZ_SECONDS:-10} s each, ASan + UBSan)"
+  scripts/fuzz.sh
 fi
 echo "== all tests passed"

@@ -9,6 +9,7 @@ MeshFileDeformation deformMeshFile(const Lattice& lattice, MeshFile& file, const
     // Positions, with the Jacobian at every position for the normals and tangents anchored there.
     auto& positions = file.positions();
     const Eigen::Index count = positions.cols();
+    if (count == 0) return {}; // nothing to move (the binding has no output array for no positions)
     const FfdBinding<double> binding(lattice, positions);
     Eigen::Matrix<double, 3, Eigen::Dynamic> moved(3, count);
     Eigen::Matrix<double, 9, Eigen::Dynamic> jacobians(9, count);
@@ -24,7 +25,12 @@ MeshFileDeformation deformMeshFile(const Lattice& lattice, MeshFile& file, const
     auto& n = file.normals();
     const auto& normalAnchors = file.normalAnchors();
     if (n.cols() > 0 && normals == NormalMode::Recompute) {
-        const Eigen::Matrix<double, 3, Eigen::Dynamic> fresh = areaWeightedNormals(file.toPolygonMesh());
+        Eigen::Matrix<double, 3, Eigen::Dynamic> fresh;
+        try {
+            fresh = areaWeightedNormals(file.toPolygonMesh());
+        } catch (const Error& e) {
+            throw Error(file.path() + ": cannot recompute normals: " + e.what()); // name the file
+        }
         for (Eigen::Index i = 0; i < n.cols(); ++i) {
             const int a = normalAnchors[static_cast<std::size_t>(i)];
             if (a >= 0 && fresh.col(a).squaredNorm() > 0) n.col(i) = fresh.col(a);

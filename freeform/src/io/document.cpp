@@ -15,6 +15,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/io/file.h"
+#include "freeform/io/json_check.h"
 
 namespace freeform {
 
@@ -443,6 +444,7 @@ const DocumentObject* Document::find(const std::string& name) const
 
 Document parseDocument(const std::string& text, const std::string& sourceName)
 {
+    checkJsonText(text, sourceName); // depth limit and duplicate keys (docs/mesh-io.md, "Hostile input")
     Json root;
     try {
         root = Json::parse(text);

@@ -2,6 +2,7 @@
 
 #include "freeform/io/geometry_data.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -35,6 +36,7 @@ LatticeData latticeToData(const Lattice& lattice)
 
 // ------------------------------------------------------------------------ crease tags in OBJ
 
+
 void parseCreaseTags(const std::string& objText, const std::string& source, SubdivisionCage& cage)
 {
     std::istringstream in(objText);
@@ -48,9 +50,13 @@ void parseCreaseTags(const std::string& objText, const std::string& source, Subd
         const std::string where = source + ":" + std::to_string(lineNumber);
         std::string name, counts;
         if (!(tokens >> name >> counts)) throw Error(where + ": a tag needs a name and counts (t crease 2/1 V0 V1 S)");
-        if (name != "crease" && name != "corner")
-            throw Error(where + ": tag \"" + name + "\" is not supported (crease, corner)");
-        // "INTS/FLOATS" or "INTS/FLOATS/0" (no string arguments).
+        static const char* const kKnown[] = {"crease", "corner", "hole", "interpolateboundary", "creasemethod", "smoothtriangles",
+                                             "facevaryinginterpolateboundary"};
+        if (std::find_if(std::begin(kKnown), std::end(kKnown), [&](const char* k) { return name == k; }) == std::end(kKnown))
+            throw Error(where + ": tag \"" + name +
+                        "\" is not supported (crease, corner, hole, interpolateboundary, creasemethod, smoothtriangles, "
+                        "facevaryinginterpolateboundary)");
+        // "INTS/FLOATS" or "INTS/FLOATS/STRINGS".
         std::vector<int> n;
         std::size_t start = 0;
         bool ok = true;
@@ -61,17 +67,70 @@ void parseCreaseTags(const std::string& objText, const std::string& source, Subd
             if (ok) n.push_back(std::stoi(part));
             start = slash + 1;
         }
-        if (!ok || n.size() < 2 || n.size() > 3 || (n.size() == 3 && n[2] != 0))
-            throw Error(where + ": tag counts \"" + counts + "\" are not INTS/FLOATS");
-        const int ints = n[0], floats = n[1];
+        if (!ok || n.size() < 2 || n.size() > 3)
+            throw Error(where + ": tag counts \"" + counts + "\" are not INTS/FLOATS or INTS/FLOATS/STRINGS");
+        // crease and corner also take the short INTS/FLOATS form; the other tags are read exactly as
+        // OpenSubdiv's shape parser reads them, with all three counts.
+        if (name != "crease" && name != "corner" && n.size() != 3)
+            throw Error(where + ": tag \"" + name + "\" needs OpenSubdiv's three counts INTS/FLOATS/STRINGS (e.g. t " + name +
+                        (name == "hole" ? " 1/0/0 F" : name == "creasemethod" || name == "smoothtriangles" ? " 0/0/1 VALUE" : " 1/0/0 N") + ")");
+        const int ints = n[0], floats = n[1], strings = n.size() == 3 ? n[2] : 0;
+        // Every value costs at least two bytes of the line: a count beyond that is not there.
+        if (static_cast<std::size_t>(ints) + static_cast<std::size_t>(floats) + static_cast<std::size_t>(strings) > line.size())
+            throw Error(where + ": tag counts \"" + counts + "\" promise more values than the line holds");
         std::vector<long long> iv(static_cast<std::size_t>(ints));
         std::vector<double> fv(static_cast<std::size_t>(floats));
+        std::vector<std::string> sv(static_cast<std::size_t>(strings));
         for (auto& v : iv)
-            if (!(tokens >> v)) throw Error(where + ": expected " + std::to_string(ints) + " vertex indices");
+            if (!(tokens >> v)) throw Error(where + ": expected " + std::to_string(ints) + " integers");
         for (auto& v : fv)
             if (!(tokens >> v)) throw Error(where + ": expected " + std::to_string(floats) + " sharpness values");
+        for (auto& v : sv)
+            if (!(tokens >> v)) throw Error(where + ": expected " + std::to_string(strings) + " strings");
         std::string extra;
         if (tokens >> extra) throw Error(where + ": unexpected \"" + extra + "\" after the tag's values");
+        const auto shape = [&](int i, int f, int st) {
+            if (ints != i || floats != f || strings != st)
+                throw Error(where + ": tag \"" + name + "\" takes " + std::to_string(i) + "/" + std::to_string(f) + "/" +
+                            std::to_string(st) + " values, found " + counts);
+        };
+        if (name == "hole") {
+            if (ints == 0 || floats != 0 || strings != 0) throw Error(where + ": tag \"hole\" takes face indices only (N/0/0)");
+            for (long long f : iv) {
+                if (f < 0 || f >= cage.mesh.faceCount())
+                    throw Error(where + ": hole face " + std::to_string(f) + " is out of range 0.." + std::to_string(cage.mesh.faceCount() - 1));
+                cage.holes.push_back(static_cast<int>(f));
+            }
+            continue;
+        }
+        if (name == "interpolateboundary") {
+            shape(1, 0, 0);
+            if (iv[0] < 0 || iv[0] > 2) throw Error(where + ": interpolateboundary " + std::to_string(iv[0]) + " is not 0, 1 or 2");
+            cage.boundary = iv[0] == 0 ? BoundaryInterpolation::None
+                          : iv[0] == 1 ? BoundaryInterpolation::EdgeAndCorner
+                                       : BoundaryInterpolation::EdgeOnly;
+            continue;
+        }
+        if (name == "facevaryinginterpolateboundary") {
+            // Face-varying data (texture coordinates) is not subdivided by this library: the tag
+            // does not change the limit surface; it is checked and otherwise has no effect.
+            shape(1, 0, 0);
+            if (iv[0] < 0 || iv[0] > 5) throw Error(where + ": facevaryinginterpolateboundary " + std::to_string(iv[0]) + " is not 0..5");
+            continue;
+        }
+        if (name == "creasemethod") {
+            shape(0, 0, 1);
+            if (sv[0] != "normal" && sv[0] != "chaikin") throw Error(where + ": creasemethod \"" + sv[0] + "\" is not normal or chaikin");
+            cage.chaikin = sv[0] == "chaikin";
+            continue;
+        }
+        if (name == "smoothtriangles") {
+            shape(0, 0, 1);
+            if (sv[0] != "catmark" && sv[0] != "smooth") throw Error(where + ": smoothtriangles \"" + sv[0] + "\" is not catmark or smooth");
+            cage.smoothTriangles = sv[0] == "smooth";
+            continue;
+        }
+        if (strings != 0) throw Error(where + ": tag \"" + name + "\" takes no strings");
         for (long long v : iv)
             if (v < 0 || v >= cage.mesh.vertexCount())
                 throw Error(where + ": vertex index " + std::to_string(v) + " is out of range 0.." +

@@ -8,6 +8,7 @@
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 #include <opensubdiv/bfr/tessellation.h>
+#include <opensubdiv/far/error.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
@@ -15,6 +16,8 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <iostream>
+#include <mutex>
 #include <sstream>
 #include <unordered_map>
 
@@ -26,6 +29,20 @@ namespace freeform {
 namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 
 namespace {
+
+// OpenSubdiv's default callbacks print "Warning: ..." / "Error: ..." on stdout, where the CLI's
+// one JSON object goes (docs/cli.md). Its warnings go to stderr; its errors become Errors.
+void osdWarning(const char* message) { std::cerr << "warning: OpenSubdiv: " << message << '\n'; }
+void osdError(osd::Far::ErrorType, const char* message) { throw Error(std::string("OpenSubdiv: ") + message); }
+
+void installOsdCallbacks()
+{
+    static std::once_flag once;
+    std::call_once(once, [] {
+        osd::Far::SetWarningCallback(osdWarning);
+        osd::Far::SetErrorCallback(osdError);
+    });
+}
 
 std::uint64_t edgeKey(int a, int b)
 {
@@ -109,12 +126,31 @@ void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const s
                     " separate fans of faces: the cage is not manifold");
     }
     const int vertices = mesh.vertexCount();
+    // The faces of each edge, and how many edges each pair of faces shares: OpenSubdiv (Debian's
+    // 3.5.0) does not find an edge whose two faces share another edge as well, and reads
+    // uninitialised memory when a crease names it (found by fuzz_cage), so such a crease is refused
+    // here. Holes must name faces.
+    std::unordered_map<std::uint64_t, std::vector<int>> edgeFaceList;
+    if (!cage.creases.empty())
+        for (int f = 0; f < mesh.faceCount(); ++f)
+            for (int k = 0; k < mesh.faceSize(f); ++k)
+                edgeFaceList[edgeKey(mesh.face(f)[k], mesh.face(f)[(k + 1) % mesh.faceSize(f)])].push_back(f);
+    std::unordered_map<std::uint64_t, int> sharedByPair;
+    for (const auto& [edge, faces] : edgeFaceList)
+        if (faces.size() == 2) ++sharedByPair[edgeKey(faces[0], faces[1])];
+    for (std::size_t i = 0; i < cage.holes.size(); ++i)
+        if (cage.holes[i] < 0 || cage.holes[i] >= mesh.faceCount())
+            throw Error(what + ": hole " + std::to_string(i) + ": face " + std::to_string(cage.holes[i]) + " is out of range");
     for (std::size_t i = 0; i < cage.creases.size(); ++i) {
         const EdgeCrease& c = cage.creases[i];
         const std::string name = what + ": crease " + std::to_string(i) + " (" + edgeName(c.v0, c.v1) + ")";
         if (c.v0 < 0 || c.v0 >= vertices || c.v1 < 0 || c.v1 >= vertices)
             throw Error(name + ": vertex index out of range 0.." + std::to_string(vertices - 1));
         if (!undirected.count(edgeKey(c.v0, c.v1))) throw Error(name + ": the cage has no such edge");
+        const auto faces = edgeFaceList.find(edgeKey(c.v0, c.v1));
+        if (faces != edgeFaceList.end() && faces->second.size() == 2 && sharedByPair[edgeKey(faces->second[0], faces->second[1])] > 1)
+            throw Error(name + ": its faces " + std::to_string(faces->second[0]) + " and " + std::to_string(faces->second[1]) +
+                        " share another edge too; OpenSubdiv cannot place a crease there");
         if (!validSharpness(c.sharpness)) throw Error(name + ": sharpness must be finite and >= 0");
     }
     for (std::size_t i = 0; i < cage.corners.size(); ++i) {
@@ -147,6 +183,7 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme s
     : cage_(std::move(cage))
 {
     validateCage(cage_, scheme);
+    installOsdCallbacks();
     auto topo = std::make_shared<Topology>();
     topo->scheme = scheme;
     topo->boundary = boundary;
@@ -176,8 +213,23 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme s
     desc.numCorners = static_cast<int>(cornerWeights.size());
     desc.cornerVertexIndices = cornerIndices.data();
     desc.cornerWeights = cornerWeights.data();
+    desc.numHoles = static_cast<int>(cage_.holes.size());
+    desc.holeIndices = cage_.holes.data();
+    // The cage's interpolateboundary tag stands in for the default; an explicit other choice that
+    // contradicts it is an Error rather than a silent pick.
+    if (cage_.boundary && *cage_.boundary != boundary) {
+        if (boundary != BoundaryInterpolation::EdgeOnly)
+            throw Error("cage: its interpolateboundary tag says " + toString(*cage_.boundary) + ", the boundary asked for is " +
+                        toString(boundary));
+        boundary = *cage_.boundary;
+        topo->boundary = boundary;
+    }
+    if (cage_.smoothTriangles && scheme != SubdivisionScheme::Catmark)
+        throw Error("cage: the smoothtriangles tag applies to Catmark only");
 
     osd::Sdc::Options sdc;
+    sdc.SetCreasingMethod(cage_.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
+    sdc.SetTriangleSubdivision(cage_.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
     sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
                                     : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                                    : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);

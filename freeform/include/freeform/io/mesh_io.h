@@ -23,13 +23,18 @@
 
 namespace freeform {
 
-/// Any supported format by extension (.obj .ply .stl .off .gltf .glb, case-insensitive). Vertices
+/// Any supported format by extension (.obj .ply .stl .off .gltf .glb, case-insensitive; any other
+/// extension Assimp reads goes through Assimp, not losslessly: docs/mesh-io.md). Vertices
 /// are the file's vertices in file order (STL: exactly equal corner positions are welded, since STL
 /// stores no shared vertices; see docs/mesh-io.md); faces as in the file (glTF: triangles, strips
 /// and fans become triangles). normals / texcoords are filled only where the file has exactly one
 /// per vertex (OBJ per-corner indices: only when every vertex has one consistent value), else empty.
 /// Error naming file and line on bad input.
 PolygonMesh readPolygonMesh(const std::string& path);
+
+/// Which reader a path takes, by its extension: "freeform (lossless)" (.obj .ply .stl .off .gltf
+/// .glb) or "assimp (not lossless)" (any other extension Assimp reads); Error for an unknown one.
+std::string meshReader(const std::string& path);
 
 /// Format from the extension (.obj .ply .stl .off .gltf .glb), written atomically. OBJ, PLY and OFF
 /// keep doubles exactly (PLY as binary little-endian float64); STL and glTF store float32 and
@@ -83,6 +88,9 @@ public:
     const std::string& format() const;
     /// The path read.
     const std::string& path() const;
+    /// Which path the file took: "freeform (lossless)" for the five formats above, "assimp (not
+    /// lossless)" for every other format Assimp reads (FBX, Collada, 3DS, X3D, ...; docs/mesh-io.md).
+    const std::string& reader() const;
 
 private:
     MeshFile() = default;

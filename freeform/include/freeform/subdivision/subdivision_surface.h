@@ -69,6 +69,11 @@ struct SubdivisionCage {
     PolygonMesh mesh;
     std::vector<EdgeCrease> creases;
     std::vector<VertexCorner> corners;
+    // The other tags of OpenSubdiv's shape format (docs/subdivision.md, "Tags"):
+    std::vector<int> holes;                        ///< `hole`: faces without a limit surface
+    std::optional<BoundaryInterpolation> boundary; ///< `interpolateboundary` (0 none, 1 edge and corner, 2 edge only)
+    bool chaikin = false;                          ///< `creasemethod chaikin` (else "normal": uniform)
+    bool smoothTriangles = false;                  ///< `smoothtriangles smooth` (Catmark only)
 };
 
 /// Loop when every face is a triangle, Catmark otherwise.

@@ -568,11 +568,16 @@ private:
         const Jet d = jet(u, v, top);
         std::vector<PointType> U(static_cast<std::size_t>(top)), V(static_cast<std::size_t>(top));
         Scalar factorial(1);
+        // C(r, a) by Pascal's rule in Scalar: r reaches m + n - 1, past the exact table of binomial()
+        // (kMaxDegree) when the two degrees sum to more than kMaxDegree + 1.
+        std::vector<Scalar> pascal(static_cast<std::size_t>(top) + 1, Scalar(0));
+        pascal[0] = Scalar(1);
         for (int r = 0; r < top; ++r) {
             if (r > 0) factorial *= Scalar(r);
+            for (int a = r; a > 0; --a) pascal[static_cast<std::size_t>(a)] += pascal[static_cast<std::size_t>(a - 1)];
             PointType su = PointType::Zero(), sv = PointType::Zero();
             for (int a = 0; a <= r; ++a) {
-                const Scalar w = Scalar(binomial(r, a)) * powInt(du, a) * powInt(dv, r - a);
+                const Scalar w = pascal[static_cast<std::size_t>(a)] * powInt(du, a) * powInt(dv, r - a);
                 su += w * d.col(jetIndex(a + 1, r - a));
                 sv += w * d.col(jetIndex(a, r - a + 1));
             }

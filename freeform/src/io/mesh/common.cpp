@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <iostream>
 #include <limits>
 #include <ostream>
 
@@ -54,6 +55,25 @@ bool parseInteger(std::string_view token, long long& value)
     return result.ec == std::errc() && result.ptr == token.data() + token.size();
 }
 
+void warnMesh(const std::string& message)
+{
+    std::cerr << "warning: " << message << '\n';
+}
+
+void requireText(const std::string& path, const std::string& text, const char* format)
+{
+    const auto starts = [&](const char* bom, std::size_t n) { return text.size() >= n && text.compare(0, n, bom, n) == 0; };
+    if (starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2))
+        throw Error(path + ": UTF-16 text (a byte order mark); the " + format + " reader reads ASCII / UTF-8: convert the file");
+    const std::size_t nul = text.find('\0');
+    if (nul != std::string::npos) {
+        std::size_t line = 1;
+        for (std::size_t i = 0; i < nul; ++i) line += text[i] == '\n';
+        throw Error(path + ":" + std::to_string(line) + ": a NUL byte at byte " + std::to_string(nul) + ": binary data, not an " + format +
+                    " text file");
+    }
+}
+
 std::string extensionOf(const std::string& path)
 {
     const std::size_t slash = path.find_last_of("/\\");
@@ -72,7 +92,16 @@ void writeText(std::ostream& out, const std::string& text, const std::vector<Tex
         const double value = valueAt(now, s.field, s.column, s.row);
         if (sameBits(value, valueAt(was, s.field, s.column, s.row))) continue;
         out.write(text.data() + at, static_cast<std::streamsize>(s.begin - at));
-        out << (s.single ? formatFloat(static_cast<float>(value)) : formatDouble(value));
+        if (s.integer) {
+            // An integer property keeps an integer: rounded, and an Error when out of its range
+            // (the same rule as the binary writer).
+            char scratch[8];
+            const auto type = static_cast<BinaryType>(s.integerType);
+            writeBinary(scratch, type, false, value, "an integer coordinate of the ASCII PLY file");
+            out << formatDouble(readBinary(scratch, type, false));
+        } else {
+            out << (s.single ? formatFloat(static_cast<float>(value)) : formatDouble(value));
+        }
         at = s.end;
     }
     out.write(text.data() + at, static_cast<std::streamsize>(text.size() - at));

@@ -14,10 +14,12 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <ostream>
 
 #include "freeform/io/file.h"
+#include "freeform/io/json_check.h"
 #include "source.h"
 
 namespace freeform::meshio {
@@ -120,6 +122,7 @@ struct Span {
 
 /// Finds the text spans of accessors[i].min / .max, buffers[j].uri and the buffers[j] objects in a
 /// JSON text that nlohmann already accepted. Keys: "accessors/3/min", "buffers/0/uri", "buffers/0".
+/// It recurses once per nesting level: checkJsonText bounded the depth before (kMaxJsonDepth).
 class JsonLocator {
 public:
     explicit JsonLocator(const std::string& text) : s_(text) {}
@@ -145,6 +148,8 @@ private:
         while (i_ < s_.size() && s_[i_] != '"') i_ += s_[i_] == '\\' ? 2 : 1;
         const std::string raw = s_.substr(start, i_ - start);
         ++i_;
+        // Keys are compared decoded: "\u0061ccessors" is "accessors" (nlohmann already accepted the text).
+        if (raw.find('\\') != std::string::npos) return Json::parse("\"" + raw + "\"").get<std::string>();
         return raw;
     }
 
@@ -205,6 +210,86 @@ private:
     std::size_t i_ = 0;
     std::map<std::string, Span> spans_;
 };
+
+// ---------------------------------------------------------------- checked members
+//
+// Every number of the JSON that becomes an index, a count, an offset or a length is read through
+// these: an integer (not a float, not a string), inside a stated range, so that no cast is
+// undefined and no later sum or product can wrap (docs/mesh-io.md, "Hostile input").
+
+/// Largest byte offset / length / count taken from a file: far beyond any real buffer, small
+/// enough that sums and products of two of them cannot overflow 64 bits.
+constexpr long long kMaxBytes = 1LL << 40;
+
+const Json& emptyArray()
+{
+    static const Json empty = Json::array();
+    return empty;
+}
+
+const Json& emptyObject()
+{
+    static const Json empty = Json::object();
+    return empty;
+}
+
+/// obj[key] as an array (a reference, never a copy: lookups stay linear); empty when absent.
+const Json& arrayMember(const Json& obj, const char* key, const std::string& where)
+{
+    if (!obj.is_object()) throw Error(where + " is not a JSON object");
+    const auto it = obj.find(key);
+    if (it == obj.end()) return emptyArray();
+    if (!it->is_array()) throw Error(where + ": \"" + key + "\" is not an array");
+    return *it;
+}
+
+const Json& objectMember(const Json& obj, const char* key, const std::string& where)
+{
+    if (!obj.is_object()) throw Error(where + " is not a JSON object");
+    const auto it = obj.find(key);
+    if (it == obj.end()) return emptyObject();
+    if (!it->is_object()) throw Error(where + ": \"" + key + "\" is not an object");
+    return *it;
+}
+
+/// An integer in [lo, hi]; Error naming where and key otherwise.
+long long checkedInteger(const Json& value, const std::string& where, const char* key, long long lo, long long hi)
+{
+    long long v = 0;
+    if (value.is_number_unsigned()) {
+        const auto u = value.get<std::uint64_t>();
+        if (u > static_cast<std::uint64_t>(hi)) throw Error(where + ": \"" + key + "\" is " + std::to_string(u) + ", above " + std::to_string(hi));
+        v = static_cast<long long>(u);
+    } else if (value.is_number_integer()) {
+        v = value.get<long long>();
+    } else {
+        throw Error(where + ": \"" + key + "\" must be an integer");
+    }
+    if (v < lo || v > hi)
+        throw Error(where + ": \"" + key + "\" is " + std::to_string(v) + ", outside " + std::to_string(lo) + ".." + std::to_string(hi));
+    return v;
+}
+
+long long integerMember(const Json& obj, const char* key, const std::string& where, long long lo, long long hi)
+{
+    if (!obj.is_object()) throw Error(where + " is not a JSON object");
+    const auto it = obj.find(key);
+    if (it == obj.end()) throw Error(where + " has no \"" + key + "\"");
+    return checkedInteger(*it, where, key, lo, hi);
+}
+
+long long integerMember(const Json& obj, const char* key, const std::string& where, long long lo, long long hi, long long fallback)
+{
+    if (!obj.is_object()) throw Error(where + " is not a JSON object");
+    const auto it = obj.find(key);
+    if (it == obj.end()) return fallback;
+    return checkedInteger(*it, where, key, lo, hi);
+}
+
+int indexMember(const Json& obj, const char* key, const std::string& where)
+{
+    return static_cast<int>(integerMember(obj, key, where, 0, 2147483647LL));
+}
 
 // ---------------------------------------------------------------- accessors
 
@@ -268,6 +353,8 @@ public:
     bool glbHasBin = false;
     std::string glbTrailingChunks;  // chunks after JSON and BIN, kept as they were
     std::string glbJsonChunk;       // the JSON chunk's data including its padding
+    std::string glbBin;             // the BIN chunk as read (written back as it was unless buffer 0 is it)
+    bool binIsBuffer0 = false;      // buffer 0 has no uri: it is the BIN chunk
     std::vector<std::vector<BinarySlot>> slots; // per buffer
     struct PositionAccessor {
         int accessor = 0;
@@ -305,43 +392,65 @@ public:
     void writeSame(const std::string& target, const std::string& targetFormat, const Values& now) const override;
 };
 
-/// The place of an accessor's data; Error when it has none or it lies outside its buffer.
+/// The place of an accessor's data; Error when it has none or it lies outside its buffer. Every
+/// offset, stride and count is checked in 64-bit arithmetic that cannot wrap (each term below
+/// kMaxBytes) against the real sizes of the view and the buffer.
 AccessorView viewOf(const GltfSource& src, int index, const std::string& what)
 {
-    const Json& accessors = src.doc.value("accessors", Json::array());
+    const Json& accessors = arrayMember(src.doc, "accessors", src.path);
     if (index < 0 || index >= static_cast<int>(accessors.size()))
         throw Error(src.path + ": " + what + " refers to accessor " + std::to_string(index) + ", the file has " +
                     std::to_string(accessors.size()));
     const Json& a = accessors[static_cast<std::size_t>(index)];
-    const std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
-    if (a.contains("sparse")) throw Error(src.path + ": " + name + " is sparse, which is not supported");
-    if (!a.contains("bufferView")) throw Error(src.path + ": " + name + " has no bufferView, which is not supported");
+    const std::string name = src.path + ": accessor " + std::to_string(index) + " (" + what + ")";
+    if (!a.is_object()) throw Error(name + " is not a JSON object");
+    if (a.contains("sparse")) throw Error(name + " is sparse, which is not supported");
+    if (!a.contains("bufferView")) throw Error(name + " has no bufferView, which is not supported");
     AccessorView v;
-    v.componentType = a.at("componentType").get<int>();
-    v.components = typeComponents(a.at("type").get<std::string>());
-    v.count = a.at("count").get<int>();
-    v.normalized = a.value("normalized", false);
-    if (componentSize(v.componentType) == 0 || v.components == 0 || v.count < 0)
-        throw Error(src.path + ": " + name + " has an unsupported componentType or type");
-    const int viewIndex = a.at("bufferView").get<int>();
-    const Json& views = src.doc.value("bufferViews", Json::array());
-    if (viewIndex < 0 || viewIndex >= static_cast<int>(views.size()))
-        throw Error(src.path + ": " + name + " refers to bufferView " + std::to_string(viewIndex) + ", the file has " +
-                    std::to_string(views.size()));
+    v.componentType = static_cast<int>(integerMember(a, "componentType", name, 0, 1 << 20));
+    const auto type = a.find("type");
+    v.components = type != a.end() && type->is_string() ? typeComponents(type->get<std::string>()) : 0;
+    v.count = static_cast<int>(integerMember(a, "count", name, 0, 2147483647LL));
+    const auto normalized = a.find("normalized");
+    if (normalized != a.end() && !normalized->is_boolean()) throw Error(name + ": \"normalized\" must be true or false");
+    v.normalized = normalized != a.end() && normalized->get<bool>();
+    if (componentSize(v.componentType) == 0 || v.components == 0)
+        throw Error(name + " has an unsupported componentType or type");
+    const int viewIndex = indexMember(a, "bufferView", name);
+    const Json& views = arrayMember(src.doc, "bufferViews", src.path);
+    if (viewIndex >= static_cast<int>(views.size()))
+        throw Error(name + " refers to bufferView " + std::to_string(viewIndex) + ", the file has " + std::to_string(views.size()));
     const Json& view = views[static_cast<std::size_t>(viewIndex)];
-    v.buffer = view.at("buffer").get<int>();
-    if (v.buffer < 0 || v.buffer >= static_cast<int>(src.buffers.size()))
-        throw Error(src.path + ": bufferView " + std::to_string(viewIndex) + " refers to buffer " + std::to_string(v.buffer) +
-                    ", the file has " + std::to_string(src.buffers.size()));
-    const std::size_t viewOffset = view.value("byteOffset", std::size_t{0});
-    const std::size_t viewLength = view.at("byteLength").get<std::size_t>();
-    const std::size_t elementSize = static_cast<std::size_t>(componentSize(v.componentType) * v.components);
-    v.stride = view.value("byteStride", elementSize);
-    v.offset = viewOffset + a.value("byteOffset", std::size_t{0});
-    const std::size_t needed = v.count == 0 ? 0 : (v.offset - viewOffset) + v.stride * static_cast<std::size_t>(v.count - 1) + elementSize;
-    if (viewOffset + viewLength > src.buffers[static_cast<std::size_t>(v.buffer)].size() || needed > viewLength)
-        throw Error(src.path + ": " + name + " reaches past the end of its bufferView or buffer " + std::to_string(v.buffer) +
+    const std::string viewName = src.path + ": bufferView " + std::to_string(viewIndex);
+    v.buffer = indexMember(view, "buffer", viewName);
+    if (v.buffer >= static_cast<int>(src.buffers.size()))
+        throw Error(viewName + " refers to buffer " + std::to_string(v.buffer) + ", the file has " + std::to_string(src.buffers.size()));
+    const std::uint64_t bufferSize = src.buffers[static_cast<std::size_t>(v.buffer)].size();
+    const auto viewOffset = static_cast<std::uint64_t>(integerMember(view, "byteOffset", viewName, 0, kMaxBytes, 0));
+    const auto viewLength = static_cast<std::uint64_t>(integerMember(view, "byteLength", viewName, 1, kMaxBytes));
+    if (viewOffset + viewLength > bufferSize)
+        throw Error(viewName + " (bytes " + std::to_string(viewOffset) + ".." + std::to_string(viewOffset + viewLength) +
+                    ") reaches past the end of buffer " + std::to_string(v.buffer) + " (" + std::to_string(bufferSize) +
+                    " bytes; truncated buffer?)");
+    const auto elementSize = static_cast<std::uint64_t>(componentSize(v.componentType) * v.components);
+    // byteStride: absent means tightly packed; present, the spec allows 4..252 (a stride smaller
+    // than the element would make elements overlap, 0 would make every element the same bytes).
+    const auto stride = static_cast<std::uint64_t>(integerMember(view, "byteStride", viewName, 0, 252, static_cast<long long>(elementSize)));
+    if (stride < elementSize)
+        throw Error(viewName + ": byteStride " + std::to_string(stride) + " is smaller than the " + std::to_string(elementSize) +
+                    "-byte elements of " + name.substr(src.path.size() + 2));
+    const auto accessorOffset = static_cast<std::uint64_t>(integerMember(a, "byteOffset", name, 0, kMaxBytes, 0));
+    // The last element ends at accessorOffset + stride * (count - 1) + elementSize: count < 2^31,
+    // stride <= 252, offsets < 2^40, so nothing here can wrap.
+    const std::uint64_t needed =
+        v.count == 0 ? 0 : accessorOffset + stride * static_cast<std::uint64_t>(v.count - 1) + elementSize;
+    if (needed > viewLength)
+        throw Error(name + ": " + std::to_string(v.count) + " elements of " + std::to_string(elementSize) + " bytes at stride " +
+                    std::to_string(stride) + " from byte " + std::to_string(accessorOffset) + " need " + std::to_string(needed) +
+                    " bytes: past the end of bufferView " + std::to_string(viewIndex) + ", which has " + std::to_string(viewLength) +
                     " (truncated buffer?)");
+    v.stride = static_cast<std::size_t>(stride);
+    v.offset = static_cast<std::size_t>(viewOffset + accessorOffset);
     return v;
 }
 
@@ -360,35 +469,79 @@ double componentValue(const GltfSource& src, const AccessorView& v, int element,
     }
 }
 
+/// The file an external buffer URI names, confined to the glTF file's own folder: a relative path
+/// without ".." components, no scheme, no absolute path, naming a regular file (not a device, a
+/// folder or a link that leads outside). Error naming the buffer otherwise (docs/mesh-io.md).
+std::string confinedBufferFile(const GltfSource& src, const std::string& uri, const std::string& name)
+{
+    const std::string decoded = percentDecode(uri);
+    const auto refuse = [&](const std::string& why) {
+        return Error(src.path + ": " + name + ": the uri \"" + uri + "\" " + why +
+                     " (external buffers are read only from the glTF file's own folder and below)");
+    };
+    if (decoded.empty()) throw refuse("is empty");
+    if (decoded.find(':') != std::string::npos) throw refuse("has a scheme or a drive (only data: URIs and relative paths are read)");
+    if (decoded.find('\0') != std::string::npos || decoded.find('\\') != std::string::npos) throw refuse("holds a NUL or a backslash");
+    const fs::path relative(decoded);
+    if (relative.is_absolute() || relative.has_root_path() || decoded.front() == '/') throw refuse("is an absolute path");
+    for (const fs::path& part : relative)
+        if (part == "..") throw refuse("leaves the folder (..)");
+    const fs::path dir = fs::path(src.path).parent_path();
+    const fs::path file = dir / relative;
+    std::error_code ec;
+    const fs::file_status status = fs::status(file, ec);
+    if (ec || !fs::exists(status)) throw Error(src.path + ": " + name + ": " + file.string() + ": cannot open the file for reading");
+    if (!fs::is_regular_file(status)) throw refuse("is not a regular file");
+    const fs::path realDir = fs::weakly_canonical(dir.empty() ? fs::path(".") : dir, ec);
+    const fs::path realFile = fs::weakly_canonical(file, ec);
+    if (ec) throw refuse("cannot be resolved");
+    const auto rel = realFile.lexically_relative(realDir);
+    if (rel.empty() || *rel.begin() == "..") throw refuse("leads outside the folder through a link");
+    return file.string();
+}
+
+/// At most maxBytes of a regular file (never more than the buffer declares).
+std::string readPrefix(const std::string& file, std::uint64_t maxBytes, const GltfSource& src, const std::string& name)
+{
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(src.path + ": " + name + ": " + file + ": cannot open the file for reading");
+    std::string data;
+    char chunk[65536];
+    while (data.size() < maxBytes && in) {
+        const std::uint64_t want = std::min<std::uint64_t>(sizeof chunk, maxBytes - data.size());
+        in.read(chunk, static_cast<std::streamsize>(want));
+        data.append(chunk, static_cast<std::size_t>(in.gcount()));
+    }
+    if (in.bad()) throw Error(src.path + ": " + name + ": " + file + ": reading failed");
+    return data;
+}
+
 void loadBuffers(GltfSource& src, const std::string& bin)
 {
-    const Json& buffers = src.doc.value("buffers", Json::array());
-    const fs::path dir = fs::path(src.path).parent_path();
+    const Json& buffers = arrayMember(src.doc, "buffers", src.path);
     for (std::size_t j = 0; j < buffers.size(); ++j) {
         const Json& b = buffers[j];
         const std::string name = "buffer " + std::to_string(j);
-        const std::size_t length = b.at("byteLength").get<std::size_t>();
+        const auto length = static_cast<std::uint64_t>(integerMember(b, "byteLength", src.path + ": " + name, 1, kMaxBytes));
         std::string data;
         std::string file;
         if (!b.contains("uri")) {
             if (!src.binary || j != 0 || !src.glbHasBin)
                 throw Error(src.path + ": " + name + " has no uri and there is no GLB BIN chunk for it");
             data = bin;
+            src.binIsBuffer0 = true;
         } else {
+            if (!b.at("uri").is_string()) throw Error(src.path + ": " + name + ": \"uri\" must be a string");
             const std::string uri = b.at("uri").get<std::string>();
             if (uri.rfind("data:", 0) == 0) {
                 const std::size_t comma = uri.find(',');
-                if (comma == std::string::npos || uri.compare(comma - 7, 7, ";base64") != 0)
+                if (comma == std::string::npos || comma < 7 || uri.compare(comma - 7, 7, ";base64") != 0)
                     throw Error(src.path + ": " + name + ": only base64 data: URIs are supported");
                 if (!decodeBase64(std::string_view(uri).substr(comma + 1), data))
                     throw Error(src.path + ": " + name + ": the data: URI is not valid base64");
             } else {
-                file = (dir / percentDecode(uri)).string();
-                try {
-                    data = readFile(file);
-                } catch (const Error& e) {
-                    throw Error(src.path + ": " + name + ": " + e.what());
-                }
+                file = confinedBufferFile(src, uri, name);
+                data = readPrefix(file, length, src, name); // never more than byteLength (a device never ends)
             }
         }
         if (data.size() < length)
@@ -402,7 +555,7 @@ void loadBuffers(GltfSource& src, const std::string& bin)
 
 void readEditable(GltfSource& src)
 {
-    const Json& meshes = src.doc.value("meshes", Json::array());
+    const Json& meshes = arrayMember(src.doc, "meshes", src.path);
     std::map<int, int> positionColumn;                      // POSITION accessor -> its first column
     std::map<std::pair<int, int>, int> normalColumn;        // (NORMAL accessor, POSITION accessor) -> first normal
     std::map<std::pair<int, int>, int> tangentColumn;
@@ -438,13 +591,13 @@ void readEditable(GltfSource& src)
     };
 
     for (std::size_t m = 0; m < meshes.size(); ++m) {
-        const Json& prims = meshes[m].value("primitives", Json::array());
+        const Json& prims = arrayMember(meshes[m], "primitives", src.path + ": mesh " + std::to_string(m));
         for (std::size_t p = 0; p < prims.size(); ++p) {
             const Json& prim = prims[p];
             const std::string what = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
-            const Json& attributes = prim.value("attributes", Json::object());
+            const Json& attributes = objectMember(prim, "attributes", src.path + ": " + what);
             if (!attributes.contains("POSITION")) continue;
-            const int pa = attributes.at("POSITION").get<int>();
+            const int pa = indexMember(attributes, "POSITION", src.path + ": " + what + " attributes");
             auto [it, fresh] = positionColumn.emplace(pa, columns);
             const int base = it->second;
             int count = 0;
@@ -462,7 +615,7 @@ void readEditable(GltfSource& src)
                     if (acc.accessor == pa) count = acc.count;
             }
             if (attributes.contains("NORMAL")) {
-                const int na = attributes.at("NORMAL").get<int>();
+                const int na = indexMember(attributes, "NORMAL", src.path + ": " + what + " attributes");
                 auto [nit, nfresh] = normalColumn.emplace(std::make_pair(na, pa), normalCount);
                 if (nfresh) {
                     readFloats(na, normalCount, 3, Field::Normal, what + " NORMAL", normals, count);
@@ -475,7 +628,7 @@ void readEditable(GltfSource& src)
                 }
             }
             if (attributes.contains("TANGENT")) {
-                const int ta = attributes.at("TANGENT").get<int>();
+                const int ta = indexMember(attributes, "TANGENT", src.path + ": " + what + " attributes");
                 auto [tit, tfresh] = tangentColumn.emplace(std::make_pair(ta, pa), tangentCount);
                 if (tfresh) {
                     readFloats(ta, tangentCount, 4, Field::Tangent, what + " TANGENT", tangents, count);
@@ -486,8 +639,8 @@ void readEditable(GltfSource& src)
             // Texture coordinates and colours (any component type), for conversion and toPolygonMesh.
             const auto perVertex = [&](const char* key, int minRows, std::vector<double>& into, int rows, std::vector<int>& has) {
                 if (!attributes.contains(key)) return;
-                const int acc = attributes.at(key).get<int>();
-                const Json& accessors = src.doc.value("accessors", Json::array());
+                const int acc = indexMember(attributes, key, src.path + ": " + what + " attributes");
+                const Json& accessors = arrayMember(src.doc, "accessors", src.path);
                 if (acc < 0 || acc >= static_cast<int>(accessors.size()) || accessors[static_cast<std::size_t>(acc)].contains("sparse") ||
                     !accessors[static_cast<std::size_t>(acc)].contains("bufferView"))
                     return; // not carried over (kept in the file all the same)
@@ -505,14 +658,17 @@ void readEditable(GltfSource& src)
             perVertex("COLOR_0", 3, colors, 4, hasColor);
 
             // Faces.
-            const int mode = prim.value("mode", 4);
+            const int mode = static_cast<int>(integerMember(prim, "mode", src.path + ": " + what, 0, 6, 4));
             std::vector<int> indices;
             if (prim.contains("indices")) {
-                const int ia = prim.at("indices").get<int>();
+                const int ia = indexMember(prim, "indices", src.path + ": " + what);
                 const AccessorView v = viewOf(src, ia, what + " indices");
                 if (v.components != 1 || v.componentType == 5126 || v.componentType == 5120 || v.componentType == 5122)
                     throw Error(src.path + ": accessor " + std::to_string(ia) + " (" + what +
                                 " indices) must be unsigned byte, short or int SCALAR");
+                if (v.normalized)
+                    throw Error(src.path + ": accessor " + std::to_string(ia) + " (" + what +
+                                " indices) is marked normalized, which indices must not be");
                 indices.reserve(static_cast<std::size_t>(v.count));
                 for (int i = 0; i < v.count; ++i) {
                     const double idx = componentValue(src, v, i, 0);
@@ -701,8 +857,10 @@ void GltfSource::writeSame(const std::string& target, const std::string& targetF
         writeFileAtomically(target, text);
         return;
     }
+    // The BIN chunk: buffer 0 with its new numbers when buffer 0 is the chunk, else the chunk as it
+    // was (a BIN chunk no buffer refers to: data[0] may not exist, found by fuzz_mesh_glb).
     const bool keepBin = binary && glbHasBin;
-    const std::string* bin = keepBin ? &data[0] : nullptr;
+    const std::string* bin = !keepBin ? nullptr : binIsBuffer0 ? &data[0] : &glbBin;
     if (binary && edits.empty()) writeFileAtomically(target, assembleGlb(glbJsonChunk, true, bin, glbTrailingChunks));
     else writeFileAtomically(target, assembleGlb(text, false, bin, binary ? glbTrailingChunks : std::string()));
 }
@@ -742,6 +900,7 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
             } else if (chunk == 1 && type == kChunkBin) {
                 src->glbHasBin = true;
                 bin = content;
+                src->glbBin = content;
             } else {
                 src->glbTrailingChunks += bytes.substr(at, 8 + static_cast<std::size_t>(chunkLength));
             }
@@ -753,17 +912,22 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
         src->json = std::move(bytes);
     }
 
+    checkJsonText(src->json, path); // depth limit (the locator below recurses on depth) and duplicate keys
     try {
         src->doc = Json::parse(src->json);
     } catch (const Json::parse_error& e) {
         throw Error(path + ": invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+    } catch (const Json::exception& e) {
+        // A number out of double's range (1e99999): found by fuzz_mesh_gltf.
+        throw Error(path + ": invalid JSON: " + e.what());
     }
     try {
         if (!src->doc.is_object()) throw Error(path + ": the glTF JSON is not an object");
-        const Json& asset = src->doc.value("asset", Json::object());
-        const std::string version = asset.value("version", std::string());
+        const Json& asset = objectMember(src->doc, "asset", path);
+        const auto versionMember = asset.find("version");
+        const std::string version = versionMember != asset.end() && versionMember->is_string() ? versionMember->get<std::string>() : "";
         if (version.rfind("2.", 0) != 0) throw Error(path + ": glTF asset version '" + version + "' (only 2.x is read)");
-        for (const Json& ext : src->doc.value("extensionsRequired", Json::array()))
+        for (const Json& ext : arrayMember(src->doc, "extensionsRequired", path))
             if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" || ext == "KHR_mesh_quantization")
                 throw Error(path + ": the file requires the extension " + ext.get<std::string>() +
                             ", which the lossless reader does not support");

@@ -15,19 +15,50 @@ namespace {
 
 const char* const kFormats = ".obj .ply .stl .off .gltf .glb";
 
-std::unique_ptr<meshio::Source> readSource(const std::string& path)
+void checkMesh(const PolygonMesh& mesh, const std::string& what);
+
+/// The one validation every reader's result passes, whichever command asked (info, ffd, convert,
+/// the editor): the mesh as readPolygonMesh returns it (finite positions, normals, texture
+/// coordinates; faces of at least 3 vertices inside the vertex range) and finite colours in [0, 1].
+void validateSource(const meshio::Source& source)
+{
+    checkMesh(source.polygonMesh(source.original()), source.path);
+    const Eigen::MatrixXd colors = source.vertexColors();
+    for (Eigen::Index i = 0; i < colors.cols(); ++i)
+        for (Eigen::Index k = 0; k < colors.rows(); ++k) {
+            const double c = colors(k, i);
+            if (!(c >= 0.0 && c <= 1.0))
+                throw Error(source.path + ": vertex " + std::to_string(i) + " colour component " + std::to_string(k) + " is " +
+                            meshio::formatDouble(c) + ", outside [0, 1] (or its type's range)");
+        }
+}
+
+std::unique_ptr<meshio::Source> readSourceUnchecked(const std::string& path)
 {
     const std::string ext = meshio::extensionOf(path);
     const bool known = ext == "obj" || ext == "ply" || ext == "stl" || ext == "off" || ext == "gltf" || ext == "glb";
-    if (!known)
+    if (!known) {
+        // Every other format Assimp reads, through Assimp (not lossless: docs/mesh-io.md).
+        if (meshio::assimpReads(ext)) {
+            (void)readFile(path); // the same message as the other formats for a missing file or a folder
+            return meshio::readAssimp(path);
+        }
         throw Error(path + ": unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : "." + ext) +
-                    "' (supported: " + kFormats + ")");
+                    "' (supported: " + kFormats + ", and through Assimp (not lossless) the formats it reads)");
+    }
     std::string bytes = readFile(path);
     if (ext == "obj") return meshio::readObj(path, std::move(bytes));
     if (ext == "ply") return meshio::readPly(path, std::move(bytes));
     if (ext == "stl") return meshio::readStl(path, std::move(bytes));
     if (ext == "off") return meshio::readOff(path, std::move(bytes));
     return meshio::readGltf(path, std::move(bytes), ext == "glb");
+}
+
+std::unique_ptr<meshio::Source> readSource(const std::string& path)
+{
+    std::unique_ptr<meshio::Source> source = readSourceUnchecked(path);
+    validateSource(*source);
+    return source;
 }
 
 /// Vertices, attributes and face indices consistent (PolygonMesh::validate without its ban on a
@@ -116,6 +147,15 @@ void writeMeshAs(const PolygonMesh& mesh, const Eigen::MatrixXd& colors, const s
 
 } // namespace meshio
 
+std::string meshReader(const std::string& path)
+{
+    const std::string ext = meshio::extensionOf(path);
+    if (ext == "obj" || ext == "ply" || ext == "stl" || ext == "off" || ext == "gltf" || ext == "glb") return "freeform (lossless)";
+    if (meshio::assimpReads(ext)) return "assimp (not lossless)";
+    throw Error(path + ": unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : "." + ext) + "' (supported: " +
+                kFormats + ", and through Assimp (not lossless) the formats it reads)");
+}
+
 PolygonMesh readPolygonMesh(const std::string& path)
 {
     const std::unique_ptr<meshio::Source> source = readSource(path);
@@ -146,6 +186,7 @@ const std::vector<int>& MeshFile::normalAnchors() const { return source_->normal
 const std::vector<int>& MeshFile::tangentAnchors() const { return source_->tangentAnchors; }
 const std::string& MeshFile::format() const { return source_->format; }
 const std::string& MeshFile::path() const { return source_->path; }
+const std::string& MeshFile::reader() const { return source_->reader; }
 
 PolygonMesh MeshFile::toPolygonMesh() const
 {

@@ -3,6 +3,7 @@
 // the topology; everything else (vt, g, o, s, usemtl, mtllib, l, p, free-form records, comments)
 // passes through untouched.
 
+#include <cctype>
 #include <cmath>
 #include <ostream>
 
@@ -80,6 +81,7 @@ std::unique_ptr<Source> readObj(const std::string& path, std::string text)
     src->format = "obj";
     src->text = std::move(text);
     const std::string& t = src->text;
+    requireText(path, t, "OBJ");
 
     std::vector<double> positions, normals, uvs, colors;
     bool allColored = true;
@@ -107,6 +109,11 @@ std::unique_ptr<Source> readObj(const std::string& path, std::string text)
         if (tokens.empty()) continue;
         const auto where = [&]() { return path + ":" + std::to_string(firstLine); };
         const std::string_view key = tokens[0].text;
+        // Unknown statements pass through (OBJ has many), but a statement is a word: anything else
+        // is not OBJ text (random bytes, a renamed image).
+        for (const char c : key)
+            if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+                throw Error(where() + ": '" + std::string(key.substr(0, 40)) + "' is not an OBJ statement (not an OBJ text file?)");
 
         auto number = [&](std::size_t k, const char* what) {
             double value = 0;

@@ -2,6 +2,7 @@
 // vertex or face per line as the format has it; x y z (and nx ny nz for N) are the editable slots,
 // colours, texture coordinates, face colours and comments are kept as text.
 
+#include <algorithm>
 #include <cmath>
 #include <ostream>
 
@@ -77,6 +78,7 @@ std::unique_ptr<Source> readOff(const std::string& path, std::string text)
     };
     const auto where = [&]() { return path + ":" + std::to_string(line); };
 
+    requireText(path, t, "OFF");
     if (!nextLine()) throw Error(path + ": the file is empty");
     std::string keyword(tokens[0].text);
     std::size_t first = 1;
@@ -102,19 +104,31 @@ std::unique_ptr<Source> readOff(const std::string& path, std::string text)
             throw Error(where() + ": '" + std::string(tokens[first + static_cast<std::size_t>(c)].text) + "' is not a count");
     const int vertexCount = static_cast<int>(counts[0]);
     const int faceCount = static_cast<int>(counts[1]);
+    // The counts are checked against the bytes that follow before anything is allocated: a vertex
+    // line takes at least 6 bytes ("0 0 0\n"), a face at least 8 ("3 0 1 2\n").
+    // A claim the bytes cannot hold is not allocated: only as many vertices as fit, and the read
+    // then ends inside the vertices with a message that names the impossible count.
+    const auto remaining = static_cast<unsigned long long>(t.size() - std::min(at, t.size()));
+    const unsigned long long minimum = static_cast<unsigned long long>(counts[0]) * 6ULL + static_cast<unsigned long long>(counts[1]) * 8ULL;
+    const bool impossible = minimum > remaining + 1;
+    const std::string claim = impossible ? " (the header claims " + std::to_string(counts[0]) + " vertices and " +
+                                               std::to_string(counts[1]) + " faces, which take at least " + std::to_string(minimum) +
+                                               " bytes; " + std::to_string(remaining) + " bytes follow)"
+                                         : std::string();
+    const int allocated = static_cast<int>(std::min<unsigned long long>(counts[0], remaining / 5 + 1));
 
-    src->positions.resize(3, vertexCount);
+    src->positions.resize(3, allocated);
     if (withNormals) {
-        src->normals.resize(3, vertexCount);
-        src->normalAnchors.resize(static_cast<std::size_t>(vertexCount));
+        src->normals.resize(3, allocated);
+        src->normalAnchors.resize(static_cast<std::size_t>(allocated));
     }
-    if (st) src->texcoords.resize(2, vertexCount);
+    if (st) src->texcoords.resize(2, allocated);
     bool allColored = colored;
     std::vector<double> colors;
 
     for (int v = 0; v < vertexCount; ++v) {
-        if (!nextLine())
-            throw Error(path + ": the file ends after " + std::to_string(v) + " of " + std::to_string(vertexCount) + " vertices");
+        if (!nextLine() || v >= allocated)
+            throw Error(path + ": the file ends after " + std::to_string(v) + " of " + std::to_string(vertexCount) + " vertices" + claim);
         std::vector<double> values(tokens.size());
         for (std::size_t k = 0; k < tokens.size(); ++k)
             if (!parseDouble(tokens[k].text, values[k]))
@@ -140,8 +154,11 @@ std::unique_ptr<Source> readOff(const std::string& path, std::string text)
                                   values[static_cast<std::size_t>(editable) + 2] > 1)
                                      ? 255.0
                                      : 1.0;
-            for (std::size_t c = 0; c < 4; ++c)
-                colors.push_back(c < colorCount ? values[static_cast<std::size_t>(editable) + c] / scale : 1.0);
+            for (std::size_t c = 0; c < 4; ++c) {
+                const double value = c < colorCount ? values[static_cast<std::size_t>(editable) + c] : 1.0;
+                // Alpha takes its own scale: "1 1 1 255" is white and opaque, as in Geomview's files.
+                colors.push_back(c == 3 ? (value > 1 ? value / 255.0 : value) : value / scale);
+            }
         } else {
             allColored = false;
         }
@@ -152,7 +169,7 @@ std::unique_ptr<Source> readOff(const std::string& path, std::string text)
 
     for (int f = 0; f < faceCount; ++f) {
         if (!nextLine())
-            throw Error(path + ": the file ends after " + std::to_string(f) + " of " + std::to_string(faceCount) + " faces");
+            throw Error(path + ": the file ends after " + std::to_string(f) + " of " + std::to_string(faceCount) + " faces" + claim);
         long long n = 0;
         if (!parseInteger(tokens[0].text, n) || n < 3)
             throw Error(where() + ": face " + std::to_string(f) + " must start with its vertex count (at least 3), found '" +

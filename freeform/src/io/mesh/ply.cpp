@@ -50,6 +50,35 @@ bool parseType(const std::string& name, BinaryType& type)
 
 bool isIntegerType(BinaryType t) { return t != BinaryType::Float32 && t != BinaryType::Float64; }
 
+/// The range of an integer type (what an ASCII value of that type may hold).
+std::pair<double, double> integerRange(BinaryType t)
+{
+    switch (t) {
+    case BinaryType::Int8: return {-128, 127};
+    case BinaryType::UInt8: return {0, 255};
+    case BinaryType::Int16: return {-32768, 32767};
+    case BinaryType::UInt16: return {0, 65535};
+    case BinaryType::Int32: return {-2147483648.0, 2147483647.0};
+    case BinaryType::UInt32: return {0, 4294967295.0};
+    default: return {-HUGE_VAL, HUGE_VAL};
+    }
+}
+
+const char* typeName(BinaryType t)
+{
+    switch (t) {
+    case BinaryType::Int8: return "char";
+    case BinaryType::UInt8: return "uchar";
+    case BinaryType::Int16: return "short";
+    case BinaryType::UInt16: return "ushort";
+    case BinaryType::Int32: return "int";
+    case BinaryType::UInt32: return "uint";
+    case BinaryType::Float32: return "float";
+    case BinaryType::Float64: return "double";
+    }
+    return "?";
+}
+
 class PlySource final : public Source {
 public:
     std::string bytes; // the whole file
@@ -118,6 +147,9 @@ public:
             if (isIntegerType(type) && v.value != std::floor(v.value))
                 throw Error(path_ + ":" + std::to_string(line_) + ": '" + std::string(token) + "' in " + what() +
                             " is not an integer");
+            if (isIntegerType(type) && (v.value < integerRange(type).first || v.value > integerRange(type).second))
+                throw Error(path_ + ":" + std::to_string(line_) + ": '" + std::string(token) + "' in " + what() +
+                            " is out of range for its type " + typeName(type));
         } else {
             const std::size_t size = static_cast<std::size_t>(binarySize(type));
             if (bytes_.size() - at_ < size)
@@ -128,6 +160,14 @@ public:
             v.end = at_;
         }
         return v;
+    }
+
+    /// Bytes not read yet.
+    std::size_t remaining() const { return bytes_.size() - std::min(at_, bytes_.size()); }
+    /// The fewest bytes one more value of `type` takes (ASCII: a digit and a separator).
+    std::size_t minimumSize(BinaryType type) const
+    {
+        return encoding_ == Encoding::Ascii ? 2 : static_cast<std::size_t>(binarySize(type));
     }
 
     /// "path:line" (ASCII) or "path: byte N" (binary) of the value just read.
@@ -249,7 +289,10 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
         } else if (w[0] == "end_header") {
             ended = true;
         } else {
-            throw Error(where + ": unknown header line '" + w[0] + "'");
+            // Not a PLY keyword: old exporters wrote free text here (Blender 2.4x: "Created by
+            // Blender3D 247 - www.blender.org, source file: ..."). Like the widely used readers, the
+            // line is kept as a comment (written back unchanged) with one warning on stderr.
+            warnMesh(where + ": unknown header line '" + w[0] + "' kept as a comment");
         }
     }
     if (!ended) throw Error(path + ": the PLY header has no end_header line");
@@ -282,18 +325,43 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
     const bool hasColors = colorProps[0] >= 0 && colorProps[1] >= 0 && colorProps[2] >= 0;
     const int colorRows = hasColors ? (colorProps[3] >= 0 ? 4 : 3) : 0;
 
-    const int vertexCount = static_cast<int>(vertex->count);
-    src->positions.resize(3, vertexCount);
-    if (hasNormals) {
-        src->normals.resize(3, vertexCount);
-        src->normalAnchors.resize(static_cast<std::size_t>(vertexCount));
-        for (int i = 0; i < vertexCount; ++i) src->normalAnchors[static_cast<std::size_t>(i)] = i;
+    // ---- the counts against the bytes that follow: each row of an element takes at least its
+    // fixed-size properties (binary) or one digit and a separator per value (ASCII). A claim the
+    // bytes cannot hold is never allocated: only as many vertices as fit, and the read then ends
+    // inside the elements with a message that names the impossible count.
+    const std::size_t bodyStart = std::min(at, b.size());
+    const auto remaining = static_cast<unsigned long long>(b.size() - bodyStart);
+    std::string claim;
+    unsigned long long vertexRow = 1;
+    {
+        unsigned long long minimum = 0;
+        for (const Element& e : elements) {
+            unsigned long long row = 0;
+            for (const Property& p : e.properties)
+                row += src->encoding == Encoding::Ascii ? 2ULL : static_cast<unsigned long long>(binarySize(p.list ? p.countType : p.type));
+            if (&e == vertex) vertexRow = std::max(row, 1ULL);
+            // counts < 2^31 and a row < 2^31 (the header is in memory): each product < 2^62.
+            minimum += row * static_cast<unsigned long long>(e.count);
+            if (claim.empty() && minimum > remaining + 1)
+                claim = " (the header claims " + std::to_string(e.count) + " '" + e.name + "' elements, which with the elements before take at least " +
+                        std::to_string(minimum) + " bytes; " + std::to_string(remaining) + " bytes follow the header)";
+        }
     }
-    if (tu >= 0) src->texcoords.resize(2, vertexCount);
-    if (hasColors) src->colors.resize(colorRows, vertexCount);
+    const int allocated = static_cast<int>(std::min<unsigned long long>(static_cast<unsigned long long>(vertex->count), (remaining + 1) / vertexRow + 1));
+
+    const int vertexCount = static_cast<int>(vertex->count);
+    src->positions.resize(3, allocated);
+    if (hasNormals) {
+        src->normals.resize(3, allocated);
+        src->normalAnchors.resize(static_cast<std::size_t>(allocated));
+        for (int i = 0; i < allocated; ++i) src->normalAnchors[static_cast<std::size_t>(i)] = i;
+    }
+    if (tu >= 0) src->texcoords.resize(2, allocated);
+    if (hasColors) src->colors.resize(colorRows, allocated);
 
     // ---- body
-    BodyReader body(path, b, std::min(at, b.size()), src->encoding, line);
+    BodyReader body(path, b, bodyStart, src->encoding, line);
+    try {
     for (const Element& e : elements) {
         const bool isVertex = &e == vertex;
         const bool isFace = e.name == "face";
@@ -302,6 +370,7 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
             for (std::size_t i = 0; i < e.properties.size(); ++i)
                 if (e.properties[i].list && (e.properties[i].name == "vertex_indices" || e.properties[i].name == "vertex_index"))
                     faceList = static_cast<int>(i);
+        if (e.properties.empty()) continue; // rows without properties take no bytes
         for (long long r = 0; r < e.count; ++r) {
             const int row = static_cast<int>(r);
             for (std::size_t pi = 0; pi < e.properties.size(); ++pi) {
@@ -311,6 +380,10 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
                 if (p.list) {
                     const BodyReader::Value n = body.next(p.countType, [&]() { return what() + " (list count)"; });
                     if (n.value < 0) throw Error(body.where(n) + ": " + what() + " has a negative list count");
+                    // In the count type's range (checked by next()), and no more items than bytes remain.
+                    if (n.value > static_cast<double>(body.remaining() / body.minimumSize(p.type) + 1))
+                        throw Error(body.where(n) + ": " + what() + " has a list count of " + std::to_string(static_cast<long long>(n.value)) + ", the " +
+                                    std::to_string(body.remaining()) + " bytes that remain cannot hold that many values");
                     const long long count = static_cast<long long>(n.value);
                     if (prop == faceList && count < 3)
                         throw Error(body.where(n) + ": face " + std::to_string(r) + " has " + std::to_string(count) +
@@ -330,11 +403,13 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
                 }
                 const BodyReader::Value v = body.next(p.type, what);
                 if (!isVertex) continue;
+                if (row >= allocated) throw Error(body.where(v) + ": " + what() + ": more vertices than the file can hold");
                 const auto slot = [&](Field field, std::uint8_t k) {
                     if (!std::isfinite(v.value))
                         throw Error(body.where(v) + ": vertex " + std::to_string(r) + " coordinate " + p.name + " is not finite");
                     if (src->encoding == Encoding::Ascii)
-                        src->textSlots.push_back({v.begin, v.end, row, field, k, p.type == BinaryType::Float32});
+                        src->textSlots.push_back({v.begin, v.end, row, field, k, p.type == BinaryType::Float32, isIntegerType(p.type),
+                                                  static_cast<std::uint8_t>(p.type)});
                     else
                         src->binarySlots.push_back({v.begin, row, field, k, p.type, src->encoding == Encoding::Big});
                 };
@@ -359,6 +434,11 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
         }
     }
     body.finish();
+    } catch (const Error& e) {
+        if (claim.empty()) throw;
+        throw Error(e.what() + claim);
+    }
+    if (allocated != vertexCount) throw Error(path + ": the vertex count is impossible" + claim); // unreachable: read fails first
     return src;
 }
 

@@ -54,6 +54,8 @@ struct TextSlot {
     Field field = Field::Position;
     std::uint8_t row = 0;
     bool single = false; // the format declares float32: a changed value is written as the nearest float
+    bool integer = false; // the format declares an integer type (PLY): a changed value is rounded to it
+    std::uint8_t integerType = 0; // that type, a BinaryType (declared below)
 };
 
 /// Writes `text` with the slots whose value changed (now against was) replaced by the new value's
@@ -98,6 +100,14 @@ struct Token {
     std::size_t offset = 0;
 };
 
+/// One warning about a file the reader accepted all the same, on stderr (never stdout: the CLI's
+/// stdout holds only its JSON).
+void warnMesh(const std::string& message);
+
+/// Error when a text format's bytes are not text: a NUL byte (binary data, a JPEG, UTF-16) or a
+/// UTF-16/32 byte order mark. `format` names the format for the message ("OBJ").
+void requireText(const std::string& path, const std::string& text, const char* format);
+
 /// The lower-case extension without the dot ("obj"), or empty.
 std::string extensionOf(const std::string& path);
 
@@ -121,6 +131,8 @@ public:
     /// Per-vertex colours (3 or 4 rows, in [0, 1]) when the file has them per vertex, else empty;
     /// carried over when converting to another format.
     virtual Eigen::MatrixXd vertexColors() const { return {}; }
+    /// How the file was read, for reports: "freeform (lossless)" or "assimp (not lossless)".
+    std::string reader = "freeform (lossless)";
     /// True when `targetFormat` is written by writeSame (format-preserving).
     virtual bool writesSame(const std::string& targetFormat) const { return targetFormat == format; }
     /// Writes the file back with the current values (atomically).
@@ -133,6 +145,9 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes);
 std::unique_ptr<Source> readStl(const std::string& path, std::string bytes);
 std::unique_ptr<Source> readOff(const std::string& path, std::string text);
 std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary);
+/// Any other format Assimp reads (not lossless; assimp.cpp). assimpReads: whether it reads `extension`.
+std::unique_ptr<Source> readAssimp(const std::string& path);
+bool assimpReads(const std::string& extension);
 
 // ---- writers of a whole mesh (conversion); colors: 3 or 4 x V in [0, 1], or empty.
 // The mesh is valid (checked by the caller).
