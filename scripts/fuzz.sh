@@ -7,6 +7,8 @@
 #
 #   scripts/fuzz.sh              # CI: FREEFORM_FUZZ_SECONDS (default 10) per target
 #   FREEFORM_FUZZ_SECONDS=120 scripts/fuzz.sh fuzz_mesh_ply   # a longer run of one target
+#   FREEFORM_FUZZ_SEED=0 scripts/fuzz.sh   # a new random seed each run (CI uses seed 1, so a CI run
+#                                          # is repeatable: the same mutations in the same order)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -35,7 +37,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus"
   seeds=fuzz/corpus/${t#fuzz_}
   dict=fuzz/dict/${t#fuzz_}.dict
-  args=(-max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=65536 -print_final_stats=1
+  args=(-max_total_time="$seconds" -seed="${FREEFORM_FUZZ_SEED:-1}" -rss_limit_mb=2048 -timeout=10 -max_len=65536 -print_final_stats=1
         -artifact_prefix=build-fuzz/findings/"$t"-)
   [ -f "$dict" ] && args+=(-dict="$dict")
   dirs=("$corpus")
