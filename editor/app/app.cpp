@@ -223,6 +223,7 @@ void App::frame(int width, int height, bool withUi)
     overlay_.clear();
     ToolContext context = toolContext();
     tools_.update(context, overlay_);
+    scene_.updateViewTolerance(height); // re-tessellates when the zoom changed the pixel size by 2x
     scene_.updateGeometry();
     if (dirty) ui_.updateMs = millisecondsSince(t1);
     lastChange_ = scene_.changeCount();
