@@ -268,6 +268,7 @@ Image App::renderImage()
 void App::printFrameStats(int frames)
 {
     auto t0 = std::chrono::steady_clock::now();
+    scene_.updateViewTolerance(options_.height);
     scene_.updateGeometry();
     const double tessellation = millisecondsSince(t0);
     long vertices = 0;
