@@ -12,6 +12,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <freeform/io/bpt.h>
 #include <freeform/tessellate/tessellate.h>
 
 #include <cmath>

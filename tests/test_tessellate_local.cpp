@@ -294,8 +294,9 @@ TEST_CASE("the geometric measure: every triangle point within the tolerance of t
             CHECK(mesh.faceCount() <= tessellate(PatchComplex{{patch}}, o).faceCount());
         }
     }
-    // The teapot: within the tolerance, tight within 2x, and the count (56,070 when written; the
-    // issue's goal of 46,000 is not reached).
+    // The teapot: within the tolerance, tight within 2x, and the count (52,564 when written, with
+    // the side leaves' one-direction bound; 56,070 before it; the issue's goal of 46,000 is not
+    // reached).
     const PatchComplex teapot = readBpt(kTeapot);
     TessellationOptions o;
     o.tolerance = 1e-3;
@@ -306,7 +307,7 @@ TEST_CASE("the geometric measure: every triangle point within the tolerance of t
     CHECK(report.errorBound <= 1e-3);
     CHECK(report.measuredGeometric <= 1e-3);
     CHECK(report.measuredGeometric >= 0.5e-3);
-    CHECK(mesh.faceCount() <= 57000);
+    CHECK(mesh.faceCount() <= 53500);
     CHECK(topology(mesh).nonManifoldEdges == 0);
 }
 

@@ -361,6 +361,7 @@ void App::frame(int width, int height, bool withUi)
     overlay_.clear();
     ToolContext context = toolContext();
     tools_.update(context, overlay_);
+    scene_.updateViewTolerance(height); // re-tessellates when the zoom changed the pixel size by 2x
     scene_.updateGeometry();
     if (dirty) ui_.updateMs = millisecondsSince(t1);
     lastChange_ = scene_.changeCount();
@@ -417,6 +418,7 @@ Image App::renderImage()
 void App::printFrameStats(int frames)
 {
     auto t0 = std::chrono::steady_clock::now();
+    scene_.updateViewTolerance(options_.height);
     scene_.updateGeometry();
     const double tessellation = millisecondsSince(t0);
     long vertices = 0;

@@ -49,6 +49,7 @@ void applyOptions(Scene& scene, const Options& o)
     if (o.flipNormals) d.flipNormals = true;
     if (o.tolerance) {
         d.tolerance = *o.tolerance;
+        scene.pixelTolerance = 0; // a world tolerance asked for: not the view's
         for (int i = 0; i < scene.itemCount(); ++i) {
             ObjectSettings s = scene.item(i).settings;
             s.tessellation.tolerance = 0; // the command line's tolerance for everything

@@ -352,7 +352,11 @@ PolygonMesh Scene::mergedMesh()
 
 void Scene::exportMesh(const std::string& path)
 {
+    // Exports keep the world tolerance (display.tolerance), not the view's pixel tolerance.
+    const double view = viewTolerance_;
+    if (view > 0) viewTolerance_ = 0, invalidateGeometry();
     const PolygonMesh mesh = mergedMesh();
+    if (view > 0) viewTolerance_ = view, invalidateGeometry();
     if (mesh.faceCount() == 0) throw Error("export: the scene has no visible surfaces or meshes");
     writePolygonMesh(mesh, path);
 }
@@ -626,7 +630,7 @@ void Scene::updateGeometry()
         SceneItem& item = items_[i];
         if (!item.geometryDirty) continue;
         if (item.kind == SceneItem::Kind::DocumentObject) {
-            item.geometry = buildGeometry(document_.objects[i].data, item.settings, display.tolerance, documentDirectory());
+            item.geometry = buildGeometry(document_.objects[i].data, item.settings, tessellationTolerance(), documentDirectory());
         } else {
             try {
                 item.geometry = buildMeshGeometry(resolve(item.meshPath));
@@ -641,6 +645,27 @@ void Scene::updateGeometry()
         item.revision = item.topology = nextRevision();
     }
     updateDerived();
+}
+
+void Scene::updateViewTolerance(int height)
+{
+    double t = 0;
+    if (pixelTolerance > 0 && height > 0) {
+        // One pixel at depth z is 2 z tan(fovy/2) / height (perspective) or 2 halfHeight / height
+        // (orthographic); z: the nearest corner of the visible items' box, at least 1/20 of the distance.
+        const Eigen::AlignedBox3d box = bounds();
+        double z = camera.distance;
+        if (camera.projection == Projection::Perspective) {
+            for (int c = 0; c < 8; ++c)
+                z = std::min(z, (box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) - camera.eye()).dot(-camera.back()));
+            z = std::max(z, camera.distance / 20);
+        }
+        t = pixelTolerance * 2 * camera.halfHeight() * (z / camera.distance) / height;
+    }
+    if ((t == 0) != (viewTolerance_ == 0) || t > 2 * viewTolerance_ || t < viewTolerance_ / 2) {
+        viewTolerance_ = t;
+        invalidateGeometry();
+    }
 }
 
 Eigen::AlignedBox3d Scene::bounds() const

@@ -177,12 +177,22 @@ public:
 
     Camera camera;
     DisplaySettings display;
+    /// Tessellation to the view (docs/editor.md): > 0 tessellates surfaces and curves to this many
+    /// pixels at the visible items' nearest depth instead of display.tolerance (not saved; 0: off,
+    /// as with the command line's --tolerance).
+    double pixelTolerance = 0.5;
+    /// The world tolerance of pixelTolerance for a view `height` pixels high; marks the geometry
+    /// dirty when it differs from the one in use by more than 2x (or pixelTolerance was switched).
+    void updateViewTolerance(int height);
+    /// The world tolerance the geometry is built with (display.tolerance when pixelTolerance is 0).
+    double tessellationTolerance() const { return viewTolerance_ > 0 ? viewTolerance_ : display.tolerance; }
     /// Marks the settings (camera, display) as changed, i.e. the file as unsaved.
     void touch() { modified_ = true; }
     /// Marks all geometry dirty (e.g. after the tessellation tolerance changed).
     void invalidateGeometry();
 
 private:
+    double viewTolerance_ = 0;
     void rebuildItems();
     void updateDerived();
     void resolveLink(SceneItem& item) const;

@@ -252,3 +252,32 @@ TEST_CASE("camera and display settings read back what they write; bad values are
     cam["distance"] = 0;
     REQUIRE_THROWS_WITH(Camera::fromJson(cam), Catch::Contains("editor.camera.distance"));
 }
+
+TEST_CASE("scene: the pixel tolerance gives the world size of that many pixels at the nearest depth, redone only past 2x",
+          "[editor][scene]")
+{
+    // An empty scene's bounds are the box [-1, 1]^3; the camera looks at the origin down -z from
+    // distance 10, so the nearest corner is at depth 9. One pixel there in a view 800 pixels high:
+    // 2 * 9 * tan(17.5 deg) / 800 (fovy 35 degrees).
+    Scene scene;
+    scene.camera.target = Eigen::Vector3d::Zero();
+    scene.camera.orientation = Eigen::Quaterniond::Identity();
+    scene.camera.distance = 10;
+    scene.camera.fovyDegrees = 35;
+    scene.camera.projection = Projection::Perspective;
+    scene.pixelTolerance = 0.5;
+    scene.updateViewTolerance(800);
+    const double expected = 0.5 * 2 * 9 * std::tan(17.5 * 3.14159265358979323846 / 180) / 800;
+    CHECK(scene.tessellationTolerance() == Approx(expected).epsilon(1e-12));
+    // Zooming in by 1.5x keeps it (within 2x); by 3x more it is recomputed.
+    scene.camera.distance = 10 / 1.5; // nearest depth 10/1.5 - 1 = 5.67: 1.59 times closer than 9
+    scene.updateViewTolerance(800);
+    CHECK(scene.tessellationTolerance() == Approx(expected).epsilon(1e-12));
+    scene.camera.distance = 2.5; // nearest depth 1.5: 6 times closer than 9
+    scene.updateViewTolerance(800);
+    CHECK(scene.tessellationTolerance() == Approx(expected * 1.5 / 9).epsilon(1e-12));
+    // Off: the world tolerance.
+    scene.pixelTolerance = 0;
+    scene.updateViewTolerance(800);
+    CHECK(scene.tessellationTolerance() == scene.display.tolerance);
+}

@@ -421,7 +421,10 @@ void displayPanel(Scene& scene, UiState& s)
         if (d.normals) ImGui::SliderFloat("normal length", &d.normalLength, 0.001f, 0.2f, "%.3f", ImGuiSliderFlags_Logarithmic);
         ImGui::SliderFloat("point size", &d.pointSize, 2.0f, 20.0f, "%.0f px");
         const double lo = 1e-6, hi = 1.0;
-        ImGui::SliderScalar("tolerance", ImGuiDataType_Double, &d.tolerance, &lo, &hi, "%.2e", ImGuiSliderFlags_Logarithmic);
+        const double plo = 0, phi = 8;
+        ImGui::SliderScalar("pixel tolerance", ImGuiDataType_Double, &scene.pixelTolerance, &plo, &phi, "%.2f px (0: world)");
+        if (!(scene.pixelTolerance > 0))
+            ImGui::SliderScalar("tolerance", ImGuiDataType_Double, &d.tolerance, &lo, &hi, "%.2e", ImGuiSliderFlags_Logarithmic);
         if (ImGui::CollapsingHeader("material")) materialEditor(d.material);
         if (ImGui::CollapsingHeader("back faces, background")) {
             colorEdit("back faces", d.backColor);

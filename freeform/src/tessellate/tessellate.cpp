@@ -432,6 +432,61 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array
     return epsN + slope * delta + 0.5 * (std::max(Gss, Gtt) + Gst) * delta * delta;
 }
 
+/// The geometric bound of a leaf at a patch's side (docs/surfaces.md, "The geometric measure",
+/// "At a patch's sides"): the foot point is sought along one parameter only (along = 1: t, y = x +
+/// (0, delta); along = 0: s), so the leaf only needs room in that direction. Let a be the unit
+/// tangent g_t(c)/|g_t(c)| (g_s for along = 0) and c1 = n0 x a; delta cancels a . E, and the rest
+/// of E - g_t(x) delta lies along n0 and c1, each bounded from the projected sub-nets.
+double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms,
+                           const std::array<double, 3>& root, const Leaf& box, std::int32_t S, int along)
+{
+    const int w = n + 1;
+    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
+    basisWithDerivative(m, 0.5, bu, dbu);
+    basisWithDerivative(n, 0.5, bv, dbv);
+    Eigen::Vector3d gs = Eigen::Vector3d::Zero(), gt = Eigen::Vector3d::Zero();
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            gs += dbu[i] * bv[j] * net[i * w + j];
+            gt += bu[i] * dbv[j] * net[i * w + j];
+        }
+    const Eigen::Vector3d cross = gs.cross(gt);
+    const double len = cross.norm();
+    const Eigen::Vector3d& g = along == 1 ? gt : gs;
+    if (!(len > 0) || !(g.norm() > 0)) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d n0 = cross / len, a = g / g.norm(), c1 = n0.cross(a);
+    // Bounds of d . g_ss, d . g_st, d . g_tt over the leaf for d = n0 and d = c1 (convex hull).
+    auto projected = [&](const Eigen::Vector3d& d) {
+        double ss = 0, st = 0, tt = 0;
+        for (int i = 0; i + 2 <= m; ++i)
+            for (int j = 0; j <= n; ++j)
+                ss = std::max(ss, std::abs(d.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j + 2 <= n; ++j)
+                tt = std::max(tt, std::abs(d.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < n; ++j)
+                st = std::max(st, std::abs(d.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
+        return std::array<double, 3>{m * (m - 1.0) * ss, double(m) * n * st, n * (n - 1.0) * tt};
+    };
+    const auto N = projected(n0), C = projected(c1);
+    const double eps = (terms[0] + terms[1] + terms[2]) / 8;
+    const double epsN = (N[0] + 2 * N[1] + N[2]) / 8, epsC = (C[0] + 2 * C[1] + C[2]) / 8;
+    // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st + M_tt)/2 (s: (M_ss + M_st)/2).
+    const double Mst = terms[1] / 2, Mown = along == 1 ? terms[2] : terms[0];
+    const double sigma = g.norm() - (Mst + Mown) / 2;
+    if (!(sigma > 0)) return std::numeric_limits<double>::infinity();
+    const double delta = eps / sigma;
+    const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
+    const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
+    if (lo - delta * h < 0 || hi + delta * h > 1) return std::numeric_limits<double>::infinity();
+    // |d . g_t(x)| <= (D_st + D_tt)/2 for d orthogonal to g_t(c) (s: (D_ss + D_st)/2).
+    const double slopeN = along == 1 ? (N[1] + N[2]) / 2 : (N[0] + N[1]) / 2;
+    const double slopeC = along == 1 ? (C[1] + C[2]) / 2 : (C[0] + C[1]) / 2;
+    const double G = along == 1 ? root[2] * h * h : root[0] * h * h; // |g_tt| on the segment (whole patch)
+    return std::hypot(epsN + slopeN * delta, epsC + slopeC * delta) + 0.5 * G * delta * delta;
+}
+
 double buildTree(const Patch& patch, double tolerance, bool geometric, std::int32_t minWidth, std::int32_t S,
                  std::vector<Leaf>& leaves, long long& leafCount, long long leafBudget, const std::string& budgetMessage)
 {
@@ -451,7 +506,15 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         const auto t = netTerms(net, m, n);
         double b = (t[0] + t[1] + t[2]) / 8;
         // (Far above the tolerance the geometric bound cannot help either: its offset term grows with b.)
-        if (geometric && b > tolerance && b < 16 * tolerance) b = std::min(b, geometricBound(net, m, n, t, root, box, S));
+        if (geometric && b > tolerance && b < 16 * tolerance) {
+            const double full = geometricBound(net, m, n, t, root, box, S);
+            b = std::min(b, full);
+            if (!std::isfinite(full)) { // at a patch's side: the foot point along the side only
+                const bool sideU = box.u0 == 0 || box.u1 == S, sideV = box.v0 == 0 || box.v1 == S;
+                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, t, root, box, S, 1));
+                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, t, root, box, S, 0));
+            }
+        }
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
         const bool canU = wu >= 2 * minWidth && (t[0] > 0 || t[1] > 0);
         const bool canV = wv >= 2 * minWidth && (t[2] > 0 || t[1] > 0);

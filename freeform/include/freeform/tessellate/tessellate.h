@@ -9,7 +9,8 @@
 //     tolerance of the triangle point with the same (u, v) (a parametric bound; it bounds the
 //     geometric distance in both directions too; with TessellationMeasure::Geometric only the
 //     distance from every triangle point to the surface is bounded, by a bound that leaves out
-//     the tangential part of the error, so fewer triangles). Refinement::Local (the default) splits each
+//     the tangential part of the error, so fewer triangles; at a patch's sides only the part along
+//     the side is left out). Refinement::Local (the default) splits each
 //     patch's control net by de Casteljau into a tree of dyadic sub-rectangles until the bound of
 //     each leaf, from the second differences of its own sub-net,
 //         (m(m-1) max|D_uu b| + 2 m n max|D_uv b| + n(n-1) max|D_vv b|) / 8,
