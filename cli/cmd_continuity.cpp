@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "command.h"
+#include "typed_document.h"
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
@@ -44,7 +45,7 @@ Json continuity(const ContinuityOptions& o)
         tol.relative = tol.angle = o.tolerance;
     }
     const TypedDocument doc = TypedDocument::read(o.positional[0]);
-    return report(doc, doc.object(o.object), tol);
+    return report(doc, objectNamed(doc, o.object), tol);
 }
 
 } // namespace

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.h"
+#include "typed_document.h"
 #include "freeform/document/operations.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/mesh_io.h"
@@ -54,7 +55,7 @@ Json tessellateCommand(const TessellateOptions& o)
         complex = readBpt(input);
     } else {
         const TypedDocument doc = TypedDocument::read(input);
-        complex = given(o.objectGiven) ? surfacePatches(doc, doc.object(o.object)) : documentPatches(doc);
+        complex = given(o.objectGiven) ? surfacePatches(doc, objectNamed(doc, o.object)) : documentPatches(doc);
     }
     TessellationReport report;
     const PolygonMesh mesh = tessellate(complex, options, &report);
