@@ -3,18 +3,18 @@
 #include <memory>
 
 #include "command.h"
-#include "freeform/curve/continuity.h"
-#include "spline_object.h"
+#include "typed_document.h"
+#include "freeform/document/operations.h"
 
 namespace freeform::cli {
 namespace {
 
-template <int Dim>
-Json report(const Document& doc, const DocumentObject& object, const ContinuityTolerances<double>& tol)
+/// The joints from the document layer's continuity() (a bezier_spline, or a deboor_spline through the
+/// A-frame; 2D or 3D).
+Json report(const TypedDocument& doc, const TypedObject& object, const ContinuityTolerances<double>& tol)
 {
-    const BezierSpline<double, Dim> spline = splineFromObject<Dim>(doc, object);
     Json joints = Json::array();
-    for (const auto& j : continuityReport(spline, tol)) {
+    for (const auto& j : freeform::continuity(doc, object, tol)) {
         Json e;
         e["joint"] = j.joint;
         e["t"] = j.t;
@@ -24,7 +24,7 @@ Json report(const Document& doc, const DocumentObject& object, const ContinuityT
         joints.push_back(std::move(e));
     }
     Json out;
-    out["object"] = object.name;
+    out["object"] = object.name();
     out["joints"] = std::move(joints);
     return out;
 }
@@ -44,9 +44,8 @@ Json continuity(const ContinuityOptions& o)
         if (!(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
         tol.relative = tol.angle = o.tolerance;
     }
-    const Document doc = readDocument(o.positional[0]);
-    const DocumentObject& object = doc.object(o.object);
-    return splineDimension(doc, object) == 2 ? report<2>(doc, object, tol) : report<3>(doc, object, tol);
+    const TypedDocument doc = TypedDocument::read(o.positional[0]);
+    return report(doc, objectNamed(doc, o.object), tol);
 }
 
 } // namespace

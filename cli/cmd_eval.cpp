@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "command.h"
+#include "typed_document.h"
 #include "freeform/core/error.h"
 
 namespace freeform::cli {
@@ -18,12 +19,12 @@ Json eval(const EvalOptions& o)
 {
     expectPositional(o.positional, 1, "the document (freeform eval DOC.json --object NAME --at T)");
     if (o.derivatives < 0) throw UsageError("option --derivatives: the order must not be negative");
-    const Document doc = readDocument(o.positional[0]);
-    const DocumentObject& object = doc.object(o.object);
-    const std::string type = objectType(object.data);
+    const TypedDocument doc = TypedDocument::read(o.positional[0]);
+    const TypedObject& object = objectNamed(doc, o.object);
+    const std::string type = object.type();
     const auto it = evaluators().find(type);
     if (it == evaluators().end())
-        throw Error(doc.source + ": object \"" + o.object + "\": eval does not support type \"" + type + "\" yet");
+        throw Error(doc.what(object) + ": eval does not support type \"" + type + "\" yet");
     return it->second(doc, object, o.at, o.derivatives);
 }
 

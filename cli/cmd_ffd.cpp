@@ -6,11 +6,11 @@
 #include <memory>
 
 #include "command.h"
+#include "freeform/document/document.h"
 #include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/volume/deform.h"
 #include "freeform/io/deform_file.h"
-#include "spline_object.h"
 
 namespace freeform::cli {
 namespace {
@@ -37,120 +37,43 @@ Json certificateJson(const Lattice& lattice, double strength, const Certificate&
     return c;
 }
 
-/// Whether every control point (column) lies in the lattice box: then, by the convex hull
-/// property, so does the whole curve or patch, and the exact composition equals point-wise FFD.
-bool controlPointsInside(const Lattice& lattice, const PointColumns& points)
-{
-    for (Eigen::Index i = 0; i < points.cols(); ++i)
-        if (!Lattice::insideBox(lattice.toLattice(points.col(i)))) return false;
-    return true;
-}
-
-/// A spline's segments pushed through the lattice exactly, as a bezier_spline of degree
-/// d (l+m+n) on the same intervals (joints shared, as the format stores them).
-BezierSplineData deformSpline(const Lattice& lattice, const BezierSpline<double, 3>& spline, double strength)
-{
-    BezierSplineData out;
-    out.closed = spline.closed();
-    out.intervals = spline.intervals();
-    const int segments = spline.segmentCount();
-    for (int i = 0; i < segments; ++i) {
-        const BezierCurve<double, 3> piece = deformCurve(lattice, spline.segment(i), strength);
-        const int d = piece.degree();
-        if (i == 0) {
-            out.degree = d;
-            out.points.resize(3, static_cast<Eigen::Index>(spline.closed() ? segments * d : segments * d + 1));
-        }
-        // Segment i owns its first d points; the last open segment also its end point.
-        out.points.middleCols(static_cast<Eigen::Index>(i) * d, d) = piece.controlPoints().leftCols(d);
-        if (!spline.closed() && i + 1 == segments) out.points.col(out.points.cols() - 1) = piece.controlPoints().col(d);
-    }
-    return out;
-}
-
-/// A bezier_spline or (through the A-frame) deboor_spline object in 3D; library errors unprefixed.
-BezierSpline<double, 3> splineFromObjectUnprefixed(const DocumentObject& object)
-{
-    using Points = PointMatrix<double, 3>;
-    if (const auto* b = std::get_if<BezierSplineData>(&object.data))
-        return BezierSpline<double, 3>(b->degree, b->closed, Points(b->points), b->intervals);
-    const auto& d = std::get<DeBoorSplineData>(object.data);
-    return BezierSpline<double, 3>::fromDeBoor(Points(d.points), parseEndCondition(d.end, "end"), d.intervals);
-}
-
-/// freeform ffd DOC.json: every 3D Bézier curve, spline and patch of the document through the
-/// lattice, exactly (by composition); other objects are copied unchanged and listed as skipped.
+/// freeform ffd DOC.json: the document layer's deformDocument (docs/ffd.md, "Documents": one rule
+/// for every object type, the same the editor applies); the report prints its objects and skipped.
 Json runFfdDocument(const std::string& input, const std::string& output, const DocumentObject& latticeObject,
                     const Lattice& lattice, const DeformOptions& options, const std::optional<std::string>& reportPath)
 {
-    Document doc = readDocument(input);
-    const double w = options.strength;
+    TypedDocument doc = TypedDocument::read(input);
+    DeformDocumentOptions deform;
+    deform.strength = options.strength;
+    deform.threads = options.threads;
+    const DeformDocumentReport r = deformDocument(doc, lattice, deform);
     Json deformed = Json::array(), skipped = Json::array();
-    auto skip = [&](const DocumentObject& o, const std::string& reason) {
-        Json s;
-        s["name"] = o.name;
-        s["type"] = objectType(o.data);
-        s["reason"] = reason;
-        skipped.push_back(std::move(s));
-    };
-    for (DocumentObject& o : doc.objects) {
-        const std::string type = objectType(o.data);
-        if (type == "deboor_surface" || type == "subdivision_surface" || type == "lattice") {
-            skip(o, "no exact deformation for a " + type);
-            continue;
-        }
-        int dim = 3;
-        if (const auto* c = std::get_if<BezierCurveData>(&o.data)) dim = static_cast<int>(c->points.rows());
-        else if (type == "bezier_spline" || type == "deboor_spline") dim = splineDimension(doc, o);
-        if (dim != 3) {
-            skip(o, "a 2D object (the lattice deforms 3D space)");
-            continue;
-        }
-        bool inside = true;
-        Json degree;
-        try {
-            if (auto* c = std::get_if<BezierCurveData>(&o.data)) {
-                inside = controlPointsInside(lattice, c->points);
-                const BezierCurve<double, 3> curve((Eigen::Matrix<double, 3, Eigen::Dynamic>(c->points)));
-                c->points = deformCurve(lattice, curve, w).controlPoints();
-                degree = c->points.cols() - 1;
-            } else if (auto* s = std::get_if<BezierSurfaceData>(&o.data)) {
-                inside = controlPointsInside(lattice, s->points);
-                const BezierSurface<double, 3> patch(s->degree[0], s->degree[1],
-                                                     Eigen::Matrix<double, 3, Eigen::Dynamic>(s->points));
-                const BezierSurface<double, 3> moved = deformSurface(lattice, patch, w);
-                s->degree = {moved.degreeU(), moved.degreeV()};
-                s->points = moved.controlPoints();
-                degree = Json::array({moved.degreeU(), moved.degreeV()});
-            } else {
-                const BezierSpline<double, 3> spline = splineFromObjectUnprefixed(o);
-                inside = controlPointsInside(lattice, spline.controlPoints());
-                BezierSplineData moved = deformSpline(lattice, spline, w);
-                degree = moved.degree;
-                o.data = std::move(moved);
-            }
-        } catch (const Error& e) {
-            throw Error(doc.source + ": object \"" + o.name + "\": " + e.what());
-        }
+    for (const DeformedObject& o : r.objects) {
         Json d;
         d["name"] = o.name;
-        d["from"] = type;
-        d["type"] = objectType(o.data);
-        d["degree"] = std::move(degree);
-        d["inside"] = inside;
+        d["from"] = o.from;
+        d["type"] = o.type;
+        if (o.degree.size() == 1) d["degree"] = o.degree[0];
+        else d["degree"] = o.degree; // [p, q] for surfaces; [] for a subdivision cage
+        d["inside"] = o.inside;
         deformed.push_back(std::move(d));
     }
-
-    const Certificate cert = certify(lattice, w);
+    for (const SkippedObject& o : r.skipped) {
+        Json s;
+        s["name"] = o.name;
+        s["type"] = o.type;
+        s["reason"] = o.reason;
+        skipped.push_back(std::move(s));
+    }
     Json j;
     j["input"] = input;
     j["output"] = output;
     j["lattice"] = latticeObject.name;
     j["objects"] = std::move(deformed);
     j["skipped"] = std::move(skipped);
-    j["certificate"] = certificateJson(lattice, w, cert, cert.verdict);
+    j["certificate"] = certificateJson(lattice, options.strength, r.certificate, r.certificate.verdict);
 
-    writeDocument(doc, output);
+    writeDocument(doc.toDocument(), output);
     if (reportPath) writeFileAtomically(*reportPath, j.dump(2) + "\n");
     return j;
 }
@@ -239,10 +162,13 @@ Action defineFfd(CLI::App& app)
                "A document (DOC.json) is deformed exactly: every 3D bezier_curve of degree d and\n"
                "bezier_spline becomes one of degree d (l+m+n), every bezier_surface of degrees (p, q)\n"
                "one of degrees (p (l+m+n), q (l+m+n)) (composition, not control points moved);\n"
-               "a deboor_spline becomes a bezier_spline of degree 3 (l+m+n). Other objects are\n"
-               "copied unchanged and listed under \"skipped\". The result equals point-wise FFD\n"
-               "where the geometry lies in the lattice box (\"inside\": its control points do); outside\n"
-               "it is the lattice polynomial continued, whatever the outside policy.\n"
+               "a deboor_spline becomes a bezier_spline of degree 3 (l+m+n) (under an affine lattice\n"
+               "it stays a deboor_spline, its de Boor points mapped; a deboor_surface likewise, else it\n"
+               "is skipped); a subdivision_surface has its cage deformed as a cage. 2D objects and\n"
+               "lattices are copied unchanged and listed under \"skipped\". The result equals\n"
+               "point-wise FFD where the geometry lies in the lattice box (\"inside\": its control\n"
+               "points do); outside it is the lattice polynomial continued, whatever the outside\n"
+               "policy. The same rule as the editor's \"apply exactly\" (docs/ffd.md, Documents).\n"
                "\n"
                "Prints the report: {\"input\", \"output\", \"lattice\", \"vertices\", \"outside\",\n"
                "\"min_det_j\", \"max_det_j\", \"fold_count\", \"folds\" (first 1000 vertex indices with\n"

@@ -4,10 +4,11 @@
 #include <memory>
 
 #include "command.h"
+#include "typed_document.h"
+#include "freeform/document/operations.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/tessellate/tessellate.h"
-#include "surface_objects.h"
 
 namespace freeform::cli {
 namespace {
@@ -60,18 +61,8 @@ Json tessellateCommand(const TessellateOptions& o)
         if (given(o.objectGiven)) throw UsageError("option --object applies to documents, not .bpt files");
         complex = readBpt(input);
     } else {
-        const Document doc = readDocument(input);
-        if (given(o.objectGiven)) {
-            complex = surfacePatches(doc, doc.object(o.object));
-        } else {
-            for (const DocumentObject& o : doc.objects) {
-                if (!isSurfaceObject(o)) continue;
-                PatchComplex part = surfacePatches(doc, o);
-                complex.patches.insert(complex.patches.end(), part.patches.begin(), part.patches.end());
-            }
-            if (complex.patches.empty())
-                throw Error(doc.source + ": the document has no surface objects (bezier_surface, deboor_surface)");
-        }
+        const TypedDocument doc = TypedDocument::read(input);
+        complex = given(o.objectGiven) ? surfacePatches(doc, objectNamed(doc, o.object)) : documentPatches(doc);
     }
     TessellationReport report;
     const PolygonMesh mesh = tessellate(complex, options, &report);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform/document/model.h"
 #include "freeform/io/document.h"
 
 namespace freeform::cli {
@@ -84,12 +85,13 @@ const DocumentObject& findLattice(const Document& doc, const std::optional<std::
 
 /// `freeform eval` dispatches on the object type. Each geometry supplies one evaluator:
 /// given the object, the text of --at and the derivative order K, it returns the JSON result.
-using Evaluator = Json (*)(const Document& doc, const DocumentObject& object, const std::string& at, int order);
+/// One evaluator per object type: parses --at (usage errors, the domain message with the text as
+/// given), then prints the document layer's evaluate() (document/operations.h).
+using Evaluator = Json (*)(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order);
 const std::map<std::string, Evaluator>& evaluators(); // cli/commands.cpp
 
 void addCurveEvaluators(std::map<std::string, Evaluator>& table);       // eval_curve.cpp
 void addLatticeEvaluators(std::map<std::string, Evaluator>& table);     // eval_lattice.cpp
-void addSplineEvaluators(std::map<std::string, Evaluator>& table);      // eval_spline.cpp
 void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table); // eval_subdivision.cpp
 void addSurfaceEvaluators(std::map<std::string, Evaluator>& table);     // eval_surface.cpp
 

@@ -28,7 +28,6 @@ const std::map<std::string, Evaluator>& evaluators()
     static const std::map<std::string, Evaluator> table = [] {
         std::map<std::string, Evaluator> t;
         addCurveEvaluators(t);
-        addSplineEvaluators(t);
         addSurfaceEvaluators(t);
         addLatticeEvaluators(t);
         addSubdivisionEvaluators(t);

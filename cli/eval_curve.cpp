@@ -1,43 +1,52 @@
-// `freeform eval` for bezier_curve objects.
+// `freeform eval` for bezier_curve, bezier_spline and deboor_spline objects: t in [0, 1] for a
+// curve, the global parameter T in [0, sum of intervals] for a spline; the point and the
+// derivatives (with respect to t or T) from the document layer's evaluate(), in 2D or 3D.
+
+#include <charconv>
 
 #include "command.h"
-#include "freeform/curve/bezier_curve.h"
+#include "freeform/document/operations.h"
 
 namespace freeform::cli {
 namespace {
 
-template <int Dim>
-Json evalCurve(const DocumentObject& object, double t, int order)
+/// Shortest text that reads back to the same double ("3", "0.1").
+std::string shortest(double v)
 {
-    const auto& data = std::get<BezierCurveData>(object.data);
-    const BezierCurve<double, Dim> curve(typename BezierCurve<double, Dim>::Points(data.points));
-    const auto d = curve.derivatives(t, order);
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+Json evalAnyCurve(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
+{
+    const double t = parseNumber(at, "--at");
+    const std::vector<double> domain = parameterDomain(object);
+    const bool spline = object.type() != "bezier_curve";
+    if (t < 0 || t > domain.at(0))
+        throw Error(doc.what(object) + ": " + (spline ? "T" : "t") + " = " + at + " is outside the " +
+                    (spline ? "spline" : "curve") + "'s domain [0, " + shortest(domain[0]) + "]");
+    const Evaluation e = evaluate(doc, object, {t}, order);
+    const int dim = static_cast<int>(e.point.size());
     Json out;
-    out["object"] = object.name;
+    out["object"] = object.name();
     out["t"] = t;
-    out["point"] = pointJson(d.col(0).data(), Dim);
+    out["point"] = pointJson(e.point.data(), dim);
     if (order > 0) {
         Json ders = Json::array();
-        for (int k = 1; k <= order; ++k) ders.push_back(pointJson(d.col(k).data(), Dim));
+        for (const Eigen::VectorXd& d : e.derivatives) ders.push_back(pointJson(d.data(), dim));
         out["derivatives"] = std::move(ders);
     }
     return out;
-}
-
-Json evalBezierCurve(const Document& doc, const DocumentObject& object, const std::string& at, int order)
-{
-    const double t = parseNumber(at, "--at");
-    if (t < 0 || t > 1)
-        throw Error(doc.source + ": object \"" + object.name + "\": t = " + at + " is outside the curve's domain [0, 1]");
-    const auto& data = std::get<BezierCurveData>(object.data);
-    return data.points.rows() == 2 ? evalCurve<2>(object, t, order) : evalCurve<3>(object, t, order);
 }
 
 } // namespace
 
 void addCurveEvaluators(std::map<std::string, Evaluator>& table)
 {
-    table["bezier_curve"] = evalBezierCurve;
+    table["bezier_curve"] = evalAnyCurve;
+    table["bezier_spline"] = evalAnyCurve;
+    table["deboor_spline"] = evalAnyCurve;
 }
 
 } // namespace freeform::cli

@@ -1,38 +1,27 @@
 // `freeform eval` for lattice objects: the lattice map at (s, t, u), its partial derivatives and
-// det J of the world-space deformation.
-
-#include <Eigen/LU>
+// det J of the world-space deformation, from the document layer's evaluate().
 
 #include "command.h"
-#include "freeform/io/geometry_data.h"
-#include "freeform/volume/lattice.h"
+#include "freeform/document/operations.h"
 
 namespace freeform::cli {
 namespace {
 
-Json evalLattice(const Document& doc, const DocumentObject& object, const std::string& at, int order)
+Json evalLattice(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
     const std::vector<double> stu = parseNumberList(at, "--at", 3);
     for (double x : stu)
         if (x < 0 || x > 1)
-            throw Error(doc.source + ": object \"" + object.name + "\": (s, t, u) = " + at +
-                        " is outside the lattice's domain [0, 1]^3");
-    if (order > 1)
-        throw Error(doc.source + ": object \"" + object.name + "\": a lattice has --derivatives 0 or 1, not " +
-                    std::to_string(order));
-    const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
-    const auto jet = lattice.map(Eigen::Vector3d(stu[0], stu[1], stu[2]));
+            throw Error(doc.what(object) + ": (s, t, u) = " + at + " is outside the lattice's domain [0, 1]^3");
+    const Evaluation e = evaluate(doc, object, stu, order);
     Json out;
-    out["object"] = object.name;
+    out["object"] = object.name();
     out["at"] = Json::array({stu[0], stu[1], stu[2]});
-    out["point"] = pointJson(jet.point.data(), 3);
+    out["point"] = pointJson(e.point.data(), 3);
     if (order == 1) {
         Json d;
-        d["s"] = pointJson(jet.ds.data(), 3);
-        d["t"] = pointJson(jet.dt.data(), 3);
-        d["u"] = pointJson(jet.du.data(), 3);
-        // det J of p -> p' = det[f_s f_t f_u] / det[S T U] (chain rule through the frame).
-        d["det"] = jet.jacobian().determinant() / lattice.axes().determinant();
+        for (std::size_t k = 0; k < e.keys.size(); ++k) d[e.keys[k]] = pointJson(e.derivatives[k].data(), 3);
+        d["det"] = *e.det; // det J of p -> p' (document/operations.h)
         out["derivatives"] = Json::array({d});
     }
     return out;

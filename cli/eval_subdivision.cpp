@@ -1,43 +1,31 @@
 // `freeform eval` for subdivision_surface objects: --at FACE,U,V in OpenSubdiv's face
-// parameterisation; prints the limit point, the first partial derivatives and the unit normal.
+// parameterisation; prints the limit point, the first partial derivatives and the unit normal, from
+// the document layer's evaluate().
 
 #include <cmath>
-#include <filesystem>
 
 #include "command.h"
-#include "freeform/io/geometry_data.h"
-#include "freeform/subdivision/subdivision_surface.h"
+#include "freeform/document/operations.h"
 
 namespace freeform::cli {
 namespace {
 
-Json evalSubdivision(const Document& doc, const DocumentObject& object, const std::string& at, int order)
+Json evalSubdivision(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
     const std::vector<double> fuv = parseNumberList(at, "--at", 3);
     if (fuv[0] != std::floor(fuv[0]) || fuv[0] < 0 || fuv[0] > 1e9)
         throw UsageError("option --at: FACE must be a non-negative integer (FACE,U,V)");
-    const std::string what = doc.source + ": object \"" + object.name + "\"";
-    if (order > 1) throw Error(what + ": a subdivision surface gives first derivatives only (--derivatives 0 or 1)");
-    const std::string directory = std::filesystem::path(doc.source).parent_path().string();
-    const SubdivisionSurface surface = surfaceFromData(std::get<SubdivisionSurfaceData>(object.data), directory, what);
-    const int face = static_cast<int>(fuv[0]);
-    LimitPoint p;
-    try {
-        p = surface.evaluate(face, fuv[1], fuv[2]);
-    } catch (const Error& e) {
-        throw Error(what + ": " + e.what());
-    }
+    const Evaluation e = evaluate(doc, object, fuv, order);
     Json out;
-    out["object"] = object.name;
-    out["face"] = face;
+    out["object"] = object.name();
+    out["face"] = e.face;
     out["u"] = fuv[1];
     out["v"] = fuv[2];
-    out["point"] = pointJson(p.position.data(), 3);
+    out["point"] = pointJson(e.point.data(), 3);
     Json ders = Json::object();
-    ders["u"] = pointJson(p.du.data(), 3);
-    ders["v"] = pointJson(p.dv.data(), 3);
+    for (std::size_t k = 0; k < e.keys.size(); ++k) ders[e.keys[k]] = pointJson(e.derivatives[k].data(), 3);
     out["derivatives"] = std::move(ders);
-    out["normal"] = pointJson(p.normal.data(), 3);
+    out["normal"] = pointJson(e.normal->data(), 3);
     return out;
 }
 

@@ -1,7 +1,6 @@
-// The document layer against the command line's own bridges (examples/cli: spline_object.h,
-// surface_objects.h, eval_*.cpp, cmd_continuity.cpp, cmd_convert_spline.cpp, cmd_ffd.cpp): the
-// same document through both must give the same numbers bit for bit, so that switching the CLI onto
-// the layer is mechanical. (Where the layer's rule deliberately differs: subdivision cages and
+// The document layer against the command line (eval, continuity, convert --to, tessellate, ffd DOC;
+// written when each command had its own bridge, kept now that they call the layer): the same
+// document through both must give the same numbers bit for bit. (Where the layer's rule deliberately differs: subdivision cages and
 // affine lattices, docs/ffd.md; those objects are left out here.)
 
 #include <catch2/catch.hpp>

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <freeform/io/geometry_data.h>
 #include <freeform/volume/lattice.h>
 #include <freeform/io/geometry_data.h>
 

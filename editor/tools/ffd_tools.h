@@ -3,8 +3,8 @@
 // (FfdSession, in float) is a derived result the scene evaluates (scene/ffd_session.h,
 // scene/derived.h); exports and the exact composition with curves and patches compute in double. Exports write the deformed mesh through MeshFile into the input's own file
 // format (only positions, normals and tangents change; docs/mesh-io.md), exactly as `freeform ffd`
-// does. The lattice also applies exactly to the document's Bézier curves, splines and patches
-// (deformCurve / deformSurface) and to the inline cage vertices of subdivision surfaces.
+// does. Applying the lattice to the document's objects is the document layer's deformDocument
+// (freeform/document/operations.h; LatticeTool::applyLatticeToObjects), as in `freeform ffd DOC`.
 
 #include <Eigen/Core>
 
@@ -20,19 +20,10 @@
 
 namespace freeform::editor {
 
-
-
 /// The mesh file `input` deformed through the lattice into `output` (format by its extension;
 /// the input's format keeps everything the file had): positions, normals (cof(J) n) and tangents
 /// (J t) as `freeform ffd` writes them. Returns the deformation report.
 DeformReport exportDeformedMesh(const std::string& input, const Lattice& lattice, double strength,
                                 const std::string& output);
-
-/// The object deformed exactly through the lattice, when the library can: 3D bezier_curve and
-/// bezier_spline (degree d (l+m+n) per segment), bezier_surface (deformSurface), and the inline
-/// vertices of a subdivision_surface (point-wise, which is exact for a cage). Curves and patches
-/// must lie inside the lattice box (their control points do) unless the policy is extrapolate;
-/// nullopt with `why` set when the object is left as it is.
-std::optional<ObjectData> deformObject(const Lattice& lattice, const ObjectData& object, double strength, std::string& why);
 
 } // namespace freeform::editor

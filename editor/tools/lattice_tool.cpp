@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "freeform/document/document.h"
 #include "freeform/io/geometry_data.h"
 #include "freeform/core/error.h"
 #include "freeform/volume/deform.h"
@@ -190,42 +191,37 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
     try {
         requireLattice(c.scene, latticeItem);
         const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
-        const double w = c.scene.item(latticeItem).settings.ffd.strength;
-        int done = 0, skipped = 0;
-        std::string why;
+        // The document layer's one rule for every object type (docs/ffd.md, "Documents"), the same
+        // deformDocument `freeform ffd DOC` runs; "exactly": objects whose control points leave the
+        // box are left as they are (unless the policy is extrapolate). A cage in a mesh file is
+        // written inline (the file stays as it is), as when one of its vertices is dragged.
+        DeformDocumentOptions options;
+        options.strength = c.scene.item(latticeItem).settings.ffd.strength;
+        options.skipInexact = true;
+        TypedDocument doc(c.scene.document(), c.scene.documentDirectory());
+        const DeformDocumentReport report = deformDocument(doc, lattice, options);
+        // Document object k is scene item k (scene.h), and deformDocument keeps every object's place.
         c.scene.beginMerge();
-        for (int i = 0; i < c.scene.itemCount(); ++i) {
-            if (i == latticeItem || c.scene.item(i).kind != SceneItem::Kind::DocumentObject) continue;
-            const DocumentObject& o = c.scene.object(i);
-            if (std::holds_alternative<LatticeData>(o.data)) continue;
-            std::string reason;
-            // A cage in a mesh file is deformed as inline vertices (the file stays as it is), as
-            // when one of its vertices is dragged.
-            ObjectData data = o.data;
-            if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty()) {
-                try {
-                    *sub = inlineCage(*sub, c.scene.documentDirectory(), "the cage file");
-                } catch (const Error& e) {
-                    ++skipped;
-                    why = o.name + ": " + e.what();
-                    continue;
-                }
-            }
-            const auto moved = deformObject(lattice, data, w, reason);
-            if (!moved) {
-                ++skipped;
-                why = o.name + ": " + reason;
-                continue;
-            }
-            DocumentObject next = o;
-            next.data = *moved;
-            c.scene.replaceObject(i, next, "apply lattice");
-            ++done;
+        const auto& objects = doc.objects();
+        for (std::size_t k = 0; k < objects.size(); ++k) {
+            const bool moved = std::any_of(report.objects.begin(), report.objects.end(),
+                                           [&](const DeformedObject& d) { return d.id == objects[k].id(); });
+            if (!moved) continue;
+            DocumentObject next = c.scene.object(static_cast<int>(k));
+            next.data = objects[k].data();
+            c.scene.replaceObject(static_cast<int>(k), next, "apply lattice");
         }
         c.scene.endMerge();
-        status() = "deformed " + std::to_string(done) + " object(s) exactly";
+        std::string why;
+        int skipped = 0;
+        for (const SkippedObject& s : report.skipped) {
+            if (s.type == "lattice") continue;
+            ++skipped;
+            why = s.name + ": " + s.reason;
+        }
+        status() = "deformed " + std::to_string(report.objects.size()) + " object(s) exactly";
         if (skipped) status() += ", left " + std::to_string(skipped) + " (" + why + ")";
-        return done > 0;
+        return !report.objects.empty();
     } catch (const std::exception& e) {
         c.scene.endMerge();
         status() = e.what();
