@@ -192,12 +192,13 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
         requireLattice(c.scene, latticeItem);
         const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
         // The document layer's one rule for every object type (docs/ffd.md, "Documents"), the same
-        // deformDocument `freeform ffd DOC` runs; "exactly": objects whose control points leave the
-        // box are left as they are (unless the policy is extrapolate). A cage in a mesh file is
-        // written inline (the file stays as it is), as when one of its vertices is dragged.
+        // deformDocument `freeform ffd DOC` runs, with the same options: an object whose control
+        // points leave the box is composed all the same (the lattice polynomial continued) and
+        // counted as "outside the box" in the status line, as the command reports "inside": false.
+        // A cage in a mesh file is written inline (the file stays as it is), as when one of its
+        // vertices is dragged.
         DeformDocumentOptions options;
         options.strength = c.scene.item(latticeItem).settings.ffd.strength;
-        options.skipInexact = true;
         TypedDocument doc(c.scene.document(), c.scene.documentDirectory());
         const DeformDocumentReport report = deformDocument(doc, lattice, options);
         // Document object k is scene item k (scene.h), and deformDocument keeps every object's place.
@@ -219,7 +220,12 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
             ++skipped;
             why = s.name + ": " + s.reason;
         }
+        const auto outside = std::count_if(report.objects.begin(), report.objects.end(),
+                                           [](const DeformedObject& d) { return !d.inside; });
         status() = "deformed " + std::to_string(report.objects.size()) + " object(s) exactly";
+        if (outside)
+            status() += ", " + std::to_string(outside) +
+                        " of them outside the box (the lattice polynomial continued there, docs/ffd.md)";
         if (skipped) status() += ", left " + std::to_string(skipped) + " (" + why + ")";
         return !report.objects.empty();
     } catch (const std::exception& e) {

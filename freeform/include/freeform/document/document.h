@@ -32,10 +32,9 @@
 //   editor/scene/geometry.cpp      Builder -> controlNet(o) (points + edges), objectPolyline(o, tol)
 //                                     for curves, tessellateObject(o, {tolerance, segments, flip})
 //                                     for surfaces and subdivision surfaces
-//   editor/tools/ffd_tools.cpp     deformObject -> deformDocument with skipInexact = true (the
-//                                     editor's refusal of objects outside the box), called from
-//                                     LatticeTool::applyLatticeToObjects; the rule for every type
-//                                     is in docs/ffd.md ("Documents")
+//   editor/tools/ffd_tools.cpp     deformObject -> deformDocument with the CLI's options, called
+//                                     from LatticeTool::applyLatticeToObjects; the rule for every
+//                                     type is in docs/ffd.md ("Documents")
 //   editor/scene/scene.cpp         cageFromData -> io/geometry_data.h (or SubdivisionObject::cage())
 //
 // Adding an object type (rational Bézier, NURBS): its data struct in io/document.h, one
