@@ -23,7 +23,7 @@
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/surface/bezier_surface.h"
 #include "freeform/surface/patch_complex.h"
-#include "freeform/volume/deform_file.h"
+#include "freeform/io/deform_file.h"
 #include "freeform/volume/lattice.h"
 #include "support/bytes.h"
 #include "support/process.h"
