@@ -16,7 +16,9 @@
 #include <string>
 
 #include "freeform/core/error.h"
+#include "freeform/io/bpt.h"
 #include "freeform/io/document.h"
+#include "freeform/io/geometry_data.h"
 #include "freeform/io/json_check.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/io/obj_freeform.h"
@@ -546,7 +548,7 @@ TEST_CASE("An empty mesh deforms to nothing; a face that repeats a vertex is nam
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j)
             for (int k = 0; k < 2; ++k) data.points.col(i * 4 + j * 2 + k) = Eigen::Vector3d(i, j, k) * 1.5;
-    const freeform::Lattice lattice = freeform::Lattice::fromData(data);
+    const freeform::Lattice lattice = freeform::latticeFromData(data);
 
     writeText(tmp("empty.obj"), "# nothing but a comment\n");
     MeshFile empty = MeshFile::read(tmp("empty.obj"));

@@ -3,6 +3,7 @@
 
 #include <freeform/core/error.h>
 #include <freeform/io/document.h>
+#include <freeform/io/geometry_data.h>
 #include <freeform/volume/lattice.h>
 
 #include <string>
@@ -29,8 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& o : doc.objects)
         if (const auto* lattice = std::get_if<freeform::LatticeData>(&o.data)) {
             try {
-                const freeform::Lattice l = freeform::Lattice::fromData(*lattice);
-                (void)l.toData();
+                const freeform::Lattice l = freeform::latticeFromData(*lattice);
+                (void)freeform::latticeToData(l);
             } catch (const freeform::Error&) {
             }
         }

@@ -2,6 +2,8 @@
 // 3 = subdivision cages with OpenSubdiv tags (OBJ + `t` lines, validated and built into a surface).
 
 #include <freeform/core/error.h>
+#include <freeform/io/bpt.h>
+#include <freeform/io/geometry_data.h>
 #include <freeform/io/obj_freeform.h>
 #include <freeform/subdivision/subdivision_surface.h>
 #include <freeform/surface/patch_complex.h>
