@@ -71,6 +71,7 @@ std::vector<KeyBinding> makeKeymap()
         // Lattices.
         {GLFW_KEY_L, 0, kPlain, C::Lattice, A::FitLattice, "L (imported mesh selected)", "fit a lattice to it (degrees and margin in the panel)"},
         {GLFW_KEY_D, 0, kPlain, C::Lattice, A::DirectManipulation, "D", "direct manipulation on / off (drag a point of a deformed mesh; the lattice follows)"},
+        {GLFW_KEY_A, kShift, kPlainShift, C::Lattice, A::ApplyLattice, "Shift+A (lattice selected)", "apply it exactly to the document's curves, splines, patches and cages (as freeform ffd DOC)"},
         // Editing.
         {GLFW_KEY_A, 0, kCtrl | kShift | kAlt, C::Edit, A::SelectAll, "A", "select all points"},
         {GLFW_KEY_A, kAlt, kCtrl | kAlt, C::Edit, A::SelectNone, "Alt+A", "select no point"},

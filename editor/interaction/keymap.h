@@ -46,7 +46,7 @@ enum class KeyAction {
     // Patch
     CreatePatch,
     // Lattice
-    FitLattice, DirectManipulation,
+    FitLattice, DirectManipulation, ApplyLattice,
     // Edit
     SelectAll, SelectNone, Deselect, Grab, ToggleGizmo, ToggleSoft, ToggleSnap, SoftLarger, SoftSmaller,
     // View

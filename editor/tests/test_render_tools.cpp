@@ -421,3 +421,59 @@ TEST_CASE("a spline drawn with Shift+C passes through the clicks and is C2 by fr
     undone.push_back(key("Z", {"ctrl"}));
     CHECK(test::slurp(replay(doc, "draw_spline_undo", undone)) == test::slurp(doc));
 }
+
+TEST_CASE("fit/apply lattice by --replay then --save writes freeform ffd's objects, number for number", "[render][replay][tools][ffd]")
+{
+    // data/ffd_every_type.json (every object type and the skewed cubic lattice "L", docs/ffd.md) with
+    // absolute paths for its cage and mesh files and a camera, so the pixels of the lattice's points
+    // are known. The editor: a click on a lattice point selects "L", Shift+A applies it (the lattice
+    // panel's "apply exactly to curves and patches"), --save writes the document. The command line:
+    // `freeform ffd DOC --lattice DOC --object L -o OUT`. Both go through deformDocument; this test
+    // ties the real window's input path to the command's output.
+    Json source = Json::parse(test::slurp(cat(FREEFORM_SOURCE_DIR, "/data/ffd_every_type.json")));
+    for (Json& o : source["objects"])
+        if (o["type"] == "subdivision_surface" && o.contains("mesh")) o["mesh"] = cat(FREEFORM_SOURCE_DIR, "/data/", o["mesh"].get<std::string>());
+    for (Json& m : source["editor"]["meshes"]) m["path"] = cat(FREEFORM_SOURCE_DIR, "/data/", m["path"].get<std::string>());
+    source["editor"]["camera"] = camera({0.5, 0, 0.25}, 16);
+    const std::string doc = writeDocument("every_type", source);
+
+    const std::string cliOut = cat(kTmp, "/tools_every_type.cli.json");
+    fs::remove(cliOut);
+    const auto r = test::cli(cat("ffd '", doc, "' --lattice '", doc, "' --object L -o '", cliOut, "'"));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+
+    // The lattice point whose pixel lies farthest from the pixel of the objects' centre: outside
+    // every other object on screen (they lie in [-1, 1]^3, the lattice box is larger).
+    const Scene scene = Scene::load(doc);
+    const Eigen::Vector2d centre = worldToPixel(scene, kW, kH, Eigen::Vector3d::Zero());
+    Eigen::Vector2d target = centre;
+    for (const Json& o : source["objects"])
+        if (o["name"] == "L")
+            for (const Json& p : o["points"]) {
+                const Eigen::Vector2d px = worldToPixel(scene, kW, kH, vec(p));
+                const bool onScreen = px.x() > 260 && px.x() < kW - 310 && px.y() > 40 && px.y() < kH - 40; // off the panels
+                if (onScreen && (px - centre).norm() > (target - centre).norm()) target = px;
+            }
+    REQUIRE(target != centre);
+    Json events = Json::array();
+    click(events, target);
+    events.push_back(key("A", {"shift"}));
+    events.push_back(frames(2));
+    const std::string out = replay(doc, "every_type", events);
+
+    const Json editor = Json::parse(test::slurp(out)), cli = Json::parse(test::slurp(cliOut));
+    REQUIRE(editor["objects"].size() == cli["objects"].size());
+    int changed = 0;
+    for (std::size_t k = 0; k < cli["objects"].size(); ++k) {
+        Json a = editor["objects"][k], b = cli["objects"][k];
+        a.erase("editor");
+        b.erase("editor");
+        INFO("object " << b["name"]);
+        CHECK(a == b); // JSON numbers compare as doubles: number for number
+        if (b != Json::parse(test::slurp(doc))["objects"][k]) ++changed;
+    }
+    // Every 3D curve, spline, patch, de Boor surface and the cage change; the 2D ones, the lattice
+    // itself and nothing else stay (the table of docs/ffd.md, "Documents").
+    CHECK(changed >= 7);
+}

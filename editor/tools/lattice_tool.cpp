@@ -47,6 +47,12 @@ bool LatticeTool::onKey(ToolContext& c, KeyAction action)
         direct = !direct;
         status() = direct ? "direct manipulation: drag a point of a deformed mesh" : "";
         return true;
+    case KeyAction::ApplyLattice: {
+        const int item = c.selection.item;
+        if (item < 0 || item >= c.scene.itemCount() || c.scene.item(item).type != "lattice") return false;
+        applyLatticeToObjects(c, item); // the panel's "apply exactly to curves and patches"
+        return true;
+    }
     default: return false;
     }
 }
