@@ -20,9 +20,17 @@ if [ -z "${DISPLAY:-}" ] && [ -z "${FREEFORM_UNDER_XVFB:-}" ] && command -v xvfb
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
+# ccache, when the machine has it, makes a second run of this script on unchanged sources fast; it is
+# not a dependency (a fresh machine builds without it). Paths are hashed relative to the checkout,
+# so two clones in different folders share the cache.
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(cd .. && pwd)}"
+fi
 
 echo "== build (Release, -Werror)"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFREEFORM_WARNINGS_AS_ERRORS=ON >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFREEFORM_WARNINGS_AS_ERRORS=ON "${launcher[@]}" >/dev/null
 cmake --build build -j "$jobs"
 echo "== tests"
 ctest --test-dir build --output-on-failure -j "$jobs"
@@ -34,7 +42,7 @@ if [ "${FREEFORM_SKIP_SANITIZERS:-}" != "1" ]; then
   # its render tests (label "render") run in the main build only (llvmpipe under ASan is slow and
   # its JIT reports leaks of its own).
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1" -DFREEFORM_SANITIZE=ON \
-        -DFREEFORM_WARNINGS_AS_ERRORS=ON -DFREEFORM_BUILD_BENCHMARKS=OFF -DFREEFORM_BUILD_EDITOR=ON >/dev/null
+        -DFREEFORM_WARNINGS_AS_ERRORS=ON -DFREEFORM_BUILD_BENCHMARKS=OFF -DFREEFORM_BUILD_EDITOR=ON "${launcher[@]}" >/dev/null
   cmake --build build-asan -j "$jobs"
   echo "== tests under sanitizers"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
