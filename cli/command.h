@@ -92,6 +92,7 @@ void addLatticeEvaluators(std::map<std::string, Evaluator>& table);     // eval_
 void addSplineEvaluators(std::map<std::string, Evaluator>& table);      // eval_spline.cpp
 void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table); // eval_subdivision.cpp
 void addSurfaceEvaluators(std::map<std::string, Evaluator>& table);     // eval_surface.cpp
+void addRationalEvaluators(std::map<std::string, Evaluator>& table);    // eval_rational.cpp
 
 // The commands (one file each).
 Action defineBench(CLI::App& app);       // cmd_bench.cpp

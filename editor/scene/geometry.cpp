@@ -7,6 +7,7 @@
 #include <set>
 #include <type_traits>
 
+#include "freeform/document/operations.h"
 #include "freeform/io/geometry_data.h"
 #include "freeform/curve/aframe.h"
 #include "freeform/curve/bezier_curve.h"
@@ -166,6 +167,28 @@ struct Builder {
     }
 
     double t() const { return settings.tessellation.tolerance > 0 ? settings.tessellation.tolerance : tolerance; }
+
+    // Rational Bézier and NURBS objects: through the document layer (document/operations.h).
+    void operator()(const RationalBezierCurveData& d) { documentLayer(d); }
+    void operator()(const RationalBezierSurfaceData& d) { documentLayer(d); }
+    void operator()(const NurbsCurveData& d) { documentLayer(d); }
+    void operator()(const NurbsSurfaceData& d) { documentLayer(d); }
+    void documentLayer(const ObjectData& data)
+    {
+        TypedDocument doc;
+        doc.source = "scene";
+        const TypedObject& o = doc.object(doc.add("object", data));
+        const ControlNet net = controlNet(o);
+        g.netPoints = net.points;
+        g.netEdges = net.edges;
+        if (auto line = objectPolyline(o, t())) g.curve = *line;
+        const Tessellation& s = settings.tessellation;
+        ObjectTessellation options;
+        options.tolerance = s.mode == Tessellation::Mode::Uniform ? 0 : t();
+        options.segments = s.segments;
+        options.flip = s.flip;
+        if (auto mesh = tessellateObject(o, options)) g.surface = std::move(*mesh);
+    }
 };
 
 } // namespace

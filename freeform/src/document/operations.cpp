@@ -7,6 +7,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "rational.h"
 
 namespace freeform {
 namespace {
@@ -109,18 +110,19 @@ std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const Obj
         }
         return mesh;
     }
-    return std::nullopt;
+    return detail::tessellateRationalObject(object, options, report);
 }
 
 std::optional<Eigen::Matrix<double, 3, Eigen::Dynamic>> objectPolyline(const TypedObject& object, double tolerance)
 {
     if (const auto curve = AnyCurve::of(object)) return curve->polyline(tolerance);
-    return std::nullopt;
+    return detail::rationalPolyline(object, tolerance);
 }
 
 ControlNet controlNet(const TypedObject& object)
 {
     ControlNet net;
+    if (detail::rationalControlNet(object, net)) return net;
     std::visit(
         Overloaded{
             [&](const BezierCurveData& d) {
@@ -166,6 +168,7 @@ ControlNet controlNet(const TypedObject& object)
                     }
                 net.edges.assign(edges.begin(), edges.end());
             },
+            [](const auto&) {}, // the rational types: rationalControlNet above
         },
         object.data());
     return net;
