@@ -46,6 +46,7 @@ Json continuity(const ContinuityOptions& o)
     }
     const Document doc = readDocument(o.positional[0]);
     const DocumentObject& object = doc.object(o.object);
+    if (std::holds_alternative<NurbsCurveData>(object.data)) return nurbsContinuity(doc, object, tol);
     return splineDimension(doc, object) == 2 ? report<2>(doc, object, tol) : report<3>(doc, object, tol);
 }
 

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "command.h"
 #include "freeform/io/bpt.h"
@@ -49,29 +50,43 @@ Json tessellateCommand(const TessellateOptions& o)
     options.flipNormals = o.outward;
 
     PatchComplex complex;
+    std::vector<const DocumentObject*> rational; // rational_bezier_surface, nurbs_surface
+    std::optional<Document> document;
     if (hasExtension(input, ".bpt")) {
         if (given(o.objectGiven)) throw UsageError("option --object applies to documents, not .bpt files");
         complex = readBpt(input);
     } else {
-        const Document doc = readDocument(input);
-        if (given(o.objectGiven)) {
+        document = readDocument(input);
+        const Document& doc = *document;
+        if (given(o.objectGiven) && isRationalSurface(doc.object(o.object))) {
+            rational.push_back(&doc.object(o.object));
+        } else if (given(o.objectGiven)) {
             complex = surfacePatches(doc, doc.object(o.object));
         } else {
             for (const DocumentObject& o : doc.objects) {
+                if (isRationalSurface(o)) rational.push_back(&o);
                 if (!isSurfaceObject(o)) continue;
                 PatchComplex part = surfacePatches(doc, o);
                 complex.patches.insert(complex.patches.end(), part.patches.begin(), part.patches.end());
             }
-            if (complex.patches.empty())
+            if (complex.patches.empty() && rational.empty())
                 throw Error(doc.source + ": the document has no surface objects (bezier_surface, deboor_surface)");
         }
     }
     TessellationReport report;
-    const PolygonMesh mesh = tessellate(complex, options, &report);
+    PolygonMesh mesh = complex.patches.empty() ? PolygonMesh() : tessellate(complex, options, &report);
+    std::size_t patches = complex.patches.size();
+    if (!rational.empty()) {
+        RationalMeshes r = tessellateRationalSurfaces(*document, rational, options);
+        if (!complex.patches.empty()) r.meshes.insert(r.meshes.begin(), std::move(mesh));
+        mesh = r.meshes.size() == 1 ? std::move(r.meshes.front()) : mergeMeshes(r.meshes);
+        patches += static_cast<std::size_t>(r.patches);
+        report.errorBound = std::max(report.errorBound, r.errorBound);
+    }
     writePolygonMesh(mesh, output);
     Json out;
     out["output"] = output;
-    out["patches"] = complex.patches.size();
+    out["patches"] = patches;
     out["vertices"] = mesh.vertexCount();
     out["triangles"] = mesh.faceCount();
     out["error_bound"] = report.errorBound;

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "freeform/document/document.h"
+#include "freeform/io/geometry_data.h"
+#include "freeform/io/mesh_io.h"
 #include "freeform/tessellate/tessellate_rational.h"
 #include "support/cli.h"
 
@@ -271,4 +273,183 @@ TEST_CASE("rational document: freeform eval in process, exit statuses")
     CHECK(r.status == 1);
     CHECK(r.err.find("object \"circle\"") != std::string::npos);
     CHECK(r.err.find("field \"knots\"") != std::string::npos);
+}
+
+TEST_CASE("rational document: freeform tessellate of rational and NURBS surfaces")
+{
+    const std::string path = tmp("rational_tess.json");
+    {
+        std::ofstream f(path);
+        f << kDoc;
+    }
+    const std::string obj = tmp("rational_tess.obj");
+    auto r = test::runCli({"tessellate", path, "--object", "ns", "--tolerance", "0.001", "-o", obj});
+    REQUIRE(r.status == 0);
+    Json j = Json::parse(r.out);
+    CHECK(j["patches"] == 2); // two knot spans in u, one in v
+    CHECK(j["error_bound"].get<double>() <= 0.001);
+    const PolygonMesh mesh = readPolygonMesh(obj);
+    CHECK(mesh.vertexCount() > 0);
+    for (Eigen::Index k = 0; k < mesh.positions.cols(); ++k)
+        CHECK(std::abs(mesh.positions.col(k).head<2>().norm() - 1) <= 1e-12); // OBJ text keeps 17 digits or fewer
+    // The whole document: both rational surfaces (1 + 2 patches).
+    r = test::runCli({"tessellate", path, "--segments", "4", "-o", obj});
+    REQUIRE(r.status == 0);
+    j = Json::parse(r.out);
+    CHECK(j["patches"] == 3);
+    CHECK(j["triangles"] == 2 * (4 * 4 + 8 * 4));
+}
+
+TEST_CASE("rational document: freeform convert to and from NURBS keeps the curve")
+{
+    const std::string path = tmp("rational_conv.json");
+    {
+        std::ofstream f(path);
+        f << replaced(kDoc, "\"objects\": [", R"("objects": [
+  {"name": "sp", "type": "bezier_spline", "degree": 2, "closed": false, "points": [[0,0],[1,2],[2,0],[3,1],[4,4]], "intervals": [1, 2.5]},
+  {"name": "cl", "type": "bezier_spline", "degree": 1, "closed": true, "points": [[0,0,0],[1,0,0],[1,1,1]]},
+)");
+    }
+    const TypedDocument before = TypedDocument::read(path);
+    const std::string out = tmp("rational_conv_out.json");
+    // bezier_spline -> nurbs_curve: the same points at the same global parameter.
+    for (const char* name : {"sp", "cl", "arc"}) {
+        auto r = test::runCli({"convert", path, "--object", name, "--to", "nurbs_curve", "-o", out});
+        REQUIRE(r.status == 0);
+        CHECK(Json::parse(r.out)["to"] == "nurbs_curve");
+        const TypedDocument after = TypedDocument::read(out);
+        REQUIRE(after.object(name).type() == "nurbs_curve");
+        const double end = parameterDomain(before.object(name))[0];
+        CHECK(parameterDomain(after.object(name))[0] == end);
+        for (int k = 0; k <= 20; ++k) {
+            const double t = end * k / 20;
+            const Evaluation a = evaluate(before, before.object(name), {t}, 1);
+            const Evaluation b = evaluate(after, after.object(name), {t}, 1);
+            CHECK((a.point - b.point).norm() <= 1e-14);
+            if (k % 5 != 0) CHECK((a.derivatives[0] - b.derivatives[0]).norm() <= 1e-12 * (1 + a.derivatives[0].norm()));
+        }
+    }
+    // nurbs_curve (polynomial, spans 0.5, 1, 1.5) -> bezier_spline on the same parameter.
+    auto r = test::runCli({"convert", path, "--object", "b", "--to", "bezier_spline", "-o", out});
+    REQUIRE(r.status == 0);
+    {
+        const TypedDocument after = TypedDocument::read(out);
+        const auto& d = std::get<BezierSplineData>(after.object("b").data());
+        CHECK(d.degree == 3);
+        CHECK(d.intervals == std::vector<double>{0.5, 1, 1.5});
+        for (int k = 0; k <= 30; ++k) {
+            const double t = 3.0 * k / 30;
+            CHECK((evaluate(before, before.object("b"), {t}, 0).point - evaluate(after, after.object("b"), {t}, 0).point).norm() <=
+                  1e-13);
+        }
+    }
+    // A one-patch NURBS from a rational patch and back.
+    r = test::runCli({"convert", path, "--object", "cyl", "--to", "nurbs_surface", "-o", out});
+    REQUIRE(r.status == 0);
+    r = test::runCli({"convert", out, "--object", "cyl", "--to", "rational_bezier_surface", "-o", tmp("rational_conv_back.json")});
+    REQUIRE(r.status == 0);
+    {
+        const TypedDocument back = TypedDocument::read(tmp("rational_conv_back.json"));
+        const auto& a = std::get<RationalBezierSurfaceData>(before.object("cyl").data());
+        const auto& b = std::get<RationalBezierSurfaceData>(back.object("cyl").data());
+        CHECK((a.points - b.points).norm() <= 1e-15);
+        CHECK(a.weights == b.weights);
+    }
+    // Refused: several rational pieces in one object, already NURBS, the wrong target form.
+    r = test::runCli({"convert", path, "--object", "circle", "--to", "bezier_spline", "-o", out});
+    CHECK(r.status == 1);
+    CHECK(r.err.find("rational") != std::string::npos);
+    r = test::runCli({"convert", path, "--object", "circle", "--to", "nurbs_curve", "-o", out});
+    CHECK(r.status == 1);
+    CHECK(r.err.find("already") != std::string::npos);
+    r = test::runCli({"convert", path, "--object", "b", "--to", "bezier_surface", "-o", out});
+    CHECK(r.status == 1);
+    CHECK(r.err.find("use --to bezier_spline") != std::string::npos);
+}
+
+TEST_CASE("rational document: freeform continuity of a nurbs_curve from the geometry")
+{
+    const std::string path = tmp("rational_cont.json");
+    {
+        std::ofstream f(path);
+        f << replaced(kDoc, "\"objects\": [", R"("objects": [
+  {"name": "line", "type": "nurbs_curve", "degree": 2, "knots": [0,0,0,1,1,2,2,2], "points": [[0,0],[1,0],[2,0],[3,0],[4,0]]},
+)");
+    }
+    // b: simple knot 0.5 (C2 for these generic points), double knot 1.5 (C1).
+    auto r = test::runCli({"continuity", path, "--object", "b"});
+    REQUIRE(r.status == 0);
+    Json j = Json::parse(r.out);
+    REQUIRE(j["joints"].size() == 2);
+    CHECK(j["joints"][0]["t"] == 0.5);
+    CHECK(j["joints"][0]["C"] == 2);
+    CHECK(j["joints"][1]["t"] == 1.5);
+    CHECK(j["joints"][1]["C"] == 1);
+    // line: a double knot (C0 by multiplicity) but the points lie evenly on a line: x = 2u, C2.
+    r = test::runCli({"continuity", path, "--object", "line"});
+    REQUIRE(r.status == 0);
+    j = Json::parse(r.out);
+    REQUIRE(j["joints"].size() == 1);
+    CHECK(j["joints"][0]["C"] == 2);
+    CHECK(j["joints"][0]["G"] == 2);
+}
+
+TEST_CASE("rational document: deformDocument composes NURBS and rational curves exactly")
+{
+    TypedDocument doc(parseDocument(R"({"format": "freeform", "version": 1, "objects": [
+  {"name": "b", "type": "nurbs_curve", "degree": 3, "knots": [0,0,0,0,0.5,1.5,1.5,3,3,3,3],
+   "points": [[0.1,0.1,0.1],[0.2,0.8,0.3],[0.4,0.6,0.9],[0.6,0.2,0.5],[0.7,0.5,0.2],[0.8,0.9,0.4],[0.9,0.3,0.6]],
+   "weights": [1, 2, 0.5, 1, 1.5, 1, 1]},
+  {"name": "r", "type": "rational_bezier_curve", "points": [[0.2,0.2,0.2],[0.8,0.3,0.5],[0.5,0.9,0.8]], "weights": [1, 3, 1]}
+]})", "d.json"));
+    LatticeData ld;
+    ld.degree = {1, 1, 2};
+    ld.points.resize(3, 12);
+    for (int i = 0; i <= 1; ++i)
+        for (int j = 0; j <= 1; ++j)
+            for (int k = 0; k <= 2; ++k) ld.points.col(i * 6 + j * 3 + k) = Eigen::Vector3d(i, j, k / 2.0);
+    ld.points.col(1 * 6 + 1 * 3 + 1) += Eigen::Vector3d(0.3, -0.2, 0.25); // not affine
+    const Lattice lattice = latticeFromData(ld);
+    const TypedDocument before = doc;
+    const DeformDocumentReport report = deformDocument(doc, lattice);
+    REQUIRE(report.objects.size() == 2);
+    CHECK(report.skipped.empty());
+    CHECK(report.objects[0].type == "nurbs_curve");
+    CHECK(report.objects[1].type == "rational_bezier_curve");
+    for (const char* name : {"b", "r"}) {
+        const double end = parameterDomain(before.object(name))[0];
+        for (int k = 0; k <= 40; ++k) {
+            const double t = end * k / 40;
+            const Eigen::Vector3d p = evaluate(before, before.object(name), {t}, 0).point;
+            const Eigen::Vector3d expected = lattice.deform(p).point; // point-wise FFD, independent of the composition
+            CHECK((evaluate(doc, doc.object(name), {t}, 0).point - expected).norm() <= 1e-13);
+        }
+    }
+}
+
+TEST_CASE("rational document: freeform interpolate --degree P passes through the data and reproduces polynomials")
+{
+    for (int p : {2, 3, 5}) {
+        // p(t) = (t, t^p - t, 2 t^2 - t^(p-1)) sampled at uneven given parameters in [0, 1].
+        auto f = [p](double t) { return Eigen::Vector3d(t, std::pow(t, p) - t, 2 * t * t - std::pow(t, p - 1)); };
+        std::vector<double> params{0, 0.07, 0.2, 0.31, 0.5, 0.62, 0.7, 0.85, 1};
+        Json pts = Json::array();
+        for (double t : params) pts.push_back({f(t)[0], f(t)[1], f(t)[2]});
+        const std::string in = tmp("interp_points.json"), out = tmp("interp_out.json");
+        {
+            std::ofstream s(in);
+            s << Json{{"points", pts}, {"params", params}}.dump();
+        }
+        auto r = test::runCli({"interpolate", in, "--degree", std::to_string(p), "-o", out});
+        REQUIRE(r.status == 0);
+        CHECK(Json::parse(r.out)["degree"] == p);
+        const TypedDocument doc = TypedDocument::read(out);
+        const TypedObject& c = doc.object("interpolant");
+        REQUIRE(c.type() == "nurbs_curve");
+        for (double t : params) CHECK((evaluate(doc, c, {t}, 0).point - f(t)).norm() <= 1e-12);
+        for (int k = 0; k <= 50; ++k) CHECK((evaluate(doc, c, {k / 50.0}, 0).point - f(k / 50.0)).norm() <= 1e-12);
+    }
+    const std::string in = tmp("interp_points.json");
+    CHECK(test::runCli({"interpolate", in, "--degree", "0", "-o", tmp("x.json")}).status == 2);
+    CHECK(test::runCli({"interpolate", in, "--degree", "3", "--end", "periodic", "-o", tmp("x.json")}).status == 2);
 }

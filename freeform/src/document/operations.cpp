@@ -7,6 +7,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "freeform/curve/nurbs_continuity.h"
 #include "rational.h"
 
 namespace freeform {
@@ -54,6 +55,9 @@ std::string splineError(const TypedDocument& doc, const TypedObject& object)
 std::vector<JointContinuity<double>> continuity(const TypedDocument& doc, const TypedObject& object,
                                                 const ContinuityTolerances<double>& tol)
 {
+    // nurbs_curve: every interior breakpoint (C^k from the geometry, docs/nurbs.md).
+    if (const auto* c = std::get_if<NurbsCurve<double, 2>>(&object.geometry())) return continuityReport(*c, tol);
+    if (const auto* c = std::get_if<NurbsCurve<double, 3>>(&object.geometry())) return continuityReport(*c, tol);
     const auto curve = AnyCurve::of(object);
     if (!curve || !curve->isSpline()) throw Error(splineError(doc, object));
     return std::visit(
