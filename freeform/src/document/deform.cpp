@@ -5,6 +5,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "freeform/volume/deform_rational.h"
 
 namespace freeform {
 namespace {
