@@ -95,7 +95,9 @@ Json runFfdDocument(const std::string& input, const std::string& output, const D
     };
     for (DocumentObject& o : doc.objects) {
         const std::string type = objectType(o.data);
-        if (type == "deboor_surface" || type == "subdivision_surface" || type == "lattice") {
+        // The rational types are composed by deformDocument (document layer); this bridge skips them.
+        if (type == "deboor_surface" || type == "subdivision_surface" || type == "lattice" ||
+            type.find("rational_") == 0 || type.find("nurbs_") == 0) {
             skip(o, "no exact deformation for a " + type);
             continue;
         }

@@ -453,3 +453,25 @@ TEST_CASE("rational document: freeform interpolate --degree P passes through the
     CHECK(test::runCli({"interpolate", in, "--degree", "0", "-o", tmp("x.json")}).status == 2);
     CHECK(test::runCli({"interpolate", in, "--degree", "3", "--end", "periodic", "-o", tmp("x.json")}).status == 2);
 }
+
+TEST_CASE("rational document: freeform ffd DOC skips the rational types and copies them unchanged")
+{
+    const std::string path = tmp("rational_ffd.json"), lat = tmp("rational_ffd_lattice.json"), out = tmp("rational_ffd_out.json");
+    {
+        std::ofstream f(path);
+        f << kDoc;
+    }
+    {
+        std::ofstream f(lat);
+        f << R"({"format": "freeform", "version": 1, "objects": [{"name": "L", "type": "lattice", "degree": [1, 1, 1],
+  "origin": [-2, -2, -1], "axes": [[4, 0, 0], [0, 4, 0], [0, 0, 4]],
+  "points": [[-2,-2,-1],[-2,-2,3],[-2,2,-1],[-2,2,3],[2,-2,-1],[2,-2,3],[2,2,-1],[3,2,3]]}]})";
+    }
+    const auto r = test::runCli({"ffd", path, "--lattice", lat, "-o", out});
+    REQUIRE(r.status == 0);
+    const Json j = Json::parse(r.out);
+    CHECK(j["skipped"].size() == 5);
+    const Document before = parseDocument(kDoc, "k"), after = readDocument(out);
+    CHECK(formatDocument(after).find("\"nurbs_surface\"") != std::string::npos);
+    CHECK(std::get<NurbsCurveData>(after.object("circle").data).knots == std::get<NurbsCurveData>(before.object("circle").data).knots);
+}
