@@ -45,7 +45,12 @@ Json continuity(const ContinuityOptions& o)
         tol.relative = tol.angle = o.tolerance;
     }
     const TypedDocument doc = TypedDocument::read(o.positional[0]);
-    return report(doc, objectNamed(doc, o.object), tol);
+    const TypedObject& object = objectNamed(doc, o.object);
+    if (std::holds_alternative<NurbsCurveData>(object.data())) {
+        const Document plain = doc.toDocument();
+        return nurbsContinuity(plain, plain.object(o.object), tol);
+    }
+    return report(doc, object, tol);
 }
 
 } // namespace

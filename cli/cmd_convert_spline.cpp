@@ -15,6 +15,7 @@ Json convertSpline(const ConvertOptions& o)
 {
     expectPositional(o.positional, 1, "the document (freeform convert DOC.json --object NAME --to FORM -o OUT.json)");
     if (!given(o.objectGiven)) throw UsageError("option --object is required");
+    if (isRationalConversion(o)) return convertRational(o);
     const std::string& name = o.object;
     const std::string& to = o.to;
     const std::string& output = o.output;

@@ -98,6 +98,9 @@ BezierSplineData interpolate(const PointsFile& in, InterpolationOptions<double, 
 struct InterpolateOptions {
     std::vector<std::string> positional;
     std::string output, end = "natural", param = "chord", startDerivative, endDerivative;
+    int degree = 3;
+    const CLI::Option* degreeGiven = nullptr;
+    const CLI::Option* endConditionGiven = nullptr;
     const CLI::Option* paramGiven = nullptr;
     const CLI::Option* startGiven = nullptr;
     const CLI::Option* endGiven = nullptr;
@@ -130,6 +133,11 @@ Json interpolate(const InterpolateOptions& o)
     const PointsFile in = readPointsFile(source);
     if (!in.params.empty() && given(o.paramGiven))
         throw UsageError("give the parameters either in the points file (\"params\") or by --param, not both");
+    if (given(o.degreeGiven)) {
+        // Any degree: global NURBS interpolation (cli/interpolate_nurbs.cpp); --end clamped only.
+        if (given(o.endConditionGiven) && !clamped) throw UsageError("option --degree: goes with --end clamped or no --end");
+        return interpolateNurbsCommand(in.points, in.params, base.parametrization, o.degree, start, end, source, output);
+    }
 
     BezierSplineData data;
     if (in.points.rows() == 2) {
@@ -170,7 +178,11 @@ Action defineInterpolate(CLI::App& app)
     addPositionals(app, "POINTS.json", o->positional, "the points to interpolate");
     app.add_option("-o,--output", o->output, "the document to write (atomically)")->type_name("FILE")->required();
     // --end and --param are checked by the library's parsers (their messages name the choices).
-    app.add_option("--end", o->end,
+    o->degreeGiven = addNumber(app, "--degree", o->degree,
+                               "any degree P: a nurbs_curve by global interpolation (averaged knots on [0, 1]) "
+                               "instead of the C2 cubic bezier_spline")
+                         ->type_name("P");
+    o->endConditionGiven = app.add_option("--end", o->end,
                    "natural: zero second derivative at both ends; clamped: the end derivatives are given; "
                    "periodic: a closed spline, C2 at the first point too (a last point equal to the first is dropped)")
         ->type_name("natural|clamped|periodic")

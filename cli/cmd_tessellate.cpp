@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "command.h"
 #include "typed_document.h"
@@ -57,19 +58,42 @@ Json tessellateCommand(const TessellateOptions& o)
     options.sampleDeviation = true;
 
     PatchComplex complex;
+    std::vector<const DocumentObject*> rational; // rational_bezier_surface, nurbs_surface
+    std::optional<Document> document;
     if (hasExtension(input, ".bpt")) {
         if (given(o.objectGiven)) throw UsageError("option --object applies to documents, not .bpt files");
         complex = readBpt(input);
     } else {
         const TypedDocument doc = TypedDocument::read(input);
-        complex = given(o.objectGiven) ? surfacePatches(doc, objectNamed(doc, o.object)) : documentPatches(doc);
+        document = doc.toDocument(); // plain data for the rational surfaces (tessellate_rational.cpp)
+        const Document& plain = *document;
+        if (given(o.objectGiven)) {
+            const TypedObject& object = objectNamed(doc, o.object);
+            if (isRationalSurface(plain.object(o.object))) rational.push_back(&plain.object(o.object));
+            else complex = surfacePatches(doc, object);
+        } else {
+            for (const DocumentObject& obj : plain.objects)
+                if (isRationalSurface(obj)) rational.push_back(&obj);
+            const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(),
+                                                [](const TypedObject& t) { return AnySurface::of(t).has_value(); });
+            // documentPatches says "no surface objects" when the document has none of any kind.
+            if (polynomial || rational.empty()) complex = documentPatches(doc);
+        }
     }
     TessellationReport report;
-    const PolygonMesh mesh = tessellate(complex, options, &report);
+    PolygonMesh mesh = complex.patches.empty() ? PolygonMesh() : tessellate(complex, options, &report);
+    std::size_t patches = complex.patches.size();
+    if (!rational.empty()) {
+        RationalMeshes r = tessellateRationalSurfaces(*document, rational, options);
+        if (!complex.patches.empty()) r.meshes.insert(r.meshes.begin(), std::move(mesh));
+        mesh = r.meshes.size() == 1 ? std::move(r.meshes.front()) : mergeMeshes(r.meshes);
+        patches += static_cast<std::size_t>(r.patches);
+        report.errorBound = std::max(report.errorBound, r.errorBound);
+    }
     writePolygonMesh(mesh, output);
     Json out;
     out["output"] = output;
-    out["patches"] = complex.patches.size();
+    out["patches"] = patches;
     out["vertices"] = mesh.vertexCount();
     out["triangles"] = mesh.faceCount();
     out["error_bound"] = report.errorBound;

@@ -19,7 +19,11 @@
 #include <vector>
 
 #include "freeform/document/model.h"
+#include "freeform/curve/continuity.h"
+#include "freeform/curve/interpolation.h"
 #include "freeform/io/document.h"
+#include "freeform/mesh/polygon_mesh.h"
+#include "freeform/tessellate/tessellate.h"
 
 namespace freeform::cli {
 
@@ -94,6 +98,25 @@ void addCurveEvaluators(std::map<std::string, Evaluator>& table);       // eval_
 void addLatticeEvaluators(std::map<std::string, Evaluator>& table);     // eval_lattice.cpp
 void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table); // eval_subdivision.cpp
 void addSurfaceEvaluators(std::map<std::string, Evaluator>& table);     // eval_surface.cpp
+void addRationalEvaluators(std::map<std::string, Evaluator>& table);    // eval_rational.cpp
+
+/// `freeform tessellate` on rational_bezier_surface and nurbs_surface objects (tessellate_rational.cpp).
+struct RationalMeshes {
+    std::vector<PolygonMesh> meshes;
+    int patches = 0;       // Bézier patches (after extraction)
+    double errorBound = 0; // the largest certified bound
+};
+bool isRationalSurface(const DocumentObject& object);
+RationalMeshes tessellateRationalSurfaces(const Document& doc, const std::vector<const DocumentObject*>& objects,
+                                          const TessellationOptions& options);
+PolygonMesh mergeMeshes(const std::vector<PolygonMesh>& meshes);
+/// `freeform continuity` on a nurbs_curve through the document layer (convert_rational.cpp).
+Json nurbsContinuity(const Document& doc, const DocumentObject& object, const ContinuityTolerances<double>& tol);
+
+/// `freeform interpolate --degree P` (interpolate_nurbs.cpp): writes the nurbs_curve "interpolant".
+Json interpolateNurbsCommand(const PointColumns& points, const std::vector<double>& params, Parametrization param,
+                             int degree, const std::vector<double>& start, const std::vector<double>& end,
+                             const std::string& source, const std::string& output);
 
 // The commands (one file each).
 Action defineBench(CLI::App& app);       // cmd_bench.cpp

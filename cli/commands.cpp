@@ -31,6 +31,7 @@ const std::map<std::string, Evaluator>& evaluators()
         addSurfaceEvaluators(t);
         addLatticeEvaluators(t);
         addSubdivisionEvaluators(t);
+        addRationalEvaluators(t);
         return t;
     }();
     return table;

@@ -16,5 +16,8 @@ struct ConvertOptions {
 
 Json convertSpline(const ConvertOptions& o);      // cmd_convert_spline.cpp
 Json convertObjFreeform(const ConvertOptions& o); // cmd_convert_obj.cpp
+/// --to nurbs_curve|nurbs_surface, or any --to from a nurbs object (convert_rational.cpp).
+bool isRationalConversion(const ConvertOptions& o);
+Json convertRational(const ConvertOptions& o);
 
 } // namespace freeform::cli

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "freeform/document/document.h"
+#include "freeform/document/operations.h"
 #include "freeform/io/geometry_data.h"
 #include "freeform/io/mesh_io.h"
 #include "scene/scene.h"

@@ -5,6 +5,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "freeform/volume/deform_rational.h"
 
 namespace freeform {
 namespace {
@@ -149,6 +150,30 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 DeBoorSurfaceData d = std::get<DeBoorSurfaceData>(o.data());
                 d.points = mapPolynomial(lattice, d.points, w);
                 r.degree = {3, 3};
+                result = std::move(d);
+            } else if (const auto* rc = std::get_if<RationalBezierCurve<double, 3>>(&g)) {
+                // Exact composition through the lattice (volume/deform_rational.h).
+                r.inside = controlPointsInside(lattice, rc->controlPoints());
+                const RationalBezierCurve<double, 3> moved = deformCurve(RationalLattice(lattice), *rc, w);
+                RationalBezierCurveData d;
+                d.points = moved.controlPoints();
+                const Eigen::VectorXd weights = moved.weights();
+                d.weights.assign(weights.data(), weights.data() + weights.size());
+                r.degree = {moved.degree()};
+                result = std::move(d);
+            } else if (const auto* nc = std::get_if<NurbsCurve<double, 3>>(&g)) {
+                // Span by span through the Bézier extraction; the result keeps the breakpoints.
+                r.inside = controlPointsInside(lattice, nc->controlPoints());
+                const NurbsCurve<double, 3> moved = deformCurve(RationalLattice(lattice), *nc, w);
+                NurbsCurveData d;
+                d.degree = moved.degree();
+                d.knots = moved.knots();
+                d.points = moved.controlPoints();
+                if (moved.isRational()) {
+                    const Eigen::VectorXd weights = moved.weights();
+                    d.weights.assign(weights.data(), weights.data() + weights.size());
+                }
+                r.degree = {moved.degree()};
                 result = std::move(d);
             } else if (const auto* sub = std::get_if<SubdivisionObject>(&g)) {
                 const SubdivisionCage& cage = sub->cage();

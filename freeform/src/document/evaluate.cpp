@@ -7,6 +7,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "rational.h"
 
 namespace freeform {
 namespace {
@@ -128,6 +129,7 @@ Evaluation evaluate(const TypedDocument& doc, const TypedObject& object, const s
     if (const auto surface = AnySurface::of(object)) return evaluateSurface(what, *surface, at, order);
     if (const auto* lattice = std::get_if<Lattice>(&object.geometry())) return evaluateLattice(what, *lattice, at, order);
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry())) return evaluateSubdivision(what, *s, at, order);
+    if (auto e = detail::evaluateRational(what, object, at, order)) return std::move(*e);
     throw Error(what + ": eval does not support type \"" + object.type() + "\" yet");
 }
 
@@ -139,6 +141,7 @@ std::vector<double> parameterDomain(const TypedObject& object)
     if (std::holds_alternative<Lattice>(object.geometry())) return {1, 1, 1};
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry()))
         return {static_cast<double>(s->surface.faceCount()), 1, 1};
+    if (auto d = detail::rationalDomain(object)) return *d;
     return {};
 }
 

@@ -62,6 +62,24 @@ Geometry build(const ObjectData& data, const std::string& directory, const std::
                 return s;
             },
             [](const LatticeData& d) -> Geometry { return latticeFromData(d); },
+            [](const RationalBezierCurveData& d) -> Geometry {
+                const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(d.weights.data(), static_cast<Eigen::Index>(d.weights.size()));
+                if (d.points.rows() == 2) return RationalBezierCurve<double, 2>(PointMatrix<double, 2>(d.points), w);
+                return RationalBezierCurve<double, 3>(PointMatrix<double, 3>(d.points), w);
+            },
+            [](const RationalBezierSurfaceData& d) -> Geometry {
+                const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(d.weights.data(), static_cast<Eigen::Index>(d.weights.size()));
+                return RationalBezierSurface<double, 3>(d.degree[0], d.degree[1], PointMatrix<double, 3>(d.points), w);
+            },
+            [](const NurbsCurveData& d) -> Geometry {
+                const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(d.weights.data(), static_cast<Eigen::Index>(d.weights.size()));
+                if (d.points.rows() == 2) return NurbsCurve<double, 2>(d.degree, d.knots, PointMatrix<double, 2>(d.points), w);
+                return NurbsCurve<double, 3>(d.degree, d.knots, PointMatrix<double, 3>(d.points), w);
+            },
+            [](const NurbsSurfaceData& d) -> Geometry {
+                const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(d.weights.data(), static_cast<Eigen::Index>(d.weights.size()));
+                return NurbsSurface<double, 3>(d.degree[0], d.degree[1], d.knots[0], d.knots[1], PointMatrix<double, 3>(d.points), w);
+            },
             [&](const SubdivisionSurfaceData& d) -> Geometry {
                 // surfaceFromData prefixes its own errors with `what`; unwrap below avoids doubling.
                 return SubdivisionObject{surfaceFromData(d, directory, what)};
@@ -89,7 +107,8 @@ int TypedObject::dimension() const
         [](const auto& d) -> int {
             using T = std::decay_t<decltype(d)>;
             if constexpr (std::is_same_v<T, BezierCurveData> || std::is_same_v<T, BezierSplineData> ||
-                          std::is_same_v<T, DeBoorSplineData>)
+                          std::is_same_v<T, DeBoorSplineData> || std::is_same_v<T, RationalBezierCurveData> ||
+                          std::is_same_v<T, NurbsCurveData>)
                 return static_cast<int>(d.points.rows());
             else
                 return 3;

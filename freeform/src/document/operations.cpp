@@ -7,6 +7,8 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "freeform/curve/nurbs_continuity.h"
+#include "rational.h"
 
 namespace freeform {
 namespace {
@@ -53,6 +55,9 @@ std::string splineError(const TypedDocument& doc, const TypedObject& object)
 std::vector<JointContinuity<double>> continuity(const TypedDocument& doc, const TypedObject& object,
                                                 const ContinuityTolerances<double>& tol)
 {
+    // nurbs_curve: every interior breakpoint (C^k from the geometry, docs/nurbs.md).
+    if (const auto* c = std::get_if<NurbsCurve<double, 2>>(&object.geometry())) return continuityReport(*c, tol);
+    if (const auto* c = std::get_if<NurbsCurve<double, 3>>(&object.geometry())) return continuityReport(*c, tol);
     const auto curve = AnyCurve::of(object);
     if (!curve || !curve->isSpline()) throw Error(splineError(doc, object));
     return std::visit(
@@ -109,18 +114,19 @@ std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const Obj
         }
         return mesh;
     }
-    return std::nullopt;
+    return detail::tessellateRationalObject(object, options, report);
 }
 
 std::optional<Eigen::Matrix<double, 3, Eigen::Dynamic>> objectPolyline(const TypedObject& object, double tolerance)
 {
     if (const auto curve = AnyCurve::of(object)) return curve->polyline(tolerance);
-    return std::nullopt;
+    return detail::rationalPolyline(object, tolerance);
 }
 
 ControlNet controlNet(const TypedObject& object)
 {
     ControlNet net;
+    if (detail::rationalControlNet(object, net)) return net;
     std::visit(
         Overloaded{
             [&](const BezierCurveData& d) {
@@ -166,6 +172,7 @@ ControlNet controlNet(const TypedObject& object)
                     }
                 net.edges.assign(edges.begin(), edges.end());
             },
+            [](const auto&) {}, // the rational types: rationalControlNet above
         },
         object.data());
     return net;

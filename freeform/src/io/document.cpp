@@ -166,8 +166,118 @@ PointColumns pointGrid(const Json& j, int& rows, int& cols, const Where& w)
     return out;
 }
 
+/// Positive weights, one per point: a flat list (curves) of `count` numbers.
+std::vector<double> weightList(const Json& j, const std::string& field, std::size_t count, const Where& w)
+{
+    if (!j.is_array()) w.fail(field, "expected an array of numbers, found " + typeName(j));
+    if (j.size() != count)
+        w.fail(field, "has " + std::to_string(j.size()) + " weights for " + std::to_string(count) + " points");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const std::string f = field + "[" + std::to_string(i) + "]";
+        const double v = number(j[i], f, w);
+        if (!(v > 0)) w.fail(f, "weight must be positive");
+        out.push_back(v);
+    }
+    return out;
+}
+
+/// Positive weights as a rows x cols grid [[w, ...], ...] (surfaces), flattened row by row.
+std::vector<double> weightGrid(const Json& j, const std::string& field, int rows, int cols, const Where& w)
+{
+    if (!j.is_array()) w.fail(field, "expected an array of rows of weights, found " + typeName(j));
+    if (static_cast<int>(j.size()) != rows)
+        w.fail(field, "has " + std::to_string(j.size()) + " rows, the points have " + std::to_string(rows));
+    std::vector<double> out;
+    for (int r = 0; r < rows; ++r) {
+        const std::string f = field + "[" + std::to_string(r) + "]";
+        const std::vector<double> row = weightList(j[static_cast<std::size_t>(r)], f, static_cast<std::size_t>(cols), w);
+        out.insert(out.end(), row.begin(), row.end());
+    }
+    return out;
+}
+
+/// A knot vector for `count` control points of degree p: count + p + 1 finite non-decreasing
+/// numbers, no knot of multiplicity above p + 1, and a non-empty domain [u_p, u_count].
+std::vector<double> knotList(const Json& j, const std::string& field, int p, long count, const Where& w)
+{
+    if (!j.is_array()) w.fail(field, "expected an array of numbers, found " + typeName(j));
+    const long expected = count + p + 1;
+    if (static_cast<long>(j.size()) != expected)
+        w.fail(field, "has " + std::to_string(j.size()) + " knots, " + std::to_string(count) + " points of degree " +
+                          std::to_string(p) + " need " + std::to_string(expected));
+    std::vector<double> out;
+    int run = 0;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const std::string f = field + "[" + std::to_string(i) + "]";
+        const double v = number(j[i], f, w);
+        if (!out.empty() && v < out.back())
+            w.fail(f, "knot " + std::to_string(i) + " decreases (knots must be non-decreasing)");
+        run = !out.empty() && v == out.back() ? run + 1 : 1;
+        if (run > p + 1)
+            w.fail(f, "knot " + std::to_string(i) + " has multiplicity above degree + 1 = " + std::to_string(p + 1));
+        out.push_back(v);
+    }
+    if (!(out[static_cast<std::size_t>(p)] < out[static_cast<std::size_t>(count)]))
+        w.fail(field, "the domain [knot " + std::to_string(p) + ", knot " + std::to_string(count) + "] is empty");
+    return out;
+}
+
 ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
 {
+    if (type == "rational_bezier_curve") {
+        onlyKnown(obj, {"name", "type", "points", "weights", "editor"}, w);
+        RationalBezierCurveData d;
+        d.points = pointList(member(obj, "points", w), "points", 0, w);
+        if (d.points.cols() - 1 > 67) w.fail("points", "degree above the maximum 67");
+        d.weights = weightList(member(obj, "weights", w), "weights", static_cast<std::size_t>(d.points.cols()), w);
+        return d;
+    }
+    if (type == "rational_bezier_surface") {
+        onlyKnown(obj, {"name", "type", "degree", "points", "weights", "editor"}, w);
+        RationalBezierSurfaceData d;
+        d.degree = degreeArray<2>(member(obj, "degree", w), w);
+        int rows = 0, cols = 0;
+        d.points = pointGrid(member(obj, "points", w), rows, cols, w);
+        if (rows != d.degree[0] + 1 || cols != d.degree[1] + 1)
+            w.fail("points", "grid is " + std::to_string(rows) + " x " + std::to_string(cols) + ", degree [" +
+                                 std::to_string(d.degree[0]) + ", " + std::to_string(d.degree[1]) + "] needs " +
+                                 std::to_string(d.degree[0] + 1) + " x " + std::to_string(d.degree[1] + 1));
+        d.weights = weightGrid(member(obj, "weights", w), "weights", rows, cols, w);
+        return d;
+    }
+    if (type == "nurbs_curve") {
+        onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
+        NurbsCurveData d;
+        d.degree = integer(member(obj, "degree", w), "degree", w);
+        if (d.degree < 1 || d.degree > 67) w.fail("degree", "must be in 1..67");
+        d.points = pointList(member(obj, "points", w), "points", 0, w);
+        const long count = static_cast<long>(d.points.cols());
+        if (count < d.degree + 1)
+            w.fail("points", std::to_string(count) + " points are too few for degree " + std::to_string(d.degree) +
+                                 " (needs at least " + std::to_string(d.degree + 1) + ")");
+        d.knots = knotList(member(obj, "knots", w), "knots", d.degree, count, w);
+        if (obj.contains("weights")) d.weights = weightList(obj["weights"], "weights", static_cast<std::size_t>(count), w);
+        return d;
+    }
+    if (type == "nurbs_surface") {
+        onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
+        NurbsSurfaceData d;
+        d.degree = degreeArray<2>(member(obj, "degree", w), w);
+        d.points = pointGrid(member(obj, "points", w), d.rows, d.cols, w);
+        if (d.rows < d.degree[0] + 1)
+            w.fail("points", std::to_string(d.rows) + " rows are too few for degree " + std::to_string(d.degree[0]) +
+                                 " in u (needs at least " + std::to_string(d.degree[0] + 1) + ")");
+        if (d.cols < d.degree[1] + 1)
+            w.fail("points", std::to_string(d.cols) + " points per row are too few for degree " +
+                                 std::to_string(d.degree[1]) + " in v (needs at least " + std::to_string(d.degree[1] + 1) + ")");
+        const Json& knots = member(obj, "knots", w);
+        if (!knots.is_array() || knots.size() != 2) w.fail("knots", "expected an array of two knot vectors (u, v)");
+        d.knots[0] = knotList(knots[0], "knots[0]", d.degree[0], d.rows, w);
+        d.knots[1] = knotList(knots[1], "knots[1]", d.degree[1], d.cols, w);
+        if (obj.contains("weights")) d.weights = weightGrid(obj["weights"], "weights", d.rows, d.cols, w);
+        return d;
+    }
     if (type == "bezier_curve") {
         onlyKnown(obj, {"name", "type", "points", "editor"}, w);
         BezierCurveData d;
@@ -330,7 +440,8 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
     }
     w.fail("type", "unknown object type \"" + type +
                        "\" (known: bezier_curve, bezier_spline, deboor_spline, bezier_surface, "
-                       "deboor_surface, lattice, subdivision_surface)");
+                       "deboor_surface, lattice, subdivision_surface, rational_bezier_curve, rational_bezier_surface, "
+                       "nurbs_curve, nurbs_surface)");
 }
 
 Json pointsJson(const PointColumns& p)
@@ -348,6 +459,14 @@ Json gridJson(const PointColumns& p, int rows, int cols)
 {
     Json arr = Json::array();
     for (int r = 0; r < rows; ++r) arr.push_back(pointsJson(p.middleCols(r * cols, cols)));
+    return arr;
+}
+
+Json weightsGridJson(const std::vector<double>& w, int rows, int cols)
+{
+    Json arr = Json::array();
+    for (int r = 0; r < rows; ++r)
+        arr.push_back(std::vector<double>(w.begin() + r * cols, w.begin() + (r + 1) * cols));
     return arr;
 }
 
@@ -409,6 +528,31 @@ struct ObjectWriter {
         }
         if (d.boundary != "edge_only") j["boundary"] = d.boundary;
     }
+    void operator()(const RationalBezierCurveData& d) const
+    {
+        j["points"] = pointsJson(d.points);
+        j["weights"] = d.weights;
+    }
+    void operator()(const RationalBezierSurfaceData& d) const
+    {
+        j["degree"] = d.degree;
+        j["points"] = gridJson(d.points, d.degree[0] + 1, d.degree[1] + 1);
+        j["weights"] = weightsGridJson(d.weights, d.degree[0] + 1, d.degree[1] + 1);
+    }
+    void operator()(const NurbsCurveData& d) const
+    {
+        j["degree"] = d.degree;
+        j["knots"] = d.knots;
+        j["points"] = pointsJson(d.points);
+        if (!d.weights.empty()) j["weights"] = d.weights;
+    }
+    void operator()(const NurbsSurfaceData& d) const
+    {
+        j["degree"] = d.degree;
+        j["knots"] = Json::array({Json(d.knots[0]), Json(d.knots[1])});
+        j["points"] = gridJson(d.points, d.rows, d.cols);
+        if (!d.weights.empty()) j["weights"] = weightsGridJson(d.weights, d.rows, d.cols);
+    }
 };
 
 } // namespace
@@ -416,7 +560,9 @@ struct ObjectWriter {
 std::string objectType(const ObjectData& data)
 {
     static const char* const names[] = {"bezier_curve",   "bezier_spline", "deboor_spline",      "bezier_surface",
-                                        "deboor_surface", "lattice",       "subdivision_surface"};
+                                        "deboor_surface", "lattice",       "subdivision_surface",
+                                        "rational_bezier_curve", "rational_bezier_surface", "nurbs_curve",
+                                        "nurbs_surface"};
     static_assert(std::variant_size_v<ObjectData> == std::size(names));
     return names[data.index()];
 }

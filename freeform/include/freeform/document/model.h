@@ -17,9 +17,13 @@
 #include "freeform/curve/aframe.h"
 #include "freeform/curve/bezier_curve.h"
 #include "freeform/curve/bezier_spline.h"
+#include "freeform/curve/nurbs_curve.h"
+#include "freeform/curve/rational_bezier_curve.h"
 #include "freeform/io/document.h"
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/surface/bezier_surface.h"
+#include "freeform/surface/nurbs_surface.h"
+#include "freeform/surface/rational_bezier_surface.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/volume/lattice.h"
 
@@ -57,7 +61,9 @@ struct SubdivisionObject {
 /// buildGeometry (model.cpp); see document/document.h for the operations.
 using Geometry = std::variant<BezierCurve<double, 2>, BezierCurve<double, 3>, BezierSpline<double, 2>,
                               BezierSpline<double, 3>, DeBoorSpline<2>, DeBoorSpline<3>, BezierSurface<double, 3>,
-                              DeBoorSurface, Lattice, SubdivisionObject>;
+                              DeBoorSurface, Lattice, SubdivisionObject, RationalBezierCurve<double, 2>,
+                              RationalBezierCurve<double, 3>, RationalBezierSurface<double, 3>, NurbsCurve<double, 2>,
+                              NurbsCurve<double, 3>, NurbsSurface<double, 3>>;
 
 /// The geometry of a data object. documentDirectory resolves a subdivision cage's relative mesh
 /// path; Error prefixed with `what` (e.g. `doc.json: object "c"`) when the data is not valid.

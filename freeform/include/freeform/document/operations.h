@@ -105,6 +105,20 @@ DeBoorSplineData toDeBoorSplineData(const TypedDocument& doc, const TypedObject&
 void convertSpline(TypedDocument& doc, ObjectId id, const std::string& to,
                    std::optional<EndCondition> end = std::nullopt);
 
+/// The object as nurbs_curve data (bezier_curve, rational_bezier_curve: clamped knots on [0, 1];
+/// bezier_spline, deboor_spline: degree d, every interior breakpoint d times, on [0, sum of
+/// intervals], a closed spline's first point repeated at the end) or nurbs_surface data
+/// (bezier_surface, rational_bezier_surface: clamped knots on [0, 1]^2); weights left out when all
+/// are 1. Error naming the object for other types (and for a nurbs type: "is already").
+ObjectData toNurbsData(const TypedDocument& doc, const TypedObject& object);
+
+/// A nurbs_curve as its Bézier pieces in one object: a polynomial one as a bezier_spline (degree p,
+/// the pieces' points, intervals = the knot span lengths), a rational one with one span as a
+/// rational_bezier_curve; a nurbs_surface with one span pair as a bezier_surface or
+/// rational_bezier_surface. Error when one object of the format cannot hold the pieces (several
+/// rational pieces or patches).
+ObjectData fromNurbsData(const TypedDocument& doc, const TypedObject& object);
+
 // ---------------------------------------------------------------- deformDocument (freeform ffd DOC)
 
 struct DeformDocumentOptions {

@@ -74,8 +74,39 @@ struct SubdivisionSurfaceData {
     std::string boundary = "edge_only";    // "edge_only" | "edge_and_corner" | "none"
 };
 
+/// A rational Bézier curve: points and one positive weight per point (degree = count - 1).
+struct RationalBezierCurveData {
+    PointColumns points;         // dim x (degree + 1)
+    std::vector<double> weights; // degree + 1 positive weights
+};
+
+/// A rational Bézier patch: grid and weights as bezier_surface, one positive weight per point.
+struct RationalBezierSurfaceData {
+    std::array<int, 2> degree{}; // (m, n)
+    PointColumns points;         // 3 x (m+1)(n+1), index i*(n+1) + j
+    std::vector<double> weights; // (m+1)(n+1), same index
+};
+
+/// A NURBS curve: degree p, knots (count + p + 1, non-decreasing), points, weights (empty: all 1).
+struct NurbsCurveData {
+    int degree = 3;
+    std::vector<double> knots;
+    PointColumns points;         // dim x count
+    std::vector<double> weights; // count positive weights, or empty (all 1, not written)
+};
+
+/// A NURBS surface: degrees (p, q), knots in u and v, a rows x cols grid (rows = countU).
+struct NurbsSurfaceData {
+    std::array<int, 2> degree{3, 3};
+    std::array<std::vector<double>, 2> knots;
+    int rows = 0, cols = 0;
+    PointColumns points;         // 3 x rows*cols, index i*cols + j
+    std::vector<double> weights; // rows*cols, same index, or empty (all 1, not written)
+};
+
 using ObjectData = std::variant<BezierCurveData, BezierSplineData, DeBoorSplineData, BezierSurfaceData,
-                                DeBoorSurfaceData, LatticeData, SubdivisionSurfaceData>;
+                                DeBoorSurfaceData, LatticeData, SubdivisionSurfaceData, RationalBezierCurveData,
+                                RationalBezierSurfaceData, NurbsCurveData, NurbsSurfaceData>;
 
 struct DocumentObject {
     std::string name;

@@ -1,0 +1,72 @@
+// `freeform convert --to nurbs_curve|nurbs_surface` (polynomial and rational Bézier curves,
+// splines, patches to NURBS) and from a nurbs_curve / nurbs_surface to its Bézier pieces
+// (--to bezier_spline, rational_bezier_curve, bezier_surface, rational_bezier_surface), through the
+// document layer (document/operations.h: toNurbsData, fromNurbsData).
+
+#include <filesystem>
+
+#include "convert.h"
+#include "freeform/document/operations.h"
+
+namespace freeform::cli {
+
+bool isRationalConversion(const ConvertOptions& o)
+{
+    if (o.to == "nurbs_curve" || o.to == "nurbs_surface") return true;
+    if (o.positional.size() != 1 || !given(o.objectGiven)) return false;
+    const Document doc = readDocument(o.positional[0]);
+    const std::string type = objectType(doc.object(o.object).data);
+    return type == "nurbs_curve" || type == "nurbs_surface";
+}
+
+Json convertRational(const ConvertOptions& o)
+{
+    if (given(o.endGiven)) throw UsageError("option --end: goes with --to deboor_spline only");
+    TypedDocument doc = TypedDocument::read(o.positional[0]);
+    const TypedObject& object = doc.object(o.object);
+    const std::string from = object.type();
+    const bool toNurbs = o.to == "nurbs_curve" || o.to == "nurbs_surface";
+    ObjectData converted = toNurbs ? toNurbsData(doc, object) : fromNurbsData(doc, object);
+    const std::string to = objectType(converted);
+    if (to != o.to)
+        throw Error(doc.what(object) + ": a " + from + " converts to a " + to + ", not a " + o.to + " (use --to " + to + ")");
+    const ObjectId id = object.id();
+    doc.replace(id, std::move(converted));
+    writeDocument(doc.toDocument(), o.output);
+    Json out;
+    out["object"] = o.object;
+    out["from"] = from;
+    out["to"] = to;
+    out["output"] = o.output;
+    out["points"] = std::visit(
+        [](const auto& d) -> Eigen::Index {
+            if constexpr (requires { d.points; }) return d.points.cols();
+            else return 0;
+        },
+        doc.object(id).data());
+    return out;
+}
+
+Json nurbsContinuity(const Document& doc, const DocumentObject& object, const ContinuityTolerances<double>& tol)
+{
+    Document one;
+    one.source = doc.source;
+    one.objects.push_back(object);
+    const TypedDocument typed(one, std::filesystem::path(doc.source).parent_path().string());
+    Json joints = Json::array();
+    for (const auto& j : continuity(typed, typed.objects().front(), tol)) {
+        Json e;
+        e["joint"] = j.joint;
+        e["t"] = j.t;
+        e["C"] = j.C;
+        e["G"] = j.G;
+        e["jumps"] = j.jumps;
+        joints.push_back(std::move(e));
+    }
+    Json out;
+    out["object"] = object.name;
+    out["joints"] = std::move(joints);
+    return out;
+}
+
+} // namespace freeform::cli

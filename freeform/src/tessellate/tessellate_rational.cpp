@@ -1,0 +1,227 @@
+// Certified tessellation of rational Bézier patches and NURBS surfaces (tessellate_rational.h;
+// the bound is derived in docs/surfaces.md, "Rational patches").
+
+#include "freeform/tessellate/tessellate_rational.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "freeform/core/error.h"
+
+namespace freeform {
+namespace {
+
+/// M_uu/(8 nu^2) + M_uv/(4 nu nv) + M_vv/(8 nv^2) for the polynomial patch with control values
+/// value(i, j) (a vector of any size), the differences measured in the Euclidean norm.
+template <class Value>
+double polynomialBound(int m, int n, const Value& value, int nu, int nv)
+{
+    double muu = 0, muv = 0, mvv = 0;
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            if (i + 2 <= m) muu = std::max(muu, (value(i + 2, j) - 2 * value(i + 1, j) + value(i, j)).norm());
+            if (j + 2 <= n) mvv = std::max(mvv, (value(i, j + 2) - 2 * value(i, j + 1) + value(i, j)).norm());
+            if (i + 1 <= m && j + 1 <= n)
+                muv = std::max(muv, (value(i + 1, j + 1) - value(i + 1, j) - value(i, j + 1) + value(i, j)).norm());
+        }
+    muu *= double(m) * (m - 1);
+    mvv *= double(n) * (n - 1);
+    muv *= double(m) * n;
+    return muu / (8.0 * nu * nu) + muv / (4.0 * nu * nv) + mvv / (8.0 * nv * nv);
+}
+
+void checkOptions(const TessellationOptions& o)
+{
+    if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw Error("tessellate: the tolerance must be finite and >= 0");
+    if (o.tolerance == 0 && (o.segmentsU < 1 || o.segmentsV < 1))
+        throw Error("tessellate: the segment counts must be at least 1");
+    if (o.maxSegments < 1) throw Error("tessellate: maxSegments must be at least 1");
+}
+
+struct Sample {
+    Eigen::Vector3d point, normal;
+};
+
+/// The shared grid: column a of patches gets countsU[a] cells in u, row b countsV[b] in v; every
+/// vertex evaluated once by `at(a, b, localU, localV)`.
+PolygonMesh gridMesh(int rows, int cols, const std::vector<int>& countsU, const std::vector<int>& countsV,
+                     const std::vector<double>& breaksU, const std::vector<double>& breaksV,
+                     const std::function<Sample(int, int, double, double)>& at, bool flip)
+{
+    // Global parameter lists: (patch, local) per vertex line.
+    std::vector<std::pair<int, double>> us, vs;
+    for (int a = 0; a < rows; ++a)
+        for (int k = (a == 0 ? 0 : 1); k <= countsU[static_cast<std::size_t>(a)]; ++k)
+            us.emplace_back(a, double(k) / countsU[static_cast<std::size_t>(a)]);
+    for (int b = 0; b < cols; ++b)
+        for (int k = (b == 0 ? 0 : 1); k <= countsV[static_cast<std::size_t>(b)]; ++k)
+            vs.emplace_back(b, double(k) / countsV[static_cast<std::size_t>(b)]);
+    const int nU = static_cast<int>(us.size()), nV = static_cast<int>(vs.size());
+    PolygonMesh mesh;
+    mesh.positions.resize(3, nU * nV);
+    mesh.normals.resize(3, nU * nV);
+    mesh.texcoords.resize(2, nU * nV);
+    for (int i = 0; i < nU; ++i)
+        for (int j = 0; j < nV; ++j) {
+            const auto [a, lu] = us[static_cast<std::size_t>(i)];
+            const auto [b, lv] = vs[static_cast<std::size_t>(j)];
+            const Sample s = at(a, b, lu, lv);
+            const int k = i * nV + j;
+            mesh.positions.col(k) = s.point;
+            mesh.normals.col(k) = flip ? Eigen::Vector3d(-s.normal) : s.normal;
+            const double gu = breaksU[static_cast<std::size_t>(a)] + lu * (breaksU[static_cast<std::size_t>(a) + 1] - breaksU[static_cast<std::size_t>(a)]);
+            const double gv = breaksV[static_cast<std::size_t>(b)] + lv * (breaksV[static_cast<std::size_t>(b) + 1] - breaksV[static_cast<std::size_t>(b)]);
+            mesh.texcoords.col(k) = Eigen::Vector2d(gu, gv);
+        }
+    for (int i = 0; i + 1 < nU; ++i)
+        for (int j = 0; j + 1 < nV; ++j) {
+            const int v00 = i * nV + j, v10 = (i + 1) * nV + j, v01 = i * nV + j + 1, v11 = (i + 1) * nV + j + 1;
+            if (flip) {
+                mesh.addFace({v00, v01, v11});
+                mesh.addFace({v00, v11, v10});
+            } else {
+                mesh.addFace({v00, v10, v11});
+                mesh.addFace({v00, v11, v01});
+            }
+        }
+    return mesh;
+}
+
+/// Per-column and per-row counts for the patch grid (maximum of what its patches ask for).
+void gridCounts(const std::vector<RationalPatch>& patches, int rows, int cols, const TessellationOptions& options,
+                std::vector<int>& countsU, std::vector<int>& countsV, TessellationReport* report)
+{
+    countsU.assign(static_cast<std::size_t>(rows), 1);
+    countsV.assign(static_cast<std::size_t>(cols), 1);
+    std::vector<std::array<int, 2>> required;
+    for (int a = 0; a < rows; ++a)
+        for (int b = 0; b < cols; ++b) {
+            const RationalPatch& p = patches[static_cast<std::size_t>(a * cols + b)];
+            const std::array<int, 2> r = options.tolerance > 0 ? rationalAdaptiveSegments(p, options.tolerance, options.maxSegments)
+                                                               : std::array<int, 2>{options.segmentsU, options.segmentsV};
+            required.push_back(r);
+            countsU[static_cast<std::size_t>(a)] = std::max(countsU[static_cast<std::size_t>(a)], r[0]);
+            countsV[static_cast<std::size_t>(b)] = std::max(countsV[static_cast<std::size_t>(b)], r[1]);
+        }
+    if (report) {
+        report->required = required;
+        report->segments.clear();
+        report->errorBound = 0;
+        for (int a = 0; a < rows; ++a)
+            for (int b = 0; b < cols; ++b) {
+                const int nu = countsU[static_cast<std::size_t>(a)], nv = countsV[static_cast<std::size_t>(b)];
+                report->segments.push_back({nu, nv});
+                report->errorBound = std::max(report->errorBound,
+                                              rationalTessellationErrorBound(patches[static_cast<std::size_t>(a * cols + b)], nu, nv));
+            }
+    }
+}
+
+} // namespace
+
+double rationalTessellationErrorBound(const RationalPatch& patch, int nu, int nv)
+{
+    if (nu < 1 || nv < 1) throw Error("rationalTessellationErrorBound: segment counts must be at least 1");
+    const int m = patch.degreeU(), n = patch.degreeV();
+    const auto& h = patch.homogeneous();
+    Eigen::Vector3d lo = patch.controlPoint(0, 0), hi = lo;
+    double wmin = patch.weight(0, 0);
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            lo = lo.cwiseMin(patch.controlPoint(i, j));
+            hi = hi.cwiseMax(patch.controlPoint(i, j));
+            wmin = std::min(wmin, patch.weight(i, j));
+        }
+    const Eigen::Vector3d c = (lo + hi) / 2;
+    const double rho = (hi - lo).norm() / 2;
+    // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone.
+    const auto numerator = [&](int i, int j) -> Eigen::Vector3d {
+        const Eigen::Vector4d q = h.controlPoint(i, j);
+        return q.head<3>() - q[3] * c;
+    };
+    const auto weight = [&](int i, int j) -> Eigen::Matrix<double, 1, 1> {
+        return Eigen::Matrix<double, 1, 1>(h.controlPoint(i, j)[3]);
+    };
+    const double eh = polynomialBound(m, n, numerator, nu, nv);
+    const double ew = polynomialBound(m, n, weight, nu, nv);
+    return (eh + rho * ew) / wmin;
+}
+
+std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double tolerance, int maxSegments)
+{
+    if (!(tolerance > 0)) throw Error("rationalAdaptiveSegments: the tolerance must be positive");
+    // The bound is decreasing in each count: search the fewest cells nu * nv by trying every nu.
+    std::array<int, 2> best{maxSegments, maxSegments};
+    long bestCells = static_cast<long>(maxSegments) * maxSegments + 1;
+    for (int nu = 1; nu <= maxSegments; ++nu) {
+        if (rationalTessellationErrorBound(patch, nu, maxSegments) > tolerance) continue;
+        int lo = 1, hi = maxSegments; // smallest nv with bound <= tolerance
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (rationalTessellationErrorBound(patch, nu, mid) <= tolerance) hi = mid;
+            else lo = mid + 1;
+        }
+        const long cells = static_cast<long>(nu) * lo;
+        if (cells < bestCells) {
+            bestCells = cells;
+            best = {nu, lo};
+        }
+        if (lo == 1) break; // larger nu only adds cells
+    }
+    return best;
+}
+
+PolygonMesh tessellateRational(const std::vector<RationalPatch>& patches, int rows, int cols,
+                               const TessellationOptions& options, TessellationReport* report)
+{
+    checkOptions(options);
+    if (rows < 1 || cols < 1 || static_cast<long>(patches.size()) != static_cast<long>(rows) * cols)
+        throw Error("tessellateRational: " + std::to_string(patches.size()) + " patches do not form a " + std::to_string(rows) +
+                    " x " + std::to_string(cols) + " grid");
+    std::vector<int> countsU, countsV;
+    gridCounts(patches, rows, cols, options, countsU, countsV, report);
+    std::vector<double> breaksU, breaksV;
+    for (int a = 0; a <= rows; ++a) breaksU.push_back(a);
+    for (int b = 0; b <= cols; ++b) breaksV.push_back(b);
+    return gridMesh(rows, cols, countsU, countsV, breaksU, breaksV,
+                    [&](int a, int b, double u, double v) {
+                        const RationalPatch& p = patches[static_cast<std::size_t>(a * cols + b)];
+                        return Sample{p.evaluate(u, v), p.normal(u, v)};
+                    },
+                    options.flipNormals);
+}
+
+PolygonMesh tessellateNurbs(const NurbsSurface<double, 3>& surface, const TessellationOptions& options,
+                            TessellationReport* report)
+{
+    checkOptions(options);
+    const auto& ku = surface.knotsU();
+    const auto& kv = surface.knotsV();
+    std::vector<double> breaksU, breaksV;
+    for (int i = surface.degreeU(); i < surface.countU(); ++i)
+        if (ku[i] < ku[i + 1]) {
+            if (breaksU.empty()) breaksU.push_back(ku[i]);
+            breaksU.push_back(ku[i + 1]);
+        }
+    for (int j = surface.degreeV(); j < surface.countV(); ++j)
+        if (kv[j] < kv[j + 1]) {
+            if (breaksV.empty()) breaksV.push_back(kv[j]);
+            breaksV.push_back(kv[j + 1]);
+        }
+    const int rows = static_cast<int>(breaksU.size()) - 1, cols = static_cast<int>(breaksV.size()) - 1;
+    const std::vector<RationalPatch> patches = surface.bezierPatches();
+    std::vector<int> countsU, countsV;
+    gridCounts(patches, rows, cols, options, countsU, countsV, report);
+    // Vertices from the surface itself at the global parameter (one evaluation per vertex).
+    return gridMesh(rows, cols, countsU, countsV, breaksU, breaksV,
+                    [&](int a, int b, double lu, double lv) {
+                        const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+                        const double u = lu == 1 ? breaksU[ia + 1] : breaksU[ia] + lu * (breaksU[ia + 1] - breaksU[ia]);
+                        const double v = lv == 1 ? breaksV[ib + 1] : breaksV[ib] + lv * (breaksV[ib + 1] - breaksV[ib]);
+                        return Sample{surface.evaluate(u, v), surface.normal(u, v)};
+                    },
+                    options.flipNormals);
+}
+
+} // namespace freeform
