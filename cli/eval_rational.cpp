@@ -2,27 +2,20 @@
 // [u_p, u_(n+1)], derivatives with respect to that parameter), rational_bezier_surface and
 // nurbs_surface (U,V likewise), through the document layer (document/operations.h: evaluate).
 
-#include <filesystem>
-
 #include "command.h"
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
 namespace {
 
-Json evalRational(const Document& doc, const DocumentObject& object, const std::string& at, int order)
+Json evalRational(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
-    const bool surface = objectType(object.data).find("surface") != std::string::npos;
+    const bool surface = object.type().find("surface") != std::string::npos;
     const std::vector<double> values = parseNumberList(at, "--at", surface ? 2 : 1);
-    // A document of this one object (its geometry built and validated like every other's).
-    Document one;
-    one.source = doc.source;
-    one.objects.push_back(object);
-    const TypedDocument typed(one, std::filesystem::path(doc.source).parent_path().string());
-    const Evaluation e = evaluate(typed, typed.objects().front(), values, order);
+    const Evaluation e = evaluate(doc, object, values, order);
     const int dim = static_cast<int>(e.point.size());
     Json out;
-    out["object"] = object.name;
+    out["object"] = object.name();
     if (surface) {
         out["u"] = values[0];
         out["v"] = values[1];
