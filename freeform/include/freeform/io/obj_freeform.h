@@ -19,9 +19,10 @@
 // Numbers are written in the shortest form that reads back to the same double, so
 // document -> OBJ -> document keeps every coordinate exactly.
 //
-// The reader is strict: other types (cardinal, taylor, bmat), trimming (trim/hole/scrv/sp), piecewise
-// Bézier surfaces, non-positive weights, invalid knot vectors, a point count that does not fit the degree, a bad `parm` list, an index out of range,
-// an element without `end`, or a statement it does not know are Errors naming the file and line.
+// The reader is strict: other types (cardinal, taylor, bmat), trimming (trim/hole/scrv/sp),
+// piecewise Bézier surfaces, non-positive weights, invalid knot vectors, a point count that does not
+// fit the degree, a bad `parm` list, an index out of range, an element without `end`, or a statement
+// it does not know are Errors naming the file and line.
 // Polygonal statements (f, l, p, vt, vn, vp, s, usemtl, mtllib) are skipped.
 
 #include <string>
