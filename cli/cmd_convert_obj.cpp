@@ -1,6 +1,7 @@
-// freeform convert between a document and OBJ free-form geometry (cstype bezier), by extension:
-//   DOC.json -o OUT.obj   Bézier curves, open Bézier splines and Bézier surfaces to OBJ
-//   IN.obj   -o OUT.json  the OBJ's free-form Bézier elements to a document
+// freeform convert between a document and OBJ free-form geometry (cstype [rat] bezier|bspline), by extension:
+//   DOC.json -o OUT.obj   Bézier curves, open Bézier splines, Bézier surfaces, their rational forms
+//                         and NURBS curves and surfaces to OBJ
+//   IN.obj   -o OUT.json  the OBJ's free-form elements to a document
 
 #include <filesystem>
 
@@ -38,7 +39,7 @@ Json convertObjFreeform(const ConvertOptions& o)
     } else if (in == ".obj" && out == ".json") {
         if (given(o.objectGiven)) throw UsageError("option --object applies to a document input");
         const Document doc = readObjFreeform(input);
-        if (doc.objects.empty()) throw Error(input + ": no free-form Bézier curves or surfaces (cstype bezier) found");
+        if (doc.objects.empty()) throw Error(input + ": no free-form curves or surfaces (cstype [rat] bezier|bspline) found");
         writeDocument(doc, output);
         Json names = Json::array();
         for (const DocumentObject& o : doc.objects) names.push_back(o.name);

@@ -97,8 +97,11 @@ TEST_CASE("OBJ free-form errors name the line", "[obj][errors]")
         }
         return std::string("no error");
     };
-    CHECK(err(v4 + "cstype rat bezier\n") == "x.obj: line 5: rational curves and surfaces (cstype rat) are not supported");
-    CHECK(err(v4 + "cstype bspline\n") == "x.obj: line 5: curve type \"bspline\" is not supported (only bezier)");
+    // (Issue 13 made rat bezier and [rat] bspline supported: the other types are still refused.)
+    CHECK(err(v4 + "cstype cardinal\n") ==
+          "x.obj: line 5: curve type \"cardinal\" is not supported (bezier, rat bezier, bspline, rat bspline)");
+    CHECK(err(v4 + "cstype rat taylor\n") ==
+          "x.obj: line 5: curve type \"rat taylor\" is not supported (bezier, rat bezier, bspline, rat bspline)");
     CHECK(err(v4 + "deg 3\ncurv 0 1 1 2 3 4\nend\n") == "x.obj: line 6: curv before \"cstype bezier\"");
     CHECK(err(v4 + "cstype bezier\ndeg 2\ncurv 0 1 1 2 3 4\nend\n").find("line 7: 4 control points do not fit degree 2") !=
           std::string::npos);
