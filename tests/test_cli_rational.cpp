@@ -454,7 +454,7 @@ TEST_CASE("rational document: freeform interpolate --degree P passes through the
     CHECK(test::runCli({"interpolate", in, "--degree", "3", "--end", "periodic", "-o", tmp("x.json")}).status == 2);
 }
 
-TEST_CASE("rational document: freeform ffd DOC skips the rational types and copies them unchanged")
+TEST_CASE("rational document: freeform ffd DOC composes the 3D NURBS curve, skips 2D objects and rational surfaces unchanged")
 {
     const std::string path = tmp("rational_ffd.json"), lat = tmp("rational_ffd_lattice.json"), out = tmp("rational_ffd_out.json");
     {
@@ -470,7 +470,13 @@ TEST_CASE("rational document: freeform ffd DOC skips the rational types and copi
     const auto r = test::runCli({"ffd", path, "--lattice", lat, "-o", out});
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
-    CHECK(j["skipped"].size() == 5);
+    // The one rule of docs/ffd.md (deformDocument): the 3D nurbs_curve "b" is composed exactly (it
+    // stays a nurbs_curve, its degree times l+m+n = 3); the 2D curves and the rational surfaces
+    // (no exact composition yet) are skipped and copied unchanged.
+    REQUIRE(j["objects"].size() == 1);
+    CHECK(j["objects"][0]["name"] == "b");
+    CHECK(j["objects"][0]["type"] == "nurbs_curve");
+    CHECK(j["skipped"].size() == 4);
     const Document before = parseDocument(kDoc, "k"), after = readDocument(out);
     CHECK(formatDocument(after).find("\"nurbs_surface\"") != std::string::npos);
     CHECK(std::get<NurbsCurveData>(after.object("circle").data).knots == std::get<NurbsCurveData>(before.object("circle").data).knots);

@@ -42,6 +42,7 @@
 #include "freeform/io/document.h"
 #include "freeform/io/file.h"
 #include "freeform/io/geometry_data.h"
+#include "freeform/io/json_check.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/io/obj_freeform.h"
 #include "freeform/document/document.h"
