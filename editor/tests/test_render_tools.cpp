@@ -427,7 +427,7 @@ TEST_CASE("fit/apply lattice by --replay then --save writes freeform ffd's objec
 {
     // data/ffd_every_type.json (every object type and the skewed cubic lattice "L", docs/ffd.md) with
     // absolute paths for its cage and mesh files and a camera, so the pixels of the lattice's points
-    // are known. The editor: a click on a lattice point selects "L", Shift+A applies it (the lattice
+    // are known, and control nets and points shown (a lattice is drawn as its net). The editor: a click on a lattice point selects "L", Shift+A applies it (the lattice
     // panel's "apply exactly to curves and patches"), --save writes the document. The command line:
     // `freeform ffd DOC --lattice DOC --object L -o OUT`. Both go through deformDocument; this test
     // ties the real window's input path to the command's output.
@@ -436,6 +436,7 @@ TEST_CASE("fit/apply lattice by --replay then --save writes freeform ffd's objec
         if (o["type"] == "subdivision_surface" && o.contains("mesh")) o["mesh"] = cat(FREEFORM_SOURCE_DIR, "/data/", o["mesh"].get<std::string>());
     for (Json& m : source["editor"]["meshes"]) m["path"] = cat(FREEFORM_SOURCE_DIR, "/data/", m["path"].get<std::string>());
     source["editor"]["camera"] = camera({0.5, 0, 0.25}, 16);
+    source["editor"]["display"] = {{"control_nets", true}, {"control_points", true}}; // the lattice's points show, and pick
     const std::string doc = writeDocument("every_type", source);
 
     const std::string cliOut = cat(kTmp, "/tools_every_type.cli.json");
