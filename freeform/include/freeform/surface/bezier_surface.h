@@ -722,11 +722,8 @@ void BezierSurface<Scalar, Dim>::evaluateGrid(const std::vector<Scalar>& us, con
 }
 
 // Instantiated once in the library (src/surface/instantiations.cpp); user code links them.
-extern template class BezierSurface<float, 2>;
 extern template class BezierSurface<float, 3>;
-extern template class BezierSurface<double, 2>;
 extern template class BezierSurface<double, 3>;
-extern template class BezierSurface<long double, 2>;
 extern template class BezierSurface<long double, 3>;
 
 } // namespace freeform
