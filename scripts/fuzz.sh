@@ -15,7 +15,8 @@ cd "$(dirname "$0")/.."
 seconds=${FREEFORM_FUZZ_SECONDS:-10}
 jobs=$(nproc 2>/dev/null || echo 2)
 targets=(fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_stl fuzz_mesh_off fuzz_mesh_gltf fuzz_mesh_glb
-         fuzz_document fuzz_bpt fuzz_obj_freeform fuzz_cage)
+         fuzz_document fuzz_bpt fuzz_obj_freeform fuzz_cage fuzz_editor_replay fuzz_editor_settings
+         fuzz_points)
 if [ $# -gt 0 ]; then targets=("$@"); fi
 
 if [ "${FREEFORM_FUZZ_NO_BUILD:-}" != "1" ]; then   # 1: run what build-fuzz/ already holds

@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -36,6 +38,8 @@ using freeform::test::putBytes;
 using freeform::test::slurp;
 using freeform::test::writeText;
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+using Catch::Matchers::WithinRel;
 namespace fs = std::filesystem;
 
 namespace {
@@ -538,6 +542,47 @@ TEST_CASE("Results that overflow are an error, never null with exit 0", "[harden
     CHECK(r.status == 1);
     CHECK(r.out.empty());
     CHECK_THAT(r.err, Contains("not finite"));
+}
+
+TEST_CASE("continuity of tiny intervals and a lattice det past double range exit 1 naming the field", "[hardening][cli]")
+{
+    // Spline derivatives in the global parameter scale by 1/h^k on an interval of length h: with
+    // h = 1e-110 the jumps of order 3 are of order 1e330 > DBL_MAX (about 1.8e308).
+    const std::string spline = "{\"format\":\"freeform\",\"version\":1,\"objects\":[{\"name\":\"s\",\"type\":\"bezier_spline\","
+                               "\"degree\":3,\"closed\":false,\"points\":[[0,0],[1,2],[3,2],[4,0],[5,-2],[7,-2],[8,0]],\"intervals\":";
+    writeText(tmp("tiny.json"), spline + "[1e-110,2e-110]}]}");
+    const auto r = freeform::test::cli("continuity '" + tmp("tiny.json") + "' --object s");
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, StartsWith("error: ") && Contains("jumps") && Contains("not finite"));
+    // The same points on intervals [1, 2] (docs/format.md's example) are fine.
+    writeText(tmp("unit.json"), spline + "[1,2]}]}");
+    CHECK(freeform::test::cli("continuity '" + tmp("unit.json") + "' --object s").status == 0);
+
+    // A trilinear lattice on the unit box whose points are the rest points scaled by c is p -> c p:
+    // J = c I, det J = c^3. c = 1e110: det 1e330 overflows (the point, 0.5 c, and the partials, c,
+    // do not); c = 1e100: det 1e300 is printed.
+    auto lattice = [](const std::string& c) {
+        std::string points;
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j)
+                for (int k = 0; k < 2; ++k)
+                    points += std::string(points.empty() ? "" : ",") + "[" + (i ? c : "0") + "," + (j ? c : "0") + "," + (k ? c : "0") + "]";
+        return "{\"format\":\"freeform\",\"version\":1,\"objects\":[{\"name\":\"L\",\"type\":\"lattice\",\"degree\":[1,1,1],"
+               "\"origin\":[0,0,0],\"axes\":[[1,0,0],[0,1,0],[0,0,1]],\"points\":[" + points + "]}]}";
+    };
+    writeText(tmp("det_huge.json"), lattice("1e110"));
+    const auto d = freeform::test::cli("eval '" + tmp("det_huge.json") + "' --object L --at 0.5,0.5,0.5 --derivatives 1");
+    CHECK(d.status == 1);
+    CHECK(d.out.empty());
+    CHECK_THAT(d.err, StartsWith("error: ") && Contains("det") && Contains("not finite"));
+    // Without derivatives there is no det, and the point 0.5 c is finite.
+    CHECK(freeform::test::cli("eval '" + tmp("det_huge.json") + "' --object L --at 0.5,0.5,0.5").status == 0);
+    writeText(tmp("det_big.json"), lattice("1e100"));
+    const auto ok = freeform::test::cli("eval '" + tmp("det_big.json") + "' --object L --at 0.5,0.5,0.5 --derivatives 1");
+    REQUIRE(ok.status == 0);
+    const double det = nlohmann::json::parse(ok.out)["derivatives"][0]["det"].get<double>();
+    CHECK_THAT(det, WithinRel(1e300, 1e-12));
 }
 
 TEST_CASE("An empty mesh deforms to nothing; a face that repeats a vertex is named by its file", "[hardening][ffd]")

@@ -10,6 +10,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/io/file.h"
+#include "freeform/io/json_check.h"
 #include "interaction/picking.h"
 #include "scene/scene.h"
 
@@ -97,6 +98,9 @@ int keyCode(const std::string& name)
 
 std::vector<ReplayEvent> parseReplay(const std::string& text, const std::string& source)
 {
+    // Depth limit and duplicate keys first (docs/mesh-io.md, "Hostile input"): nlohmann's tree
+    // recurses on depth, and a repeated key must not silently win.
+    checkJsonText(text, source);
     Json root;
     try {
         root = Json::parse(text);

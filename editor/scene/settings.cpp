@@ -3,11 +3,25 @@
 #include <cmath>
 #include <set>
 
+#include "freeform/core/error.h"
+#include "freeform/io/json_check.h"
 #include "scene/json_read.h"
 
 namespace freeform::editor {
 
 namespace {
+
+// Text to tree through the library's one JSON gate (docs/mesh-io.md, "Hostile input"): nesting
+// deeper than kMaxJsonDepth or a repeated key is refused before nlohmann builds (recursively) a tree.
+Json parseGated(const std::string& text, const std::string& source)
+{
+    checkJsonText(text, source);
+    try {
+        return Json::parse(text);
+    } catch (const Json::exception& e) {
+        throw Error(source + ": not valid JSON: " + e.what());
+    }
+}
 
 void onlyKnown(const Json& j, const std::string& path, std::initializer_list<const char*> known)
 {
@@ -216,6 +230,21 @@ ObjectSettings ObjectSettings::fromJson(const Json& j, const std::string& path)
         if (!std::isfinite(s.ffd.strength)) json::fail(fp + ".strength", "must be finite");
     }
     return s;
+}
+
+DisplaySettings DisplaySettings::fromText(const std::string& text, const std::string& source)
+{
+    const Json j = parseGated(text, source);
+    try {
+        return fromJson(j);
+    } catch (const Error& e) {
+        throw Error(source + ": " + e.what());
+    }
+}
+
+ObjectSettings ObjectSettings::fromText(const std::string& text, const std::string& path)
+{
+    return fromJson(parseGated(text, path), path);
 }
 
 } // namespace freeform::editor

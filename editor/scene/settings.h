@@ -37,6 +37,9 @@ struct DisplaySettings {
 
     Json toJson() const;
     static DisplaySettings fromJson(const Json& json);
+    /// The same from JSON text, through checkJsonText first (depth limit, duplicate keys; see
+    /// docs/mesh-io.md, "Hostile input"); errors name source.
+    static DisplaySettings fromText(const std::string& text, const std::string& source);
     bool operator==(const DisplaySettings&) const = default;
 };
 
@@ -75,6 +78,8 @@ struct ObjectSettings {
     Json toJson() const;
     /// path names the object in messages ("object \"spout\".editor").
     static ObjectSettings fromJson(const Json& json, const std::string& path);
+    /// The same from JSON text, through checkJsonText first; errors name path.
+    static ObjectSettings fromText(const std::string& text, const std::string& path);
     bool operator==(const ObjectSettings&) const = default;
 };
 
