@@ -33,7 +33,23 @@ namespace {
 // OpenSubdiv's default callbacks print "Warning: ..." / "Error: ..." on stdout, where the CLI's
 // one JSON object goes (docs/cli.md). Its warnings go to stderr; its errors become Errors.
 void osdWarning(const char* message) { std::cerr << "warning: OpenSubdiv: " << message << '\n'; }
-void osdError(osd::Far::ErrorType, const char* message) { throw Error(std::string("OpenSubdiv: ") + message); }
+// An error is not thrown from the callback: the exception would pass through OpenSubdiv's factory,
+// which holds what it allocated in raw pointers until it returns (LeakSanitizer found the leak).
+// The first message of a call is kept and thrown once the call has returned (takeOsdError).
+thread_local std::string osdErrorMessage;
+void osdError(osd::Far::ErrorType, const char* message)
+{
+    if (osdErrorMessage.empty()) osdErrorMessage = std::string("OpenSubdiv: ") + message;
+}
+
+/// Throws the error OpenSubdiv reported during the last call, if any.
+void takeOsdError()
+{
+    if (osdErrorMessage.empty()) return;
+    const std::string message = std::move(osdErrorMessage);
+    osdErrorMessage.clear();
+    throw Error(message);
+}
 
 void installOsdCallbacks()
 {
@@ -235,7 +251,9 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme s
                                                                                    : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
     using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
     const osd::Sdc::SchemeType type = scheme == SubdivisionScheme::Loop ? osd::Sdc::SCHEME_LOOP : osd::Sdc::SCHEME_CATMARK;
+    osdErrorMessage.clear();
     topo->refiner.reset(Factory::Create(desc, Factory::Options(type, sdc)));
+    takeOsdError(); // after the refiner is owned, so nothing leaks
     if (!topo->refiner) throw Error("cage: OpenSubdiv could not build the topology");
     topo->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*topo->refiner);
 
