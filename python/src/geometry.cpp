@@ -1,7 +1,7 @@
 // Curves, splines, patches, documents and mesh files for Python (docs/python.md). Many parameters
 // at once: a 1-D array of t gives an (T, D) array; derivatives an (T, K+1, D) array.
 
-#include "arrays.h"
+#include "geometry.h"
 #include "lattice.h"
 
 #include <pybind11/stl.h>
@@ -21,101 +21,6 @@
 namespace ffpy {
 
 namespace {
-
-using Curve2 = freeform::BezierCurve<double, 2>;
-using Curve3 = freeform::BezierCurve<double, 3>;
-using Spline2 = freeform::BezierSpline<double, 2>;
-using Spline3 = freeform::BezierSpline<double, 3>;
-
-struct PyCurve {
-    std::variant<Curve2, Curve3> c;
-};
-struct PySpline {
-    std::variant<Spline2, Spline3> s;
-};
-struct PyPatch {
-    freeform::BezierSurface<double, 3> p;
-};
-
-/// (N, D) array of control points (D = 2 or 3) as a D x N matrix.
-template <int D>
-freeform::PointMatrix<double, D> columns(const py::array& a, const std::string& what)
-{
-    const auto n = static_cast<std::size_t>(a.shape(0));
-    const double* p = static_cast<const double*>(a.data());
-    requireFiniteRows(p, n, D, what);
-    return Eigen::Map<const freeform::PointMatrix<double, D>>(p, D, static_cast<Eigen::Index>(n));
-}
-
-py::array pointsAnyDim(py::handle h, const std::string& what, int& dim)
-{
-    py::array a = numericArray(h, what);
-    if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
-        throw freeform::Error(what + ": expected an array of shape (N, 2) or (N, 3), got shape " + shapeText(a));
-    dim = static_cast<int>(a.shape(1));
-    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-}
-
-/// f(t) -> Dim x (K+1) for every t: an (T, K+1, D) array (or (T, D) when K is None).
-template <int D, typename F>
-py::array_t<double> sampleJets(const py::array_t<double, py::array::c_style>& ts, int order, bool squeeze, F&& f)
-{
-    const auto n = static_cast<py::ssize_t>(ts.size());
-    py::array_t<double> out = squeeze ? py::array_t<double>({n, py::ssize_t{D}})
-                                      : py::array_t<double>({n, py::ssize_t{order + 1}, py::ssize_t{D}});
-    const double* t = ts.data();
-    double* o = out.mutable_data();
-    {
-        py::gil_scoped_release release;
-        for (py::ssize_t i = 0; i < n; ++i) {
-            const Eigen::Matrix<double, D, Eigen::Dynamic> j = f(t[i], order);
-            std::copy(j.data(), j.data() + j.size(), o + i * D * (order + 1));
-        }
-    }
-    return out;
-}
-
-void requireInDomain(const py::array_t<double, py::array::c_style>& ts, double end, const std::string& what)
-{
-    for (py::ssize_t i = 0; i < ts.size(); ++i) {
-        const double t = ts.data()[i];
-        if (!(t >= 0 && t <= end))
-            throw freeform::Error(what + ": parameter " + std::to_string(t) + " (index " + std::to_string(i) +
-                                  ") outside [0, " + std::to_string(end) + "]");
-    }
-}
-
-py::dict continuityDict(const freeform::JointContinuity<double>& j)
-{
-    py::dict d;
-    d["joint"] = j.joint;
-    d["t"] = j.t;
-    d["C"] = j.C;
-    d["G"] = j.G;
-    d["jumps"] = j.jumps;
-    return d;
-}
-
-py::tuple meshArrays(const freeform::PolygonMesh& mesh)
-{
-    // Faces: (F, k) int32 when every face has k corners, else a list of lists.
-    py::object faces;
-    bool uniform = mesh.faceCount() > 0;
-    for (int f = 1; f < mesh.faceCount() && uniform; ++f) uniform = mesh.faceSize(f) == mesh.faceSize(0);
-    if (uniform) {
-        const int k = mesh.faceSize(0);
-        py::array_t<int> F({static_cast<py::ssize_t>(mesh.faceCount()), static_cast<py::ssize_t>(k)});
-        std::copy(mesh.faceVertices.begin(), mesh.faceVertices.end(), F.mutable_data());
-        faces = F;
-    } else {
-        py::list l;
-        for (int f = 0; f < mesh.faceCount(); ++f)
-            l.append(std::vector<int>(mesh.face(f), mesh.face(f) + mesh.faceSize(f)));
-        faces = l;
-    }
-    py::object normals = mesh.normals.cols() ? py::object(fromColumns(mesh.normals)) : py::object(py::none());
-    return py::make_tuple(fromColumns(mesh.positions), faces, normals);
-}
 
 py::dict evaluationDict(const freeform::Evaluation& e)
 {
@@ -451,6 +356,7 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
                 return freeform::TypedDocument::read(path);
             },
             py::arg("path"))
+        .def(py::init([]() { return freeform::TypedDocument(); }), "An empty document (add objects, then save).")
         .def(
             "save",
             [](const freeform::TypedDocument& d, const std::string& path) {
@@ -495,7 +401,11 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
             [](const freeform::TypedDocument& d, const std::string& name) -> py::object {
                 const auto& o = d.object(name);
                 auto c = freeform::AnyCurve::of(o);
-                if (!c) throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a curve or spline");
+                if (!c) {
+                    const std::string t = o.type();
+                    if (t == "rational_bezier_curve" || t == "nurbs_curve") return geometryObject(d, o);
+                    throw freeform::Error(d.what(o) + ": is a " + t + ", not a curve or spline");
+                }
                 return std::visit(
                     [](const auto& v) -> py::object {
                         using V = std::decay_t<decltype(v)>;
@@ -504,7 +414,56 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
                     },
                     c->variant());
             },
-            py::arg("name"), "A curve object as a BezierCurve, a spline (bezier or de Boor) as a Spline (Bézier form).")
+            py::arg("name"),
+            "A curve object as a BezierCurve, a spline (bezier or de Boor) as a Spline (Bézier form), a "
+            "rational_bezier_curve as a RationalBezierCurve, a nurbs_curve as a NurbsCurve.")
+        .def(
+            "object", [](const freeform::TypedDocument& d, const std::string& name) { return geometryObject(d, d.object(name)); },
+            py::arg("name"),
+            "The object's geometry as its Python type: BezierCurve, Spline (bezier_spline, deboor_spline in Bézier "
+            "form), Patch, Lattice, RationalBezierCurve, NurbsCurve, RationalBezierSurface, NurbsSurface "
+            "(freeform.Error for deboor_surface and subdivision_surface, which have none).")
+        .def(
+            "add",
+            [](freeform::TypedDocument& d, const std::string& name, py::handle object) {
+                if (d.find(name)) throw freeform::Error(d.source + ": an object named \"" + name + "\" exists already (use replace)");
+                d.add(name, objectData(object));
+            },
+            py::arg("name"), py::arg("object"),
+            "Appends a geometry object (any type Document.object returns) under a new name, validated by the "
+            "document layer as on load.")
+        .def(
+            "replace",
+            [](freeform::TypedDocument& d, const std::string& name, py::handle object) {
+                d.replace(d.object(name).id(), objectData(object));
+            },
+            py::arg("name"), py::arg("object"), "Replaces an object's geometry (its name, place and editor settings kept).")
+        .def(
+            "remove", [](freeform::TypedDocument& d, const std::string& name) { d.remove(d.object(name).id()); }, py::arg("name"))
+        .def(
+            "convert",
+            [](freeform::TypedDocument& d, const std::string& name, const std::string& to, std::optional<std::string> end) {
+                const auto& o = d.object(name);
+                const freeform::ObjectId id = o.id();
+                if (to == "bezier_spline" || to == "deboor_spline") {
+                    std::optional<freeform::EndCondition> e;
+                    if (end) e = freeform::parseEndCondition(*end, "end");
+                    freeform::convertSpline(d, id, to, e);
+                    return to;
+                }
+                if (end) throw freeform::Error("end: goes with to='deboor_spline' only");
+                const bool toNurbs = to == "nurbs_curve" || to == "nurbs_surface";
+                freeform::ObjectData data = toNurbs ? freeform::toNurbsData(d, o) : freeform::fromNurbsData(d, o);
+                const std::string got = freeform::objectType(data);
+                if (got != to)
+                    throw freeform::Error(d.what(o) + ": a " + o.type() + " converts to a " + got + ", not a " + to);
+                d.replace(id, std::move(data));
+                return to;
+            },
+            py::arg("name"), py::arg("to"), py::arg("end") = py::none(),
+            "As `freeform convert --object NAME --to TO`: bezier_spline <-> deboor_spline (end for de Boor), "
+            "curves/splines/patches -> nurbs_curve / nurbs_surface, a nurbs object -> its Bézier form "
+            "(bezier_spline, rational_bezier_curve, bezier_surface, rational_bezier_surface). Returns the new type.")
         .def(
             "patch",
             [](const freeform::TypedDocument& d, const std::string& name) {

@@ -8,15 +8,17 @@
 namespace ffpy {
 void bindLattice(pybind11::module_& m);
 void bindGeometry(pybind11::module_& m);
+void bindNurbs(pybind11::module_& m);
 } // namespace ffpy
 
 PYBIND11_MODULE(freeform, m)
 {
-    m.doc() = "freeform: Bézier curves, splines, surfaces, meshes and free-form deformation lattices "
+    m.doc() = "freeform: Bézier, rational Bézier and NURBS curves and surfaces, splines, meshes and free-form deformation lattices "
               "on NumPy arrays (docs/python.md).";
     // freeform::Error -> freeform.Error (a ValueError, carrying the library's message as is).
     pybind11::register_exception<freeform::Error>(m, "Error", PyExc_ValueError);
     m.attr("__version__") = "0.1.0";
     ffpy::bindLattice(m);
     ffpy::bindGeometry(m);
+    ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve
 }
