@@ -1,6 +1,8 @@
 // The Python module `freeform` (docs/python.md): freeform.Error and the bindings of lattice.cpp
 // and geometry.cpp. A front end on the document layer (docs/architecture.md), like cli/.
 
+#include "arrays.h"
+
 #include <pybind11/pybind11.h>
 
 #include <freeform/core/error.h>
@@ -21,4 +23,10 @@ PYBIND11_MODULE(freeform, m)
     ffpy::bindLattice(m);
     ffpy::bindGeometry(m);
     ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve
+    // For the tests of docs/python.md "Arrays": the array Lattice.deform / bind / det_j /
+    // deform_normals read for their points (ffpy::rows, the helper they call): the argument itself
+    // for float64/float32 C-contiguous (N, 3) arrays, a float64 copy made once otherwise.
+    m.def(
+        "_points_as_read", [](pybind11::handle points) { return ffpy::rows(points, "points", 3); }, pybind11::arg("points"),
+        "The array the deformation calls read for `points` (the argument itself when its layout allows).");
 }

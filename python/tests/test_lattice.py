@@ -311,3 +311,15 @@ def test_binding_reuses_coordinates_and_writes_into_out():
         other = ff.Lattice.fit(p, degree=2)
         with pytest.raises(ff.Error):
             b.deform(other)
+
+
+def test_points_are_read_in_place_where_the_layout_allows():
+    # docs/python.md "Arrays": float64 and float32 C-contiguous (N, 3) points are read without a copy
+    # (the kernels get the caller's buffer); other layouts are converted once to float64.
+    for dtype in (np.float64, np.float32):
+        p = np.ascontiguousarray(INSIDE, dtype=dtype)
+        seen = ff._points_as_read(p)
+        assert seen.ctypes.data == p.ctypes.data and np.shares_memory(seen, p)
+    for other in (np.asfortranarray(INSIDE), INSIDE.astype(np.int64), np.zeros((len(INSIDE), 6))[:, ::2]):
+        seen = ff._points_as_read(other)
+        assert not np.shares_memory(seen, other) and seen.dtype == np.float64 and seen.flags.c_contiguous
