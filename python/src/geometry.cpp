@@ -12,6 +12,7 @@
 #include <freeform/io/document.h>
 #include <freeform/io/deform_file.h>
 #include <freeform/io/mesh_io.h>
+#include <freeform/mesh/topology.h>
 #include <freeform/tessellate/tessellate.h>
 
 #include <sstream>
@@ -625,8 +626,26 @@ else of the file as read.)doc")
             d["normals"] = m.file.normals().cols();
             d["tangents"] = m.file.tangents().cols();
             d["faces"] = mesh.faceCount();
+            // The topology counts of `freeform info` (docs/cli.md), same keys, of the file at path() as
+            // that command reads it (readPolygonMesh: STL corners welded, which MeshFile never does).
+            freeform::MeshReport r;
+            {
+                py::gil_scoped_release release;
+                r = freeform::meshReport(freeform::readPolygonMesh(m.file.path()));
+            }
+            d["vertices"] = r.vertices;
+            d["edges"] = r.edges;
+            d["boundary_edges"] = r.boundaryEdges;
+            d["boundary_loops"] = r.boundaryLoops;
+            d["components"] = r.components;
+            d["manifold"] = r.manifold;
+            d["closed"] = r.closed;
+            d["euler"] = r.euler;
+            d["genus"] = r.genus ? py::object(py::int_(*r.genus)) : py::object(py::none());
             return d;
-        }, "Counts: format, positions, normals, tangents, faces.")
+        }, "Counts: format, positions, normals, tangents, faces, and the topology of `freeform info` "
+           "(vertices, edges, boundary_edges, boundary_loops, components, manifold, closed, euler, genus) of the file "
+           "at path as that command reads it (STL corners welded).")
         .def("__repr__", [](const PyMesh& m) {
             return "MeshFile(path='" + m.file.path() + "', format='" + m.file.format() + "', positions=" +
                    std::to_string(m.file.positions().cols()) + ")";

@@ -181,3 +181,30 @@ def test_clamped_interpolation_against_cli(tmp_path):
         ff.Spline.interpolate(pts, start_derivative=[1, 0, 0])
     with pytest.raises(ff.Error, match="expected 3 numbers"):
         ff.Spline.interpolate(pts, end="clamped", start_derivative=[1, 0])
+
+
+@pytest.mark.parametrize("name", ["cube.obj", "sphere.obj", "sphere.ply", "sphere.stl", "sphere.off",
+                                  "sphere.gltf", "sphere.glb"])
+def test_mesh_info_counts_equal_the_cli(tmp_path, name):
+    for extra in ["cube.mtl", "sphere.bin"]:
+        shutil.copy(ROOT / "data" / "meshes" / extra, tmp_path / extra)
+    shutil.copy(ROOT / "data" / "meshes" / name, tmp_path / name)
+    info = ff.MeshFile.read(str(tmp_path / name)).info()
+    cli = json.loads(run_cli("info", tmp_path / name))
+    for key in ["vertices", "edges", "faces", "boundary_edges", "boundary_loops", "components", "manifold", "closed",
+                "euler", "genus"]:
+        assert info[key] == cli[key], key
+    assert info["euler"] == info["vertices"] - info["edges"] + info["faces"]
+
+
+def test_subdivision_limit_evaluation_equals_the_cli():
+    path = ROOT / "data" / "cages" / "torus.json"
+    doc = ff.Document.load(str(path))
+    name = doc.names[0]
+    for face, u, v in [(0, 0.5, 0.5), (3, 0.25, 0.75), (7, 0.0, 1.0)]:
+        e = doc.evaluate(name, [face, u, v], 1)
+        out = json.loads(run_cli("eval", path, "--object", name, "--at", f"{face},{u},{v}", "--derivatives", 1))
+        np.testing.assert_allclose(e["point"], out["point"], rtol=1e-15, atol=1e-15)
+        np.testing.assert_allclose(e["normal"], out["normal"], rtol=1e-15, atol=1e-15)
+        np.testing.assert_allclose(e["derivatives"][0], out["derivatives"]["u"], rtol=1e-15, atol=1e-15)
+        np.testing.assert_allclose(e["derivatives"][1], out["derivatives"]["v"], rtol=1e-15, atol=1e-15)
