@@ -238,7 +238,11 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
             [](const PySpline& s) {
                 py::list out;
                 std::visit([&](const auto& c) {
-                    for (const auto& j : freeform::continuityReport(c)) out.append(continuityDict(j));
+                    const auto report = [&] {
+                        py::gil_scoped_release release;
+                        return freeform::continuityReport(c);
+                    }();
+                    for (const auto& j : report) out.append(continuityDict(j));
                 }, s.s);
                 return out;
             },
@@ -392,8 +396,13 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
         .def(
             "continuity",
             [](const freeform::TypedDocument& d, const std::string& name) {
+                const auto& o = d.object(name);
+                const auto report = [&] {
+                    py::gil_scoped_release release;
+                    return freeform::continuity(d, o);
+                }();
                 py::list out;
-                for (const auto& j : freeform::continuity(d, d.object(name))) out.append(continuityDict(j));
+                for (const auto& j : report) out.append(continuityDict(j));
                 return out;
             },
             py::arg("name"))

@@ -715,7 +715,10 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
         .def(
             "insert_knot",
             [](const PyNurbsCurve& s, double u, int times) {
-                return std::visit([&](const auto& c) { return PyNurbsCurve{c.insertKnot(u, times)}; }, s.c);
+                return std::visit([&](const auto& c) {
+                    py::gil_scoped_release release;
+                    return PyNurbsCurve{c.insertKnot(u, times)};
+                }, s.c);
             },
             py::arg("u"), py::arg("times") = 1, "Boehm's insertion of u, `times` times; the curve is unchanged.")
         .def(
@@ -732,7 +735,10 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
             "remove_knot",
             [](const PyNurbsCurve& s, double u) {
                 return std::visit([&](const auto& c) {
-                    auto r = c.removeKnot(u);
+                    auto r = [&] {
+                        py::gil_scoped_release release;
+                        return c.removeKnot(u);
+                    }();
                     return py::make_tuple(PyNurbsCurve{std::move(r.curve)}, r.error);
                 }, s.c);
             },
@@ -764,7 +770,10 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
             "split",
             [](const PyNurbsCurve& s, double u) {
                 return std::visit([&](const auto& c) {
-                    auto [a, b] = c.split(u);
+                    auto [a, b] = [&] {
+                        py::gil_scoped_release release;
+                        return c.split(u);
+                    }();
                     return py::make_tuple(PyNurbsCurve{a}, PyNurbsCurve{b});
                 }, s.c);
             },
@@ -776,7 +785,11 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
             [](const PyNurbsCurve& s) {
                 py::list out;
                 std::visit([&](const auto& c) {
-                    for (const auto& p : c.bezierPieces()) out.append(PyRationalCurve{p});
+                    const auto pieces = [&] {
+                        py::gil_scoped_release release;
+                        return c.bezierPieces();
+                    }();
+                    for (const auto& p : pieces) out.append(PyRationalCurve{p});
                 }, s.c);
                 return out;
             },
@@ -797,7 +810,11 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
             [](const PyNurbsCurve& s) {
                 py::list out;
                 std::visit([&](const auto& c) {
-                    for (const auto& j : freeform::continuityReport(c)) out.append(continuityDict(j));
+                    const auto report = [&] {
+                        py::gil_scoped_release release;
+                        return freeform::continuityReport(c);
+                    }();
+                    for (const auto& j : report) out.append(continuityDict(j));
                 }, s.c);
                 return out;
             },
@@ -955,21 +972,35 @@ NurbsSurface(degree (p, q) or p, knots_u, knots_v, points (nu, nv, 3), weights (
             const py::array a = uvArg(uv, "NurbsSurface.normal", S.knotsU().front(), S.knotsU().back(), S.knotsV().front(), S.knotsV().back());
             return surfaceMap<NSurface>(a, [&](double u, double v) { return S.normal(u, v); });
         }, py::arg("uv"), "Unit normals (zero at poles where S_u x S_v vanishes): (N, 3).")
-        .def("refined_u", [](const PyNurbsSurface& s, py::handle knots) { return PyNurbsSurface{s.s.refinedU(numberList(knots, "knots"))}; },
+        .def("refined_u", [](const PyNurbsSurface& s, py::handle knots) {
+            const auto k = numberList(knots, "knots");
+            py::gil_scoped_release release;
+            return PyNurbsSurface{s.s.refinedU(k)};
+        },
              py::arg("knots"), "Knot refinement in u (Oslo); the surface is unchanged.")
-        .def("refined_v", [](const PyNurbsSurface& s, py::handle knots) { return PyNurbsSurface{s.s.refinedV(numberList(knots, "knots"))}; },
+        .def("refined_v", [](const PyNurbsSurface& s, py::handle knots) {
+            const auto k = numberList(knots, "knots");
+            py::gil_scoped_release release;
+            return PyNurbsSurface{s.s.refinedV(k)};
+        },
              py::arg("knots"), "Knot refinement in v (Oslo); the surface is unchanged.")
         .def("insert_knot_u", [](const PyNurbsSurface& s, double u, int times) {
             if (times < 0) throw freeform::Error("NurbsSurface.insert_knot_u: times " + std::to_string(times) + " is negative");
+            py::gil_scoped_release release;
             return PyNurbsSurface{s.s.refinedU(std::vector<double>(static_cast<std::size_t>(times), u))};
         }, py::arg("u"), py::arg("times") = 1)
         .def("insert_knot_v", [](const PyNurbsSurface& s, double v, int times) {
             if (times < 0) throw freeform::Error("NurbsSurface.insert_knot_v: times " + std::to_string(times) + " is negative");
+            py::gil_scoped_release release;
             return PyNurbsSurface{s.s.refinedV(std::vector<double>(static_cast<std::size_t>(times), v))};
         }, py::arg("v"), py::arg("times") = 1)
         .def("bezier_patches", [](const PyNurbsSurface& s) {
             py::list out;
-            for (const auto& p : s.s.bezierPatches()) out.append(PyRationalSurface{p});
+            const auto patches = [&] {
+                py::gil_scoped_release release;
+                return s.s.bezierPatches();
+            }();
+            for (const auto& p : patches) out.append(PyRationalSurface{p});
             return out;
         }, "Bézier extraction: one RationalBezierSurface per pair of non-empty spans, patch (a, b) at a * (spans in v) + b.")
         .def("curve_at_u", [](const PyNurbsSurface& s, double u) { return PyNurbsCurve{s.s.curveAtU(u)}; }, py::arg("u"),

@@ -5,6 +5,8 @@
 # rational FFD formula of docs/nurbs.md.
 import json
 import math
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -671,3 +673,27 @@ def test_new_types_have_docstrings_and_reprs():
         assert f.__doc__, f
     assert repr(ff.NurbsCurve.circle()) == "NurbsCurve(degree=2, control_count=9, dimension=2, rational=True)"
     assert repr(ff.NurbsSurface.sphere()) == "NurbsSurface(degree=(2, 2), count=(9, 5), rational=True)"
+
+
+def test_gil_is_released_during_nurbs_evaluation():
+    s = ff.NurbsSurface.sphere()
+    u = np.linspace(0, 1, 1500)
+    ticks = []
+    stop = threading.Event()
+
+    def counter():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.0005)
+
+    t = threading.Thread(target=counter)
+    t.start()
+    time.sleep(0.01)
+    start = time.perf_counter()
+    for _ in range(3):
+        s.evaluate_grid(u, u)
+    end = time.perf_counter()
+    stop.set()
+    t.join()
+    # with the GIL held for the whole call the other thread could not tick during it
+    assert len([x for x in ticks if start < x < end]) >= 3
