@@ -49,8 +49,9 @@ std::vector<double> numberList(py::handle h, const std::string& what)
     return std::vector<double>(d.data(), d.data() + d.size());
 }
 
-/// Weights (None: empty) as an Eigen vector; `shape` the expected NumPy shape text for messages.
-/// A 2-D array is accepted for surfaces (ndim2 true) and flattened in C order.
+/// Weights (None: empty, all 1) as an Eigen vector: a 1-D array, or for surfaces (ndim2) a 2-D
+/// (nu, nv) array flattened in C order (point (i, j) at i * nv + j, the library's layout). Count,
+/// sign and finiteness are the library's checks (its message names the weight).
 Eigen::VectorXd weightVector(py::handle h, const std::string& what, bool ndim2 = false)
 {
     if (h.is_none()) return {};
@@ -153,7 +154,7 @@ py::array_t<double> surfacePartial(const S& s, int a, int b, const py::array& uv
     return out;
 }
 
-template <typename S, typename F>
+template <typename F>
 py::array_t<double> surfaceMap(const py::array& uv, F&& f)
 {
     const auto n = uv.shape(0);
@@ -849,7 +850,7 @@ A rational Bézier patch in 3D on [0, 1]^2 (docs/nurbs.md): control points (m+1,
         }, "(m+1, n+1) float64 (a copy).")
         .def("evaluate", [](const PyRationalSurface& s, py::handle uv) {
             const py::array a = uvArg(uv, "RationalBezierSurface.evaluate", 0, 1, 0, 1);
-            return surfaceMap<RSurface>(a, [&](double u, double v) { return s.s.evaluate(u, v); });
+            return surfaceMap(a, [&](double u, double v) { return s.s.evaluate(u, v); });
         }, py::arg("uv"), "Points at many (u, v) (N, 2): (N, 3).")
         .def("derivatives", [](const PyRationalSurface& s, py::handle uv, int order) {
             return surfaceJets(s.s, uvArg(uv, "RationalBezierSurface.derivatives", 0, 1, 0, 1), order);
@@ -860,7 +861,7 @@ A rational Bézier patch in 3D on [0, 1]^2 (docs/nurbs.md): control points (m+1,
         }, py::arg("a"), py::arg("b"), py::arg("uv"), "d^(a+b) f / du^a dv^b at many (u, v): (N, 3).")
         .def("normal", [](const PyRationalSurface& s, py::handle uv) {
             const py::array a = uvArg(uv, "RationalBezierSurface.normal", 0, 1, 0, 1);
-            return surfaceMap<RSurface>(a, [&](double u, double v) { return s.s.normal(u, v); });
+            return surfaceMap(a, [&](double u, double v) { return s.s.normal(u, v); });
         }, py::arg("uv"), "Unit normals f_u x f_v / |f_u x f_v| (zero where they are parallel): (N, 3).")
         .def("split_u", [](const PyRationalSurface& s, double t) { auto [a, b] = s.s.splitU(t); return py::make_tuple(PyRationalSurface{a}, PyRationalSurface{b}); }, py::arg("t"))
         .def("split_v", [](const PyRationalSurface& s, double t) { auto [a, b] = s.s.splitV(t); return py::make_tuple(PyRationalSurface{a}, PyRationalSurface{b}); }, py::arg("t"))
@@ -941,7 +942,7 @@ NurbsSurface(degree (p, q) or p, knots_u, knots_v, points (nu, nv, 3), weights (
         .def("evaluate", [](const PyNurbsSurface& s, py::handle uv) {
             const auto& S = s.s;
             const py::array a = uvArg(uv, "NurbsSurface.evaluate", S.knotsU().front(), S.knotsU().back(), S.knotsV().front(), S.knotsV().back());
-            return surfaceMap<NSurface>(a, [&](double u, double v) { return S.evaluate(u, v); });
+            return surfaceMap(a, [&](double u, double v) { return S.evaluate(u, v); });
         }, py::arg("uv"), "Points at many (u, v) (N, 2): (N, 3).")
         .def("evaluate_grid", [](const PyNurbsSurface& s, py::handle us, py::handle vs, bool withDerivatives) -> py::object {
             const auto& S = s.s;
@@ -970,7 +971,7 @@ NurbsSurface(degree (p, q) or p, knots_u, knots_v, points (nu, nv, 3), weights (
         .def("normal", [](const PyNurbsSurface& s, py::handle uv) {
             const auto& S = s.s;
             const py::array a = uvArg(uv, "NurbsSurface.normal", S.knotsU().front(), S.knotsU().back(), S.knotsV().front(), S.knotsV().back());
-            return surfaceMap<NSurface>(a, [&](double u, double v) { return S.normal(u, v); });
+            return surfaceMap(a, [&](double u, double v) { return S.normal(u, v); });
         }, py::arg("uv"), "Unit normals (zero at poles where S_u x S_v vanishes): (N, 3).")
         .def("refined_u", [](const PyNurbsSurface& s, py::handle knots) {
             const auto k = numberList(knots, "knots");
