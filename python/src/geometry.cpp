@@ -68,14 +68,7 @@ void bindGeometry(py::module_& m)
                 return std::visit(
                     [&](const auto& c) {
                         using C = std::decay_t<decltype(c)>;
-                        constexpr int D = C::PointType::RowsAtCompileTime;
-                        typename C::Points out;
-                        {
-                            py::gil_scoped_release release;
-                            c.evaluateMany(ts.data(), static_cast<std::size_t>(ts.size()), out);
-                        }
-                        (void)D;
-                        return fromColumns(out);
+                        return batchEvaluate<C::PointType::RowsAtCompileTime>(c, ts);
                     },
                     s.c);
             },

@@ -18,6 +18,7 @@
 #include <freeform/surface/nurbs_surface.h>
 #include <freeform/surface/rational_bezier_surface.h>
 
+#include <algorithm>
 #include <string>
 #include <variant>
 
@@ -116,6 +117,28 @@ inline py::tuple meshArrays(const freeform::PolygonMesh& mesh)
     }
     py::object normals = mesh.normals.cols() ? py::object(fromColumns(mesh.normals)) : py::object(py::none());
     return py::make_tuple(fromColumns(mesh.positions), faces, normals);
+}
+
+/// c.evaluateMany at every parameter into a new (N, D) array, in chunks: each chunk's D x len
+/// result (column-major, the same layout as len rows of the output) stays in cache and is copied
+/// straight into the output, instead of a full-size temporary and a second pass (GIL released).
+template <int D, typename C>
+py::array_t<double> batchEvaluate(const C& c, const py::array_t<double, py::array::c_style>& ts)
+{
+    constexpr std::size_t chunk = 4096;
+    const auto count = static_cast<std::size_t>(ts.size());
+    py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{D}});
+    double* o = out.mutable_data();
+    {
+        py::gil_scoped_release release;
+        typename C::Points buf;
+        for (std::size_t start = 0; start < count; start += chunk) {
+            const std::size_t len = std::min(chunk, count - start);
+            c.evaluateMany(ts.data() + start, len, buf);
+            std::copy(buf.data(), buf.data() + D * len, o + D * start);
+        }
+    }
+    return out;
 }
 
 /// [start, end] version of requireInDomain (NaN is outside).

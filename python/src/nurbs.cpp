@@ -20,6 +20,7 @@
 #include <freeform/volume/deform.h>
 #include <freeform/volume/deform_rational.h>
 
+#include <algorithm>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -37,6 +38,10 @@ using NSurface = freeform::NurbsSurface<double, 3>;
 
 template <typename C>
 constexpr int dimOf = C::PointType::RowsAtCompileTime;
+
+/// Parameters per batch call: the batch result (D x kChunk) stays in cache and is copied straight
+/// into the (N, D) output (the same memory layout), instead of a full-size temporary.
+constexpr std::size_t kChunk = 4096;
 
 // ---------------------------------------------------------------- argument conversion
 
@@ -363,12 +368,7 @@ void curveCommon(py::class_<Py>& cls, const char* name)
                         using C = std::decay_t<decltype(c)>;
                         const auto [a, b] = domainOf(c);
                         requireInRange(ts, a, b, n + ".evaluate");
-                        typename C::Points out;
-                        {
-                            py::gil_scoped_release release;
-                            c.evaluateMany(ts.data(), static_cast<std::size_t>(ts.size()), out);
-                        }
-                        return fromColumns(out);
+                        return batchEvaluate<dimOf<C>>(c, ts);
                     },
                     s.c);
             },
@@ -704,12 +704,23 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
                 return std::visit([&](const auto& c) {
                     using C = std::decay_t<decltype(c)>;
                     requireInRange(ts, c.domainStart(), c.domainEnd(), "NurbsCurve.evaluate_with_derivative");
-                    typename C::Points pos, d1;
+                    constexpr int D = dimOf<C>;
+                    const auto count = static_cast<std::size_t>(ts.size());
+                    py::array_t<double> pos({static_cast<py::ssize_t>(count), py::ssize_t{D}});
+                    py::array_t<double> d1({static_cast<py::ssize_t>(count), py::ssize_t{D}});
+                    double* op = pos.mutable_data();
+                    double* od = d1.mutable_data();
                     {
                         py::gil_scoped_release release;
-                        c.evaluateManyWithDerivative(ts.data(), static_cast<std::size_t>(ts.size()), pos, d1);
+                        typename C::Points bp, bd;
+                        for (std::size_t start = 0; start < count; start += kChunk) {
+                            const std::size_t len = std::min(kChunk, count - start);
+                            c.evaluateManyWithDerivative(ts.data() + start, len, bp, bd);
+                            std::copy(bp.data(), bp.data() + D * len, op + D * start);
+                            std::copy(bd.data(), bd.data() + D * len, od + D * start);
+                        }
                     }
-                    return py::make_tuple(fromColumns(pos), fromColumns(d1));
+                    return py::make_tuple(pos, d1);
                 }, s.c);
             },
             py::arg("t"), "(points (T, D), first derivatives (T, D)) by the batch path.")
