@@ -323,3 +323,15 @@ def test_points_are_read_in_place_where_the_layout_allows():
     for other in (np.asfortranarray(INSIDE), INSIDE.astype(np.int64), np.zeros((len(INSIDE), 6))[:, ::2]):
         seen = ff._points_as_read(other)
         assert not np.shares_memory(seen, other) and seen.dtype == np.float64 and seen.flags.c_contiguous
+
+
+def test_results_do_not_depend_on_the_thread_count():
+    # docs/python.md "Threads and the GIL": threads=0 is the hardware concurrency; the results are the same
+    lat = random_lattice(ff)
+    big = np.random.default_rng(5).uniform(-1.2, 1.2, (20_000, 3))
+    ref = lat.deform(big, threads=1)
+    for t in (0, 2, 3, 7):
+        assert np.array_equal(lat.deform(big, threads=t), ref)
+        assert np.array_equal(lat.det_j(big, threads=t), lat.det_j(big, threads=1))
+    rl = ff.RationalLattice(lat, np.linspace(0.5, 2, lat.point_count))
+    assert np.array_equal(rl.deform(big, threads=3), rl.deform(big, threads=1))
