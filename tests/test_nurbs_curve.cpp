@@ -10,6 +10,7 @@
 #include <freeform/curve/nurbs_curve.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -351,4 +352,38 @@ TEST_CASE("knot removal undoes insertion and reports the deviation; elevation an
     CHECK(worst <= removed.error * (1 + 1e-12));
     CHECK(worst > 0);
     CHECK_THROWS_WITH(c.removeKnot(c.domainStart() + 1e-9), Catch::Contains("is not a knot"));
+}
+
+TEST_CASE("closest point is global: never farther than dense sampling, zero for the curve's own points", "[nurbs]")
+{
+    // Independent reference: the minimum over 20,001 evaluated samples can only be larger than the
+    // true minimum, so the closest point must not be farther than it (up to the sampling's own
+    // rounding); a point on the curve must be found at distance ~0. Random rational curves of
+    // degrees 1-7 with multiple knots, whose squared distance has many local minima per span.
+    for (int p = 1; p <= 7; ++p)
+        for (int variant = 0; variant < 4; ++variant) {
+            const auto c = randomCurve<3>(p, variant % 2 == 0, true, 900u + 10u * p + variant);
+            const double a = c.domainStart(), b = c.domainEnd();
+            std::mt19937 rng(77u * p + variant);
+            std::uniform_real_distribution<double> ut(a, b), off(-1.5, 1.5);
+            for (int trial = 0; trial < 6; ++trial) {
+                const double t = ut(rng);
+                const Eigen::Vector3d on = c(t);
+                CHECK(c.closestPoint(on).distance <= 1e-9);
+                const Eigen::Vector3d q = on + Eigen::Vector3d(off(rng), off(rng), off(rng));
+                double sampled = std::numeric_limits<double>::infinity();
+                for (int i = 0; i <= 20000; ++i) sampled = std::min(sampled, (c(a + (b - a) * i / 20000.0) - q).norm());
+                const auto near = c.closestPoint(q);
+                CHECK(near.distance <= sampled + 1e-12);
+                CHECK((c(near.u) - q).norm() == Approx(near.distance).epsilon(1e-12));
+            }
+        }
+    // The case that the old Newton-from-8-samples search missed: a degree-4 rational piece.
+    const Eigen::Matrix<double, 3, 5> P = (Eigen::Matrix<double, 3, 5>() << 0.3, -1.2, 0.8, 1.9, -0.4, //
+                                           1.1, 0.2, -1.6, 0.5, 0.9,                                     //
+                                           -0.7, 1.4, 0.3, -1.1, 0.6)
+                                              .finished();
+    const auto piece = NurbsCurve<double, 3>::fromRationalBezier(
+        RationalBezierCurve<double, 3>(P, (Eigen::VectorXd(5) << 0.4, 2.7, 0.5, 2.9, 0.35).finished()));
+    for (int i = 0; i <= 50; ++i) CHECK(piece.closestPoint(piece(i / 50.0)).distance <= 1e-9);
 }

@@ -386,8 +386,11 @@ public:
         return total;
     }
 
-    /// The point of the curve closest to p: 8 samples per knot span, then Newton on
-    /// (C - p) . C' = 0 (safeguarded, clamped to the span), and the curve's ends.
+    /// The point of the curve closest to p, globally. On each knot span the rational piece
+    /// C = A / w has (C - p) . C' = 0 exactly where the polynomial (A - p w) . (A' w - A w') of
+    /// degree 3p - 1 vanishes (multiply by w^3 > 0); all its roots in the span are found in
+    /// Bernstein form (core/polynomial.h) and compared with the breakpoints, as
+    /// BezierCurve::closestPoint does for one polynomial piece.
     Closest closestPoint(const PointType& p) const
     {
         Closest best{domainStart(), evaluate(domainStart()), (evaluate(domainStart()) - p).norm()};
@@ -396,27 +399,30 @@ public:
             const Scalar d = (q - p).norm();
             if (d < best.distance) best = {u, q, d};
         };
-        consider(domainEnd());
+        const int n = degree();
         for (std::size_t k = 0; k + 1 < breaks_.size(); ++k) {
             const Scalar a = breaks_[k], b = breaks_[k + 1];
-            Scalar bestU = a, bestD = std::numeric_limits<Scalar>::infinity();
-            for (int i = 0; i <= 8; ++i) {
-                const Scalar u = a + (b - a) * Scalar(i) / 8;
-                const Scalar d = (evaluate(u) - p).squaredNorm();
-                if (d < bestD) { bestD = d; bestU = u; }
+            consider(b);
+            if (n == 0) continue;
+            const auto H = pieces_.middleCols(static_cast<Eigen::Index>(k) * (n + 1), n + 1);
+            std::vector<Scalar> w(n + 1), dw(n);
+            for (int i = 0; i <= n; ++i) w[i] = H(Dim, i);
+            for (int i = 0; i < n; ++i) dw[i] = Scalar(n) * (w[i + 1] - w[i]);
+            std::vector<Scalar> g(static_cast<std::size_t>(3 * n), Scalar(0));
+            for (int c = 0; c < Dim; ++c) {
+                std::vector<Scalar> A(n + 1), offset(n + 1), dA(n);
+                for (int i = 0; i <= n; ++i) {
+                    A[i] = H(c, i);
+                    offset[i] = H(c, i) - p[c] * w[i];
+                }
+                for (int i = 0; i < n; ++i) dA[i] = Scalar(n) * (A[i + 1] - A[i]);
+                std::vector<Scalar> tangent = bernsteinPolyProduct(dA, w);
+                const std::vector<Scalar> correction = bernsteinPolyProduct(A, dw);
+                for (std::size_t i = 0; i < tangent.size(); ++i) tangent[i] -= correction[i];
+                const std::vector<Scalar> prod = bernsteinPolyProduct(offset, tangent);
+                for (std::size_t i = 0; i < g.size(); ++i) g[i] += prod[i];
             }
-            Scalar u = bestU;
-            for (int iter = 0; iter < 50; ++iter) {
-                const auto d = derivatives(u, 2);
-                const PointType r = d.col(0) - p;
-                const Scalar f = r.dot(d.col(1)), df = d.col(1).squaredNorm() + r.dot(d.col(2));
-                if (df == Scalar(0)) break;
-                const Scalar next = std::clamp(u - f / df, a, b);
-                if (std::abs(next - u) <= std::numeric_limits<Scalar>::epsilon() * (std::abs(u) + 1)) { u = next; break; }
-                u = next;
-            }
-            consider(u);
-            consider(bestU);
+            for (Scalar t : bernsteinPolyRoots(g)) consider(std::clamp(a + (b - a) * t, a, b));
         }
         return best;
     }
