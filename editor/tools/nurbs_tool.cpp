@@ -474,7 +474,7 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
                     across = across.norm() > 0 ? Eigen::Vector3d(across.normalized()) : Eigen::Vector3d::UnitY();
                     const Vec3f colour = multiplicityColor(m, p);
                     o.addPoint(f3(point), colour);
-                    const double h = 0.012 * size, gap = 0.006 * size;
+                    const double h = 0.018 * size, gap = 0.009 * size;
                     for (int j = 0; j < m; ++j) {
                         const Eigen::Vector3d at = point + (j - 0.5 * (m - 1)) * gap * tangent;
                         o.addLine(f3(at - h * across), f3(at + h * across), colour, true);
@@ -483,8 +483,11 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
             }
             if (construction) drawConstructionLevels(o, deBoorLevels(*curve, curve->domainStart() + t * (curve->domainEnd() - curve->domainStart())));
         } else if (const auto surface = surface3(object->data); surface && showKnots) {
-            // Isoparametric lines at the knots (the domain's edges included), 64 samples each.
+            // Isoparametric lines at the knots (the domain's edges included), 64 samples each,
+            // lifted towards the eye by 0.4 % of the scene so that the depth test keeps them in
+            // front of their own surface (and behind the rest).
             const int p = surface->degreeU(), q = surface->degreeV();
+            const Eigen::Vector3d lift = 0.004 * size * c.scene.camera.back();
             const auto& ku = surface->knotsU();
             const auto& kv = surface->knotsV();
             const auto lineAt = [&](bool inU, double s, const Vec3f& colour) {
@@ -492,7 +495,7 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
                 Eigen::Vector3d last = Eigen::Vector3d::Zero();
                 for (int k = 0; k <= 64; ++k) {
                     const double x = a + (b - a) * k / 64.0;
-                    const Eigen::Vector3d pt = inU ? surface->evaluate(s, x) : surface->evaluate(x, s);
+                    const Eigen::Vector3d pt = (inU ? surface->evaluate(s, x) : surface->evaluate(x, s)) + lift;
                     if (k > 0) o.addLine(f3(last), f3(pt), colour, false);
                     last = pt;
                 }

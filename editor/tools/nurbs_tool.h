@@ -75,6 +75,7 @@ private:
     Eigen::Vector3d hover_ = Eigen::Vector3d::Zero();
     bool hasHover_ = false;
     Eigen::Vector3d normal_ = Eigen::Vector3d::UnitZ();
+    int typedItem_ = -1, typedPoint_ = -1; // the point typedWeight was last filled from
     // The Alt + drag on a weight.
     int dragItem_ = -1;
     std::vector<int> dragPoints_;

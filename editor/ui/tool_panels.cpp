@@ -152,6 +152,11 @@ void NurbsTool::drawPanel(ToolContext& c)
         ImGui::TextDisabled("select control points to type their weight");
     } else {
         const int k = c.selection.points.back();
+        if (k >= 0 && k < static_cast<int>(weights.size()) && (item != typedItem_ || k != typedPoint_)) {
+            // A newly selected point: the field starts at its weight.
+            typedWeight = weights[static_cast<std::size_t>(k)];
+            typedItem_ = item, typedPoint_ = k;
+        }
         if (k >= 0 && k < static_cast<int>(weights.size())) {
             ImGui::Text("point %d: weight %.6g%s", k, weights[static_cast<std::size_t>(k)],
                         c.selection.points.size() > 1 ? " (last selected)" : "");
