@@ -200,6 +200,22 @@ TEST_CASE("nurbs editor: knot insertion keeps the curve and the surface, one und
         CHECK_FALSE(b.tools.nurbs().insertKnot(b.context, 4.0));
         CHECK(b.scene.text() == text);
     }
+    SECTION("2D curve (the circle of docs/format.md)")
+    {
+        NurbsCurveData d;
+        d.degree = 2;
+        d.knots = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+        d.points.resize(2, 9);
+        d.points << 1, 1, 0, -1, -1, -1, 0, 1, 1, 0, 1, 1, 1, 0, -1, -1, -1, 0;
+        const double h = std::sqrt(0.5);
+        d.weights = {1, h, 1, h, 1, h, 1, h, 1};
+        b.selection.selectItem(b.scene.addObject({"flat", d, ""}));
+        REQUIRE(b.tools.nurbs().insertKnot(b.context, 0.5));
+        const auto& after = std::get<NurbsCurveData>(b.scene.object(b.selection.item).data);
+        CHECK(after.points.rows() == 2);
+        CHECK(after.points.cols() == 10);
+        for (int k = 0; k <= 64; ++k) CHECK(std::abs(b.eval("flat", {4.0 * k / 64}).norm() - 1) < 1e-15 * 2);
+    }
     SECTION("surface, in u and in v")
     {
         b.select("sphere");

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "freeform/core/error.h"
 #include "freeform/curve/nurbs_curve.h"
@@ -111,12 +112,13 @@ Vec3f multiplicityColor(int m, int p)
     return {0.95f, 0.95f, 0.95f};
 }
 
-NurbsCurveData curveDataOf(const NurbsCurve<double, 3>& c, Eigen::Index rows, bool keepWeights)
+template <int Dim>
+NurbsCurveData curveData(const NurbsCurve<double, Dim>& c, bool keepWeights)
 {
     NurbsCurveData out;
     out.degree = c.degree();
     out.knots = c.knots();
-    out.points = fromPoints3(c.controlPoints(), rows);
+    out.points = c.controlPoints();
     if (keepWeights) {
         const auto w = c.weights();
         out.weights.assign(w.data(), w.data() + w.size());
@@ -393,23 +395,34 @@ bool NurbsTool::insertKnot(ToolContext& c, double u, int dir)
     try {
         if (!object) throw Error("insert knot: select a NURBS curve or surface first");
         DocumentObject next = *object;
-        const Typed typed(object->data, object->name); // the layer validates the object first
-        if (const auto* d = std::get_if<NurbsCurveData>(&object->data)) {
-            const NurbsCurve<double, 3> curve = *curve3(object->data);
-            next.data = curveDataOf(curve.insertKnot(u), d->points.rows(), !d->weights.empty());
-        } else if (const auto* s = std::get_if<NurbsSurfaceData>(&object->data)) {
-            const NurbsSurface<double, 3> surface = *surface3(object->data);
-            const double a = dir == 0 ? surface.knotsU().front() : surface.knotsV().front();
-            const double b = dir == 0 ? surface.knotsU().back() : surface.knotsV().back();
+        // The geometry as the document layer builds it (its validation and messages).
+        const Typed typed(object->data, object->name);
+        const Geometry& g = typed.geometry();
+        const bool weighted = std::visit(
+            [](const auto& d) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(d)>, NurbsCurveData> ||
+                              std::is_same_v<std::decay_t<decltype(d)>, NurbsSurfaceData>)
+                    return !d.weights.empty();
+                else return false;
+            },
+            object->data);
+        if (const auto* c2 = std::get_if<NurbsCurve<double, 2>>(&g)) {
+            next.data = curveData(c2->insertKnot(u), weighted);
+        } else if (const auto* c3 = std::get_if<NurbsCurve<double, 3>>(&g)) {
+            next.data = curveData(c3->insertKnot(u), weighted);
+        } else if (const auto* surface = std::get_if<NurbsSurface<double, 3>>(&g)) {
+            const auto* s = std::get_if<NurbsSurfaceData>(&object->data);
+            const double a = dir == 0 ? surface->knotsU().front() : surface->knotsV().front();
+            const double b = dir == 0 ? surface->knotsU().back() : surface->knotsV().back();
             if (!(u > a && u < b)) throw Error("insert knot: " + std::to_string(u) + " is not inside the domain (" + std::to_string(a) + ", " + std::to_string(b) + ")");
-            const NurbsSurface<double, 3> refined = dir == 0 ? surface.refinedU({u}) : surface.refinedV({u});
+            const NurbsSurface<double, 3> refined = dir == 0 ? surface->refinedU({u}) : surface->refinedV({u});
             NurbsSurfaceData out;
             out.degree = s->degree;
             out.knots = {refined.knotsU().knots(), refined.knotsV().knots()};
             out.rows = refined.countU();
             out.cols = refined.countV();
             out.points = refined.controlPoints();
-            if (!s->weights.empty()) {
+            if (weighted) {
                 const auto w = refined.weights();
                 out.weights.assign(w.data(), w.data() + w.size());
             }
