@@ -213,6 +213,8 @@ std::string App::statusHint()
         hint = tools_.curve().creatingSpline()
                    ? "Create C2 spline (Shift+C): click a point the spline passes through; Enter finishes, Backspace removes the last, Escape cancels"
                    : "Create curve (C): click to add a control point; Enter finishes, Backspace removes the last, Escape cancels";
+    } else if (tools_.nurbs().creating()) {
+        hint = "Create circle (Shift+O) or arc (Shift+U): click the centre, then the radius (arc: then the end); Escape cancels";
     } else if (interaction_.busy()) {
         hint = "Move: the selected points follow the pointer; X/Y/Z constrain, click or Enter confirms, Escape or right click cancels";
     } else if (tools_.spline().dragging()) {
@@ -222,6 +224,7 @@ std::string App::statusHint()
         hint = "Select (" + scene_.item(ui_.selection.item).name + ", " + type + "): click a point to select it, drag to move it";
         if (type == "bezier_spline") hint += "; 1-4 set the joint's mode (free, aligned, mirrored, C2)";
         else if (type == "lattice") hint += "; D drags the deformed mesh directly";
+        else if (NurbsTool::handles(type)) hint += "; Alt+drag a point: its weight; K: insert a knot at t; T: de Boor construction";
         hint += "; Escape deselects";
     } else {
         hint = "Select: click an object or point; C: curve, Shift+C: C2 spline; drag: orbit, wheel: zoom; F1: help";

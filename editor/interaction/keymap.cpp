@@ -68,6 +68,13 @@ std::vector<KeyBinding> makeKeymap()
         {GLFW_KEY_4, 0, kPlain, C::Spline, A::JointC2, "4 (spline point selected)", "joint C2 (cubic splines)"},
         // Patches.
         {GLFW_KEY_P, 0, kPlain, C::Patch, A::CreatePatch, "P", "create a Bezier patch of the panel's degrees in the view plane"},
+        // Rational and NURBS objects (NurbsTool). Alt + drag on a control point scales its weight
+        // (the mouse section of the help).
+        {GLFW_KEY_O, kShift, kPlainShift, C::Nurbs, A::CreateCircle, "Shift+O", "create an exact circle: click the centre, then a point on it"},
+        {GLFW_KEY_U, kShift, kPlainShift, C::Nurbs, A::CreateArc, "Shift+U", "create an exact arc: click the centre, the start, the end (counter-clockwise)"},
+        {GLFW_KEY_ESCAPE, 0, kPlain, C::Nurbs, A::CircleCancel, "Escape (circle or arc)", "cancel the circle or arc being created"},
+        {GLFW_KEY_K, 0, kPlain, C::Nurbs, A::InsertKnot, "K (NURBS selected)", "insert a knot at the slider's parameter (shape unchanged)"},
+        {GLFW_KEY_T, 0, kPlain, C::Nurbs, A::DeBoorConstruction, "T (NURBS curve selected)", "de Boor construction at the slider's parameter on / off"},
         // Lattices.
         {GLFW_KEY_L, 0, kPlain, C::Lattice, A::FitLattice, "L (imported mesh selected)", "fit a lattice to it (degrees and margin in the panel)"},
         {GLFW_KEY_D, 0, kPlain, C::Lattice, A::DirectManipulation, "D", "direct manipulation on / off (drag a point of a deformed mesh; the lattice follows)"},
@@ -135,6 +142,7 @@ const char* contextTitle(KeyContext context)
     case KeyContext::Curve: return "Tools: curves and splines";
     case KeyContext::Spline: return "Tools: spline joints";
     case KeyContext::Patch: return "Tools: patches";
+    case KeyContext::Nurbs: return "Tools: rational and NURBS objects";
     case KeyContext::Lattice: return "Tools: lattices";
     case KeyContext::Edit: return "Editing";
     case KeyContext::View: return "View";

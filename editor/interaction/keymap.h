@@ -25,6 +25,7 @@ enum class KeyContext {
     Curve,      // curves and splines (CurveTool)
     Spline,     // spline joint handle modes (SplineTool)
     Patch,      // Bezier patches (PatchTool)
+    Nurbs,      // rational and NURBS objects: circles, arcs, knots, weights (NurbsTool)
     Lattice,    // lattices and FFD (LatticeTool)
     Edit,       // selection and editing options (Interaction)
     View,       // camera, display and windows (App)
@@ -45,6 +46,8 @@ enum class KeyAction {
     JointFree, JointAligned, JointMirrored, JointC2,
     // Patch
     CreatePatch,
+    // Nurbs
+    CreateCircle, CreateArc, CircleCancel, InsertKnot, DeBoorConstruction,
     // Lattice
     FitLattice, DirectManipulation, ApplyLattice,
     // Edit

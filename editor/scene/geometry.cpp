@@ -1,6 +1,6 @@
 // Derived geometry of scene items: curves sampled to polylines, surfaces tessellated to triangle
 // meshes with normals, control nets as edge lists, all through the document layer
-// (freeform/document/operations.h: controlNet, AnyCurve::polyline, tessellateObject). Nothing here
+// (freeform/document/operations.h: controlNet, AnyCurve::polyline / objectPolyline, tessellateObject). Nothing here
 // touches the GPU.
 
 #include <algorithm>
@@ -100,6 +100,10 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
         if (const auto curve = AnyCurve::of(object)) {
             g.curve = curve->polyline(tol);
             g.curveClosed = curve->closed();
+        } else if (auto polyline = objectPolyline(object, tol)) {
+            // rational_bezier_curve and nurbs_curve (not AnyCurve's): a closed NURBS (the
+            // circle) ends where it starts, so its polyline closes by itself.
+            g.curve = std::move(*polyline);
         }
         ObjectTessellation options;
         options.tolerance = t.mode == Tessellation::Mode::Uniform ? 0 : tol;

@@ -18,13 +18,7 @@ namespace {
 
 void drawConstruction(Overlay& o, const Points3& control, double t)
 {
-    const std::vector<Points3> levels = deCasteljauLevels(control, t);
-    for (std::size_t r = 1; r < levels.size(); ++r) {
-        const float fade = 1.0f - 0.5f * static_cast<float>(r) / static_cast<float>(levels.size());
-        drawPolyline(o, levels[r], kConstruction * fade);
-        for (Eigen::Index i = 0; i < levels[r].cols(); ++i)
-            o.addPoint(f3(levels[r].col(i)), r + 1 == levels.size() ? kCurvePoint : Vec3f(kConstruction * fade));
-    }
+    drawConstructionLevels(o, deCasteljauLevels(control, t));
 }
 
 void drawComb(Overlay& o, const std::vector<Eigen::Matrix3d>& jets, double size, double scale)

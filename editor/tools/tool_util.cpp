@@ -79,6 +79,16 @@ void drawPolyline(Overlay& o, const Points3& p, const Vec3f& color, bool closed)
     if (closed && p.cols() > 2) o.addLine(f3(p.col(p.cols() - 1)), f3(p.col(0)), color, true);
 }
 
+void drawConstructionLevels(Overlay& o, const std::vector<Points3>& levels)
+{
+    for (std::size_t r = 1; r < levels.size(); ++r) {
+        const float fade = 1.0f - 0.5f * static_cast<float>(r) / static_cast<float>(levels.size());
+        drawPolyline(o, levels[r], kConstruction * fade);
+        for (Eigen::Index i = 0; i < levels[r].cols(); ++i)
+            o.addPoint(f3(levels[r].col(i)), r + 1 == levels.size() ? kCurvePoint : Vec3f(kConstruction * fade));
+    }
+}
+
 } // namespace tool_util
 
 } // namespace freeform::editor

@@ -38,6 +38,10 @@ double sceneSize(const Scene& scene);
 bool allC2(const BezierSplineData& s, const std::vector<JointMode>& modes);
 
 void drawPolyline(Overlay& o, const Points3& p, const Vec3f& color, bool closed = false);
+/// A triangular construction (de Casteljau, de Boor): levels[0] is the control polygon (not drawn),
+/// every further level's polygon and points faded with depth, the last level's point (the curve
+/// point) in kCurvePoint. The colours are defined below.
+void drawConstructionLevels(Overlay& o, const std::vector<Points3>& levels);
 
 inline const Vec3f kConstruction{1.0f, 0.75f, 0.2f};
 inline const Vec3f kCurvePoint{1.0f, 0.3f, 0.2f};

@@ -2,7 +2,7 @@
 
 namespace freeform::editor {
 
-Tools::Tools() : all_{&curve_, &spline_, &patch_, &lattice_} {}
+Tools::Tools() : all_{&curve_, &spline_, &patch_, &nurbs_, &lattice_} {}
 
 bool Tools::onKey(ToolContext& c, int key, int mods)
 {
@@ -27,6 +27,7 @@ void Tools::update(ToolContext& c, Overlay& o)
     spline_.update(c, o);
     curve_.update(c, o);
     patch_.update(c, o);
+    nurbs_.update(c, o);
     lattice_.update(c, o);
 }
 

@@ -16,6 +16,7 @@
 
 #include "tools/curve_tool.h"
 #include "tools/lattice_tool.h"
+#include "tools/nurbs_tool.h"
 #include "tools/patch_tool.h"
 #include "tools/spline_tool.h"
 #include "tools/tool.h"
@@ -48,6 +49,7 @@ public:
     SplineTool& spline() { return spline_; }
     PatchTool& patch() { return patch_; }
     LatticeTool& lattice() { return lattice_; }
+    NurbsTool& nurbs() { return nurbs_; }
     /// The tools in dispatch order.
     const std::vector<Tool*>& all() const { return all_; }
 
@@ -60,6 +62,7 @@ private:
     SplineTool spline_{message_};
     PatchTool patch_{message_};
     LatticeTool lattice_{message_};
+    NurbsTool nurbs_{message_};
     std::vector<Tool*> all_;
 };
 

@@ -137,10 +137,11 @@ void PatchTool::drawToolbar(ToolContext& c)
     for (int& d : degree) d = std::clamp(d, 1, 20);
 }
 
-void PatchTool::drawPanel(ToolContext& c)
+namespace {
+
+/// The selected surface's tessellation settings (patches, rational and NURBS surfaces).
+void drawTessellationSettings(ToolContext& c)
 {
-    const std::string type = selectedType(c);
-    if (type != "bezier_surface" && type != "deboor_surface") return;
     const int item = c.selection.item;
     ImGui::TextUnformatted("Tessellation");
     ObjectSettings settings = c.scene.item(item).settings;
@@ -160,6 +161,15 @@ void PatchTool::drawPanel(ToolContext& c)
         changed |= ImGui::SliderInt("segments", &t.segments, 1, 64);
     }
     if (changed) c.scene.setSettings(item, settings, "tessellation");
+}
+
+} // namespace
+
+void PatchTool::drawPanel(ToolContext& c)
+{
+    const std::string type = selectedType(c);
+    if (type != "bezier_surface" && type != "deboor_surface") return;
+    drawTessellationSettings(c);
     ImGui::Separator();
     if (ImGui::Button("edge continuity of all patches")) computeEdgeContinuity(c);
     if (!edges_.empty()) {
@@ -274,6 +284,99 @@ void LatticeTool::drawMeshPanel(ToolContext& c, int meshItem)
     float m = static_cast<float>(margin);
     if (ImGui::SliderFloat("margin", &m, 0.0f, 0.5f, "%.3f")) margin = m;
     if (ImGui::Button("fit lattice")) fitLattice(c, meshItem);
+}
+
+// ------------------------------------------------------------------ rational and NURBS objects
+
+void NurbsTool::drawToolbar(ToolContext&)
+{
+    if (ImGui::Button(creating_ && !arc_ ? "cancel circle (Esc)" : "circle (Shift+O)")) {
+        if (creating_) cancelCreating();
+        else startCreating(false);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button(creating_ && arc_ ? "cancel arc (Esc)" : "arc (Shift+U)")) {
+        if (creating_) cancelCreating();
+        else startCreating(true);
+    }
+}
+
+void NurbsTool::drawPanel(ToolContext& c)
+{
+    const std::string type = selectedType(c);
+    if (!handles(type)) return;
+    const int item = c.selection.item;
+    if (type == "nurbs_surface" || type == "rational_bezier_surface") {
+        drawTessellationSettings(c);
+        ImGui::Separator();
+    }
+    ImGui::TextUnformatted("Weights (Alt + drag a point: scale)");
+    const std::vector<double> weights = weightsOf(c.scene, item);
+    if (c.selection.points.empty()) {
+        ImGui::TextDisabled("select control points to type their weight");
+    } else {
+        const int k = c.selection.points.back();
+        if (k >= 0 && k < static_cast<int>(weights.size()) && (item != typedItem_ || k != typedPoint_)) {
+            // A newly selected point: the field starts at its weight.
+            typedWeight = weights[static_cast<std::size_t>(k)];
+            typedItem_ = item, typedPoint_ = k;
+        }
+        if (k >= 0 && k < static_cast<int>(weights.size())) {
+            ImGui::Text("point %d: weight %.6g%s", k, weights[static_cast<std::size_t>(k)],
+                        c.selection.points.size() > 1 ? " (last selected)" : "");
+        }
+        ImGui::SetNextItemWidth(120);
+        ImGui::InputDouble("##weight", &typedWeight, 0, 0, "%.6g");
+        ImGui::SameLine();
+        if (ImGui::Button(c.selection.points.size() > 1 ? "set the selected points' weight" : "set weight"))
+            setWeights(c, item, c.selection.points, typedWeight);
+    }
+    const bool curve = type == "nurbs_curve" || type == "rational_bezier_curve";
+    if (curve) ImGui::Checkbox("de Boor construction at t (T)", &construction);
+    if (type != "nurbs_curve" && type != "nurbs_surface") return;
+    ImGui::Separator();
+    ImGui::TextUnformatted("Knots");
+    ImGui::Checkbox("show knots (dots, ticks = multiplicity; surfaces: isolines)", &showKnots);
+    if (type == "nurbs_surface") {
+        ImGui::RadioButton("in u", &direction, 0);
+        ImGui::SameLine();
+        ImGui::RadioButton("in v", &direction, 1);
+    }
+    float tf = static_cast<float>(t);
+    if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
+    double u = sliderParameter(c);
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::InputDouble("u (knot value)", &u, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+        // The typed parameter sets the slider: t = (u - a) / (b - a) on the domain [a, b].
+        const double saved = t;
+        t = 0;
+        const double a = sliderParameter(c);
+        t = 1;
+        const double b = sliderParameter(c);
+        t = b > a ? std::clamp((u - a) / (b - a), 0.0, 1.0) : saved;
+    }
+    if (ImGui::Button("insert knot at u (K)")) insertKnot(c, sliderParameter(c), direction);
+    // The knot vector(s), each distinct value with its multiplicity.
+    const ObjectData& data = c.scene.object(item).data;
+    auto list = [](const std::vector<double>& knots) {
+        std::string text;
+        for (std::size_t i = 0; i < knots.size();) {
+            std::size_t j = i;
+            while (j < knots.size() && knots[j] == knots[i]) ++j;
+            char buffer[48];
+            std::snprintf(buffer, sizeof buffer, "%s%.6g", text.empty() ? "" : ", ", knots[i]);
+            text += buffer;
+            if (j - i > 1) text += " (x" + std::to_string(j - i) + ")";
+            i = j;
+        }
+        return text;
+    };
+    if (const auto* d = std::get_if<NurbsCurveData>(&data)) {
+        ImGui::TextWrapped("degree %d, knots: %s", d->degree, list(d->knots).c_str());
+    } else if (const auto* d = std::get_if<NurbsSurfaceData>(&data)) {
+        ImGui::TextWrapped("degrees %d, %d; u: %s", d->degree[0], d->degree[1], list(d->knots[0]).c_str());
+        ImGui::TextWrapped("v: %s", list(d->knots[1]).c_str());
+    }
 }
 
 // ------------------------------------------------------------------ the set

@@ -627,6 +627,8 @@ std::string controlsHelp()
                        "  left drag on a point      move the selected points in the view plane\n"
                        "  left drag on the gizmo    move along an axis (arrow) or in a plane (square)\n"
                        "  ctrl + left drag          box select (ctrl + shift: add to the selection)\n"
+                       "  alt + left drag on a\n"
+                       "    point                   scale its weight (rational and NURBS objects; up: heavier)\n"
                        "  left click on a curve\n"
                        "    or surface              select that object\n"
                        "  left click on nothing     deselect the points, then the object\n"
