@@ -248,6 +248,14 @@ std::string App::stateText() const
                    {"target", {scene_.camera.target.x(), scene_.camera.target.y(), scene_.camera.target.z()}}};
     j["status"] = ui_.statusHint;
     j["objects"] = scene_.itemCount();
+    j["notice"] = ui_.notice;
+    j["tooltip"] = ui_.tooltip;
+    if (ui_.legendRect[2] > 0)
+        j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
+                       {"min", ui_.legendMin},
+                       {"max", ui_.legendMax}};
+    else
+        j["legend"] = nullptr;
     return j.dump(1) + "\n";
 }
 

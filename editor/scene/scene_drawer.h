@@ -4,13 +4,20 @@
 // surfaces, curves, control nets and points, normals, the ground grid and the axes.
 
 #include <map>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "render/renderer.h"
 #include "scene/overlay.h"
 #include "scene/scene.h"
 
 namespace freeform::editor {
+
+/// The scalar colour map's range in this frame: the display's fixed range, or with
+/// `display.scalarAuto` the range of the scalars of the visible items; nullopt when the analysis
+/// is not the scalar map or no visible item carries scalars (then no map and no legend is drawn).
+std::optional<std::pair<float, float>> scalarRange(const Scene& scene);
 
 class SceneDrawer {
 public:

@@ -12,6 +12,7 @@
 
 #include "freeform/core/error.h"
 #include "tools/tools.h"
+#include "ui/ui.h"
 
 namespace freeform::editor {
 
@@ -259,11 +260,21 @@ void LatticeTool::drawPanel(ToolContext& c)
             c.scene.display.analysis = show ? SurfaceAnalysis::ScalarMap : SurfaceAnalysis::None;
             c.scene.touch();
         }
+
         ImGui::InputText("##export", exportPath, sizeof exportPath);
         ImGui::SameLine();
         if (ImGui::Button("export deformed")) exportDeformed(c, item, exportPath);
     }
     if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, item);
+    // The colour map's range last, so that switching the map on moves no row above it.
+    if (c.scene.ffdLink(item) && c.scene.display.analysis == SurfaceAnalysis::ScalarMap) {
+        ImGui::TextUnformatted("det J colour range");
+        DisplaySettings d = c.scene.display;
+        if (scalarRangeControls(d)) {
+            c.scene.display = d;
+            c.scene.touch();
+        }
+    }
 }
 
 void LatticeTool::drawMeshPanel(ToolContext& c, int meshItem)

@@ -3,10 +3,13 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
 #include "interaction/keymap.h"
+#include "render/colour_map.h"
+#include "scene/scene_drawer.h"
 #include "tools/tools.h"
 
 namespace freeform::editor {
@@ -14,6 +17,9 @@ namespace freeform::editor {
 namespace {
 
 constexpr float kPanelWidth = 290.0f;
+
+/// The state of the drawUi call in progress (for tooltip(text) from the tools' panels).
+UiState* currentState = nullptr;
 
 /// Height of the main menu bar (the panels start below it).
 float menuHeight()
@@ -109,6 +115,38 @@ void askPath(UiState& s, UiActions& actions, UiState::PathDialog which, const st
     }
     s.pathDialog = which;
     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
+}
+
+void tooltip(UiState& state, const char* text)
+{
+    if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+    ImGui::SetTooltip("%s", text);
+    state.tooltip = text;
+}
+
+void tooltip(const char* text)
+{
+    if (currentState) tooltip(*currentState, text);
+    else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+}
+
+bool scalarRangeControls(DisplaySettings& d)
+{
+    bool changed = ImGui::Checkbox("auto range", &d.scalarAuto);
+    tooltip("On: the colours span the det J values drawn now (they rescale while you drag).\n"
+            "Off: the fixed range below (default 0 to 2; det J = 1, the volume kept, in the middle).");
+    if (!d.scalarAuto) {
+        float range[2] = {d.scalarMin, d.scalarMax};
+        if (ImGui::InputFloat2("min, max", range, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && std::isfinite(range[0]) &&
+            std::isfinite(range[1]) && range[0] < range[1]) {
+            d.scalarMin = range[0];
+            d.scalarMax = range[1];
+            changed = true;
+        }
+        tooltip("The det J values at the two ends of the colour bar (Enter applies; min < max).\n"
+                "Values outside get the end colours. Saved with the document's display settings.");
+    }
+    return changed;
 }
 
 namespace {
@@ -408,6 +446,7 @@ void displayPanel(Scene& scene, UiState& s)
         ImGui::Combo("analysis", &analysis, "none\0reflection lines\0scalar map\0");
         d.analysis = static_cast<SurfaceAnalysis>(analysis);
         if (d.analysis == SurfaceAnalysis::ReflectionLines) ImGui::SliderFloat("stripes", &d.stripes, 2.0f, 60.0f, "%.0f");
+        if (d.analysis == SurfaceAnalysis::ScalarMap) scalarRangeControls(d);
         ImGui::Checkbox("wireframe", &d.wireframe);
         ImGui::SameLine();
         ImGui::Checkbox("flip normals", &d.flipNormals);
@@ -640,6 +679,54 @@ std::string controlsHelp()
     return text;
 }
 
+/// The scalar colour map's legend, at the bottom right of the view while the map is drawn: the
+/// colour bar (its pixel columns coloured by render/colour_map.h, the shader's map) with its values
+/// at both ends and in the middle.
+void colourLegend(const Scene& scene, UiState& s)
+{
+    s.legendRect[2] = 0;
+    const std::optional<std::pair<float, float>> range = scalarRange(scene);
+    if (!range) return;
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 8, vp->Pos.y + vp->Size.y - statusHeight() - 8), ImGuiCond_Always,
+                            ImVec2(1.0f, 1.0f));
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("det J legend", nullptr, flags)) {
+        const float lo = range->first, hi = range->second;
+        ImGui::Text("det J (%s)", scene.display.scalarAuto ? "auto range" : "fixed range");
+        const float width = 200.0f, height = 14.0f;
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        for (int k = 0; k < static_cast<int>(width); ++k) {
+            const Vec3f c = colourMap(static_cast<float>(k) / (width - 1));
+            draw->AddRectFilled(ImVec2(p.x + float(k), p.y), ImVec2(p.x + float(k) + 1, p.y + height),
+                                ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1)));
+        }
+        ImGui::Dummy(ImVec2(width, height));
+        char text[3][32];
+        std::snprintf(text[0], sizeof text[0], "%.3g", lo);
+        std::snprintf(text[1], sizeof text[1], "%.3g", 0.5f * (lo + hi));
+        std::snprintf(text[2], sizeof text[2], "%.3g", hi);
+        const float y = ImGui::GetCursorPosY();
+        ImGui::TextUnformatted(text[0]);
+        ImGui::SameLine(ImGui::GetCursorStartPos().x + 0.5f * (width - ImGui::CalcTextSize(text[1]).x));
+        ImGui::SetCursorPosY(y);
+        ImGui::TextUnformatted(text[1]);
+        ImGui::SameLine(ImGui::GetCursorStartPos().x + width - ImGui::CalcTextSize(text[2]).x);
+        ImGui::SetCursorPosY(y);
+        ImGui::TextUnformatted(text[2]);
+        s.legendRect[0] = p.x;
+        s.legendRect[1] = p.y;
+        s.legendRect[2] = width;
+        s.legendRect[3] = height;
+        s.legendMin = lo;
+        s.legendMax = hi;
+    }
+    ImGui::End();
+}
+
 void statusBar(UiState& s)
 {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
@@ -649,7 +736,13 @@ void statusBar(UiState& s)
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBringToFrontOnFocus;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 2));
-    if (ImGui::Begin("##status", nullptr, flags)) ImGui::TextUnformatted(s.statusHint.c_str());
+    if (ImGui::Begin("##status", nullptr, flags)) {
+        ImGui::TextUnformatted(s.statusHint.c_str());
+        if (!s.notice.empty()) {
+            ImGui::SameLine();
+            ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "   |   %s", s.notice.c_str());
+        }
+    }
     ImGui::End();
     ImGui::PopStyleVar();
 }
@@ -660,8 +753,11 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     state.relayout = state.relayout || vp->Size.x != state.layoutWidth || vp->Size.y != state.layoutHeight;
     state.layoutWidth = vp->Size.x;
     state.layoutHeight = vp->Size.y;
+    currentState = &state;
+    state.tooltip.clear();
     mainMenu(scene, state, actions);
     statusBar(state);
+    colourLegend(scene, state);
     outliner(scene, state);
     properties(scene, state, actions);
     displayPanel(scene, state);
@@ -672,6 +768,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     const bool proceed = unsavedDialog(scene, state, actions);
     errorDialog(state);
     state.relayout = false;
+    currentState = nullptr;
     return proceed;
 }
 
