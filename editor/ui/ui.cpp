@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 #include "interaction/keymap.h"
 #include "render/colour_map.h"
@@ -158,8 +159,13 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
         if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
         if (ImGui::BeginMenu("Open recent", !actions.recentFiles().empty())) {
-            for (const std::string& path : actions.recentFiles())
-                if (ImGui::MenuItem(path.c_str())) actions.open(path);
+            // Most recent first; a file that is gone is shown greyed and cannot be chosen.
+            for (const std::string& path : actions.recentFiles()) {
+                std::error_code ec;
+                const bool exists = std::filesystem::exists(path, ec);
+                if (ImGui::MenuItem(path.c_str(), nullptr, false, exists)) actions.open(path);
+                tooltip(s, exists ? "Open this document (asks first when there are unsaved changes)" : "This file no longer exists");
+            }
             ImGui::EndMenu();
         }
         if (ImGui::MenuItem("Save", "Ctrl+S")) {
@@ -516,8 +522,13 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
         const bool enter = ImGui::InputText("##path", s.pathBuffer, sizeof s.pathBuffer, ImGuiInputTextFlags_EnterReturnsTrue);
         if (s.pathDialog == UiState::PathDialog::Open && !actions.recentFiles().empty()) {
             ImGui::TextDisabled("recent:");
-            for (const std::string& path : actions.recentFiles())
-                if (ImGui::Selectable(path.c_str())) std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", path.c_str());
+            for (const std::string& path : actions.recentFiles()) {
+                std::error_code ec;
+                const bool exists = std::filesystem::exists(path, ec);
+                if (ImGui::Selectable(path.c_str(), false, exists ? 0 : ImGuiSelectableFlags_Disabled))
+                    std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", path.c_str());
+                tooltip(s, exists ? "Put this path in the field" : "This file no longer exists");
+            }
         }
         const bool ok = ImGui::Button("OK") || enter;
         ImGui::SameLine();
