@@ -534,8 +534,14 @@ bool App::saveAs(const std::string& path)
 void App::importFile(const std::string& path)
 {
     try {
-        scene_.importFile(path);
+        const std::optional<UpAxis> format = formatUpAxis(path);
+        const UpAxis up = format.value_or(ui_.importUp);
+        scene_.importFile(path, up);
         fit(false); // the camera takes in the scene with the imported object
+        if (scene_.itemCount() > 0 && scene_.item(scene_.itemCount() - 1).kind == SceneItem::Kind::ImportedMesh)
+            ui_.notice = std::string("imported ") + fs::path(path).filename().string() + " as " + (up == UpAxis::Y ? "Y" : "Z") +
+                         " up (" + (format ? "the glTF convention" : "the Import dialog's choice") +
+                         "); Properties > up axis changes it";
     } catch (const Error& e) {
         ui_.error = e.what();
     }

@@ -423,6 +423,13 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                 controlPointTable(scene, selected, s);
             } else {
                 ImGui::TextWrapped("file: %s", item.meshPath.c_str());
+                int up = item.up == UpAxis::Y ? 1 : 0;
+                if (ImGui::Combo("up axis", &up, "Z up (as the world)\0Y up (turned to Z up)\0")) {
+                    scene.setUpAxis(selected, up == 1 ? UpAxis::Y : UpAxis::Z);
+                }
+                tooltip(s, "The file's up direction. Y up (every glTF, most OBJ files) is turned a quarter about x,\n"
+                           "(x, y, z) -> (x, -z, y), so that it stands in the Z-up world; exports write the file's own\n"
+                           "coordinates back. Saved in the document (meshes[].up).");
             }
             actions.toolPanels();
         }
@@ -520,6 +527,15 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
         ImGui::SetNextItemWidth(480);
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         const bool enter = ImGui::InputText("##path", s.pathBuffer, sizeof s.pathBuffer, ImGuiInputTextFlags_EnterReturnsTrue);
+        tooltip(s, "The file's path, relative to the working directory; Enter confirms");
+        if (s.pathDialog == UiState::PathDialog::Import) {
+            int up = s.importUp == UpAxis::Y ? 1 : 0;
+            ImGui::SetNextItemWidth(200);
+            if (ImGui::Combo("up axis of OBJ, PLY, STL, OFF", &up, "Z up\0Y up\0")) s.importUp = up == 1 ? UpAxis::Y : UpAxis::Z;
+            tooltip(s, "These formats do not say which way is up: Y up files are turned to the Z-up world.\n"
+                       "glTF and GLB are always read Y up (the glTF specification). Remembered until the editor quits;\n"
+                       "Properties > up axis changes it for one mesh.");
+        }
         if (s.pathDialog == UiState::PathDialog::Open && !actions.recentFiles().empty()) {
             ImGui::TextDisabled("recent:");
             for (const std::string& path : actions.recentFiles()) {

@@ -88,6 +88,9 @@ struct UiState {
     float legendMin = 0, legendMax = 0;
     /// The tooltip shown in the last frame (empty: none), for --state.
     std::string tooltip;
+    /// The up axis File > Import gives OBJ, PLY, STL and OFF files (their formats have no
+    /// convention): the last choice in the Import dialog, Z at first. glTF and GLB are always Y.
+    UpAxis importUp = UpAxis::Z;
 };
 
 /// The tooltip of the last widget (ImGui 1.86 has no SetItemTooltip): shown while it is hovered.
