@@ -18,6 +18,16 @@ namespace freeform::editor {
 
 namespace {
 
+/// SameLine when a button labelled `next` still fits on this line, so that no button is cut off
+/// at the panel's edge (at 900 x 600 the toolbar wraps).
+void sameLineIfFits(const char* next)
+{
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float width = ImGui::CalcTextSize(next).x + 2 * style.FramePadding.x;
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+}
+
 std::string selectedType(const ToolContext& c)
 {
     const int item = c.selection.item;
@@ -36,8 +46,9 @@ void CurveTool::drawToolbar(ToolContext& c)
     }
     tooltip(creating_ && !creatingSpline_ ? "Make a bezier_curve of the clicked points (at least 2); Backspace removes the last, Escape cancels"
                                           : "Click in the view to add control points of a Bezier curve (degree = clicks - 1); Enter finishes");
-    ImGui::SameLine();
-    if (ImGui::Button(creating_ && creatingSpline_ ? "finish spline (Enter)" : "create C2 spline (Shift+C)")) {
+    const char* splineLabel = creating_ && creatingSpline_ ? "finish spline (Enter)" : "create C2 spline (Shift+C)";
+    sameLineIfFits(splineLabel);
+    if (ImGui::Button(splineLabel)) {
         if (creating_) createFromClicks(c);
         else startCreating(true);
     }
@@ -65,13 +76,13 @@ void CurveTool::drawPanel(ToolContext& c)
     if (type != "deboor_spline") {
         if (ImGui::Button("elevate degree (E)")) elevateSelected(c);
         tooltip("The same curve one degree higher (a spline: every segment; refused while a joint is C2)");
-        ImGui::SameLine();
+        sameLineIfFits("split at t (K)");
         if (ImGui::Button("split at t (K)")) splitSelected(c);
         tooltip("Cut the curve or open spline at t into two objects");
     }
     if (ImGui::Button("insert point (I)")) insertAtSelected(c);
     tooltip("Curve: a new point after the selected one (the degree rises). Spline: a joint in the segment (the shape stays)");
-    ImGui::SameLine();
+    sameLineIfFits("delete point (Del)");
     if (ImGui::Button("delete point (Del)")) deleteSelected(c);
     tooltip("Curve: remove the selected point (the degree drops). Spline: remove the selected point's joint");
 }
@@ -84,7 +95,7 @@ void SplineTool::drawPanel(ToolContext& c)
     const int item = c.selection.item;
     const auto& d = std::get<BezierSplineData>(c.scene.object(item).data);
     ImGui::Separator();
-    ImGui::TextUnformatted("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
+    ImGui::TextWrapped("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
     static const char* names[] = {"free", "aligned", "mirrored", "C2"};
     // The combo shows the inner joints' common mode, or "mixed".
     int common = -2;
@@ -265,21 +276,26 @@ void LatticeTool::drawPanel(ToolContext& c)
     }
     if (ImGui::Button("reset lattice")) resetLattice(c, item);
     tooltip("Put every lattice point back at its rest place (one undo step)");
-    ImGui::SameLine();
+    sameLineIfFits("XX direct manipulation (D)");
     ImGui::Checkbox("direct manipulation (D)", &direct);
     tooltip("Press on the deformed mesh and drag: the lattice changes least so that the grabbed point follows the pointer");
     if (const FfdLink* link = c.scene.ffdLink(item)) {
-        ImGui::Text("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
+        ImGui::TextWrapped("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
         ImGui::Text("det J in [%.4g, %.4g]", link->report.minDetJ, link->report.maxDetJ);
-        if (link->report.foldCount > 0)
-            ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "fold-over: det J <= 0 at %zu vertices", link->report.foldCount);
+        if (link->report.foldCount > 0) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
+            ImGui::TextWrapped("fold-over: det J <= 0 at %zu vertices", link->report.foldCount);
+            ImGui::PopStyleColor();
+        }
         if (ImGui::Button("certify (det J > 0 on the box?)")) certifyLattice(c, item);
         tooltip("Bernstein bound on det J over the whole box: certified injective, folds, or undecided");
         if (link->certificate) {
             const Certificate& cert = *link->certificate;
             const bool ok = cert.verdict == Verdict::CertifiedInjective;
-            ImGui::TextColored(ok ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.6f, 0.3f, 1), "%s (det J in [%.3g, %.3g], %d boxes)",
-                               toString(cert.verdict).c_str(), cert.minCoefficient, cert.maxCoefficient, cert.boxes);
+            ImGui::PushStyleColor(ImGuiCol_Text, ok ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.6f, 0.3f, 1));
+            ImGui::TextWrapped("%s (det J in [%.3g, %.3g], %d boxes)", toString(cert.verdict).c_str(), cert.minCoefficient,
+                               cert.maxCoefficient, cert.boxes);
+            ImGui::PopStyleColor();
         }
         const bool scalar = c.scene.display.analysis == SurfaceAnalysis::ScalarMap;
         bool show = scalar;

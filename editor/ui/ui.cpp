@@ -356,7 +356,9 @@ void selectedPoints(Scene& scene, int index, UiState& s)
     for (int k : s.selection.points)
         if (k < points.cols()) ks.push_back(k);
     if (ks.empty()) {
+        ImGui::PushTextWrapPos(0);
         ImGui::TextDisabled("click a control point to select it (shift: add, ctrl+drag: box)");
+        ImGui::PopTextWrapPos();
         return;
     }
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
