@@ -113,6 +113,7 @@ Scene Scene::load(const std::string& path, double aspect)
     } else if (isMeshFile(ext)) {
         scene.document_.source = path;
         scene.addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
+        scene.items_.back().up = formatUpAxis(path).value_or(UpAxis::Z); // glTF and GLB: Y up, as on import
     } else {
         scene.document_ = readDocument(path);
         scene.path_ = path;

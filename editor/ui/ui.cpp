@@ -774,9 +774,9 @@ const char* firstStepsHelp()
     return "Draw a C2 spline: Shift+C, click the points it should pass through, Enter.\n"
            "  Its joints are in mode C2 (Properties > Joints); drag the cyan de Boor points,\n"
            "  and it stays C2. T: de Casteljau construction at t, V: curvature comb.\n"
-           "Smooth a teapot patch: File > Open data/teapot.bpt, R (reflection lines), click a\n"
-           "  patch, drag its net points (G, X/Y/Z to constrain); Properties > 'edge continuity\n"
-           "  of all patches' lists C0/G1/C1 per shared edge; a smaller tolerance removes facets.\n"
+           "Smooth a patch pair: File > Open examples/data/c0-patches.json, R (reflection lines:\n"
+           "  they break at the C0 edge), click a patch, 'edge continuity of all patches' lists the\n"
+           "  edge as C0; move the rows beside it collinear (G, Z) and press it again: C1 and G1.\n"
            "Deform a mesh: Ctrl+I imports it, click it, L fits a lattice; drag the lattice points\n"
            "  and the mesh follows; 'export deformed' in the lattice panel writes it (any format\n"
            "  by extension, nothing else in the file changes). Ctrl+Z undoes every step.\n";
