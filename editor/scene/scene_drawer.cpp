@@ -148,7 +148,6 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
 std::optional<std::pair<float, float>> scalarRange(const Scene& scene)
 {
     const DisplaySettings& d = scene.display;
-    if (d.analysis != SurfaceAnalysis::ScalarMap) return std::nullopt;
     bool any = false;
     float lo = 0, hi = 0;
     for (int i = 0; i < scene.itemCount(); ++i) {

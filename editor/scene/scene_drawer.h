@@ -15,8 +15,8 @@
 namespace freeform::editor {
 
 /// The scalar colour map's range in this frame: the display's fixed range, or with
-/// `display.scalarAuto` the range of the scalars of the visible items; nullopt when the analysis
-/// is not the scalar map or no visible item carries scalars (then no map and no legend is drawn).
+/// `display.scalarAuto` the range of the scalars of the visible items; nullopt when no visible
+/// item carries scalars. (The map and its legend are drawn only with the analysis "scalar map".)
 std::optional<std::pair<float, float>> scalarRange(const Scene& scene);
 
 class SceneDrawer {

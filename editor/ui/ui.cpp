@@ -811,6 +811,7 @@ std::string controlsHelp()
 void colourLegend(const Scene& scene, UiState& s)
 {
     s.legendRect[2] = 0;
+    if (scene.display.analysis != SurfaceAnalysis::ScalarMap) return;
     const std::optional<std::pair<float, float>> range = scalarRange(scene);
     if (!range) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
