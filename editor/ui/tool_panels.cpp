@@ -306,6 +306,9 @@ void LatticeTool::drawPanel(ToolContext& c)
             c.scene.touch();
         }
 
+        // The field takes what the button leaves, so that the button is never cut off.
+        const float button = ImGui::CalcTextSize("export deformed").x + 2 * ImGui::GetStyle().FramePadding.x;
+        ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - button - ImGui::GetStyle().ItemSpacing.x));
         ImGui::InputText("##export", exportPath, sizeof exportPath);
         tooltip("Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
         ImGui::SameLine();
