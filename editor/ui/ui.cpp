@@ -865,6 +865,7 @@ void statusBar(UiState& s)
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 2));
     if (ImGui::Begin("##status", nullptr, flags)) {
         ImGui::TextUnformatted(s.statusHint.c_str());
+        tooltip(s, s.statusHint.c_str()); // the whole text, where a narrow window cuts the line
         if (!s.notice.empty()) {
             ImGui::SameLine();
             ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "   |   %s", s.notice.c_str());
