@@ -46,15 +46,6 @@ App* appOf(GLFWwindow* window)
     return static_cast<App*>(glfwGetWindowUserPointer(window));
 }
 
-fs::path recentFilePath()
-{
-    const char* config = std::getenv("XDG_CONFIG_HOME");
-    const char* home = std::getenv("HOME");
-    if (config && *config) return fs::path(config) / "freeform" / "recent-files.txt";
-    if (home && *home) return fs::path(home) / ".config" / "freeform" / "recent-files.txt";
-    return {};
-}
-
 double millisecondsSince(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -123,8 +114,11 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     autosaveDir_ = autosaveDirectory();
     lastAutosave_ = std::chrono::steady_clock::now();
     if (autosave_) offerRecovery();
-    if (!options_.headless()) loadRecent();
-    if (!scene_.path().empty() && !options_.headless()) addRecent(scene_.path());
+    if (!options_.headless()) {
+        const std::string message = recent_.load();
+        if (!message.empty()) ui_.notice = "recent files ignored: " + message;
+    }
+    if (!scene_.path().empty()) addRecent(scene_.path());
 }
 
 App::~App()
@@ -251,6 +245,14 @@ std::string App::stateText() const
                    {"target", {scene_.camera.target.x(), scene_.camera.target.y(), scene_.camera.target.z()}}};
     j["status"] = ui_.statusHint;
     j["objects"] = scene_.itemCount();
+    j["notice"] = ui_.notice;
+    j["tooltip"] = ui_.tooltip;
+    if (ui_.legendRect[2] > 0)
+        j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
+                       {"min", ui_.legendMin},
+                       {"max", ui_.legendMax}};
+    else
+        j["legend"] = nullptr;
     return j.dump(1) + "\n";
 }
 
@@ -535,8 +537,14 @@ bool App::saveAs(const std::string& path)
 void App::importFile(const std::string& path)
 {
     try {
-        scene_.importFile(path);
+        const std::optional<UpAxis> format = formatUpAxis(path);
+        const UpAxis up = format.value_or(ui_.importUp);
+        scene_.importFile(path, up);
         fit(false); // the camera takes in the scene with the imported object
+        if (scene_.itemCount() > 0 && scene_.item(scene_.itemCount() - 1).kind == SceneItem::Kind::ImportedMesh)
+            ui_.notice = std::string("imported ") + fs::path(path).filename().string() + " as " + (up == UpAxis::Y ? "Y" : "Z") +
+                         " up (" + (format ? "the glTF convention" : "the Import dialog's choice") +
+                         "); Properties > up axis changes it";
     } catch (const Error& e) {
         ui_.error = e.what();
     }
@@ -584,37 +592,9 @@ void App::setView(const std::string& name)
 
 void App::addRecent(const std::string& path)
 {
-    std::error_code ec;
-    const std::string absolute = fs::absolute(path, ec).lexically_normal().string();
-    recent_.erase(std::remove(recent_.begin(), recent_.end(), absolute), recent_.end());
-    recent_.insert(recent_.begin(), absolute);
-    if (recent_.size() > 10) recent_.resize(10);
-    saveRecent();
-}
-
-void App::loadRecent()
-{
-    const fs::path file = recentFilePath();
-    if (file.empty()) return;
-    std::ifstream in(file);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty() && recent_.size() < 10) recent_.push_back(line);
-}
-
-void App::saveRecent() const
-{
-    if (options_.headless()) return;
-    const fs::path file = recentFilePath();
-    if (file.empty()) return;
-    std::error_code ec;
-    fs::create_directories(file.parent_path(), ec);
-    std::string text;
-    for (const std::string& r : recent_) text += r + "\n";
-    try {
-        writeFileAtomically(file.string(), text);
-    } catch (const Error&) {
-        // The recent-files list is a convenience: a read-only home directory must not stop the editor.
-    }
+    if (options_.headless()) return; // tests and scripts leave the user's list alone
+    const std::string message = recent_.add(path);
+    if (!message.empty()) ui_.notice = "recent files not saved: " + message; // a convenience: never an error dialog
 }
 
 // ------------------------------------------------------------------------------------ undo, tools

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/options.h"
+#include "app/recent_files.h"
 #include "interaction/interaction.h"
 #include "interaction/keymap.h"
 #include "interaction/replay.h"
@@ -65,7 +66,7 @@ public:
     void quit() override;
     void fit(bool selectionOnly) override;
     void setView(const std::string& name) override;
-    const std::vector<std::string>& recentFiles() const override { return recent_; }
+    const std::vector<std::string>& recentFiles() const override { return recent_.paths(); }
     void undo() override;
     void redo() override;
     void recover(bool accept) override;
@@ -116,8 +117,6 @@ private:
     void offerRecovery();
     void applyModifiers(int mods);
     void addRecent(const std::string& path);
-    void loadRecent();
-    void saveRecent() const;
     double aspect() const;
 
     Options options_;
@@ -127,7 +126,7 @@ private:
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<SceneDrawer> drawer_;
     bool imgui_ = false;
-    std::vector<std::string> recent_;
+    RecentFiles recent_;                  // File > Open recent (not kept by headless runs)
     Tools tools_;
     Interaction interaction_{ui_.edit};
     Overlay overlay_;

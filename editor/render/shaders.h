@@ -51,7 +51,8 @@ vec3 lighting(vec3 x, vec3 n, vec3 diffuse) {
     return sum;
 }
 
-// A perceptually ordered colour map (dark blue - teal - green - yellow) of t in [0, 1].
+// A perceptually ordered colour map (dark blue - teal - green - yellow) of t in [0, 1]; the stops
+// are those of render/colour_map.h (colourMapStops), which the legend draws.
 vec3 colorMap(float value) {
     float t = clamp((value - uScalarMin) / max(uScalarMax - uScalarMin, 1e-30), 0.0, 1.0);
     const vec3 c0 = vec3(0.267, 0.005, 0.329);

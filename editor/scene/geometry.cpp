@@ -122,11 +122,12 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
     return g;
 }
 
-ItemGeometry buildMeshGeometry(const std::string& path)
+ItemGeometry buildMeshGeometry(const std::string& path, UpAxis up)
 {
     ItemGeometry g;
     PolygonMesh mesh = readPolygonMesh(path);
     mesh.validate(path);
+    meshToWorld(mesh, up); // a Y-up file into the Z-up world (exact: a signed permutation)
     g.surface = withNormals(std::move(mesh));
     finishBounds(g);
     return g;

@@ -113,6 +113,7 @@ Scene Scene::load(const std::string& path, double aspect)
     } else if (isMeshFile(ext)) {
         scene.document_.source = path;
         scene.addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
+        scene.items_.back().up = formatUpAxis(path).value_or(UpAxis::Z); // glTF and GLB: Y up, as on import
     } else {
         scene.document_ = readDocument(path);
         scene.path_ = path;
@@ -140,8 +141,14 @@ Scene Scene::load(const std::string& path, double aspect)
                     if (!m.contains("name") || !m["name"].is_string()) json::fail(mp + ".name", "expected a string");
                     if (!m.contains("path") || !m["path"].is_string()) json::fail(mp + ".path", "expected a string");
                     for (const auto& [key, value] : m.items())
-                        if (key != "name" && key != "path" && key != "editor") json::fail(mp + "." + key, "unknown field");
+                        if (key != "name" && key != "path" && key != "up" && key != "editor") json::fail(mp + "." + key, "unknown field");
+                    UpAxis up = UpAxis::Z; // absent: the file is Z-up, as before the field existed
+                    if (m.contains("up")) {
+                        if (!m["up"].is_string()) json::fail(mp + ".up", "expected \"z\" or \"y\"");
+                        up = parseUpAxis(m["up"].get<std::string>(), mp + ".up");
+                    }
                     scene.addMeshItem(m["name"].get<std::string>(), m["path"].get<std::string>());
+                    scene.items_.back().up = up;
                     if (m.contains("editor")) scene.items_.back().settings = ObjectSettings::fromJson(m["editor"], mp + ".editor");
                 }
             }
@@ -250,6 +257,7 @@ Document Scene::toDocument(MeshPaths meshPaths) const
         Json m;
         m["name"] = item.name;
         m["path"] = meshPaths == MeshPaths::Absolute ? fs::absolute(resolve(item.meshPath)).lexically_normal().string() : item.meshPath;
+        if (item.up != UpAxis::Z) m["up"] = toString(item.up);
         if (!item.settings.isDefault()) m["editor"] = item.settings.toJson();
         meshes.push_back(std::move(m));
     }
@@ -289,7 +297,7 @@ void Scene::save(const std::string& path)
     modified_ = false;
 }
 
-void Scene::importFile(const std::string& path)
+void Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
 {
     const std::string ext = lowerExtension(path);
     if (ext == ".bpt") {
@@ -312,15 +320,29 @@ void Scene::importFile(const std::string& path)
         document_ = std::move(next);
         items_.insert(items_.begin() + documentItems, added.begin(), added.end());
     } else if (isMeshFile(ext)) {
-        ItemGeometry g = buildMeshGeometry(path); // reads it now: Error leaves the scene as it was
+        const UpAxis up = upAxis.value_or(formatUpAxis(path).value_or(UpAxis::Z));
+        ItemGeometry g = buildMeshGeometry(path, up); // reads it now: Error leaves the scene as it was
         record(std::string("import ").append(fs::path(path).filename().string()));
         addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
+        items_.back().up = up;
         items_.back().geometry = std::move(g);
         items_.back().geometryDirty = false;
         items_.back().revision = items_.back().topology = nextRevision();
     } else {
         throw Error(path + ": cannot import this kind of file (.bpt or a mesh: .obj .ply .stl .off .gltf .glb)");
     }
+    modified_ = true;
+}
+
+void Scene::setUpAxis(int i, UpAxis up)
+{
+    SceneItem& it = item(i);
+    if (it.kind != SceneItem::Kind::ImportedMesh) throw Error("\"" + it.name + "\": only an imported mesh has an up axis");
+    if (it.up == up) return;
+    record(up == UpAxis::Y ? "up axis Y" : "up axis Z");
+    it.up = up;
+    it.geometryDirty = true;
+    it.key = nextKey();
     modified_ = true;
 }
 
@@ -553,7 +575,7 @@ SceneState Scene::state() const
     SceneState s;
     s.objects = document_.objects;
     s.items.reserve(items_.size());
-    for (const SceneItem& it : items_) s.items.push_back({it.kind, it.name, it.type, it.meshPath, it.settings, it.key, it.id, it.deforms});
+    for (const SceneItem& it : items_) s.items.push_back({it.kind, it.name, it.type, it.meshPath, it.up, it.settings, it.key, it.id, it.deforms});
     return s;
 }
 
@@ -570,6 +592,7 @@ void Scene::restore(SceneState state)
         it.name = std::move(r.name);
         it.type = std::move(r.type);
         it.meshPath = std::move(r.meshPath);
+        it.up = r.up;
         it.settings = r.settings;
         it.key = r.key;
         it.id = r.id;
@@ -633,7 +656,7 @@ void Scene::updateGeometry()
             item.geometry = buildGeometry(document_.objects[i].data, item.settings, tessellationTolerance(), documentDirectory());
         } else {
             try {
-                item.geometry = buildMeshGeometry(resolve(item.meshPath));
+                item.geometry = buildMeshGeometry(resolve(item.meshPath), item.up);
             } catch (const Error& e) {
                 item.geometry = ItemGeometry{};
                 item.geometry.error = e.what();

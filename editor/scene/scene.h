@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "freeform/io/document.h"
+#include "freeform/io/up_axis.h"
 #include "freeform/mesh/polygon_mesh.h"
 #include "scene/history.h"
 #include "render/render_types.h"
@@ -48,6 +49,7 @@ struct SceneItem {
     std::string name;
     std::string type;                     // document type, or "mesh"
     std::string meshPath;                 // imported mesh: the file as given in the document
+    UpAxis up = UpAxis::Z;                // imported mesh: its file's up axis (Y: turned to Z up on load)
     ObjectSettings settings;
     ItemGeometry geometry;
     bool geometryDirty = true;            // the CPU geometry must be rebuilt
@@ -69,6 +71,7 @@ struct SceneState {
     struct Item {
         SceneItem::Kind kind = SceneItem::Kind::DocumentObject;
         std::string name, type, meshPath;
+        UpAxis up = UpAxis::Z;
         ObjectSettings settings;
         long key = 0;
         long id = 0, deforms = 0;
@@ -99,7 +102,11 @@ public:
     std::string text() const { return formatDocument(toDocument()); }
 
     /// Adds the patches of a .bpt file or a mesh file to this scene (Error: nothing changes).
-    void importFile(const std::string& path);
+    /// A mesh is read with `up` as its file's up axis (Y-up files are turned to the Z-up world);
+    /// nullopt: the format's own convention (glTF and GLB: Y), else Z.
+    void importFile(const std::string& path, std::optional<UpAxis> up = std::nullopt);
+    /// Sets imported mesh i's up axis (one undo step; the mesh is read again).
+    void setUpAxis(int i, UpAxis up);
     /// The tessellation of every visible surface and mesh, merged, written by extension (.obj ...).
     void exportMesh(const std::string& path);
     PolygonMesh mergedMesh();
@@ -225,7 +232,7 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
 SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
                                   const std::string& what);
 /// Reads a mesh file and makes sure it has triangles and per-vertex normals.
-ItemGeometry buildMeshGeometry(const std::string& path);
+ItemGeometry buildMeshGeometry(const std::string& path, UpAxis up = UpAxis::Z);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.
 PolygonMesh withNormals(PolygonMesh mesh);
 

@@ -145,6 +145,24 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
     gpu.normalLength = normalLength;
 }
 
+std::optional<std::pair<float, float>> scalarRange(const Scene& scene)
+{
+    const DisplaySettings& d = scene.display;
+    bool any = false;
+    float lo = 0, hi = 0;
+    for (int i = 0; i < scene.itemCount(); ++i) {
+        const SceneItem& item = scene.item(i);
+        if (!item.settings.visible || item.scalars.empty()) continue;
+        if (!d.scalarAuto) return std::make_pair(d.scalarMin, d.scalarMax); // fixed: no pass over the scalars
+        const auto [a, b] = std::minmax_element(item.scalars.begin(), item.scalars.end());
+        lo = any ? std::min(lo, *a) : *a;
+        hi = any ? std::max(hi, *b) : *b;
+        any = true;
+    }
+    if (!any) return std::nullopt;
+    return std::make_pair(lo, hi);
+}
+
 long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const Overlay* overlay)
 {
     scene.updateGeometry();
@@ -211,6 +229,7 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
     if (d.axes) renderer_.drawLines(axes_, identity);
 
     long triangles = 0;
+    const std::optional<std::pair<float, float>> range = scalarRange(scene);
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& item = scene.item(i);
         if (!item.settings.visible) continue;
@@ -225,10 +244,9 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
             style.flipNormals = d.flipNormals;
             style.analysis = d.analysis;
             style.stripes = d.stripes;
-            if (!item.scalars.empty()) {
-                const auto [lo, hi] = std::minmax_element(item.scalars.begin(), item.scalars.end());
-                style.scalarMin = *lo;
-                style.scalarMax = *hi;
+            if (!item.scalars.empty() && range) {
+                style.scalarMin = range->first;
+                style.scalarMax = range->second;
             }
             renderer_.drawMesh(gpu.mesh, identity, style);
             triangles += gpu.triangles;

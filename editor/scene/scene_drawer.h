@@ -4,13 +4,20 @@
 // surfaces, curves, control nets and points, normals, the ground grid and the axes.
 
 #include <map>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "render/renderer.h"
 #include "scene/overlay.h"
 #include "scene/scene.h"
 
 namespace freeform::editor {
+
+/// The scalar colour map's range in this frame: the display's fixed range, or with
+/// `display.scalarAuto` the range of the scalars of the visible items; nullopt when no visible
+/// item carries scalars. (The map and its legend are drawn only with the analysis "scalar map".)
+std::optional<std::pair<float, float>> scalarRange(const Scene& scene);
 
 class SceneDrawer {
 public:

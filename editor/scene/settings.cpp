@@ -98,6 +98,8 @@ Json DisplaySettings::toJson() const
     j["background"] = json::array(background);
     j["samples"] = samples;
     j["tolerance"] = tolerance;
+    if (scalarAuto) j["scalar_range"] = "auto";
+    else j["scalar_range"] = {json::tidy(scalarMin), json::tidy(scalarMax)};
     return j;
 }
 
@@ -107,7 +109,7 @@ DisplaySettings DisplaySettings::fromJson(const Json& j)
     json::requireObject(j, path);
     onlyKnown(j, path, {"shading", "lighting", "material", "back_color", "wireframe", "flip_normals", "analysis", "stripes",
                         "control_nets", "control_points", "normals", "normal_length", "grid", "axes", "point_size",
-                        "headlight", "headlight_color", "lights", "background", "samples", "tolerance"});
+                        "headlight", "headlight_color", "lights", "background", "samples", "tolerance", "scalar_range"});
     DisplaySettings s;
     s.shading = static_cast<Shading>(json::choice(j, "shading", path, {"flat", "gouraud", "phong"}, static_cast<int>(s.shading)));
     s.specular = static_cast<SpecularModel>(json::choice(j, "lighting", path, {"phong", "blinn"}, static_cast<int>(s.specular)));
@@ -150,6 +152,21 @@ DisplaySettings DisplaySettings::fromJson(const Json& j)
     json::read(j, "tolerance", path, s.tolerance);
     if (!(s.tolerance > 0)) json::fail(path + ".tolerance", "must be positive");
     if (!(s.stripes > 0)) json::fail(path + ".stripes", "must be positive");
+    if (j.contains("scalar_range")) {
+        const Json& r = j["scalar_range"];
+        if (r.is_string()) {
+            if (r.get<std::string>() != "auto") json::fail(path + ".scalar_range", "expected \"auto\" or [min, max]");
+            s.scalarAuto = true;
+        } else {
+            Eigen::Vector2f range;
+            json::readVector(j, "scalar_range", path, range);
+            if (!std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]))
+                json::fail(path + ".scalar_range", "expected finite [min, max] with min < max");
+            s.scalarAuto = false;
+            s.scalarMin = range[0];
+            s.scalarMax = range[1];
+        }
+    }
     return s;
 }
 

@@ -34,6 +34,11 @@ struct DisplaySettings {
     Vec3f background{0.19f, 0.2f, 0.22f};
     int samples = 4;                   // multisampling (0: off)
     double tolerance = 1e-3;           // adaptive tessellation of surfaces and curves (world units)
+    // The scalar colour map's range (det J of a lattice; docs/editor.md, "Lattices and FFD"): fixed
+    // by default, so that colours do not rescale while a lattice point is dragged (det J = 1, the
+    // volume kept, in the middle); `scalarAuto` takes the range of the scalars drawn in each frame.
+    bool scalarAuto = false;
+    float scalarMin = 0.0f, scalarMax = 2.0f;
 
     Json toJson() const;
     static DisplaySettings fromJson(const Json& json);

@@ -106,6 +106,7 @@ TEST_CASE("recording renderer: a mesh is uploaded once; changed scalars update i
     std::vector<float> scalars(v);
     for (std::size_t i = 0; i < v; ++i) scalars[i] = float(i);
     scene.setScalars(0, scalars);
+    scene.display.scalarAuto = true; // the colour range is the scalars' own (the default is a fixed [0, 2])
     drawer.draw(scene, 320, 200);
     CHECK(r.counters().meshUploads == 0);
     CHECK(r.counters().vertexUpdates == 1);
@@ -114,6 +115,11 @@ TEST_CASE("recording renderer: a mesh is uploaded once; changed scalars update i
     CHECK(buffer.mesh.triangles.size() == 3 * 4);
     CHECK(r.calls(Kind::Mesh)[0].style.scalarMin == 0.0f);
     CHECK(r.calls(Kind::Mesh)[0].style.scalarMax == float(v - 1));
+    // The default fixed range (issue 12: colours do not rescale while a lattice is dragged).
+    scene.display.scalarAuto = false;
+    drawer.draw(scene, 320, 200);
+    CHECK(r.calls(Kind::Mesh)[0].style.scalarMin == 0.0f);
+    CHECK(r.calls(Kind::Mesh)[0].style.scalarMax == 2.0f);
 
     // clear() releases every buffer the drawer made.
     drawer.clear();

@@ -194,3 +194,22 @@ TEST_CASE("issue 12: importing a mesh fits the camera to it", "[render][replay]"
     CHECK(std::abs(t[1].get<double>() - centre.y()) < 1e-6);
     CHECK(std::abs(t[2].get<double>() - centre.z()) < 1e-6);
 }
+
+TEST_CASE("issue 12: a tooltip shows over the Display panel's controls, and none over the view", "[render][replay]")
+{
+    // The Display panel's place from the state; its first rows are the shading, specular and
+    // analysis combos (one frame height, 19 px, plus 4 px spacing each), below the 19-px title bar
+    // and the 8-px padding. The pointer rests on each; --state reports the tooltip of the last frame.
+    const Json start = replayState("tooltip_start", Json::array({{{"type", "frame"}, {"count", 2}}}));
+    const Json& display = start["panels"]["Display"];
+    const double x = display[0].get<double>() + 40, top = display[1].get<double>() + 19 + 8 + 9;
+    const std::vector<std::pair<int, std::string>> rows = {{0, "Flat: one colour per triangle"}, {1, "Blinn-Phong"}, {2, "Reflection lines"}};
+    for (const auto& [row, words] : rows) {
+        const Json events = Json::array({{{"type", "move"}, {"x", x}, {"y", top + 23 * row}}, {{"type", "frame"}, {"count", 3}}});
+        const std::string tip = replayState(cat("tooltip_", row), events)["tooltip"].get<std::string>();
+        INFO("row " << row << ": " << tip);
+        CHECK(tip.find(words) != std::string::npos);
+    }
+    const Json view = replayState("tooltip_view", Json::array({{{"type", "move"}, {"x", 640}, {"y", 400}}, {{"type", "frame"}, {"count", 3}}}));
+    CHECK(view["tooltip"] == "");
+}

@@ -182,7 +182,8 @@ bool LatticeTool::exportDeformed(ToolContext& c, int latticeItem, const std::str
         const SceneItem& item = c.scene.item(latticeItem);
         const int m = c.scene.indexOf(item.deforms);
         if (m < 0 || c.scene.item(m).kind != SceneItem::Kind::ImportedMesh) throw Error("the lattice is bound to no imported mesh");
-        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        // The lattice in the file's own axes (a Y-up file is written back Y-up: docs/format.md, meshes[].up).
+        const Lattice lattice = latticeFromData(latticeToFile(std::get<LatticeData>(c.scene.object(latticeItem).data), c.scene.item(m).up));
         const DeformReport report = exportDeformedMesh(meshFilePath(c.scene, m), lattice, item.settings.ffd.strength, path);
         status() = "wrote " + path + " (" + std::to_string(report.vertices) + " positions)";
         return true;

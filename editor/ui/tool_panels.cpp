@@ -12,10 +12,21 @@
 
 #include "freeform/core/error.h"
 #include "tools/tools.h"
+#include "ui/ui.h"
 
 namespace freeform::editor {
 
 namespace {
+
+/// SameLine when a button labelled `next` still fits on this line, so that no button is cut off
+/// at the panel's edge (at 900 x 600 the toolbar wraps).
+void sameLineIfFits(const char* next)
+{
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float width = ImGui::CalcTextSize(next).x + 2 * style.FramePadding.x;
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+}
 
 std::string selectedType(const ToolContext& c)
 {
@@ -33,11 +44,16 @@ void CurveTool::drawToolbar(ToolContext& c)
         if (creating_) createFromClicks(c);
         else startCreating(false);
     }
-    ImGui::SameLine();
-    if (ImGui::Button(creating_ && creatingSpline_ ? "finish spline (Enter)" : "create C2 spline (Shift+C)")) {
+    tooltip(creating_ && !creatingSpline_ ? "Make a bezier_curve of the clicked points (at least 2); Backspace removes the last, Escape cancels"
+                                          : "Click in the view to add control points of a Bezier curve (degree = clicks - 1); Enter finishes");
+    const char* splineLabel = creating_ && creatingSpline_ ? "finish spline (Enter)" : "create C2 spline (Shift+C)";
+    sameLineIfFits(splineLabel);
+    if (ImGui::Button(splineLabel)) {
         if (creating_) createFromClicks(c);
         else startCreating(true);
     }
+    tooltip(creating_ && creatingSpline_ ? "Make a cubic bezier_spline through the clicked points, every inner joint C2"
+                                         : "Click the points a cubic spline should pass through (the C2 interpolant); Enter finishes");
 }
 
 void CurveTool::drawPanel(ToolContext& c)
@@ -47,20 +63,28 @@ void CurveTool::drawPanel(ToolContext& c)
     ImGui::TextUnformatted("Curve tools");
     float tf = static_cast<float>(t);
     if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
+    tooltip("The parameter for split, insert and the de Casteljau construction (splines: a fraction of the whole range)");
     ImGui::Checkbox("de Casteljau at t (T)", &construction);
+    tooltip("Show every intermediate polygon of the de Casteljau triangle at t and the point f(t)");
     ImGui::Checkbox("curvature comb (V)", &comb);
+    tooltip("Teeth along the normal, of length proportional to the curvature, their tips joined");
     if (comb) {
         float scale = static_cast<float>(combScale);
         if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) combScale = scale;
+        tooltip("Length of the comb's teeth per unit of curvature");
     }
     if (type != "deboor_spline") {
         if (ImGui::Button("elevate degree (E)")) elevateSelected(c);
-        ImGui::SameLine();
+        tooltip("The same curve one degree higher (a spline: every segment; refused while a joint is C2)");
+        sameLineIfFits("split at t (K)");
         if (ImGui::Button("split at t (K)")) splitSelected(c);
+        tooltip("Cut the curve or open spline at t into two objects");
     }
     if (ImGui::Button("insert point (I)")) insertAtSelected(c);
-    ImGui::SameLine();
+    tooltip("Curve: a new point after the selected one (the degree rises). Spline: a joint in the segment (the shape stays)");
+    sameLineIfFits("delete point (Del)");
     if (ImGui::Button("delete point (Del)")) deleteSelected(c);
+    tooltip("Curve: remove the selected point (the degree drops). Spline: remove the selected point's joint");
 }
 
 // ------------------------------------------------------------------ spline joints
@@ -71,7 +95,7 @@ void SplineTool::drawPanel(ToolContext& c)
     const int item = c.selection.item;
     const auto& d = std::get<BezierSplineData>(c.scene.object(item).data);
     ImGui::Separator();
-    ImGui::TextUnformatted("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
+    ImGui::TextWrapped("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
     static const char* names[] = {"free", "aligned", "mirrored", "C2"};
     // The combo shows the inner joints' common mode, or "mixed".
     int common = -2;
@@ -87,7 +111,7 @@ void SplineTool::drawPanel(ToolContext& c)
             if (ImGui::Selectable(names[m], m == common)) setAllJointModes(c, static_cast<JointMode>(m));
         ImGui::EndCombo();
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("set every inner joint to one mode (the current common mode, or mixed)");
+    tooltip("Set every inner joint to one mode (shows the current common mode, or mixed)");
     std::vector<JointContinuity<double>> report;
     try {
         report = splineContinuity(d);
@@ -110,6 +134,7 @@ void SplineTool::drawPanel(ToolContext& c)
             ImGui::PushID(r.joint);
             ImGui::SetNextItemWidth(90);
             if (ImGui::Combo("##mode", &mode, names, 4)) setJointMode(c, static_cast<JointMode>(mode), r.joint);
+            tooltip("This joint's handle mode: free (C0), aligned (G1), mirrored (C1), C2 (cubic splines)");
             ImGui::PopID();
             ImGui::TableNextColumn();
             ImGui::Text("C%d G%d", r.C, r.G);
@@ -131,9 +156,11 @@ void SplineTool::drawPanel(ToolContext& c)
 void PatchTool::drawToolbar(ToolContext& c)
 {
     if (ImGui::Button("create patch (P)")) createPatch(c);
+    tooltip("Add a flat bezier_surface of degrees m x n in the view plane, centred in the scene");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(80);
     ImGui::InputInt2("m, n", degree);
+    tooltip("The degrees (1 to 20) of the patch that \"create patch\" adds");
     for (int& d : degree) d = std::clamp(d, 1, 20);
 }
 
@@ -148,8 +175,10 @@ void drawTessellationSettings(ToolContext& c)
     Tessellation& t = settings.tessellation;
     int mode = t.mode == Tessellation::Mode::Adaptive ? 0 : 1;
     bool changed = ImGui::RadioButton("tolerance", &mode, 0);
+    tooltip("Adaptive tessellation to a distance (world units)");
     ImGui::SameLine();
     changed |= ImGui::RadioButton("segments", &mode, 1);
+    tooltip("Uniform tessellation: this many segments per patch side");
     t.mode = mode == 0 ? Tessellation::Mode::Adaptive : Tessellation::Mode::Uniform;
     if (mode == 0) {
         float tol = static_cast<float>(t.tolerance > 0 ? t.tolerance : c.scene.display.tolerance);
@@ -157,8 +186,10 @@ void drawTessellationSettings(ToolContext& c)
             t.tolerance = tol;
             changed = true;
         }
+        tooltip("The largest distance between the surface and its triangles, world units (Ctrl+click types a value)");
     } else {
         changed |= ImGui::SliderInt("segments", &t.segments, 1, 64);
+        tooltip("Segments per patch side (uniform tessellation)");
     }
     if (changed) c.scene.setSettings(item, settings, "tessellation");
 }
@@ -172,13 +203,13 @@ void PatchTool::drawPanel(ToolContext& c)
     drawTessellationSettings(c);
     ImGui::Separator();
     if (ImGui::Button("edge continuity of all patches")) computeEdgeContinuity(c);
+    tooltip("List every edge two bezier_surface objects share, with its level (C1, G1, C0), angle and gap");
     if (!edges_.empty()) {
         int g1 = 0, c1 = 0;
         for (const EdgeContinuity& e : edges_) g1 += e.g1, c1 += e.c1;
         ImGui::Text("%zu edges: %d C1, %d G1, %zu C0", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
-                              "(the table follows every change of the patches)");
+        tooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
+                "(the table follows every change of the patches)");
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
         if (ImGui::BeginTable("edges", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit,
                               ImVec2(0, 180))) {
@@ -223,7 +254,9 @@ void LatticeTool::drawPanel(ToolContext& c)
             if (c.scene.item(i).id == c.scene.item(item).deforms) current = static_cast<int>(meshes.size());
             meshes.push_back(c.scene.item(i).name);
         }
-    if (ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str())) {
+    const bool meshOpen = ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str());
+    tooltip("The imported mesh this lattice deforms");
+    if (meshOpen) {
         for (std::size_t k = 0; k < meshes.size(); ++k)
             if (ImGui::Selectable(meshes[k].c_str(), static_cast<int>(k) == current)) {
                 settings.ffd.mesh = k == 0 ? std::string() : meshes[k];
@@ -236,11 +269,14 @@ void LatticeTool::drawPanel(ToolContext& c)
         settings.ffd.strength = w;
         c.scene.setSettings(item, settings, "strength");
     }
+    tooltip("W in p' = p + W sum B (P - R): 0 leaves the mesh, 1 is the full deformation");
     DocumentObject o = c.scene.object(item);
     auto& data = std::get<LatticeData>(o.data);
     static const char* policies[] = {"keep", "clamp", "extrapolate"};
     int policy = data.outside == "keep" ? 0 : data.outside == "clamp" ? 1 : 2;
-    if (ImGui::Combo("outside", &policy, policies, 3)) {
+    const bool policyChanged = ImGui::Combo("outside", &policy, policies, 3);
+    tooltip("Vertices outside the lattice box: keep them, clamp them to the box, or extrapolate the polynomial");
+    if (policyChanged) {
         data.outside = policies[policy];
         try {
             c.scene.replaceObject(item, o, "outside policy");
@@ -249,41 +285,70 @@ void LatticeTool::drawPanel(ToolContext& c)
         }
     }
     if (ImGui::Button("reset lattice")) resetLattice(c, item);
-    ImGui::SameLine();
+    tooltip("Put every lattice point back at its rest place (one undo step)");
+    sameLineIfFits("XX direct manipulation (D)");
     ImGui::Checkbox("direct manipulation (D)", &direct);
+    tooltip("Press on the deformed mesh and drag: the lattice changes least so that the grabbed point follows the pointer");
     if (const FfdLink* link = c.scene.ffdLink(item)) {
-        ImGui::Text("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
+        ImGui::TextWrapped("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
         ImGui::Text("det J in [%.4g, %.4g]", link->report.minDetJ, link->report.maxDetJ);
-        if (link->report.foldCount > 0)
-            ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "fold-over: det J <= 0 at %zu vertices", link->report.foldCount);
+        if (link->report.foldCount > 0) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
+            ImGui::TextWrapped("fold-over: det J <= 0 at %zu vertices", link->report.foldCount);
+            ImGui::PopStyleColor();
+        }
         if (ImGui::Button("certify (det J > 0 on the box?)")) certifyLattice(c, item);
+        tooltip("Bernstein bound on det J over the whole box: certified injective, folds, or undecided");
         if (link->certificate) {
             const Certificate& cert = *link->certificate;
             const bool ok = cert.verdict == Verdict::CertifiedInjective;
-            ImGui::TextColored(ok ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.6f, 0.3f, 1), "%s (det J in [%.3g, %.3g], %d boxes)",
-                               toString(cert.verdict).c_str(), cert.minCoefficient, cert.maxCoefficient, cert.boxes);
+            ImGui::PushStyleColor(ImGuiCol_Text, ok ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.6f, 0.3f, 1));
+            ImGui::TextWrapped("%s (det J in [%.3g, %.3g], %d boxes)", toString(cert.verdict).c_str(), cert.minCoefficient,
+                               cert.maxCoefficient, cert.boxes);
+            ImGui::PopStyleColor();
         }
         const bool scalar = c.scene.display.analysis == SurfaceAnalysis::ScalarMap;
         bool show = scalar;
-        if (ImGui::Checkbox("det J colour map", &show) && show != scalar) {
+        const bool toggled = ImGui::Checkbox("det J colour map", &show);
+        tooltip("Colour the mesh by det J, the local volume change (Display > analysis \"scalar map\"), with a legend");
+        if (toggled && show != scalar) {
             c.scene.display.analysis = show ? SurfaceAnalysis::ScalarMap : SurfaceAnalysis::None;
             c.scene.touch();
         }
+
+        // The field takes what the button leaves, so that the button is never cut off.
+        const float button = ImGui::CalcTextSize("export deformed").x + 2 * ImGui::GetStyle().FramePadding.x;
+        ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - button - ImGui::GetStyle().ItemSpacing.x));
         ImGui::InputText("##export", exportPath, sizeof exportPath);
+        tooltip("Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
         ImGui::SameLine();
         if (ImGui::Button("export deformed")) exportDeformed(c, item, exportPath);
+        tooltip("Write the deformed mesh (computed in double, as freeform ffd does) to the path on the left");
     }
     if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, item);
+    tooltip("Deform every other object of the document exactly, by composition (Shift+A; freeform ffd DOC's rule)");
+    // The colour map's range last, so that switching the map on moves no row above it.
+    if (c.scene.ffdLink(item) && c.scene.display.analysis == SurfaceAnalysis::ScalarMap) {
+        ImGui::TextUnformatted("det J colour range");
+        DisplaySettings d = c.scene.display;
+        if (scalarRangeControls(d)) {
+            c.scene.display = d;
+            c.scene.touch();
+        }
+    }
 }
 
 void LatticeTool::drawMeshPanel(ToolContext& c, int meshItem)
 {
     ImGui::TextUnformatted("Fit a lattice (L)");
     ImGui::InputInt3("degrees", degree);
+    tooltip("The lattice's degrees per axis (1 to 12)");
     for (int& d : degree) d = std::clamp(d, 1, 12);
     float m = static_cast<float>(margin);
     if (ImGui::SliderFloat("margin", &m, 0.0f, 0.5f, "%.3f")) margin = m;
+    tooltip("Each side of the mesh's bounding box is pushed out by this fraction of its largest extent");
     if (ImGui::Button("fit lattice")) fitLattice(c, meshItem);
+    tooltip("Add a lattice around this mesh, bound to it, and select it (L)");
 }
 
 // ------------------------------------------------------------------ rational and NURBS objects

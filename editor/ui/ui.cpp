@@ -3,10 +3,14 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 #include "interaction/keymap.h"
+#include "render/colour_map.h"
+#include "scene/scene_drawer.h"
 #include "tools/tools.h"
 
 namespace freeform::editor {
@@ -14,6 +18,9 @@ namespace freeform::editor {
 namespace {
 
 constexpr float kPanelWidth = 290.0f;
+
+/// The state of the drawUi call in progress (for tooltip(text) from the tools' panels).
+UiState* currentState = nullptr;
 
 /// Height of the main menu bar (the panels start below it).
 float menuHeight()
@@ -53,7 +60,7 @@ Layout panelLayout()
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     const float top = vp->Pos.y + menuHeight() + 8, bottom = vp->Pos.y + vp->Size.y - statusHeight() - 8;
     const float avail = std::max(bottom - top, 120.0f);
-    const float leftWidth = std::min(kPanelWidth - 60, std::max(150.0f, 0.27f * vp->Size.x));
+    const float leftWidth = std::min(kPanelWidth - 20, std::max(150.0f, 0.3f * vp->Size.x));
     const float rightWidth = std::min(kPanelWidth, std::max(180.0f, 0.34f * vp->Size.x));
     Layout l;
     const float sceneHeight = std::min(260.0f, 0.4f * avail);
@@ -87,9 +94,13 @@ bool materialEditor(Material& m)
 {
     bool changed = false;
     changed |= colorEdit("ambient", m.ambient);
+    tooltip("Ambient colour C_a (RGB in [0, 1]; click the swatch for a picker)");
     changed |= colorEdit("diffuse", m.diffuse);
+    tooltip("Diffuse colour C_d, times max(0, l.n)");
     changed |= colorEdit("specular", m.specular);
+    tooltip("Specular colour C_s, times max(0, v.r)^s (or n.h with Blinn)");
     changed |= ImGui::SliderFloat("shininess", &m.shininess, 1.0f, 500.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+    tooltip("The specular exponent s: larger is a smaller, sharper highlight");
     return changed;
 }
 
@@ -111,6 +122,38 @@ void askPath(UiState& s, UiActions& actions, UiState::PathDialog which, const st
     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
 }
 
+void tooltip(UiState& state, const char* text)
+{
+    if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+    ImGui::SetTooltip("%s", text);
+    state.tooltip = text;
+}
+
+void tooltip(const char* text)
+{
+    if (currentState) tooltip(*currentState, text);
+    else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+}
+
+bool scalarRangeControls(DisplaySettings& d)
+{
+    bool changed = ImGui::Checkbox("auto range", &d.scalarAuto);
+    tooltip("On: the colours span the det J values drawn now (they rescale while you drag).\n"
+            "Off: the fixed range below (default 0 to 2; det J = 1, the volume kept, in the middle).");
+    if (!d.scalarAuto) {
+        float range[2] = {d.scalarMin, d.scalarMax};
+        if (ImGui::InputFloat2("min, max", range, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && std::isfinite(range[0]) &&
+            std::isfinite(range[1]) && range[0] < range[1]) {
+            d.scalarMin = range[0];
+            d.scalarMax = range[1];
+            changed = true;
+        }
+        tooltip("The det J values at the two ends of the colour bar (Enter applies; min < max).\n"
+                "Values outside get the end colours. Saved with the document's display settings.");
+    }
+    return changed;
+}
+
 namespace {
 
 void mainMenu(Scene& scene, UiState& s, UiActions& actions)
@@ -118,23 +161,35 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
+        tooltip(s, "An empty document (asks first when there are unsaved changes)");
         if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
+        tooltip(s, "Open a freeform document (.json), a .bpt patch file or a mesh");
         if (ImGui::BeginMenu("Open recent", !actions.recentFiles().empty())) {
-            for (const std::string& path : actions.recentFiles())
-                if (ImGui::MenuItem(path.c_str())) actions.open(path);
+            // Most recent first; a file that is gone is shown greyed and cannot be chosen.
+            for (const std::string& path : actions.recentFiles()) {
+                std::error_code ec;
+                const bool exists = std::filesystem::exists(path, ec);
+                if (ImGui::MenuItem(path.c_str(), nullptr, false, exists)) actions.open(path);
+                tooltip(s, exists ? "Open this document (asks first when there are unsaved changes)" : "This file no longer exists");
+            }
             ImGui::EndMenu();
         }
         if (ImGui::MenuItem("Save", "Ctrl+S")) {
             if (scene.path().empty()) askPath(s, actions, UiState::PathDialog::SaveAs, "scene.json");
             else actions.save();
         }
+        tooltip(s, "Write the document (atomically: a crash never destroys the previous file)");
         if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
             askPath(s, actions, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
+        tooltip(s, "Write the document under a new path");
         ImGui::Separator();
         if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) askPath(s, actions, UiState::PathDialog::Import, "");
+        tooltip(s, "Add a mesh (.obj .ply .stl .off .gltf .glb) or the patches of a .bpt file to the document");
         if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) askPath(s, actions, UiState::PathDialog::Export, "scene.obj");
+        tooltip(s, "Write every visible surface and mesh, merged, as one OBJ");
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
+        tooltip(s, "Close the editor (asks first when there are unsaved changes)");
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Edit")) {
@@ -142,7 +197,9 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         const std::string undoText = h.canUndo() ? "Undo " + h.undoLabel() : std::string("Undo");
         const std::string redoText = h.canRedo() ? "Redo " + h.redoLabel() : std::string("Redo");
         if (ImGui::MenuItem(undoText.c_str(), "Ctrl+Z", false, h.canUndo())) actions.undo();
+        tooltip(s, "Take the last change back (the last 1000 are kept)");
         if (ImGui::MenuItem(redoText.c_str(), "Ctrl+Shift+Z", false, h.canRedo())) actions.redo();
+        tooltip(s, "Make the last undone change again (also Ctrl+Y)");
         ImGui::Separator();
         Selection& sel = s.selection;
         const bool hasItem = sel.item >= 0 && sel.item < scene.itemCount();
@@ -151,43 +208,62 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
             for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
             sel.setPoints(std::move(all));
         }
+        tooltip(s, "Select every control point of the selected object");
         if (ImGui::MenuItem("Select none", "Alt+A", false, !sel.points.empty())) sel.points.clear();
+        tooltip(s, "Deselect the points (the object stays selected)");
         ImGui::Separator();
         ImGui::MenuItem("Snap to grid", "Shift+Tab", &s.edit.snap);
+        tooltip(s, "Dragged points land on multiples of the ground grid's step");
         ImGui::MenuItem("Proportional editing", "O", &s.edit.soft);
+        tooltip(s, "Unselected points within the radius follow a drag, with a smooth falloff");
         ImGui::MenuItem("Translate gizmo", "Shift+G", &s.edit.gizmo);
+        tooltip(s, "Arrows and squares at the selected points' centre: drag along an axis or in a plane");
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
         DisplaySettings& d = scene.display;
         int shading = static_cast<int>(d.shading);
-        if (ImGui::RadioButton("flat", &shading, 0) | ImGui::RadioButton("Gouraud", &shading, 1) |
-            ImGui::RadioButton("Phong", &shading, 2)) {
+        bool shadingChanged = ImGui::RadioButton("flat", &shading, 0);
+        tooltip(s, "One colour per triangle");
+        shadingChanged |= ImGui::RadioButton("Gouraud", &shading, 1);
+        tooltip(s, "Lit at the vertices, colours interpolated");
+        shadingChanged |= ImGui::RadioButton("Phong", &shading, 2);
+        tooltip(s, "Normals interpolated and lit per pixel");
+        if (shadingChanged) {
             d.shading = static_cast<Shading>(shading);
             scene.touch();
         }
         ImGui::Separator();
-        for (const char* v : {"front", "back", "left", "right", "top", "bottom", "iso"})
+        for (const char* v : {"front", "back", "left", "right", "top", "bottom", "iso"}) {
             if (ImGui::MenuItem(v)) actions.setView(v);
+            tooltip(s, "Look at the scene from this side (keys 1, 3, 7 with Ctrl for the opposite, 9: iso)");
+        }
         ImGui::Separator();
         if (ImGui::MenuItem("Fit all", "Home")) actions.fit(false);
+        tooltip(s, "Move the camera so that everything just fits");
         if (ImGui::MenuItem("Fit selection", "F", false, s.selection.item >= 0)) actions.fit(true);
+        tooltip(s, "Move the camera so that the selected points (else the object) just fit");
         bool ortho = scene.camera.projection == Projection::Orthographic;
         if (ImGui::MenuItem("Orthographic", "5", &ortho)) {
             scene.camera.projection = ortho ? Projection::Orthographic : Projection::Perspective;
             scene.touch();
         }
+        tooltip(s, "Orthographic or perspective projection");
         bool arcball = scene.camera.orbit == OrbitMode::Arcball;
         if (ImGui::MenuItem("Arcball orbit", nullptr, &arcball)) {
             scene.camera.orbit = arcball ? OrbitMode::Arcball : OrbitMode::Turntable;
             scene.touch();
         }
+        tooltip(s, "Orbit freely (arcball) rather than about world z with a level horizon (turntable)");
         ImGui::MenuItem("Display panel", nullptr, &s.showDisplay);
+        tooltip(s, "Show or hide the Display panel");
         ImGui::MenuItem("Frame statistics", "F2", &s.showStats);
+        tooltip(s, "Frame time, update time and triangle count at the bottom of the view");
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
         ImGui::MenuItem("Controls", "F1", &s.showHelp);
+        tooltip(s, "First steps, the mouse and every key");
         ImGui::EndMenu();
     }
     ImGui::Separator();
@@ -205,7 +281,7 @@ void outliner(Scene& scene, UiState& s)
     const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
     ImGui::SetNextWindowPos(l.scenePos, cond);
     ImGui::SetNextWindowSize(l.sceneSize, cond);
-    if (ImGui::Begin("Scene")) {
+    if (ImGui::Begin("Scene", nullptr, ImGuiWindowFlags_HorizontalScrollbar)) {
         notePanel(s, "Scene");
         for (int i = 0; i < scene.itemCount(); ++i) {
             SceneItem& item = scene.item(i);
@@ -216,13 +292,16 @@ void outliner(Scene& scene, UiState& s)
                 settings.visible = visible;
                 scene.setSettings(i, settings);
             }
+            tooltip(s, "Show or hide this object");
             ImGui::SameLine();
             const std::string label = item.name + "  (" + item.type + ")" + (item.geometry.error.empty() ? "" : "  !");
             if (ImGui::Selectable(label.c_str(), s.selection.item == i)) {
                 if (s.selection.item == i) s.selection.clear();
                 else s.selection.selectItem(i);
             }
-            if (!item.geometry.error.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", item.geometry.error.c_str());
+            const std::string tip = item.name + " (" + item.type + "): click to select, again to deselect" +
+                                    (item.geometry.error.empty() ? std::string() : "\n" + item.geometry.error);
+            tooltip(s, tip.c_str());
             ImGui::PopID();
         }
         if (scene.itemCount() == 0) ImGui::TextDisabled("empty: open or import a file, or drop one here");
@@ -261,6 +340,7 @@ void controlPointTable(Scene& scene, int index, UiState& s)
                     s.error = e.what();
                 }
             }
+            tooltip(s, "Control point coordinates; type new ones and press Enter (one undo step)");
             ImGui::PopID();
         }
     }
@@ -276,7 +356,9 @@ void selectedPoints(Scene& scene, int index, UiState& s)
     for (int k : s.selection.points)
         if (k < points.cols()) ks.push_back(k);
     if (ks.empty()) {
+        ImGui::PushTextWrapPos(0);
         ImGui::TextDisabled("click a control point to select it (shift: add, ctrl+drag: box)");
+        ImGui::PopTextWrapPos();
         return;
     }
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -298,6 +380,8 @@ void selectedPoints(Scene& scene, int index, UiState& s)
             s.error = e.what();
         }
     }
+    tooltip(s, ks.size() == 1 ? "The selected point's coordinates: type new ones and press Enter"
+                              : "The selected points' centre: a new one moves them all by the same offset (Enter)");
 }
 
 /// Snapping, proportional editing and the gizmo.
@@ -305,13 +389,17 @@ void editOptions(Scene& scene, UiState& s)
 {
     if (!ImGui::CollapsingHeader("editing")) return;
     ImGui::Checkbox("snap to grid (Shift+Tab)", &s.edit.snap);
+    tooltip(s, "Dragged points land on multiples of the ground grid's step");
     ImGui::Checkbox("proportional (O)", &s.edit.soft);
+    tooltip(s, "Unselected points within the radius follow a drag, weighted 1 - 3t^2 + 2t^3");
     if (s.edit.soft) {
         if (!(s.edit.softRadius > 0)) s.edit.softRadius = 0.25 * scene.bounds().diagonal().norm();
         const double lo = 1e-4, hi = 1e4;
         ImGui::SliderScalar("radius (+/-)", ImGuiDataType_Double, &s.edit.softRadius, &lo, &hi, "%.4g", ImGuiSliderFlags_Logarithmic);
+        tooltip(s, "The proportional editing radius, world units (+ and - scale it by 1.25)");
     }
     ImGui::Checkbox("translate gizmo (Shift+G)", &s.edit.gizmo);
+    tooltip(s, "Arrows and squares at the selected points' centre: drag along an axis or in a plane");
 }
 
 void properties(Scene& scene, UiState& s, UiActions& actions)
@@ -333,6 +421,7 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             ImGui::TextDisabled("%s", item.type.c_str());
             ObjectSettings settings = item.settings;
             bool changed = ImGui::Checkbox("visible", &settings.visible);
+            tooltip(s, "Show or hide this object");
             if (item.kind == SceneItem::Kind::DocumentObject) {
                 std::visit(
                     [](const auto& d) {
@@ -353,6 +442,7 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                     ImGui::CollapsingHeader("tessellation", ImGuiTreeNodeFlags_DefaultOpen)) {
                     int mode = static_cast<int>(settings.tessellation.mode);
                     changed |= ImGui::Combo("mode", &mode, "adaptive\0uniform\0");
+                    tooltip(s, "Adaptive: to a distance; uniform: a fixed number of segments per patch side");
                     settings.tessellation.mode = static_cast<Tessellation::Mode>(mode);
                     if (settings.tessellation.mode == Tessellation::Mode::Adaptive) {
                         double t = settings.tessellation.tolerance > 0 ? settings.tessellation.tolerance : scene.display.tolerance;
@@ -361,13 +451,17 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                             settings.tessellation.tolerance = t;
                             changed = true;
                         }
+                        tooltip(s, "This object's tessellation tolerance, world units (Ctrl+click types a value)");
                     } else {
                         changed |= ImGui::SliderInt("segments", &settings.tessellation.segments, 1, 200);
+                        tooltip(s, "Segments per patch side");
                     }
                     changed |= ImGui::Checkbox("reverse orientation", &settings.tessellation.flip);
+                    tooltip(s, "Reverse the triangles and normals (inside out)");
                 }
                 if (ImGui::CollapsingHeader("material")) {
                     changed |= ImGui::Checkbox("own material", &settings.ownMaterial);
+                    tooltip(s, "Use a material of this object's own rather than the Display panel's");
                     if (settings.ownMaterial) changed |= materialEditor(settings.material);
                 }
             }
@@ -379,6 +473,13 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                 controlPointTable(scene, selected, s);
             } else {
                 ImGui::TextWrapped("file: %s", item.meshPath.c_str());
+                int up = item.up == UpAxis::Y ? 1 : 0;
+                if (ImGui::Combo("up axis", &up, "Z up (as the world)\0Y up (turned to Z up)\0")) {
+                    scene.setUpAxis(selected, up == 1 ? UpAxis::Y : UpAxis::Z);
+                }
+                tooltip(s, "The file's up direction. Y up (every glTF, most OBJ files) is turned a quarter about x,\n"
+                           "(x, y, z) -> (x, -z, y), so that it stands in the Z-up world; exports write the file's own\n"
+                           "coordinates back. Saved in the document (meshes[].up).");
             }
             actions.toolPanels();
         }
@@ -395,63 +496,97 @@ void displayPanel(Scene& scene, UiState& s)
     ImGui::SetNextWindowSize(l.displaySize, cond);
     if (ImGui::Begin("Display", &s.showDisplay)) {
         notePanel(s, "Display");
-        // Room for the longest label ("point size", "tolerance") beside the widgets.
-        ImGui::PushItemWidth(-ImGui::GetFontSize() * 6.5f);
+        // Room for the longest label ("normal length", "px tolerance") beside the widgets.
+        ImGui::PushItemWidth(-(ImGui::CalcTextSize("normal length").x + 2 * ImGui::GetStyle().ItemInnerSpacing.x));
         DisplaySettings d = scene.display;
         int shading = static_cast<int>(d.shading);
         ImGui::Combo("shading", &shading, "flat\0Gouraud\0Phong\0");
+        tooltip(s, "Flat: one colour per triangle; Gouraud: lit per vertex; Phong: lit per pixel (key Z cycles)");
         d.shading = static_cast<Shading>(shading);
         int specular = static_cast<int>(d.specular);
-        ImGui::Combo("specular", &specular, "Phong (v.r)\0Blinn-Phong (n.h)\0");
+        ImGui::Combo("specular", &specular, "Phong (v.r)\0Blinn (n.h)\0");
+        tooltip(s, "The highlight: Phong's max(0, v.r)^s or Blinn-Phong's max(0, n.h)^s");
         d.specular = static_cast<SpecularModel>(specular);
         int analysis = static_cast<int>(d.analysis);
         ImGui::Combo("analysis", &analysis, "none\0reflection lines\0scalar map\0");
+        tooltip(s, "Reflection lines (R) show the smoothness across edges one order down;\nthe scalar map colours a lattice's mesh by det J");
         d.analysis = static_cast<SurfaceAnalysis>(analysis);
-        if (d.analysis == SurfaceAnalysis::ReflectionLines) ImGui::SliderFloat("stripes", &d.stripes, 2.0f, 60.0f, "%.0f");
+        if (d.analysis == SurfaceAnalysis::ReflectionLines) {
+            ImGui::SliderFloat("stripes", &d.stripes, 2.0f, 60.0f, "%.0f");
+            tooltip(s, "Number of reflection-line stripes across the sphere map");
+        }
+        if (d.analysis == SurfaceAnalysis::ScalarMap) scalarRangeControls(d);
         ImGui::Checkbox("wireframe", &d.wireframe);
+        tooltip(s, "Triangle edges over the shaded surface (W)");
         ImGui::SameLine();
         ImGui::Checkbox("flip normals", &d.flipNormals);
+        tooltip(s, "Draw with negated normals (for meshes whose normals point inwards)");
         ImGui::Checkbox("nets", &d.controlNets);
+        tooltip(s, "Control polygons and nets of every object (the selected one always shows its own)");
         ImGui::SameLine();
         ImGui::Checkbox("points", &d.controlPoints);
+        tooltip(s, "Control points of every object, pickable");
         ImGui::SameLine();
         ImGui::Checkbox("normals", &d.normals);
+        tooltip(s, "Surface normals as short lines");
         ImGui::Checkbox("grid", &d.grid);
+        tooltip(s, "The ground grid in the plane z = 0");
         ImGui::SameLine();
         ImGui::Checkbox("axes", &d.axes);
-        if (d.normals) ImGui::SliderFloat("normal length", &d.normalLength, 0.001f, 0.2f, "%.3f", ImGuiSliderFlags_Logarithmic);
+        tooltip(s, "The x (red), y (green) and z (blue) axes");
+        if (d.normals) {
+            ImGui::SliderFloat("normal length", &d.normalLength, 0.001f, 0.2f, "%.3f", ImGuiSliderFlags_Logarithmic);
+            tooltip(s, "Length of the normal lines, as a fraction of the scene's diameter");
+        }
         ImGui::SliderFloat("point size", &d.pointSize, 2.0f, 20.0f, "%.0f px");
+        tooltip(s, "Diameter of the control point discs, pixels");
         const double lo = 1e-6, hi = 1.0;
         const double plo = 0, phi = 8;
-        ImGui::SliderScalar("pixel tolerance", ImGuiDataType_Double, &scene.pixelTolerance, &plo, &phi, "%.2f px (0: world)");
-        if (!(scene.pixelTolerance > 0))
+        ImGui::SliderScalar("px tolerance", ImGuiDataType_Double, &scene.pixelTolerance, &plo, &phi, "%.2f px");
+        tooltip(s, "Tessellate to this many pixels of the current view (0: to the world tolerance instead).\nNot saved in the document.");
+        if (!(scene.pixelTolerance > 0)) {
             ImGui::SliderScalar("tolerance", ImGuiDataType_Double, &d.tolerance, &lo, &hi, "%.2e", ImGuiSliderFlags_Logarithmic);
+            tooltip(s, "Tessellation tolerance of surfaces and curves, world units (exports use it too)");
+        }
         if (ImGui::CollapsingHeader("material")) materialEditor(d.material);
+        tooltip(s, "The default material of surfaces");
         if (ImGui::CollapsingHeader("back faces, background")) {
             colorEdit("back faces", d.backColor);
+            tooltip(s, "Diffuse colour of back faces (seen through openings or inside out)");
             colorEdit("background", d.background);
+            tooltip(s, "The view's background colour");
         }
         if (ImGui::CollapsingHeader("lights", ImGuiTreeNodeFlags_DefaultOpen)) {
             ImGui::Checkbox("headlight", &d.headlight);
-            if (d.headlight) colorEdit("headlight colour", d.headlightColor);
+            tooltip(s, "A light at the eye, moving with the camera");
+            if (d.headlight) {
+                colorEdit("colour##headlight", d.headlightColor);
+                tooltip(s, "The headlight's colour");
+            }
             for (std::size_t i = 0; i < d.lights.size(); ++i) {
                 ImGui::PushID(static_cast<int>(i));
                 ImGui::Separator();
                 ImGui::Checkbox("on", &d.lights[i].enabled);
+                tooltip(s, "Switch this light on or off");
                 ImGui::SameLine();
                 ImGui::Text("light %zu", i + 1);
                 ImGui::SameLine();
                 const bool removeIt = ImGui::SmallButton("remove");
+                tooltip(s, "Remove this light");
                 ImGui::DragFloat3("position", d.lights[i].position.data(), 0.05f);
+                tooltip(s, "The light's position in world coordinates (drag, or double-click to type)");
                 colorEdit("colour", d.lights[i].color);
+                tooltip(s, "The light's colour");
                 ImGui::PopID();
                 if (removeIt) {
                     d.lights.erase(d.lights.begin() + static_cast<std::ptrdiff_t>(i));
                     break;
                 }
             }
-            if (static_cast<int>(d.lights.size()) < kMaxLights - 1 && ImGui::Button("add light"))
-                d.lights.push_back(PointLight{Vec3f(5, 5, 5), Vec3f(0.3f, 0.3f, 0.3f), true});
+            if (static_cast<int>(d.lights.size()) < kMaxLights - 1) {
+                if (ImGui::Button("add light")) d.lights.push_back(PointLight{Vec3f(5, 5, 5), Vec3f(0.3f, 0.3f, 0.3f), true});
+                tooltip(s, "Add a point light (up to 7 besides the headlight)");
+            }
         }
         if (!(d == scene.display)) {
             const bool retessellate = d.tolerance != scene.display.tolerance;
@@ -475,14 +610,32 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
         ImGui::SetNextItemWidth(480);
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         const bool enter = ImGui::InputText("##path", s.pathBuffer, sizeof s.pathBuffer, ImGuiInputTextFlags_EnterReturnsTrue);
+        tooltip(s, "The file's path, relative to the working directory; Enter confirms");
+        if (s.pathDialog == UiState::PathDialog::Import) {
+            int up = s.importUp == UpAxis::Y ? 1 : 0;
+            ImGui::SetNextItemWidth(200);
+            if (ImGui::Combo("up axis of OBJ, PLY, STL, OFF", &up, "Z up\0Y up\0")) s.importUp = up == 1 ? UpAxis::Y : UpAxis::Z;
+            tooltip(s, "These formats do not say which way is up: Y up files are turned to the Z-up world.\n"
+                       "glTF and GLB are always read Y up (the glTF specification). Remembered until the editor quits;\n"
+                       "Properties > up axis changes it for one mesh.");
+        }
         if (s.pathDialog == UiState::PathDialog::Open && !actions.recentFiles().empty()) {
             ImGui::TextDisabled("recent:");
-            for (const std::string& path : actions.recentFiles())
-                if (ImGui::Selectable(path.c_str())) std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", path.c_str());
+            for (const std::string& path : actions.recentFiles()) {
+                std::error_code ec;
+                const bool exists = std::filesystem::exists(path, ec);
+                if (ImGui::Selectable(path.c_str(), false, exists ? 0 : ImGuiSelectableFlags_Disabled))
+                    std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", path.c_str());
+                tooltip(s, exists ? "Put this path in the field" : "This file no longer exists");
+            }
         }
-        const bool ok = ImGui::Button("OK") || enter;
+        const bool okButton = ImGui::Button("OK");
+        tooltip(s, "Use this path (Enter)");
+        const bool ok = okButton || enter;
         ImGui::SameLine();
-        const bool cancel = ImGui::Button("Cancel") || keyPressed(ImGuiKey_Escape);
+        const bool cancelButton = ImGui::Button("Cancel");
+        tooltip(s, "Close without doing anything (Escape)");
+        const bool cancel = cancelButton || keyPressed(ImGuiKey_Escape);
         if (ok && std::strlen(s.pathBuffer) > 0) {
             const std::string path = s.pathBuffer;
             const UiState::PathDialog which = s.pathDialog;
@@ -509,7 +662,9 @@ bool unsavedDialog(Scene& scene, UiState& s, UiActions& actions)
     bool proceed = false;
     if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("%s has unsaved changes.", scene.path().empty() ? "The document" : scene.path().c_str());
-        if (ImGui::Button("Save")) {
+        const bool saveButton = ImGui::Button("Save");
+        tooltip(s, "Save the document, then go on");
+        if (saveButton) {
             const bool saved = scene.path().empty() ? false : actions.save();
             if (scene.path().empty()) s.error = "the document has no file yet: use File > Save as first";
             proceed = saved;
@@ -517,12 +672,16 @@ bool unsavedDialog(Scene& scene, UiState& s, UiActions& actions)
             if (!saved) s.pending = PendingAction::None;
         }
         ImGui::SameLine();
-        if (ImGui::Button("Discard changes")) {
+        const bool discardButton = ImGui::Button("Discard changes");
+        tooltip(s, "Go on without saving: the changes are lost");
+        if (discardButton) {
             proceed = true;
             ImGui::CloseCurrentPopup();
         }
         ImGui::SameLine();
-        if (ImGui::Button("Cancel") || keyPressed(ImGuiKey_Escape)) {
+        const bool cancelButton = ImGui::Button("Cancel");
+        tooltip(s, "Stay in this document (Escape)");
+        if (cancelButton || keyPressed(ImGuiKey_Escape)) {
             s.pending = PendingAction::None;
             ImGui::CloseCurrentPopup();
         }
@@ -542,7 +701,9 @@ void errorDialog(UiState& s)
         ImGui::PopTextWrapPos();
         ImGui::TextDisabled("The open document was not changed.");
         const bool enter = dialogKey(ImGuiKey_Enter, s.errorFrame), escape = dialogKey(ImGuiKey_Escape, s.errorFrame);
-        if (ImGui::Button("OK") || enter || escape) {
+        const bool okButton = ImGui::Button("OK");
+        tooltip(s, "Close this message (Enter or Escape)");
+        if (okButton || enter || escape) {
             s.error.clear();
             s.errorFrame = -1;
             ImGui::CloseCurrentPopup();
@@ -588,10 +749,14 @@ void recoveryDialog(UiState& s, UiActions& actions)
         ImGui::TextUnformatted(s.recovery.c_str());
         ImGui::PopTextWrapPos();
         const bool enter = dialogKey(ImGuiKey_Enter, s.recoveryFrame);
-        const bool recover = ImGui::Button("Recover (Enter)") || enter;
+        const bool recoverButton = ImGui::Button("Recover (Enter)");
+        tooltip(s, "Open the autosaved document as unsaved changes to its file");
+        const bool recover = recoverButton || enter;
         ImGui::SameLine();
         const bool escape = dialogKey(ImGuiKey_Escape, s.recoveryFrame);
-        const bool discard = ImGui::Button("Discard (Escape)") || escape;
+        const bool discardButton = ImGui::Button("Discard (Escape)");
+        tooltip(s, "Delete the autosave and start as usual");
+        const bool discard = discardButton || escape;
         if (recover || discard) {
             s.recovery.clear();
             s.recoveryFrame = -1;
@@ -609,9 +774,9 @@ const char* firstStepsHelp()
     return "Draw a C2 spline: Shift+C, click the points it should pass through, Enter.\n"
            "  Its joints are in mode C2 (Properties > Joints); drag the cyan de Boor points,\n"
            "  and it stays C2. T: de Casteljau construction at t, V: curvature comb.\n"
-           "Smooth a teapot patch: File > Open data/teapot.bpt, R (reflection lines), click a\n"
-           "  patch, drag its net points (G, X/Y/Z to constrain); Properties > 'edge continuity\n"
-           "  of all patches' lists C0/G1/C1 per shared edge; a smaller tolerance removes facets.\n"
+           "Smooth a patch pair: File > Open examples/data/c0-patches.json, R (reflection lines:\n"
+           "  they break at the C0 edge), click a patch, 'edge continuity of all patches' lists the\n"
+           "  edge as C0; move the rows beside it collinear (G, Z) and press it again: C1 and G1.\n"
            "Deform a mesh: Ctrl+I imports it, click it, L fits a lattice; drag the lattice points\n"
            "  and the mesh follows; 'export deformed' in the lattice panel writes it (any format\n"
            "  by extension, nothing else in the file changes). Ctrl+Z undoes every step.\n";
@@ -642,6 +807,55 @@ std::string controlsHelp()
     return text;
 }
 
+/// The scalar colour map's legend, at the bottom right of the view while the map is drawn: the
+/// colour bar (its pixel columns coloured by render/colour_map.h, the shader's map) with its values
+/// at both ends and in the middle.
+void colourLegend(const Scene& scene, UiState& s)
+{
+    s.legendRect[2] = 0;
+    if (scene.display.analysis != SurfaceAnalysis::ScalarMap) return;
+    const std::optional<std::pair<float, float>> range = scalarRange(scene);
+    if (!range) return;
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 8, vp->Pos.y + vp->Size.y - statusHeight() - 8), ImGuiCond_Always,
+                            ImVec2(1.0f, 1.0f));
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("det J legend", nullptr, flags)) {
+        const float lo = range->first, hi = range->second;
+        ImGui::Text("det J (%s)", scene.display.scalarAuto ? "auto range" : "fixed range");
+        const float width = 200.0f, height = 14.0f;
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        for (int k = 0; k < static_cast<int>(width); ++k) {
+            const Vec3f c = colourMap(static_cast<float>(k) / (width - 1));
+            draw->AddRectFilled(ImVec2(p.x + float(k), p.y), ImVec2(p.x + float(k) + 1, p.y + height),
+                                ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1)));
+        }
+        ImGui::Dummy(ImVec2(width, height));
+        char text[3][32];
+        std::snprintf(text[0], sizeof text[0], "%.3g", lo);
+        std::snprintf(text[1], sizeof text[1], "%.3g", 0.5f * (lo + hi));
+        std::snprintf(text[2], sizeof text[2], "%.3g", hi);
+        const float y = ImGui::GetCursorPosY();
+        ImGui::TextUnformatted(text[0]);
+        ImGui::SameLine(ImGui::GetCursorStartPos().x + 0.5f * (width - ImGui::CalcTextSize(text[1]).x));
+        ImGui::SetCursorPosY(y);
+        ImGui::TextUnformatted(text[1]);
+        ImGui::SameLine(ImGui::GetCursorStartPos().x + width - ImGui::CalcTextSize(text[2]).x);
+        ImGui::SetCursorPosY(y);
+        ImGui::TextUnformatted(text[2]);
+        s.legendRect[0] = p.x;
+        s.legendRect[1] = p.y;
+        s.legendRect[2] = width;
+        s.legendRect[3] = height;
+        s.legendMin = lo;
+        s.legendMax = hi;
+    }
+    ImGui::End();
+}
+
 void statusBar(UiState& s)
 {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
@@ -651,7 +865,14 @@ void statusBar(UiState& s)
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBringToFrontOnFocus;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 2));
-    if (ImGui::Begin("##status", nullptr, flags)) ImGui::TextUnformatted(s.statusHint.c_str());
+    if (ImGui::Begin("##status", nullptr, flags)) {
+        ImGui::TextUnformatted(s.statusHint.c_str());
+        tooltip(s, s.statusHint.c_str()); // the whole text, where a narrow window cuts the line
+        if (!s.notice.empty()) {
+            ImGui::SameLine();
+            ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "   |   %s", s.notice.c_str());
+        }
+    }
     ImGui::End();
     ImGui::PopStyleVar();
 }
@@ -662,8 +883,11 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     state.relayout = state.relayout || vp->Size.x != state.layoutWidth || vp->Size.y != state.layoutHeight;
     state.layoutWidth = vp->Size.x;
     state.layoutHeight = vp->Size.y;
+    currentState = &state;
+    state.tooltip.clear();
     mainMenu(scene, state, actions);
     statusBar(state);
+    colourLegend(scene, state);
     outliner(scene, state);
     properties(scene, state, actions);
     displayPanel(scene, state);
@@ -674,6 +898,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     const bool proceed = unsavedDialog(scene, state, actions);
     errorDialog(state);
     state.relayout = false;
+    currentState = nullptr;
     return proceed;
 }
 

@@ -79,7 +79,29 @@ struct UiState {
     /// The status bar's text: the active tool or mode and what the next click does (set by the app
     /// each frame).
     std::string statusHint;
+    /// A notice for the status bar (e.g. a recent-files list that could not be read, the up axis an
+    /// import chose), shown after the hint until the next one.
+    std::string notice;
+    /// The scalar colour map's legend as drawn in the last frame (for --state): the colour bar's
+    /// rectangle in pixels (x, y, width, height; width 0: no legend) and the range it shows.
+    float legendRect[4] = {0, 0, 0, 0};
+    float legendMin = 0, legendMax = 0;
+    /// The tooltip shown in the last frame (empty: none), for --state.
+    std::string tooltip;
+    /// The up axis File > Import gives OBJ, PLY, STL and OFF files (their formats have no
+    /// convention): the last choice in the Import dialog, Z at first. glTF and GLB are always Y.
+    UpAxis importUp = UpAxis::Z;
 };
+
+/// The tooltip of the last widget (ImGui 1.86 has no SetItemTooltip): shown while it is hovered.
+void tooltip(UiState& state, const char* text);
+/// The same for the panels that have no UiState at hand (the tools' panels); it records into the
+/// state drawUi was last called with.
+void tooltip(const char* text);
+
+/// The scalar colour map's range controls: "auto" or fixed min/max (DisplaySettings). True when
+/// something changed.
+bool scalarRangeControls(DisplaySettings& display);
 
 /// Asks for a path for `which` (Open, Save as, Import, Export): the desktop's file chooser when
 /// there is one (the action is then carried out at once), else the typed-path dialog.
