@@ -369,124 +369,213 @@ void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool i
     }
 }
 
+// ---- The geometric measure (docs/surfaces.md, "The geometric measure"). A leaf has local
+// parameters x = (s, t) in [0, 1]^2, centre c = (1/2, 1/2); a point x is described by (a, b) =
+// (|s - 1/2|, |t - 1/2|) in [0, 1/2]^2.
+
+/// Bounds of |g_ss|, |g_st|, |g_tt| over a leaf (or of |d . g_ss|, ... for a projected net).
+struct Second {
+    double ss = 0, st = 0, tt = 0;
+};
+
+Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1] / 2, terms[2]}; }
+
+/// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
+/// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
+/// of that net's differences.
+Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Vector3d& d)
+{
+    const int w = n + 1;
+    double ss = 0, st = 0, tt = 0;
+    for (int i = 0; i + 2 <= m; ++i)
+        for (int j = 0; j <= n; ++j) ss = std::max(ss, std::abs(d.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j + 2 <= n; ++j) tt = std::max(tt, std::abs(d.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j < n; ++j)
+            st = std::max(st, std::abs(d.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
+    return {m * (m - 1.0) * ss, double(m) * n * st, n * (n - 1.0) * tt};
+}
+
+/// g_s(c) and g_t(c) at the leaf's centre.
+void centreDerivatives(const Eigen::Vector3d* net, int m, int n, Eigen::Vector3d& gs, Eigen::Vector3d& gt)
+{
+    const int w = n + 1;
+    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
+    basisWithDerivative(m, 0.5, bu, dbu);
+    basisWithDerivative(n, 0.5, bv, dbv);
+    gs.setZero();
+    gt.setZero();
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            gs += dbu[i] * bv[j] * net[i * w + j];
+            gt += bu[i] * dbv[j] * net[i * w + j];
+        }
+}
+
+/// Bounds of |g_ss|, |g_st|, |g_tt| (in the leaf's s, t) over the leaf grown by delta on both sides
+/// in s (growS) and in t (growT): the net of that rectangle by de Casteljau at 1 + delta and then
+/// -delta / (1 + delta) (the same polynomial, parametrised over the larger interval).
+Second grownBounds(const Eigen::Vector3d* net, int m, int n, double delta, bool growS, bool growT)
+{
+    const int size = (m + 1) * (n + 1);
+    thread_local std::vector<Eigen::Vector3d> buffer;
+    if (buffer.size() < static_cast<std::size_t>(2 * size)) buffer.resize(static_cast<std::size_t>(2 * size));
+    Eigen::Vector3d* grown = buffer.data();
+    Eigen::Vector3d* spare = grown + size;
+    std::copy(net, net + size, grown);
+    for (int dir = 0; dir < 2; ++dir) {
+        if (!(dir == 0 ? growS : growT)) continue;
+        splitNet(grown, spare, m, n, dir == 0, 1 + delta);           // spare: [0, 1 + delta]
+        splitNet(spare, grown, m, n, dir == 0, -delta / (1 + delta)); // spare: [-delta, 1 + delta]
+        std::copy(spare, spare + size, grown);
+    }
+    const Second g = secondOf(netTerms(grown, m, n));
+    const double fs = growS ? 1 / (1 + 2 * delta) : 1, ft = growT ? 1 / (1 + 2 * delta) : 1;
+    return {g.ss * fs * fs, g.st * fs * ft, g.tt * ft * ft};
+}
+
+/// The interpolation error bound at a point (a, b) of the leaf for every triangle with its vertices
+/// in the leaf (docs/surfaces.md, Lemma 2): (M_ss (1/4 - a^2) + 2 M_st sqrt((1/4 - a^2)(1/4 - b^2)) +
+/// M_tt (1/4 - b^2)) / 2, falling in a and in b.
+double pointError(const Second& M, double a, double b)
+{
+    const double vs = 0.25 - a * a, vt = 0.25 - b * b;
+    return 0.5 * (M.ss * vs + 2 * M.st * std::sqrt(vs * vt) + M.tt * vt);
+}
+
+/// An upper bound of sup f over [0, 1/2]^2 from cellBound(a0, a1, b0, b1) (an upper bound of f on
+/// that cell): cells of a 2 x 2 grid, each split in four while its bound exceeds target, down to
+/// cells 2^-(depth + 1) wide; once a cell of the finest size exceeds target, the rest is only
+/// evaluated (the result then exceeds target anyway). The result is the largest final cell bound.
+template <class CellBound>
+double refineCells(const CellBound& cellBound, double target, int depth)
+{
+    struct Cell {
+        double a0, b0, w;
+        int level;
+    };
+    Cell stack[4 + 3 * 16];
+    int top = 0;
+    for (int k = 0; k < 4; ++k) stack[top++] = {(k & 1) * 0.25, (k >> 1) * 0.25, 0.25, 1};
+    double worst = 0;
+    bool failed = false;
+    while (top > 0) {
+        const Cell c = stack[--top];
+        const double v = cellBound(c.a0, c.a0 + c.w, c.b0, c.b0 + c.w);
+        if (v <= target || failed || c.level >= depth) {
+            worst = std::max(worst, v);
+            if (v > target) failed = true;
+            continue;
+        }
+        const double h = c.w / 2;
+        for (int k = 0; k < 4; ++k) stack[top++] = {c.a0 + (k & 1) * h, c.b0 + (k >> 1) * h, h, c.level + 1};
+    }
+    return worst;
+}
+
+constexpr int kCellDepth = 4; // finest cells 1/32 of the leaf's half-width
+
+/// Largest of delta(x) = e(x) / sigma(x) over the leaf, on a 4 x 4 grid of cells (e at the corner
+/// nearest the centre, sigma at the far one).
+template <class Sigma>
+double largestStep(const Second& M, const Sigma& sigmaAt)
+{
+    double worst = 0;
+    for (int ia = 0; ia < 4; ++ia)
+        for (int ib = 0; ib < 4; ++ib) {
+            const double sig = sigmaAt((ia + 1) * 0.125, (ib + 1) * 0.125);
+            if (!(sig > 0)) return std::numeric_limits<double>::infinity();
+            worst = std::max(worst, pointError(M, ia * 0.125, ib * 0.125) / sig);
+        }
+    return worst;
+}
+
+/// The geometric bound of a leaf (docs/surfaces.md, "The geometric measure"): every triangle point
+/// T(x) of the leaf lies within the returned distance of a surface point g(y), y = x + delta(x) in
+/// the patch's domain, chosen so that T(x) - g(x + delta) runs along the normal n0 at the leaf's
+/// centre up to second-order terms. Infinity where the argument does not apply (a near-singular
+/// leaf, delta could leave the patch's domain, or the bound cannot reach the tolerance). net: the
+/// leaf's sub-net; terms: its netTerms; box: the leaf in units of 1/S.
+double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
+                      std::int32_t S, double tolerance)
+{
+    Eigen::Vector3d gs, gt;
+    centreDerivatives(net, m, n, gs, gt);
+    const Eigen::Vector3d cross = gs.cross(gt);
+    const double len = cross.norm();
+    if (!(len > 0)) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d n0 = cross / len;
+    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0);
+    if (pointError(N, 0, 0) > tolerance) return std::numeric_limits<double>::infinity(); // |n0 . E(c)| alone
+    // sigma(x) >= sigma_c - hypot(|g_s(x) - g_s(c)|, |g_t(x) - g_t(c)|) (Weyl).
+    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm();
+    const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
+    auto sigmaAt = [&](double a, double b) { return sigmaC - std::hypot(M.ss * a + M.st * b, M.st * a + M.tt * b); };
+    const double Delta = largestStep(M, sigmaAt);
+    if (!std::isfinite(Delta)) return Delta;
+    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
+    if (static_cast<double>(box.u0) / S - Delta * hu < 0 || static_cast<double>(box.u1) / S + Delta * hu > 1 ||
+        static_cast<double>(box.v0) / S - Delta * hv < 0 || static_cast<double>(box.v1) / S + Delta * hv > 1)
+        return std::numeric_limits<double>::infinity();
+    // The remainder of g(x + delta) over the segment, inside the leaf grown by Delta.
+    const Second G = grownBounds(net, m, n, Delta, true, true);
+    const double quad = 0.5 * (std::max(G.ss, G.tt) + G.st);
+    auto cell = [&](double a0, double a1, double b0, double b1) {
+        const double sig = sigmaAt(a1, b1);
+        if (!(sig > 0)) return std::numeric_limits<double>::infinity();
+        const double d = pointError(M, a0, b0) / sig;
+        const double tilt = std::hypot(N.ss * a1 + N.st * b1, N.st * a1 + N.tt * b1); // |n0 . g_s|, |n0 . g_t|
+        return pointError(N, a0, b0) + tilt * d + quad * d * d;
+    };
+    return refineCells(cell, tolerance, kCellDepth);
+}
+
+/// The geometric bound of a leaf at a patch's side (docs/surfaces.md, "At a patch's sides"): the
+/// foot point is sought along one parameter only (along = 1: t, y = x + (0, delta); along = 0: s),
+/// so the leaf only needs room in that direction. With the unit tangent a = g_t(c)/|g_t(c)| (g_s for
+/// along = 0) and c1 = n0 x a, delta cancels a . E, and the rest of E - g_t(x) delta lies along n0
+/// and c1, each bounded from the projected sub-nets.
+double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
+                           std::int32_t S, int along, double tolerance)
+{
+    Eigen::Vector3d gs, gt;
+    centreDerivatives(net, m, n, gs, gt);
+    const Eigen::Vector3d cross = gs.cross(gt);
+    const double len = cross.norm();
+    const Eigen::Vector3d& g = along == 1 ? gt : gs;
+    const double gLen = g.norm();
+    if (!(len > 0) || !(gLen > 0)) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d n0 = cross / len, a = g / gLen, c1 = n0.cross(a);
+    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0), C = projectedBounds(net, m, n, c1);
+    if (std::hypot(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
+    // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st a + M_tt b) (s: M_ss a + M_st b).
+    auto sigmaAt = [&](double x, double y) { return along == 1 ? gLen - (M.st * x + M.tt * y) : gLen - (M.ss * x + M.st * y); };
+    const double Delta = largestStep(M, sigmaAt);
+    if (!std::isfinite(Delta)) return Delta;
+    const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
+    const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
+    if (lo - Delta * h < 0 || hi + Delta * h > 1) return std::numeric_limits<double>::infinity();
+    const Second G = grownBounds(net, m, n, Delta, along == 0, along == 1);
+    const double quad = 0.5 * (along == 1 ? G.tt : G.ss);
+    auto cell = [&](double a0, double a1, double b0, double b1) {
+        const double sig = sigmaAt(a1, b1);
+        if (!(sig > 0)) return std::numeric_limits<double>::infinity();
+        const double d = pointError(M, a0, b0) / sig;
+        // |d . g_t(x)| <= D_st a + D_tt b for d orthogonal to g_t(c) (s: D_ss a + D_st b).
+        const double slopeN = along == 1 ? N.st * a1 + N.tt * b1 : N.ss * a1 + N.st * b1;
+        const double slopeC = along == 1 ? C.st * a1 + C.tt * b1 : C.ss * a1 + C.st * b1;
+        return std::hypot(pointError(N, a0, b0) + slopeN * d, pointError(C, a0, b0) + slopeC * d) + quad * d * d;
+    };
+    return refineCells(cell, tolerance, kCellDepth);
+}
+
 /// Splits the patch's net until every leaf's bound is at most tolerance (or the leaves reach
 /// minWidth), halving each node in one direction (cuts are integers in units of 1/S, S = 2^30, so
 /// the parameters are exact dyadic numbers), appending the leaves; returns the worst leaf bound.
 /// Throws when the running total of leaves passes leafBudget (> 0). (Cutting near the tolerance at
 /// 1/k instead of 1/2, so that leaves end just under it, gave 18 % fewer leaves on the teapot at
 /// 1e-3 but 3 % more triangles: neighbours no longer line up and need fans.)
-/// The geometric bound of a leaf (docs/surfaces.md, "The geometric measure"): every triangle point
-/// T(x) of the leaf lies within the returned distance of a surface point f(y), y = x + delta in the
-/// patch's domain, chosen so that T(x) - f(y) runs along the normal n0 at the leaf's centre up to
-/// second-order terms. Infinity where the argument does not apply (a near-singular or strongly
-/// turning leaf, or delta could leave the patch's domain). net: the leaf's sub-net (local
-/// parameters s, t in [0, 1]); terms: its netTerms; root: the netTerms of the whole patch; box: the
-/// leaf in units of 1/S.
-double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms,
-                      const std::array<double, 3>& root, const Leaf& box, std::int32_t S)
-{
-    const int w = n + 1;
-    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
-    basisWithDerivative(m, 0.5, bu, dbu);
-    basisWithDerivative(n, 0.5, bv, dbv);
-    Eigen::Vector3d gs = Eigen::Vector3d::Zero(), gt = Eigen::Vector3d::Zero();
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            gs += dbu[i] * bv[j] * net[i * w + j];
-            gt += bu[i] * dbv[j] * net[i * w + j];
-        }
-    const Eigen::Vector3d cross = gs.cross(gt);
-    const double len = cross.norm();
-    if (!(len > 0)) return std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d n0 = cross / len;
-    // Bounds of n0 . g_ss, n0 . g_st, n0 . g_tt over the leaf (convex hull of the projected nets).
-    double nss = 0, nst = 0, ntt = 0;
-    for (int i = 0; i + 2 <= m; ++i)
-        for (int j = 0; j <= n; ++j)
-            nss = std::max(nss, std::abs(n0.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j + 2 <= n; ++j)
-            ntt = std::max(ntt, std::abs(n0.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
-    for (int i = 0; i < m; ++i)
-        for (int j = 0; j < n; ++j)
-            nst = std::max(nst, std::abs(n0.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
-    const double Nss = m * (m - 1.0) * nss, Nst = double(m) * n * nst, Ntt = n * (n - 1.0) * ntt;
-    const double Mss = terms[0], Mst = terms[1] / 2, Mtt = terms[2];
-    const double eps = (terms[0] + terms[1] + terms[2]) / 8;     // |T(x) - g(x)|
-    const double epsN = (Nss + 2 * Nst + Ntt) / 8;                // |n0 . (T(x) - g(x))|
-    // Smallest singular value of the projected Jacobian over the leaf: at the centre, less the
-    // largest change of (g_s, g_t) from the centre (Frobenius norm).
-    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm();
-    const double lambda = 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12));
-    const double sigma = std::sqrt(std::max(0.0, lambda)) - std::hypot((Mss + Mst) / 2, (Mst + Mtt) / 2);
-    if (!(sigma > 0)) return std::numeric_limits<double>::infinity();
-    const double delta = eps / sigma; // |y - x| in the leaf's (s, t)
-    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
-    if (static_cast<double>(box.u0) / S - delta * hu < 0 || static_cast<double>(box.u1) / S + delta * hu > 1 ||
-        static_cast<double>(box.v0) / S - delta * hv < 0 || static_cast<double>(box.v1) / S + delta * hv > 1)
-        return std::numeric_limits<double>::infinity();
-    // |n0 . g_s(x)| <= (Nss + Nst)/2, |n0 . g_t(x)| <= (Nst + Ntt)/2 (zero at the centre); the
-    // remainder of g(x + delta) over the segment, which may leave the leaf: the whole patch's bounds.
-    const double slope = std::hypot((Nss + Nst) / 2, (Nst + Ntt) / 2);
-    const double Gss = root[0] * hu * hu, Gst = root[1] / 2 * hu * hv, Gtt = root[2] * hv * hv;
-    return epsN + slope * delta + 0.5 * (std::max(Gss, Gtt) + Gst) * delta * delta;
-}
-
-/// The geometric bound of a leaf at a patch's side (docs/surfaces.md, "The geometric measure",
-/// "At a patch's sides"): the foot point is sought along one parameter only (along = 1: t, y = x +
-/// (0, delta); along = 0: s), so the leaf only needs room in that direction. Let a be the unit
-/// tangent g_t(c)/|g_t(c)| (g_s for along = 0) and c1 = n0 x a; delta cancels a . E, and the rest
-/// of E - g_t(x) delta lies along n0 and c1, each bounded from the projected sub-nets.
-double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms,
-                           const std::array<double, 3>& root, const Leaf& box, std::int32_t S, int along)
-{
-    const int w = n + 1;
-    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
-    basisWithDerivative(m, 0.5, bu, dbu);
-    basisWithDerivative(n, 0.5, bv, dbv);
-    Eigen::Vector3d gs = Eigen::Vector3d::Zero(), gt = Eigen::Vector3d::Zero();
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            gs += dbu[i] * bv[j] * net[i * w + j];
-            gt += bu[i] * dbv[j] * net[i * w + j];
-        }
-    const Eigen::Vector3d cross = gs.cross(gt);
-    const double len = cross.norm();
-    const Eigen::Vector3d& g = along == 1 ? gt : gs;
-    if (!(len > 0) || !(g.norm() > 0)) return std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d n0 = cross / len, a = g / g.norm(), c1 = n0.cross(a);
-    // Bounds of d . g_ss, d . g_st, d . g_tt over the leaf for d = n0 and d = c1 (convex hull).
-    auto projected = [&](const Eigen::Vector3d& d) {
-        double ss = 0, st = 0, tt = 0;
-        for (int i = 0; i + 2 <= m; ++i)
-            for (int j = 0; j <= n; ++j)
-                ss = std::max(ss, std::abs(d.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
-        for (int i = 0; i <= m; ++i)
-            for (int j = 0; j + 2 <= n; ++j)
-                tt = std::max(tt, std::abs(d.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
-        for (int i = 0; i < m; ++i)
-            for (int j = 0; j < n; ++j)
-                st = std::max(st, std::abs(d.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
-        return std::array<double, 3>{m * (m - 1.0) * ss, double(m) * n * st, n * (n - 1.0) * tt};
-    };
-    const auto N = projected(n0), C = projected(c1);
-    const double eps = (terms[0] + terms[1] + terms[2]) / 8;
-    const double epsN = (N[0] + 2 * N[1] + N[2]) / 8, epsC = (C[0] + 2 * C[1] + C[2]) / 8;
-    // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st + M_tt)/2 (s: (M_ss + M_st)/2).
-    const double Mst = terms[1] / 2, Mown = along == 1 ? terms[2] : terms[0];
-    const double sigma = g.norm() - (Mst + Mown) / 2;
-    if (!(sigma > 0)) return std::numeric_limits<double>::infinity();
-    const double delta = eps / sigma;
-    const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
-    const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
-    if (lo - delta * h < 0 || hi + delta * h > 1) return std::numeric_limits<double>::infinity();
-    // |d . g_t(x)| <= (D_st + D_tt)/2 for d orthogonal to g_t(c) (s: (D_ss + D_st)/2).
-    const double slopeN = along == 1 ? (N[1] + N[2]) / 2 : (N[0] + N[1]) / 2;
-    const double slopeC = along == 1 ? (C[1] + C[2]) / 2 : (C[0] + C[1]) / 2;
-    const double G = along == 1 ? root[2] * h * h : root[0] * h * h; // |g_tt| on the segment (whole patch)
-    return std::hypot(epsN + slopeN * delta, epsC + slopeC * delta) + 0.5 * G * delta * delta;
-}
-
 double buildTree(const Patch& patch, double tolerance, bool geometric, std::int32_t minWidth, std::int32_t S,
                  std::vector<Leaf>& leaves, long long& leafCount, long long leafBudget, const std::string& budgetMessage)
 {
@@ -496,7 +585,6 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
     std::vector<Leaf> stack;
     for (int k = 0; k < size; ++k) pool[k] = patch.controlPoints().col(k);
     stack.push_back({0, S, 0, S});
-    const auto root = netTerms(pool.data(), m, n);
     double worst = 0;
     while (!stack.empty()) {
         const int k = static_cast<int>(stack.size()) - 1;
@@ -507,12 +595,12 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         double b = (t[0] + t[1] + t[2]) / 8;
         // (Far above the tolerance the geometric bound cannot help either: its offset term grows with b.)
         if (geometric && b > tolerance && b < 16 * tolerance) {
-            const double full = geometricBound(net, m, n, t, root, box, S);
+            const double full = geometricBound(net, m, n, t, box, S, tolerance);
             b = std::min(b, full);
             if (!std::isfinite(full)) { // at a patch's side: the foot point along the side only
                 const bool sideU = box.u0 == 0 || box.u1 == S, sideV = box.v0 == 0 || box.v1 == S;
-                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, t, root, box, S, 1));
-                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, t, root, box, S, 0));
+                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, t, box, S, 1, tolerance));
+                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, t, box, S, 0, tolerance));
             }
         }
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
