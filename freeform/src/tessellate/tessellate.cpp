@@ -373,6 +373,9 @@ void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool i
 // parameters x = (s, t) in [0, 1]^2, centre c = (1/2, 1/2); a point x is described by (a, b) =
 // (|s - 1/2|, |t - 1/2|) in [0, 1/2]^2.
 
+/// sqrt(x^2 + y^2) (no overflow concerns at these magnitudes; std::hypot is several times slower).
+double norm2(double x, double y) { return std::sqrt(x * x + y * y); }
+
 /// Bounds of |g_ss|, |g_st|, |g_tt| over a leaf (or of |d . g_ss|, ... for a projected net).
 struct Second {
     double ss = 0, st = 0, tt = 0;
@@ -383,8 +386,25 @@ Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1]
 /// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
 /// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
 /// of that net's differences.
+template <int M, int N>
+Second projectedBoundsFixed(const Eigen::Vector3d* net, const Eigen::Vector3d& d)
+{
+    constexpr int w = N + 1;
+    double p[(M + 1) * (N + 1)];
+    for (int k = 0; k < (M + 1) * (N + 1); ++k) p[k] = d.dot(net[k]);
+    double ss = 0, st = 0, tt = 0;
+    for (int i = 0; i + 2 <= M; ++i)
+        for (int j = 0; j <= N; ++j) ss = std::max(ss, std::abs(p[(i + 2) * w + j] - 2 * p[(i + 1) * w + j] + p[i * w + j]));
+    for (int i = 0; i <= M; ++i)
+        for (int j = 0; j + 2 <= N; ++j) tt = std::max(tt, std::abs(p[i * w + j + 2] - 2 * p[i * w + j + 1] + p[i * w + j]));
+    for (int i = 0; i < M; ++i)
+        for (int j = 0; j < N; ++j) st = std::max(st, std::abs(p[(i + 1) * w + j + 1] - p[(i + 1) * w + j] - p[i * w + j + 1] + p[i * w + j]));
+    return {M * (M - 1.0) * ss, double(M) * N * st, N * (N - 1.0) * tt};
+}
+
 Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Vector3d& d)
 {
+    if (m == 3 && n == 3) return projectedBoundsFixed<3, 3>(net, d);
     const int w = n + 1;
     double ss = 0, st = 0, tt = 0;
     for (int i = 0; i + 2 <= m; ++i)
@@ -400,10 +420,31 @@ Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Ve
 /// g_s(c) and g_t(c) at the leaf's centre.
 void centreDerivatives(const Eigen::Vector3d* net, int m, int n, Eigen::Vector3d& gs, Eigen::Vector3d& gt)
 {
+    if (m == 3 && n == 3) {
+        // Bernstein values at 1/2 (1, 3, 3, 1)/8 and derivatives (-3, -3, 3, 3)/4.
+        constexpr double b[4] = {0.125, 0.375, 0.375, 0.125}, db[4] = {-0.75, -0.75, 0.75, 0.75};
+        Eigen::Vector3d rows[4], rowsV[4];
+        for (int i = 0; i < 4; ++i) {
+            rows[i] = b[0] * net[4 * i] + b[1] * net[4 * i + 1] + b[2] * net[4 * i + 2] + b[3] * net[4 * i + 3];
+            rowsV[i] = db[0] * net[4 * i] + db[1] * net[4 * i + 1] + db[2] * net[4 * i + 2] + db[3] * net[4 * i + 3];
+        }
+        gs = db[0] * rows[0] + db[1] * rows[1] + db[2] * rows[2] + db[3] * rows[3];
+        gt = b[0] * rowsV[0] + b[1] * rowsV[1] + b[2] * rowsV[2] + b[3] * rowsV[3];
+        return;
+    }
     const int w = n + 1;
-    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
-    basisWithDerivative(m, 0.5, bu, dbu);
-    basisWithDerivative(n, 0.5, bv, dbv);
+    struct Basis {
+        int m = -1, n = -1;
+        double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
+    };
+    thread_local Basis basis; // the Bernstein values at 1/2 of the last degrees asked for
+    if (basis.m != m || basis.n != n) {
+        basisWithDerivative(m, 0.5, basis.bu, basis.dbu);
+        basisWithDerivative(n, 0.5, basis.bv, basis.dbv);
+        basis.m = m;
+        basis.n = n;
+    }
+    const double *bu = basis.bu, *dbu = basis.dbu, *bv = basis.bv, *dbv = basis.dbv;
     gs.setZero();
     gt.setZero();
     for (int i = 0; i <= m; ++i)
@@ -443,6 +484,13 @@ double pointError(const Second& M, double a, double b)
     const double vs = 0.25 - a * a, vt = 0.25 - b * b;
     return 0.5 * (M.ss * vs + 2 * M.st * std::sqrt(vs * vt) + M.tt * vt);
 }
+
+/// The same from the factors (1/4 - a^2, 1/4 - b^2, their geometric mean), shared by several bounds.
+struct PointFactors {
+    double vs, vt, cov;
+    PointFactors(double a, double b) : vs(0.25 - a * a), vt(0.25 - b * b), cov(std::sqrt(vs * vt)) {}
+    double error(const Second& M) const { return 0.5 * (M.ss * vs + 2 * M.st * cov + M.tt * vt); }
+};
 
 /// An upper bound of sup f over [0, 1/2]^2 from cellBound(a0, a1, b0, b1) (an upper bound of f on
 /// that cell): cells of a 2 x 2 grid, each split in four while its bound exceeds target, down to
@@ -511,7 +559,7 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array
     // sigma(x) >= sigma_c - hypot(|g_s(x) - g_s(c)|, |g_t(x) - g_t(c)|) (Weyl).
     const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm();
     const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
-    auto sigmaAt = [&](double a, double b) { return sigmaC - std::hypot(M.ss * a + M.st * b, M.st * a + M.tt * b); };
+    auto sigmaAt = [&](double a, double b) { return sigmaC - norm2(M.ss * a + M.st * b, M.st * a + M.tt * b); };
     const double Delta = largestStep(M, sigmaAt);
     if (!std::isfinite(Delta)) return Delta;
     const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
@@ -524,9 +572,10 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array
     auto cell = [&](double a0, double a1, double b0, double b1) {
         const double sig = sigmaAt(a1, b1);
         if (!(sig > 0)) return std::numeric_limits<double>::infinity();
-        const double d = pointError(M, a0, b0) / sig;
-        const double tilt = std::hypot(N.ss * a1 + N.st * b1, N.st * a1 + N.tt * b1); // |n0 . g_s|, |n0 . g_t|
-        return pointError(N, a0, b0) + tilt * d + quad * d * d;
+        const PointFactors f(a0, b0);
+        const double d = f.error(M) / sig;
+        const double tilt = norm2(N.ss * a1 + N.st * b1, N.st * a1 + N.tt * b1); // |n0 . g_s|, |n0 . g_t|
+        return f.error(N) + tilt * d + quad * d * d;
     };
     return refineCells(cell, tolerance, kCellDepth);
 }
@@ -548,7 +597,7 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::
     if (!(len > 0) || !(gLen > 0)) return std::numeric_limits<double>::infinity();
     const Eigen::Vector3d n0 = cross / len, a = g / gLen, c1 = n0.cross(a);
     const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0), C = projectedBounds(net, m, n, c1);
-    if (std::hypot(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
+    if (norm2(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
     // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st a + M_tt b) (s: M_ss a + M_st b).
     auto sigmaAt = [&](double x, double y) { return along == 1 ? gLen - (M.st * x + M.tt * y) : gLen - (M.ss * x + M.st * y); };
     const double Delta = largestStep(M, sigmaAt);
@@ -561,11 +610,12 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::
     auto cell = [&](double a0, double a1, double b0, double b1) {
         const double sig = sigmaAt(a1, b1);
         if (!(sig > 0)) return std::numeric_limits<double>::infinity();
-        const double d = pointError(M, a0, b0) / sig;
+        const PointFactors f(a0, b0);
+        const double d = f.error(M) / sig;
         // |d . g_t(x)| <= D_st a + D_tt b for d orthogonal to g_t(c) (s: D_ss a + D_st b).
         const double slopeN = along == 1 ? N.st * a1 + N.tt * b1 : N.ss * a1 + N.st * b1;
         const double slopeC = along == 1 ? C.st * a1 + C.tt * b1 : C.ss * a1 + C.st * b1;
-        return std::hypot(pointError(N, a0, b0) + slopeN * d, pointError(C, a0, b0) + slopeC * d) + quad * d * d;
+        return norm2(f.error(N) + slopeN * d, f.error(C) + slopeC * d) + quad * d * d;
     };
     return refineCells(cell, tolerance, kCellDepth);
 }
