@@ -712,6 +712,46 @@ void sortPairs(std::vector<std::pair<std::uint64_t, int>>& v, std::vector<std::p
 
 std::uint64_t packKey(std::int64_t a, std::int64_t b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b); }
 
+/// Twice the signed area of (p, q, r) in the integer parameters of keys (u << 32 | v); exact.
+std::int64_t cross2(std::uint64_t p, std::uint64_t q, std::uint64_t r)
+{
+    const auto u = [](std::uint64_t k) { return static_cast<std::int64_t>(k >> 32); };
+    const auto v = [](std::uint64_t k) { return static_cast<std::int64_t>(k & 0xffffffffu); };
+    return (u(q) - u(p)) * (v(r) - v(p)) - (v(q) - v(p)) * (u(r) - u(p));
+}
+
+/// Triangulates a convex ring (counter-clockwise in (u, v), indices into keys, points on a straight
+/// side allowed) without a new vertex: n - 2 triangles, each time the ear whose new edge is shortest
+/// in space, never an ear of three points of one side, nor one that leaves the rest on one line.
+template <class Emit>
+void clipEars(const std::vector<int>& ring, const std::vector<std::uint64_t>& keys, const std::vector<Eigen::Vector3d>& pos,
+              const Emit& emit)
+{
+    thread_local std::vector<int> poly;
+    poly.assign(ring.begin(), ring.end());
+    while (poly.size() > 3) {
+        const int size = static_cast<int>(poly.size());
+        int best = -1;
+        double bestLength = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < size; ++k) {
+            const int p = poly[(k + size - 1) % size], c = poly[k], q = poly[(k + 1) % size];
+            if (cross2(keys[p], keys[c], keys[q]) <= 0) continue; // a point inside a side
+            const double length = (pos[p] - pos[q]).squaredNorm();
+            if (length >= bestLength) continue;
+            bool flat = true; // the rest, from q round to p, on the line pq?
+            for (int r = (k + 2) % size; r != k && flat; r = (r + 1) % size)
+                if (cross2(keys[p], keys[q], keys[poly[r]]) != 0) flat = false;
+            if (flat) continue;
+            best = k;
+            bestLength = length;
+        }
+        if (best < 0) break; // cannot happen for a convex ring with a positive area
+        emit(poly[(best + size - 1) % size], poly[best], poly[(best + 1) % size]);
+        poly.erase(poly.begin() + best);
+    }
+    if (poly.size() == 3 && cross2(keys[poly[0]], keys[poly[1]], keys[poly[2]]) > 0) emit(poly[0], poly[1], poly[2]);
+}
+
 /// The adaptive mesh with local bounds (docs/surfaces.md, "Local refinement").
 PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptions& options, TessellationReport* report)
 {
@@ -908,7 +948,6 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             return Eigen::Vector2d(static_cast<double>(keys[k] >> 32) * inv, static_cast<double>(keys[k] & 0xffffffffu) * inv);
         };
         for (std::size_t li = 0; li < leaves.size(); ++li) {
-            const Leaf& l = leaves[li];
             const int i00 = cornerIndex[4 * li], i10 = cornerIndex[4 * li + 1], i11 = cornerIndex[4 * li + 2],
                       i01 = cornerIndex[4 * li + 3];
             ring.clear();
@@ -931,16 +970,14 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             for (int k = i01 - 1; k > i00; --k) ring.push_back(k);
             hanging[3] = i01 - i00 - 1;
 
-            auto emit = [&](int a, int b, int c, const Eigen::Vector2d* centreUv, const Eigen::Vector3d* centrePos,
-                            int centreId) {
-                const int ia = a < 0 ? centreId : ids[a], ib = ids[b], ic = ids[c];
+            auto emit = [&](int a, int b, int c) {
+                const int ia = ids[a], ib = ids[b], ic = ids[c];
                 if (ia == ib || ib == ic || ia == ic) return; // at a collapsed side
                 if (options.flipNormals) faces.insert(faces.end(), {ia, ic, ib});
                 else faces.insert(faces.end(), {ia, ib, ic});
                 if (options.sampleDeviation) {
-                    const std::array<Eigen::Vector2d, 3> uv{a < 0 ? *centreUv : uvOf(a), uvOf(b), uvOf(c)};
-                    const std::array<Eigen::Vector3d, 3> xyz{a < 0 ? *centrePos : keyPos[a], keyPos[b], keyPos[c]};
-                    const TriangleDeviation d = sampleTriangleDeviation(patch, uv, xyz);
+                    const TriangleDeviation d =
+                        sampleTriangleDeviation(patch, {uvOf(a), uvOf(b), uvOf(c)}, {keyPos[a], keyPos[b], keyPos[c]});
                     rep.measuredParametric = std::max(rep.measuredParametric, d.parametric);
                     rep.measuredGeometric = std::max(rep.measuredGeometric, d.geometric);
                 }
@@ -950,33 +987,25 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 // The shorter diagonal (the bound holds for either).
                 const int a = ring[0], b = ring[1], c = ring[2], d = ring[3];
                 if ((keyPos[a] - keyPos[c]).squaredNorm() <= (keyPos[b] - keyPos[d]).squaredNorm()) {
-                    emit(a, b, c, nullptr, nullptr, -1);
-                    emit(a, c, d, nullptr, nullptr, -1);
+                    emit(a, b, c);
+                    emit(a, c, d);
                 } else {
-                    emit(a, b, d, nullptr, nullptr, -1);
-                    emit(b, c, d, nullptr, nullptr, -1);
+                    emit(a, b, d);
+                    emit(b, c, d);
                 }
                 continue;
             }
-            // A corner whose two sides have no extra points: fan from it over the two far sides
-            // (every triangle lies in one half of the leaf). Otherwise fan from the centre.
+            // A corner whose two sides have no extra points: fan from it over the two far sides.
+            // Otherwise clip ears. Every triangle has its corners in the leaf, so it has the leaf's
+            // bound (docs/surfaces.md, "The error bound of one triangle", Lemma 2).
             int from = -1;
             for (int c = 0; c < 4 && from < 0; ++c)
                 if (hanging[c] == 0 && hanging[(c + 3) % 4] == 0) from = c;
             if (from >= 0) {
                 const int o = corner[from];
-                for (int k = 1; k + 1 < n; ++k) emit(ring[o], ring[(o + k) % n], ring[(o + k + 1) % n], nullptr, nullptr, -1);
+                for (int k = 1; k + 1 < n; ++k) emit(ring[o], ring[(o + k) % n], ring[(o + k + 1) % n]);
             } else {
-                const Eigen::Vector2d cuv((l.u0 + l.u1) * 0.5 * inv, (l.v0 + l.v1) * 0.5 * inv);
-                const Jet1 j = jet1(patch, cuv.x(), cuv.y());
-                Eigen::Vector3d nrm = j.fu.cross(j.fv);
-                nrm = nrm.norm() > 1e-10 * j.fu.norm() * j.fv.norm() && nrm.norm() > 0 ? Eigen::Vector3d(nrm.normalized())
-                                                                                      : patch.normal(cuv.x(), cuv.y());
-                const int centreId = static_cast<int>(positions.size());
-                positions.push_back(j.p);
-                normals.push_back(nrm);
-                texcoords.push_back(cuv);
-                for (int k = 0; k < n; ++k) emit(-1, ring[k], ring[(k + 1) % n], &cuv, &j.p, centreId);
+                clipEars(ring, keys, keyPos, [&](int a, int b, int c) { emit(a, b, c); });
             }
         }
     }
