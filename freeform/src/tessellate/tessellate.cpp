@@ -279,40 +279,41 @@ struct PatchRow {
     }
 };
 
-/// The three terms of the local bound of a net (m+1) x (n+1), point (i, j) at net[i*(n+1)+j]:
-/// m(m-1) max|D_uu|, 2 m n max|D_uv|, n(n-1) max|D_vv| (their sum / 8 is the bound).
-template <int M, int N>
-std::array<double, 3> netTermsFixed(const Eigen::Vector3d* net)
+/// The largest value(D) over the second differences D of an (m+1) x (n+1) net (point (i, j) at
+/// net[i*(n+1)+j]): {max over D_uu, max over D_uv, max over D_vv}. M, N > 0 fix the degrees at
+/// compile time (the bicubic case, unrolled); M = N = 0 takes m, n.
+template <int M, int N, class Value>
+std::array<double, 3> maxSecondDifferencesOf(const Eigen::Vector3d* net, int m, int n, const Value& value)
 {
-    double uu = 0, uv = 0, vv = 0;
-    constexpr int w = N + 1;
-    for (int i = 0; i + 2 <= M; ++i)
-        for (int j = 0; j <= N; ++j)
-            uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]).squaredNorm());
-    for (int i = 0; i <= M; ++i)
-        for (int j = 0; j + 2 <= N; ++j)
-            vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]).squaredNorm());
-    for (int i = 0; i < M; ++i)
-        for (int j = 0; j < N; ++j)
-            uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]).squaredNorm());
-    return {M * (M - 1.0) * std::sqrt(uu), 2.0 * M * N * std::sqrt(uv), N * (N - 1.0) * std::sqrt(vv)};
-}
-
-std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
-{
-    if (m == 3 && n == 3) return netTermsFixed<3, 3>(net);
-    double uu = 0, uv = 0, vv = 0;
+    if constexpr (M > 0) {
+        m = M;
+        n = N;
+    }
     const int w = n + 1;
+    double uu = 0, uv = 0, vv = 0;
     for (int i = 0; i + 2 <= m; ++i)
-        for (int j = 0; j <= n; ++j)
-            uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]).squaredNorm());
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j + 2 <= n; ++j)
-            vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]).squaredNorm());
+        for (int j = 0; j <= n; ++j) uu = std::max(uu, value(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]));
     for (int i = 0; i < m; ++i)
         for (int j = 0; j < n; ++j)
-            uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]).squaredNorm());
-    return {m * (m - 1.0) * std::sqrt(uu), 2.0 * m * n * std::sqrt(uv), n * (n - 1.0) * std::sqrt(vv)};
+            uv = std::max(uv, value(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]));
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j + 2 <= n; ++j) vv = std::max(vv, value(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]));
+    return {uu, uv, vv};
+}
+
+template <class Value>
+std::array<double, 3> maxSecondDifferences(const Eigen::Vector3d* net, int m, int n, const Value& value)
+{
+    if (m == 3 && n == 3) return maxSecondDifferencesOf<3, 3>(net, m, n, value);
+    return maxSecondDifferencesOf<0, 0>(net, m, n, value);
+}
+
+/// The three terms of the local bound of a net (m+1) x (n+1), point (i, j) at net[i*(n+1)+j]:
+/// m(m-1) max|D_uu|, 2 m n max|D_uv|, n(n-1) max|D_vv| (their sum / 8 is the bound).
+std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
+{
+    const auto d = maxSecondDifferences(net, m, n, [](const Eigen::Vector3d& x) { return x.squaredNorm(); });
+    return {m * (m - 1.0) * std::sqrt(d[0]), 2.0 * m * n * std::sqrt(d[1]), n * (n - 1.0) * std::sqrt(d[2])};
 }
 
 std::vector<Eigen::Vector3d> netOf(const Patch& p)
@@ -328,33 +329,13 @@ struct Leaf {
 };
 
 /// De Casteljau split of net at t, in u or in v: lower gets [0, t], net (in place) [t, 1].
+/// De Casteljau along `outer + 1` lines of a net (stride between the points of a line, step between
+/// lines); Deg > 0 fixes the degree at compile time, Deg = 0 takes deg.
 template <int Deg>
-void splitLines(Eigen::Vector3d* net, Eigen::Vector3d* lower, int outer, int stride, int step, double t)
+void splitLines(Eigen::Vector3d* net, Eigen::Vector3d* lower, int deg, int outer, int stride, int step, double t)
 {
-    const double s = 1 - t;
-    for (int o = 0; o <= outer; ++o) {
-        Eigen::Vector3d* line = net + o * step;
-        Eigen::Vector3d* low = lower + o * step;
-        Eigen::Vector3d w[Deg + 1];
-        for (int k = 0; k <= Deg; ++k) w[k] = line[k * stride];
-        low[0] = w[0];
-        for (int r = 1; r <= Deg; ++r) {
-            for (int k = 0; k <= Deg - r; ++k) w[k] = s * w[k] + t * w[k + 1];
-            low[r * stride] = w[0];
-            line[(Deg - r) * stride] = w[Deg - r];
-        }
-    }
-}
-
-void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
-{
-    if ((inU ? m : n) == 3) {
-        splitLines<3>(net, lower, inU ? n : m, inU ? n + 1 : 1, inU ? 1 : n + 1, t);
-        return;
-    }
-    Eigen::Vector3d w[kMaxDegree + 1];
-    const int deg = inU ? m : n, outer = inU ? n : m;
-    const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
+    if constexpr (Deg > 0) deg = Deg;
+    Eigen::Vector3d w[(Deg > 0 ? Deg : kMaxDegree) + 1];
     const double s = 1 - t;
     for (int o = 0; o <= outer; ++o) {
         Eigen::Vector3d* line = net + o * step;
@@ -367,6 +348,14 @@ void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool i
             line[(deg - r) * stride] = w[deg - r];
         }
     }
+}
+
+void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
+{
+    const int deg = inU ? m : n, outer = inU ? n : m;
+    const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
+    if (deg == 3) splitLines<3>(net, lower, deg, outer, stride, step, t);
+    else splitLines<0>(net, lower, deg, outer, stride, step, t);
 }
 
 // ---- The geometric measure (docs/surfaces.md, "The geometric measure"). A leaf has local
@@ -386,35 +375,10 @@ Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1]
 /// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
 /// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
 /// of that net's differences.
-template <int M, int N>
-Second projectedBoundsFixed(const Eigen::Vector3d* net, const Eigen::Vector3d& d)
-{
-    constexpr int w = N + 1;
-    double p[(M + 1) * (N + 1)];
-    for (int k = 0; k < (M + 1) * (N + 1); ++k) p[k] = d.dot(net[k]);
-    double ss = 0, st = 0, tt = 0;
-    for (int i = 0; i + 2 <= M; ++i)
-        for (int j = 0; j <= N; ++j) ss = std::max(ss, std::abs(p[(i + 2) * w + j] - 2 * p[(i + 1) * w + j] + p[i * w + j]));
-    for (int i = 0; i <= M; ++i)
-        for (int j = 0; j + 2 <= N; ++j) tt = std::max(tt, std::abs(p[i * w + j + 2] - 2 * p[i * w + j + 1] + p[i * w + j]));
-    for (int i = 0; i < M; ++i)
-        for (int j = 0; j < N; ++j) st = std::max(st, std::abs(p[(i + 1) * w + j + 1] - p[(i + 1) * w + j] - p[i * w + j + 1] + p[i * w + j]));
-    return {M * (M - 1.0) * ss, double(M) * N * st, N * (N - 1.0) * tt};
-}
-
 Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Vector3d& d)
 {
-    if (m == 3 && n == 3) return projectedBoundsFixed<3, 3>(net, d);
-    const int w = n + 1;
-    double ss = 0, st = 0, tt = 0;
-    for (int i = 0; i + 2 <= m; ++i)
-        for (int j = 0; j <= n; ++j) ss = std::max(ss, std::abs(d.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j + 2 <= n; ++j) tt = std::max(tt, std::abs(d.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
-    for (int i = 0; i < m; ++i)
-        for (int j = 0; j < n; ++j)
-            st = std::max(st, std::abs(d.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
-    return {m * (m - 1.0) * ss, double(m) * n * st, n * (n - 1.0) * tt};
+    const auto p = maxSecondDifferences(net, m, n, [&](const Eigen::Vector3d& x) { return std::abs(d.dot(x)); });
+    return {m * (m - 1.0) * p[0], double(m) * n * p[1], n * (n - 1.0) * p[2]};
 }
 
 /// g_s(c) and g_t(c) at the leaf's centre.
