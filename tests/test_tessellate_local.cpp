@@ -150,6 +150,44 @@ TEST_CASE("the geometric measure: every triangle point within the tolerance of t
     CHECK(topology(mesh).nonManifoldEdges == 0);
 }
 
+TEST_CASE("the geometric measure: the pointwise bound holds where the parametrisation is uneven", "[tessellate][local][geometric]")
+{
+    // Half cylinders of radius 1 whose control points bunch towards one side in u (rows at x = 0,
+    // 0.05, 0.1, 1): the parametric error is mostly tangential there, so the geometric measure leaves
+    // it out (the pointwise bound of docs/surfaces.md). Perturbed by random offsets; distances by
+    // Gauss-Newton foot points from every triangle sample (tests/support/tessellation_checks.h).
+    const double xs[4] = {0, 0.05, 0.1, 1};
+    std::uint32_t seed = 700;
+    for (int variant = 0; variant < 4; ++variant) {
+        ++seed;
+        CAPTURE(variant, seed);
+        PointMatrix<double, 3> pts(3, 16);
+        const PointMatrix<double, 3> noise = test::randomPoints<double, 3>(16, seed, -0.03, 0.03);
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+                // The rational-free cubic arc through (1, 0), (0, 1), (-1, 0): control points of a half circle.
+                const double y[4] = {1, 1, -1, -1}, z[4] = {0, 4.0 / 3, 4.0 / 3, 0};
+                pts.col(i * 4 + j) = V3(variant % 2 ? xs[i] : 1 - xs[3 - i], y[j], z[j]) + V3(noise.col(i * 4 + j));
+            }
+        const Patch patch = variant < 2 ? Patch(3, 3, pts) : Patch(3, 3, pts).transposed();
+        for (double tolerance : {1e-3, 2e-4}) {
+            CAPTURE(tolerance);
+            TessellationOptions o;
+            o.tolerance = tolerance;
+            o.measure = TessellationMeasure::Geometric;
+            TessellationReport report;
+            const PolygonMesh mesh = tessellate(PatchComplex{{patch}}, o, &report);
+            CHECK(report.errorBound <= tolerance);
+            const double distance = meshToSurface(patch, mesh);
+            CHECK(distance <= tolerance);
+            CHECK(distance <= report.errorBound * (1 + 1e-9));
+            checkConformingInUv(mesh);
+            o.measure = TessellationMeasure::Parametric;
+            CHECK(mesh.faceCount() < tessellate(PatchComplex{{patch}}, o).faceCount());
+        }
+    }
+}
+
 TEST_CASE("local refinement: refines where the curvature is, not uniformly", "[tessellate][local]")
 {
     // Flat except for a bump near the corner u = v = 0: (i, j, z) with z only at point (1, 1).
