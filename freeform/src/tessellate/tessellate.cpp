@@ -418,10 +418,10 @@ void centreDerivatives(const Eigen::Vector3d* net, int m, int n, Eigen::Vector3d
         }
 }
 
-/// Bounds of |g_ss|, |g_st|, |g_tt| (in the leaf's s, t) over the leaf grown by delta on both sides
-/// in s (growS) and in t (growT): the net of that rectangle by de Casteljau at 1 + delta and then
+/// Bounds of |g_ss|, |g_st|, |g_tt| (in the leaf's s, t) over the leaf grown by deltaS on both
+/// sides in s and deltaT in t: the net of that rectangle by de Casteljau at 1 + delta and then
 /// -delta / (1 + delta) (the same polynomial, parametrised over the larger interval).
-Second grownBounds(const Eigen::Vector3d* net, int m, int n, double delta, bool growS, bool growT)
+Second grownBounds(const Eigen::Vector3d* net, int m, int n, double deltaS, double deltaT)
 {
     const int size = (m + 1) * (n + 1);
     thread_local std::vector<Eigen::Vector3d> buffer;
@@ -430,13 +430,14 @@ Second grownBounds(const Eigen::Vector3d* net, int m, int n, double delta, bool 
     Eigen::Vector3d* spare = grown + size;
     std::copy(net, net + size, grown);
     for (int dir = 0; dir < 2; ++dir) {
-        if (!(dir == 0 ? growS : growT)) continue;
+        const double delta = dir == 0 ? deltaS : deltaT;
+        if (!(delta > 0)) continue;
         splitNet(grown, spare, m, n, dir == 0, 1 + delta);           // spare: [0, 1 + delta]
         splitNet(spare, grown, m, n, dir == 0, -delta / (1 + delta)); // spare: [-delta, 1 + delta]
         std::copy(spare, spare + size, grown);
     }
     const Second g = secondOf(netTerms(grown, m, n));
-    const double fs = growS ? 1 / (1 + 2 * delta) : 1, ft = growT ? 1 / (1 + 2 * delta) : 1;
+    const double fs = 1 / (1 + 2 * deltaS), ft = 1 / (1 + 2 * deltaT);
     return {g.ss * fs * fs, g.st * fs * ft, g.tt * ft * ft};
 }
 
@@ -488,17 +489,34 @@ double refineCells(const CellBound& cellBound, double target, int depth)
 
 constexpr int kCellDepth = 4; // finest cells 1/32 of the leaf's half-width
 
-/// Largest of delta(x) = e(x) / sigma(x) over the leaf, on a 4 x 4 grid of cells (e at the corner
-/// nearest the centre, sigma at the far one).
-template <class Sigma>
-double largestStep(const Second& M, const Sigma& sigmaAt)
+/// Bounds of the two components of the foot point's step delta(x) on the cell [a0, a1] x [b0, b1]
+/// (docs/surfaces.md, "The geometric measure", step 1): with delta_c = A_c^+ E(x), whose components
+/// r1 . E and r2 . E are bounded by the nets projected on the rows r1, r2 of A_c^+, |delta -
+/// delta_c| <= rho(x) |E(x)| / (sigma_c sigma(x)), rho(x) the bound of |A(x) - A_c|; and |delta| <=
+/// |E(x)| / sigma(x). Infinite where sigma(x) may vanish.
+struct StepBounds {
+    const Second &M, &R1, &R2;
+    double sigmaC;
+    std::array<double, 2> operator()(double a0, double a1, double b0, double b1) const
+    {
+        const double rho = norm2(M.ss * a1 + M.st * b1, M.st * a1 + M.tt * b1);
+        const double sig = sigmaC - rho;
+        if (!(sig > 0)) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        const PointFactors f(a0, b0);
+        const double e = f.error(M), whole = e / sig, extra = rho * whole / sigmaC;
+        return {std::min(whole, f.error(R1) + extra), std::min(whole, f.error(R2) + extra)};
+    }
+};
+
+/// The largest bounds of the step's components over the leaf, on a 4 x 4 grid of cells.
+template <class Steps>
+std::array<double, 2> largestStep(const Steps& steps)
 {
-    double worst = 0;
+    std::array<double, 2> worst{0, 0};
     for (int ia = 0; ia < 4; ++ia)
         for (int ib = 0; ib < 4; ++ib) {
-            const double sig = sigmaAt((ia + 1) * 0.125, (ib + 1) * 0.125);
-            if (!(sig > 0)) return std::numeric_limits<double>::infinity();
-            worst = std::max(worst, pointError(M, ia * 0.125, ib * 0.125) / sig);
+            const auto d = steps(ia * 0.125, (ia + 1) * 0.125, ib * 0.125, (ib + 1) * 0.125);
+            worst = {std::max(worst[0], d[0]), std::max(worst[1], d[1])};
         }
     return worst;
 }
@@ -512,34 +530,37 @@ double largestStep(const Second& M, const Sigma& sigmaAt)
 double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
                       std::int32_t S, double tolerance)
 {
+    constexpr double inf = std::numeric_limits<double>::infinity();
     Eigen::Vector3d gs, gt;
     centreDerivatives(net, m, n, gs, gt);
     const Eigen::Vector3d cross = gs.cross(gt);
     const double len = cross.norm();
-    if (!(len > 0)) return std::numeric_limits<double>::infinity();
+    if (!(len > 0)) return inf;
     const Eigen::Vector3d n0 = cross / len;
     const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0);
-    if (pointError(N, 0, 0) > tolerance) return std::numeric_limits<double>::infinity(); // |n0 . E(c)| alone
-    // sigma(x) >= sigma_c - hypot(|g_s(x) - g_s(c)|, |g_t(x) - g_t(c)|) (Weyl).
-    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm();
+    if (pointError(N, 0, 0) > tolerance) return inf; // |n0 . E(c)| alone
+    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm(), det = a11 * a22 - a12 * a12;
+    if (!(det > 0)) return inf;
     const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
-    auto sigmaAt = [&](double a, double b) { return sigmaC - norm2(M.ss * a + M.st * b, M.st * a + M.tt * b); };
-    const double Delta = largestStep(M, sigmaAt);
-    if (!std::isfinite(Delta)) return Delta;
+    // Rows of A_c^+ = (A_c^T A_c)^-1 A_c^T, A_c = [g_s(c), g_t(c)].
+    const Eigen::Vector3d r1 = (a22 * gs - a12 * gt) / det, r2 = (a11 * gt - a12 * gs) / det;
+    const Second R1 = projectedBounds(net, m, n, r1), R2 = projectedBounds(net, m, n, r2);
+    const StepBounds steps{M, R1, R2, sigmaC};
+    const auto Delta = largestStep(steps);
+    if (!std::isfinite(Delta[0]) || !std::isfinite(Delta[1])) return inf;
     const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
-    if (static_cast<double>(box.u0) / S - Delta * hu < 0 || static_cast<double>(box.u1) / S + Delta * hu > 1 ||
-        static_cast<double>(box.v0) / S - Delta * hv < 0 || static_cast<double>(box.v1) / S + Delta * hv > 1)
-        return std::numeric_limits<double>::infinity();
+    if (static_cast<double>(box.u0) / S - Delta[0] * hu < 0 || static_cast<double>(box.u1) / S + Delta[0] * hu > 1 ||
+        static_cast<double>(box.v0) / S - Delta[1] * hv < 0 || static_cast<double>(box.v1) / S + Delta[1] * hv > 1)
+        return inf;
     // The remainder of g(x + delta) over the segment, inside the leaf grown by Delta.
-    const Second G = grownBounds(net, m, n, Delta, true, true);
-    const double quad = 0.5 * (std::max(G.ss, G.tt) + G.st);
+    const Second G = grownBounds(net, m, n, Delta[0], Delta[1]);
     auto cell = [&](double a0, double a1, double b0, double b1) {
-        const double sig = sigmaAt(a1, b1);
-        if (!(sig > 0)) return std::numeric_limits<double>::infinity();
-        const PointFactors f(a0, b0);
-        const double d = f.error(M) / sig;
-        const double tilt = norm2(N.ss * a1 + N.st * b1, N.st * a1 + N.tt * b1); // |n0 . g_s|, |n0 . g_t|
-        return f.error(N) + tilt * d + quad * d * d;
+        const auto d = steps(a0, a1, b0, b1);
+        if (!std::isfinite(d[0]) || !std::isfinite(d[1])) return inf;
+        // |n0 . g_s(x)| <= N_ss a + N_st b, |n0 . g_t(x)| <= N_st a + N_tt b (zero at the centre).
+        const double tiltS = N.ss * a1 + N.st * b1, tiltT = N.st * a1 + N.tt * b1;
+        const double remainder = 0.5 * (G.ss * d[0] * d[0] + 2 * G.st * d[0] * d[1] + G.tt * d[1] * d[1]);
+        return PointFactors(a0, b0).error(N) + tiltS * d[0] + tiltT * d[1] + remainder;
     };
     return refineCells(cell, tolerance, kCellDepth);
 }
@@ -563,19 +584,27 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::
     const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0), C = projectedBounds(net, m, n, c1);
     if (norm2(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
     // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st a + M_tt b) (s: M_ss a + M_st b).
-    auto sigmaAt = [&](double x, double y) { return along == 1 ? gLen - (M.st * x + M.tt * y) : gLen - (M.ss * x + M.st * y); };
-    const double Delta = largestStep(M, sigmaAt);
+    // |a . E(x)| from the net projected on a; a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| -
+    // (M_st a + M_tt b) (s: M_ss a + M_st b).
+    const Second A = projectedBounds(net, m, n, a);
+    auto step = [&](double a0, double a1, double b0, double b1) {
+        const double sig = along == 1 ? gLen - (M.st * a1 + M.tt * b1) : gLen - (M.ss * a1 + M.st * b1);
+        if (!(sig > 0)) return std::numeric_limits<double>::infinity();
+        return PointFactors(a0, b0).error(A) / sig;
+    };
+    double Delta = 0;
+    for (int ia = 0; ia < 4; ++ia)
+        for (int ib = 0; ib < 4; ++ib) Delta = std::max(Delta, step(ia * 0.125, (ia + 1) * 0.125, ib * 0.125, (ib + 1) * 0.125));
     if (!std::isfinite(Delta)) return Delta;
     const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
     const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
     if (lo - Delta * h < 0 || hi + Delta * h > 1) return std::numeric_limits<double>::infinity();
-    const Second G = grownBounds(net, m, n, Delta, along == 0, along == 1);
+    const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0);
     const double quad = 0.5 * (along == 1 ? G.tt : G.ss);
     auto cell = [&](double a0, double a1, double b0, double b1) {
-        const double sig = sigmaAt(a1, b1);
-        if (!(sig > 0)) return std::numeric_limits<double>::infinity();
+        const double d = step(a0, a1, b0, b1);
+        if (!std::isfinite(d)) return d;
         const PointFactors f(a0, b0);
-        const double d = f.error(M) / sig;
         // |d . g_t(x)| <= D_st a + D_tt b for d orthogonal to g_t(c) (s: D_ss a + D_st b).
         const double slopeN = along == 1 ? N.st * a1 + N.tt * b1 : N.ss * a1 + N.st * b1;
         const double slopeC = along == 1 ? C.st * a1 + C.tt * b1 : C.ss * a1 + C.st * b1;
