@@ -492,9 +492,12 @@ double refineCells(const CellBound& cellBound, double target, int depth)
     return worst;
 }
 
+// refineCells down to cells 1/32 wide in (a, b) (depth 3: 1.3 % more triangles on the teapot at 1e-3).
 constexpr int kCellDepth = 4;
-constexpr int kStepGrid = 2;   // the steps' maxima from 2 x 2 cells (4 x 4: 4 triangles fewer on the teapot at 1e-3, 1.4x the time)
-constexpr double kGeometricRange = 16; // leaves with a parametric bound above 16 tolerances do not try the geometric one // finest cells 1/32 of the leaf's half-width
+// The steps' maxima from 2 x 2 cells (4 x 4: 4 triangles fewer on the teapot at 1e-3, more time).
+constexpr int kStepGrid = 2;
+// Leaves whose parametric bound exceeds 16 tolerances do not try the geometric one.
+constexpr double kGeometricRange = 16;
 
 /// Bounds of the two components of the foot point's step delta(x) on the cell [a0, a1] x [b0, b1]
 /// (docs/surfaces.md, "The geometric measure", step 1): with delta_c = A_c^+ E(x), whose components
