@@ -182,26 +182,30 @@ TEST_CASE("teapot: normals at the collapsed lid top and bottom centre", "[tessel
     CHECK(sawLid);
     CHECK(sawBottom);
     // In the mesh, with outward normals: one vertex at each pole, normal vertical and agreeing
-    // with its neighbours.
-    TessellationOptions o;
-    o.tolerance = 1e-3;
-    o.flipNormals = true;
-    const auto mesh = tessellate(teapot, o);
-    int poles = 0;
-    for (int k = 0; k < mesh.vertexCount(); ++k) {
-        const V3 q = mesh.positions.col(k);
-        if (q.x() != 0 || q.y() != 0) continue;
-        ++poles;
-        const V3 n = mesh.normals.col(k);
-        REQUIRE(n.allFinite());
-        CHECK(std::abs(n.z()) > 1 - 1e-12);
-        CHECK(n.z() * (q.z() > 1 ? 1 : -1) > 0); // outward: up at the lid, down at the bottom
-        for (int f = 0; f < mesh.faceCount(); ++f)
-            for (int c = 0; c < 3; ++c)
-                if (mesh.face(f)[c] == k)
-                    for (int e = 0; e < 3; ++e) CHECK(n.dot(V3(mesh.normals.col(mesh.face(f)[e]))) > 0.9);
+    // with its neighbours; with either measure.
+    for (const TessellationMeasure measure : {TessellationMeasure::Parametric, TessellationMeasure::Geometric}) {
+        CAPTURE(static_cast<int>(measure));
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        o.flipNormals = true;
+        o.measure = measure;
+        const auto mesh = tessellate(teapot, o);
+        int poles = 0;
+        for (int k = 0; k < mesh.vertexCount(); ++k) {
+            const V3 q = mesh.positions.col(k);
+            if (q.x() != 0 || q.y() != 0) continue;
+            ++poles;
+            const V3 n = mesh.normals.col(k);
+            REQUIRE(n.allFinite());
+            CHECK(std::abs(n.z()) > 1 - 1e-12);
+            CHECK(n.z() * (q.z() > 1 ? 1 : -1) > 0); // outward: up at the lid, down at the bottom
+            for (int f = 0; f < mesh.faceCount(); ++f)
+                for (int c = 0; c < 3; ++c)
+                    if (mesh.face(f)[c] == k)
+                        for (int e = 0; e < 3; ++e) CHECK(n.dot(V3(mesh.normals.col(mesh.face(f)[e]))) > 0.9);
+        }
+        CHECK(poles == 2);
     }
-    CHECK(poles == 2);
 }
 
 TEST_CASE("a closed periodic bicubic torus gives a closed manifold mesh with chi = 0", "[tessellate][closed]")

@@ -273,6 +273,14 @@ TEST_CASE("local refinement: a de Boor torus and a subdivision cage give closed 
                                                                         std::fmod(j * 0.0587 + 0.002, 1.0)),
                                                              2 * tolerance));
             CHECK(worst <= tolerance);
+            // The geometric measure (ear-clipped rings, other leaves) keeps it closed and of genus 1.
+            o.measure = TessellationMeasure::Geometric;
+            TessellationReport report;
+            const Topology g = topology(tessellate(t, o, &report));
+            CHECK(report.errorBound <= tolerance);
+            CHECK(g.boundaryEdges == 0);
+            CHECK(g.nonManifoldEdges == 0);
+            CHECK(g.euler() == 0);
         }
     }
     SECTION("the Bézier patches of a regular Catmull-Clark torus cage")
