@@ -12,114 +12,14 @@
 #include "freeform/io/bpt.h"
 #include "freeform/tessellate/tessellate.h"
 #include "support/random.h"
+#include "support/tessellation_checks.h"
 
 using namespace freeform;
+using namespace freeform::test;
 using V3 = Eigen::Vector3d;
 
 namespace {
 const std::string kTeapot = std::string(FREEFORM_SOURCE_DIR) + "/data/teapot.bpt";
-
-/// Topology counted from the face list alone (independent of the library's mesh code).
-struct Topology {
-    long vertices = 0, edges = 0, faces = 0;
-    long boundaryEdges = 0, nonManifoldEdges = 0;
-    std::vector<std::pair<int, int>> boundary;
-    long euler() const { return vertices - edges + faces; }
-};
-
-Topology topology(const PolygonMesh& mesh)
-{
-    std::map<std::pair<int, int>, int> incidence;
-    std::vector<bool> used(static_cast<std::size_t>(mesh.vertexCount()), false);
-    for (int f = 0; f < mesh.faceCount(); ++f) {
-        const int* v = mesh.face(f);
-        for (int k = 0; k < mesh.faceSize(f); ++k) {
-            const int a = v[k], b = v[(k + 1) % mesh.faceSize(f)];
-            ++incidence[{std::min(a, b), std::max(a, b)}];
-            used[static_cast<std::size_t>(a)] = true;
-        }
-    }
-    Topology t;
-    t.vertices = std::count(used.begin(), used.end(), true);
-    t.faces = mesh.faceCount();
-    t.edges = static_cast<long>(incidence.size());
-    for (const auto& [e, n] : incidence) {
-        if (n == 1) {
-            ++t.boundaryEdges;
-            t.boundary.push_back(e);
-        }
-        if (n > 2) ++t.nonManifoldEdges;
-    }
-    return t;
-}
-
-/// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
-V3 closestOnTriangle(const V3& p, const V3& a, const V3& b, const V3& c)
-{
-    const V3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const V3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-    const V3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
-/// Triangles bucketed in a uniform grid of cells, for distance queries up to a radius.
-class TriangleGrid {
-public:
-    TriangleGrid(const PolygonMesh& mesh, double cell) : mesh_(mesh), cell_(cell)
-    {
-        for (int f = 0; f < mesh.faceCount(); ++f) {
-            Eigen::AlignedBox3d box;
-            for (int k = 0; k < 3; ++k) box.extend(V3(mesh.positions.col(mesh.face(f)[k])));
-            const auto lo = key(box.min()), hi = key(box.max());
-            for (long x = lo[0]; x <= hi[0]; ++x)
-                for (long y = lo[1]; y <= hi[1]; ++y)
-                    for (long z = lo[2]; z <= hi[2]; ++z) cells_[pack(x, y, z)].push_back(f);
-        }
-    }
-    /// Distance from p to the nearest triangle, or infinity when none is within radius.
-    double distance(const V3& p, double radius) const
-    {
-        double best = std::numeric_limits<double>::infinity();
-        const auto lo = key(p - V3::Constant(radius)), hi = key(p + V3::Constant(radius));
-        for (long x = lo[0]; x <= hi[0]; ++x)
-            for (long y = lo[1]; y <= hi[1]; ++y)
-                for (long z = lo[2]; z <= hi[2]; ++z) {
-                    const auto it = cells_.find(pack(x, y, z));
-                    if (it == cells_.end()) continue;
-                    for (int f : it->second) {
-                        const int* v = mesh_.face(f);
-                        const V3 q = closestOnTriangle(p, mesh_.positions.col(v[0]), mesh_.positions.col(v[1]),
-                                                       mesh_.positions.col(v[2]));
-                        best = std::min(best, (q - p).norm());
-                    }
-                }
-        return best;
-    }
-
-private:
-    std::array<long, 3> key(const V3& p) const
-    {
-        return {static_cast<long>(std::floor(p.x() / cell_)), static_cast<long>(std::floor(p.y() / cell_)),
-                static_cast<long>(std::floor(p.z() / cell_))};
-    }
-    static long pack(long x, long y, long z) { return ((x + 4096) * 8192 + (y + 4096)) * 8192 + (z + 4096); }
-    const PolygonMesh& mesh_;
-    double cell_;
-    std::unordered_map<long, std::vector<int>> cells_;
-};
 
 /// Six bicubic patches of a rounded box: the cube [-1,1]^3 faces on a 4 x 4 grid of control
 /// points, each pushed part of the way to the sphere through the cube's corners. A control point
@@ -282,26 +182,30 @@ TEST_CASE("teapot: normals at the collapsed lid top and bottom centre", "[tessel
     CHECK(sawLid);
     CHECK(sawBottom);
     // In the mesh, with outward normals: one vertex at each pole, normal vertical and agreeing
-    // with its neighbours.
-    TessellationOptions o;
-    o.tolerance = 1e-3;
-    o.flipNormals = true;
-    const auto mesh = tessellate(teapot, o);
-    int poles = 0;
-    for (int k = 0; k < mesh.vertexCount(); ++k) {
-        const V3 q = mesh.positions.col(k);
-        if (q.x() != 0 || q.y() != 0) continue;
-        ++poles;
-        const V3 n = mesh.normals.col(k);
-        REQUIRE(n.allFinite());
-        CHECK(std::abs(n.z()) > 1 - 1e-12);
-        CHECK(n.z() * (q.z() > 1 ? 1 : -1) > 0); // outward: up at the lid, down at the bottom
-        for (int f = 0; f < mesh.faceCount(); ++f)
-            for (int c = 0; c < 3; ++c)
-                if (mesh.face(f)[c] == k)
-                    for (int e = 0; e < 3; ++e) CHECK(n.dot(V3(mesh.normals.col(mesh.face(f)[e]))) > 0.9);
+    // with its neighbours; with either measure.
+    for (const TessellationMeasure measure : {TessellationMeasure::Parametric, TessellationMeasure::Geometric}) {
+        CAPTURE(static_cast<int>(measure));
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        o.flipNormals = true;
+        o.measure = measure;
+        const auto mesh = tessellate(teapot, o);
+        int poles = 0;
+        for (int k = 0; k < mesh.vertexCount(); ++k) {
+            const V3 q = mesh.positions.col(k);
+            if (q.x() != 0 || q.y() != 0) continue;
+            ++poles;
+            const V3 n = mesh.normals.col(k);
+            REQUIRE(n.allFinite());
+            CHECK(std::abs(n.z()) > 1 - 1e-12);
+            CHECK(n.z() * (q.z() > 1 ? 1 : -1) > 0); // outward: up at the lid, down at the bottom
+            for (int f = 0; f < mesh.faceCount(); ++f)
+                for (int c = 0; c < 3; ++c)
+                    if (mesh.face(f)[c] == k)
+                        for (int e = 0; e < 3; ++e) CHECK(n.dot(V3(mesh.normals.col(mesh.face(f)[e]))) > 0.9);
+        }
+        CHECK(poles == 2);
     }
-    CHECK(poles == 2);
 }
 
 TEST_CASE("a closed periodic bicubic torus gives a closed manifold mesh with chi = 0", "[tessellate][closed]")

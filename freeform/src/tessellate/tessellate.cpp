@@ -279,40 +279,41 @@ struct PatchRow {
     }
 };
 
-/// The three terms of the local bound of a net (m+1) x (n+1), point (i, j) at net[i*(n+1)+j]:
-/// m(m-1) max|D_uu|, 2 m n max|D_uv|, n(n-1) max|D_vv| (their sum / 8 is the bound).
-template <int M, int N>
-std::array<double, 3> netTermsFixed(const Eigen::Vector3d* net)
+/// The largest value(D) over the second differences D of an (m+1) x (n+1) net (point (i, j) at
+/// net[i*(n+1)+j]): {max over D_uu, max over D_uv, max over D_vv}. M, N > 0 fix the degrees at
+/// compile time (the bicubic case, unrolled); M = N = 0 takes m, n.
+template <int M, int N, class Point, class Value>
+std::array<double, 3> maxSecondDifferencesOf(const Point* net, int m, int n, const Value& value)
 {
-    double uu = 0, uv = 0, vv = 0;
-    constexpr int w = N + 1;
-    for (int i = 0; i + 2 <= M; ++i)
-        for (int j = 0; j <= N; ++j)
-            uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]).squaredNorm());
-    for (int i = 0; i <= M; ++i)
-        for (int j = 0; j + 2 <= N; ++j)
-            vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]).squaredNorm());
-    for (int i = 0; i < M; ++i)
-        for (int j = 0; j < N; ++j)
-            uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]).squaredNorm());
-    return {M * (M - 1.0) * std::sqrt(uu), 2.0 * M * N * std::sqrt(uv), N * (N - 1.0) * std::sqrt(vv)};
-}
-
-std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
-{
-    if (m == 3 && n == 3) return netTermsFixed<3, 3>(net);
-    double uu = 0, uv = 0, vv = 0;
+    if constexpr (M > 0) {
+        m = M;
+        n = N;
+    }
     const int w = n + 1;
+    double uu = 0, uv = 0, vv = 0;
     for (int i = 0; i + 2 <= m; ++i)
-        for (int j = 0; j <= n; ++j)
-            uu = std::max(uu, (net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]).squaredNorm());
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j + 2 <= n; ++j)
-            vv = std::max(vv, (net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]).squaredNorm());
+        for (int j = 0; j <= n; ++j) uu = std::max(uu, value(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j]));
     for (int i = 0; i < m; ++i)
         for (int j = 0; j < n; ++j)
-            uv = std::max(uv, (net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]).squaredNorm());
-    return {m * (m - 1.0) * std::sqrt(uu), 2.0 * m * n * std::sqrt(uv), n * (n - 1.0) * std::sqrt(vv)};
+            uv = std::max(uv, value(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j]));
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j + 2 <= n; ++j) vv = std::max(vv, value(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j]));
+    return {uu, uv, vv};
+}
+
+template <class Point, class Value>
+std::array<double, 3> maxSecondDifferences(const Point* net, int m, int n, const Value& value)
+{
+    if (m == 3 && n == 3) return maxSecondDifferencesOf<3, 3>(net, m, n, value);
+    return maxSecondDifferencesOf<0, 0>(net, m, n, value);
+}
+
+/// The three terms of the local bound of a net (m+1) x (n+1), point (i, j) at net[i*(n+1)+j]:
+/// m(m-1) max|D_uu|, 2 m n max|D_uv|, n(n-1) max|D_vv| (their sum / 8 is the bound).
+std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
+{
+    const auto d = maxSecondDifferences(net, m, n, [](const Eigen::Vector3d& x) { return x.squaredNorm(); });
+    return {m * (m - 1.0) * std::sqrt(d[0]), 2.0 * m * n * std::sqrt(d[1]), n * (n - 1.0) * std::sqrt(d[2])};
 }
 
 std::vector<Eigen::Vector3d> netOf(const Patch& p)
@@ -328,33 +329,13 @@ struct Leaf {
 };
 
 /// De Casteljau split of net at t, in u or in v: lower gets [0, t], net (in place) [t, 1].
+/// De Casteljau along `outer + 1` lines of a net (stride between the points of a line, step between
+/// lines); Deg > 0 fixes the degree at compile time, Deg = 0 takes deg.
 template <int Deg>
-void splitLines(Eigen::Vector3d* net, Eigen::Vector3d* lower, int outer, int stride, int step, double t)
+void splitLines(Eigen::Vector3d* net, Eigen::Vector3d* lower, int deg, int outer, int stride, int step, double t)
 {
-    const double s = 1 - t;
-    for (int o = 0; o <= outer; ++o) {
-        Eigen::Vector3d* line = net + o * step;
-        Eigen::Vector3d* low = lower + o * step;
-        Eigen::Vector3d w[Deg + 1];
-        for (int k = 0; k <= Deg; ++k) w[k] = line[k * stride];
-        low[0] = w[0];
-        for (int r = 1; r <= Deg; ++r) {
-            for (int k = 0; k <= Deg - r; ++k) w[k] = s * w[k] + t * w[k + 1];
-            low[r * stride] = w[0];
-            line[(Deg - r) * stride] = w[Deg - r];
-        }
-    }
-}
-
-void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
-{
-    if ((inU ? m : n) == 3) {
-        splitLines<3>(net, lower, inU ? n : m, inU ? n + 1 : 1, inU ? 1 : n + 1, t);
-        return;
-    }
-    Eigen::Vector3d w[kMaxDegree + 1];
-    const int deg = inU ? m : n, outer = inU ? n : m;
-    const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
+    if constexpr (Deg > 0) deg = Deg;
+    Eigen::Vector3d w[(Deg > 0 ? Deg : kMaxDegree) + 1];
     const double s = 1 - t;
     for (int o = 0; o <= outer; ++o) {
         Eigen::Vector3d* line = net + o * step;
@@ -369,124 +350,286 @@ void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool i
     }
 }
 
+void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
+{
+    const int deg = inU ? m : n, outer = inU ? n : m;
+    const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
+    if (deg == 3) splitLines<3>(net, lower, deg, outer, stride, step, t);
+    else splitLines<0>(net, lower, deg, outer, stride, step, t);
+}
+
+// ---- The geometric measure (docs/surfaces.md, "The geometric measure"). A leaf has local
+// parameters x = (s, t) in [0, 1]^2, centre c = (1/2, 1/2); a point x is described by (a, b) =
+// (|s - 1/2|, |t - 1/2|) in [0, 1/2]^2.
+
+/// sqrt(x^2 + y^2) (no overflow concerns at these magnitudes; std::hypot is several times slower).
+double norm2(double x, double y) { return std::sqrt(x * x + y * y); }
+
+/// Bounds of |g_ss|, |g_st|, |g_tt| over a leaf (or of |d . g_ss|, ... for a projected net).
+struct Second {
+    double ss = 0, st = 0, tt = 0;
+};
+
+Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1] / 2, terms[2]}; }
+
+/// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
+/// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
+/// of that net's differences.
+Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Vector3d& d)
+{
+    // The net projected first: scalar differences.
+    thread_local std::vector<double> projected;
+    const int size = (m + 1) * (n + 1);
+    if (projected.size() < static_cast<std::size_t>(size)) projected.resize(static_cast<std::size_t>(size));
+    for (int k = 0; k < size; ++k) projected[k] = d.dot(net[k]);
+    const auto p = maxSecondDifferences(projected.data(), m, n, [](double x) { return std::abs(x); });
+    return {m * (m - 1.0) * p[0], double(m) * n * p[1], n * (n - 1.0) * p[2]};
+}
+
+/// g_s(c) and g_t(c) at the leaf's centre.
+void centreDerivatives(const Eigen::Vector3d* net, int m, int n, Eigen::Vector3d& gs, Eigen::Vector3d& gt)
+{
+    if (m == 3 && n == 3) {
+        // Bernstein values at 1/2 (1, 3, 3, 1)/8 and derivatives (-3, -3, 3, 3)/4.
+        constexpr double b[4] = {0.125, 0.375, 0.375, 0.125}, db[4] = {-0.75, -0.75, 0.75, 0.75};
+        Eigen::Vector3d rows[4], rowsV[4];
+        for (int i = 0; i < 4; ++i) {
+            rows[i] = b[0] * net[4 * i] + b[1] * net[4 * i + 1] + b[2] * net[4 * i + 2] + b[3] * net[4 * i + 3];
+            rowsV[i] = db[0] * net[4 * i] + db[1] * net[4 * i + 1] + db[2] * net[4 * i + 2] + db[3] * net[4 * i + 3];
+        }
+        gs = db[0] * rows[0] + db[1] * rows[1] + db[2] * rows[2] + db[3] * rows[3];
+        gt = b[0] * rowsV[0] + b[1] * rowsV[1] + b[2] * rowsV[2] + b[3] * rowsV[3];
+        return;
+    }
+    const int w = n + 1;
+    struct Basis {
+        int m = -1, n = -1;
+        double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
+    };
+    thread_local Basis basis; // the Bernstein values at 1/2 of the last degrees asked for
+    if (basis.m != m || basis.n != n) {
+        basisWithDerivative(m, 0.5, basis.bu, basis.dbu);
+        basisWithDerivative(n, 0.5, basis.bv, basis.dbv);
+        basis.m = m;
+        basis.n = n;
+    }
+    const double *bu = basis.bu, *dbu = basis.dbu, *bv = basis.bv, *dbv = basis.dbv;
+    gs.setZero();
+    gt.setZero();
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            gs += dbu[i] * bv[j] * net[i * w + j];
+            gt += bu[i] * dbv[j] * net[i * w + j];
+        }
+}
+
+/// Bounds of |g_ss|, |g_st|, |g_tt| (in the leaf's s, t) over the leaf grown by deltaS on both
+/// sides in s and deltaT in t: the net of that rectangle by de Casteljau at 1 + delta and then
+/// -delta / (1 + delta) (the same polynomial, parametrised over the larger interval).
+Second grownBounds(const Eigen::Vector3d* net, int m, int n, double deltaS, double deltaT)
+{
+    const int size = (m + 1) * (n + 1);
+    thread_local std::vector<Eigen::Vector3d> buffer;
+    if (buffer.size() < static_cast<std::size_t>(2 * size)) buffer.resize(static_cast<std::size_t>(2 * size));
+    Eigen::Vector3d* grown = buffer.data();
+    Eigen::Vector3d* spare = grown + size;
+    std::copy(net, net + size, grown);
+    for (int dir = 0; dir < 2; ++dir) {
+        const double delta = dir == 0 ? deltaS : deltaT;
+        if (!(delta > 0)) continue;
+        splitNet(grown, spare, m, n, dir == 0, 1 + delta);           // spare: [0, 1 + delta]
+        splitNet(spare, grown, m, n, dir == 0, -delta / (1 + delta)); // spare: [-delta, 1 + delta]
+        std::copy(spare, spare + size, grown);
+    }
+    const Second g = secondOf(netTerms(grown, m, n));
+    const double fs = 1 / (1 + 2 * deltaS), ft = 1 / (1 + 2 * deltaT);
+    return {g.ss * fs * fs, g.st * fs * ft, g.tt * ft * ft};
+}
+
+/// The interpolation error bound at a point (a, b) of the leaf for every triangle with its vertices
+/// in the leaf (docs/surfaces.md, Lemma 2): (M_ss (1/4 - a^2) + 2 M_st sqrt((1/4 - a^2)(1/4 - b^2)) +
+/// M_tt (1/4 - b^2)) / 2, falling in a and in b.
+double pointError(const Second& M, double a, double b)
+{
+    const double vs = 0.25 - a * a, vt = 0.25 - b * b;
+    return 0.5 * (M.ss * vs + 2 * M.st * std::sqrt(vs * vt) + M.tt * vt);
+}
+
+/// The same from the factors (1/4 - a^2, 1/4 - b^2, their geometric mean), shared by several bounds.
+struct PointFactors {
+    double vs, vt, cov;
+    PointFactors(double a, double b) : vs(0.25 - a * a), vt(0.25 - b * b), cov(std::sqrt(vs * vt)) {}
+    double error(const Second& M) const { return 0.5 * (M.ss * vs + 2 * M.st * cov + M.tt * vt); }
+};
+
+/// An upper bound of sup f over [0, 1/2]^2 from cellBound(a0, a1, b0, b1) (an upper bound of f on
+/// that cell): cells of a 2 x 2 grid, each split in four while its bound exceeds target, down to
+/// cells 2^-(depth + 1) wide; once a cell of the finest size exceeds target, the rest is only
+/// evaluated (the result then exceeds target anyway). The result is the largest final cell bound.
+template <class CellBound>
+double refineCells(const CellBound& cellBound, double target, int depth)
+{
+    struct Cell {
+        double a0, b0, w;
+        int level;
+    };
+    Cell stack[4 + 3 * 16];
+    int top = 0;
+    for (int k = 0; k < 4; ++k) stack[top++] = {(k & 1) * 0.25, (k >> 1) * 0.25, 0.25, 1};
+    double worst = 0;
+    bool failed = false;
+    while (top > 0) {
+        const Cell c = stack[--top];
+        const double v = cellBound(c.a0, c.a0 + c.w, c.b0, c.b0 + c.w);
+        if (v <= target || failed || c.level >= depth) {
+            worst = std::max(worst, v);
+            if (v > target) failed = true;
+            continue;
+        }
+        const double h = c.w / 2;
+        for (int k = 0; k < 4; ++k) stack[top++] = {c.a0 + (k & 1) * h, c.b0 + (k >> 1) * h, h, c.level + 1};
+    }
+    return worst;
+}
+
+// refineCells down to cells 1/32 wide in (a, b) (depth 3: 1.3 % more triangles on the teapot at 1e-3).
+constexpr int kCellDepth = 4;
+// The steps' maxima from 2 x 2 cells (4 x 4: 4 triangles fewer on the teapot at 1e-3, more time).
+constexpr int kStepGrid = 2;
+// Leaves whose parametric bound exceeds 16 tolerances do not try the geometric one.
+constexpr double kGeometricRange = 16;
+
+/// Bounds of the two components of the foot point's step delta(x) on the cell [a0, a1] x [b0, b1]
+/// (docs/surfaces.md, "The geometric measure", step 1): with delta_c = A_c^+ E(x), whose components
+/// r1 . E and r2 . E are bounded by the nets projected on the rows r1, r2 of A_c^+, |delta -
+/// delta_c| <= rho(x) |E(x)| / (sigma_c sigma(x)), rho(x) the bound of |A(x) - A_c|; and |delta| <=
+/// |E(x)| / sigma(x). Infinite where sigma(x) may vanish.
+struct StepBounds {
+    const Second &M, &R1, &R2;
+    double sigmaC;
+    std::array<double, 2> operator()(double a0, double a1, double b0, double b1) const
+    {
+        const double rho = norm2(M.ss * a1 + M.st * b1, M.st * a1 + M.tt * b1);
+        const double sig = sigmaC - rho;
+        if (!(sig > 0)) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        const PointFactors f(a0, b0);
+        const double e = f.error(M), whole = e / sig, extra = rho * whole / sigmaC;
+        return {std::min(whole, f.error(R1) + extra), std::min(whole, f.error(R2) + extra)};
+    }
+};
+
+/// The largest bounds of the step's components over the leaf, on a grid of cells.
+template <class Steps>
+std::array<double, 2> largestStep(const Steps& steps)
+{
+    std::array<double, 2> worst{0, 0};
+    for (int ia = 0; ia < kStepGrid; ++ia)
+        for (int ib = 0; ib < kStepGrid; ++ib) {
+            const double w = 0.5 / kStepGrid;
+            const auto d = steps(ia * w, (ia + 1) * w, ib * w, (ib + 1) * w);
+            worst = {std::max(worst[0], d[0]), std::max(worst[1], d[1])};
+        }
+    return worst;
+}
+
+/// The geometric bound of a leaf (docs/surfaces.md, "The geometric measure"): every triangle point
+/// T(x) of the leaf lies within the returned distance of a surface point g(y), y = x + delta(x) in
+/// the patch's domain, chosen so that T(x) - g(x + delta) runs along the normal n0 at the leaf's
+/// centre up to second-order terms. Infinity where the argument does not apply (a near-singular
+/// leaf, delta could leave the patch's domain, or the bound cannot reach the tolerance). net: the
+/// leaf's sub-net; terms: its netTerms; box: the leaf in units of 1/S.
+double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
+                      std::int32_t S, double tolerance)
+{
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d gs, gt;
+    centreDerivatives(net, m, n, gs, gt);
+    const Eigen::Vector3d cross = gs.cross(gt);
+    const double len = cross.norm();
+    if (!(len > 0)) return inf;
+    const Eigen::Vector3d n0 = cross / len;
+    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0);
+    if (pointError(N, 0, 0) > tolerance) return inf; // |n0 . E(c)| alone
+    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm(), det = a11 * a22 - a12 * a12;
+    if (!(det > 0)) return inf;
+    const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
+    // Rows of A_c^+ = (A_c^T A_c)^-1 A_c^T, A_c = [g_s(c), g_t(c)].
+    const Eigen::Vector3d r1 = (a22 * gs - a12 * gt) / det, r2 = (a11 * gt - a12 * gs) / det;
+    const Second R1 = projectedBounds(net, m, n, r1), R2 = projectedBounds(net, m, n, r2);
+    const StepBounds steps{M, R1, R2, sigmaC};
+    const auto Delta = largestStep(steps);
+    if (!std::isfinite(Delta[0]) || !std::isfinite(Delta[1])) return inf;
+    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
+    if (static_cast<double>(box.u0) / S - Delta[0] * hu < 0 || static_cast<double>(box.u1) / S + Delta[0] * hu > 1 ||
+        static_cast<double>(box.v0) / S - Delta[1] * hv < 0 || static_cast<double>(box.v1) / S + Delta[1] * hv > 1)
+        return inf;
+    // The remainder of g(x + delta) over the segment, inside the leaf grown by Delta.
+    const Second G = grownBounds(net, m, n, Delta[0], Delta[1]);
+    auto cell = [&](double a0, double a1, double b0, double b1) {
+        const auto d = steps(a0, a1, b0, b1);
+        if (!std::isfinite(d[0]) || !std::isfinite(d[1])) return inf;
+        // |n0 . g_s(x)| <= N_ss a + N_st b, |n0 . g_t(x)| <= N_st a + N_tt b (zero at the centre).
+        const double tiltS = N.ss * a1 + N.st * b1, tiltT = N.st * a1 + N.tt * b1;
+        const double remainder = 0.5 * (G.ss * d[0] * d[0] + 2 * G.st * d[0] * d[1] + G.tt * d[1] * d[1]);
+        return PointFactors(a0, b0).error(N) + tiltS * d[0] + tiltT * d[1] + remainder;
+    };
+    return refineCells(cell, tolerance, kCellDepth);
+}
+
+/// The geometric bound of a leaf at a patch's side (docs/surfaces.md, "At a patch's sides"): the
+/// foot point is sought along one parameter only (along = 1: t, y = x + (0, delta); along = 0: s),
+/// so the leaf only needs room in that direction. With the unit tangent a = g_t(c)/|g_t(c)| (g_s for
+/// along = 0) and c1 = n0 x a, delta cancels a . E, and the rest of E - g_t(x) delta lies along n0
+/// and c1, each bounded from the projected sub-nets.
+double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
+                           std::int32_t S, int along, double tolerance)
+{
+    Eigen::Vector3d gs, gt;
+    centreDerivatives(net, m, n, gs, gt);
+    const Eigen::Vector3d cross = gs.cross(gt);
+    const double len = cross.norm();
+    const Eigen::Vector3d& g = along == 1 ? gt : gs;
+    const double gLen = g.norm();
+    if (!(len > 0) || !(gLen > 0)) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d n0 = cross / len, a = g / gLen, c1 = n0.cross(a);
+    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0), C = projectedBounds(net, m, n, c1);
+    if (norm2(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
+    // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st a + M_tt b) (s: M_ss a + M_st b).
+    // |a . E(x)| from the net projected on a; a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| -
+    // (M_st a + M_tt b) (s: M_ss a + M_st b).
+    const Second A = projectedBounds(net, m, n, a);
+    auto step = [&](double a0, double a1, double b0, double b1) {
+        const double sig = along == 1 ? gLen - (M.st * a1 + M.tt * b1) : gLen - (M.ss * a1 + M.st * b1);
+        if (!(sig > 0)) return std::numeric_limits<double>::infinity();
+        return PointFactors(a0, b0).error(A) / sig;
+    };
+    double Delta = 0;
+    for (int ia = 0; ia < 4; ++ia)
+        for (int ib = 0; ib < 4; ++ib) Delta = std::max(Delta, step(ia * 0.125, (ia + 1) * 0.125, ib * 0.125, (ib + 1) * 0.125));
+    if (!std::isfinite(Delta)) return Delta;
+    const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
+    const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
+    if (lo - Delta * h < 0 || hi + Delta * h > 1) return std::numeric_limits<double>::infinity();
+    const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0);
+    const double quad = 0.5 * (along == 1 ? G.tt : G.ss);
+    auto cell = [&](double a0, double a1, double b0, double b1) {
+        const double d = step(a0, a1, b0, b1);
+        if (!std::isfinite(d)) return d;
+        const PointFactors f(a0, b0);
+        // |d . g_t(x)| <= D_st a + D_tt b for d orthogonal to g_t(c) (s: D_ss a + D_st b).
+        const double slopeN = along == 1 ? N.st * a1 + N.tt * b1 : N.ss * a1 + N.st * b1;
+        const double slopeC = along == 1 ? C.st * a1 + C.tt * b1 : C.ss * a1 + C.st * b1;
+        return norm2(f.error(N) + slopeN * d, f.error(C) + slopeC * d) + quad * d * d;
+    };
+    return refineCells(cell, tolerance, kCellDepth);
+}
+
 /// Splits the patch's net until every leaf's bound is at most tolerance (or the leaves reach
 /// minWidth), halving each node in one direction (cuts are integers in units of 1/S, S = 2^30, so
 /// the parameters are exact dyadic numbers), appending the leaves; returns the worst leaf bound.
 /// Throws when the running total of leaves passes leafBudget (> 0). (Cutting near the tolerance at
 /// 1/k instead of 1/2, so that leaves end just under it, gave 18 % fewer leaves on the teapot at
 /// 1e-3 but 3 % more triangles: neighbours no longer line up and need fans.)
-/// The geometric bound of a leaf (docs/surfaces.md, "The geometric measure"): every triangle point
-/// T(x) of the leaf lies within the returned distance of a surface point f(y), y = x + delta in the
-/// patch's domain, chosen so that T(x) - f(y) runs along the normal n0 at the leaf's centre up to
-/// second-order terms. Infinity where the argument does not apply (a near-singular or strongly
-/// turning leaf, or delta could leave the patch's domain). net: the leaf's sub-net (local
-/// parameters s, t in [0, 1]); terms: its netTerms; root: the netTerms of the whole patch; box: the
-/// leaf in units of 1/S.
-double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms,
-                      const std::array<double, 3>& root, const Leaf& box, std::int32_t S)
-{
-    const int w = n + 1;
-    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
-    basisWithDerivative(m, 0.5, bu, dbu);
-    basisWithDerivative(n, 0.5, bv, dbv);
-    Eigen::Vector3d gs = Eigen::Vector3d::Zero(), gt = Eigen::Vector3d::Zero();
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            gs += dbu[i] * bv[j] * net[i * w + j];
-            gt += bu[i] * dbv[j] * net[i * w + j];
-        }
-    const Eigen::Vector3d cross = gs.cross(gt);
-    const double len = cross.norm();
-    if (!(len > 0)) return std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d n0 = cross / len;
-    // Bounds of n0 . g_ss, n0 . g_st, n0 . g_tt over the leaf (convex hull of the projected nets).
-    double nss = 0, nst = 0, ntt = 0;
-    for (int i = 0; i + 2 <= m; ++i)
-        for (int j = 0; j <= n; ++j)
-            nss = std::max(nss, std::abs(n0.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j + 2 <= n; ++j)
-            ntt = std::max(ntt, std::abs(n0.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
-    for (int i = 0; i < m; ++i)
-        for (int j = 0; j < n; ++j)
-            nst = std::max(nst, std::abs(n0.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
-    const double Nss = m * (m - 1.0) * nss, Nst = double(m) * n * nst, Ntt = n * (n - 1.0) * ntt;
-    const double Mss = terms[0], Mst = terms[1] / 2, Mtt = terms[2];
-    const double eps = (terms[0] + terms[1] + terms[2]) / 8;     // |T(x) - g(x)|
-    const double epsN = (Nss + 2 * Nst + Ntt) / 8;                // |n0 . (T(x) - g(x))|
-    // Smallest singular value of the projected Jacobian over the leaf: at the centre, less the
-    // largest change of (g_s, g_t) from the centre (Frobenius norm).
-    const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm();
-    const double lambda = 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12));
-    const double sigma = std::sqrt(std::max(0.0, lambda)) - std::hypot((Mss + Mst) / 2, (Mst + Mtt) / 2);
-    if (!(sigma > 0)) return std::numeric_limits<double>::infinity();
-    const double delta = eps / sigma; // |y - x| in the leaf's (s, t)
-    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
-    if (static_cast<double>(box.u0) / S - delta * hu < 0 || static_cast<double>(box.u1) / S + delta * hu > 1 ||
-        static_cast<double>(box.v0) / S - delta * hv < 0 || static_cast<double>(box.v1) / S + delta * hv > 1)
-        return std::numeric_limits<double>::infinity();
-    // |n0 . g_s(x)| <= (Nss + Nst)/2, |n0 . g_t(x)| <= (Nst + Ntt)/2 (zero at the centre); the
-    // remainder of g(x + delta) over the segment, which may leave the leaf: the whole patch's bounds.
-    const double slope = std::hypot((Nss + Nst) / 2, (Nst + Ntt) / 2);
-    const double Gss = root[0] * hu * hu, Gst = root[1] / 2 * hu * hv, Gtt = root[2] * hv * hv;
-    return epsN + slope * delta + 0.5 * (std::max(Gss, Gtt) + Gst) * delta * delta;
-}
-
-/// The geometric bound of a leaf at a patch's side (docs/surfaces.md, "The geometric measure",
-/// "At a patch's sides"): the foot point is sought along one parameter only (along = 1: t, y = x +
-/// (0, delta); along = 0: s), so the leaf only needs room in that direction. Let a be the unit
-/// tangent g_t(c)/|g_t(c)| (g_s for along = 0) and c1 = n0 x a; delta cancels a . E, and the rest
-/// of E - g_t(x) delta lies along n0 and c1, each bounded from the projected sub-nets.
-double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms,
-                           const std::array<double, 3>& root, const Leaf& box, std::int32_t S, int along)
-{
-    const int w = n + 1;
-    double bu[kMaxDegree + 1], dbu[kMaxDegree + 1], bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
-    basisWithDerivative(m, 0.5, bu, dbu);
-    basisWithDerivative(n, 0.5, bv, dbv);
-    Eigen::Vector3d gs = Eigen::Vector3d::Zero(), gt = Eigen::Vector3d::Zero();
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            gs += dbu[i] * bv[j] * net[i * w + j];
-            gt += bu[i] * dbv[j] * net[i * w + j];
-        }
-    const Eigen::Vector3d cross = gs.cross(gt);
-    const double len = cross.norm();
-    const Eigen::Vector3d& g = along == 1 ? gt : gs;
-    if (!(len > 0) || !(g.norm() > 0)) return std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d n0 = cross / len, a = g / g.norm(), c1 = n0.cross(a);
-    // Bounds of d . g_ss, d . g_st, d . g_tt over the leaf for d = n0 and d = c1 (convex hull).
-    auto projected = [&](const Eigen::Vector3d& d) {
-        double ss = 0, st = 0, tt = 0;
-        for (int i = 0; i + 2 <= m; ++i)
-            for (int j = 0; j <= n; ++j)
-                ss = std::max(ss, std::abs(d.dot(net[(i + 2) * w + j] - 2 * net[(i + 1) * w + j] + net[i * w + j])));
-        for (int i = 0; i <= m; ++i)
-            for (int j = 0; j + 2 <= n; ++j)
-                tt = std::max(tt, std::abs(d.dot(net[i * w + j + 2] - 2 * net[i * w + j + 1] + net[i * w + j])));
-        for (int i = 0; i < m; ++i)
-            for (int j = 0; j < n; ++j)
-                st = std::max(st, std::abs(d.dot(net[(i + 1) * w + j + 1] - net[(i + 1) * w + j] - net[i * w + j + 1] + net[i * w + j])));
-        return std::array<double, 3>{m * (m - 1.0) * ss, double(m) * n * st, n * (n - 1.0) * tt};
-    };
-    const auto N = projected(n0), C = projected(c1);
-    const double eps = (terms[0] + terms[1] + terms[2]) / 8;
-    const double epsN = (N[0] + 2 * N[1] + N[2]) / 8, epsC = (C[0] + 2 * C[1] + C[2]) / 8;
-    // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st + M_tt)/2 (s: (M_ss + M_st)/2).
-    const double Mst = terms[1] / 2, Mown = along == 1 ? terms[2] : terms[0];
-    const double sigma = g.norm() - (Mst + Mown) / 2;
-    if (!(sigma > 0)) return std::numeric_limits<double>::infinity();
-    const double delta = eps / sigma;
-    const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
-    const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
-    if (lo - delta * h < 0 || hi + delta * h > 1) return std::numeric_limits<double>::infinity();
-    // |d . g_t(x)| <= (D_st + D_tt)/2 for d orthogonal to g_t(c) (s: (D_ss + D_st)/2).
-    const double slopeN = along == 1 ? (N[1] + N[2]) / 2 : (N[0] + N[1]) / 2;
-    const double slopeC = along == 1 ? (C[1] + C[2]) / 2 : (C[0] + C[1]) / 2;
-    const double G = along == 1 ? root[2] * h * h : root[0] * h * h; // |g_tt| on the segment (whole patch)
-    return std::hypot(epsN + slopeN * delta, epsC + slopeC * delta) + 0.5 * G * delta * delta;
-}
-
 double buildTree(const Patch& patch, double tolerance, bool geometric, std::int32_t minWidth, std::int32_t S,
                  std::vector<Leaf>& leaves, long long& leafCount, long long leafBudget, const std::string& budgetMessage)
 {
@@ -496,7 +639,6 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
     std::vector<Leaf> stack;
     for (int k = 0; k < size; ++k) pool[k] = patch.controlPoints().col(k);
     stack.push_back({0, S, 0, S});
-    const auto root = netTerms(pool.data(), m, n);
     double worst = 0;
     while (!stack.empty()) {
         const int k = static_cast<int>(stack.size()) - 1;
@@ -506,13 +648,13 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         const auto t = netTerms(net, m, n);
         double b = (t[0] + t[1] + t[2]) / 8;
         // (Far above the tolerance the geometric bound cannot help either: its offset term grows with b.)
-        if (geometric && b > tolerance && b < 16 * tolerance) {
-            const double full = geometricBound(net, m, n, t, root, box, S);
+        if (geometric && b > tolerance && b < kGeometricRange * tolerance) {
+            const double full = geometricBound(net, m, n, t, box, S, tolerance);
             b = std::min(b, full);
             if (!std::isfinite(full)) { // at a patch's side: the foot point along the side only
                 const bool sideU = box.u0 == 0 || box.u1 == S, sideV = box.v0 == 0 || box.v1 == S;
-                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, t, root, box, S, 1));
-                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, t, root, box, S, 0));
+                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, t, box, S, 1, tolerance));
+                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, t, box, S, 0, tolerance));
             }
         }
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
@@ -573,6 +715,46 @@ void sortPairs(std::vector<std::pair<std::uint64_t, int>>& v, std::vector<std::p
 }
 
 std::uint64_t packKey(std::int64_t a, std::int64_t b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b); }
+
+/// Twice the signed area of (p, q, r) in the integer parameters of keys (u << 32 | v); exact.
+std::int64_t cross2(std::uint64_t p, std::uint64_t q, std::uint64_t r)
+{
+    const auto u = [](std::uint64_t k) { return static_cast<std::int64_t>(k >> 32); };
+    const auto v = [](std::uint64_t k) { return static_cast<std::int64_t>(k & 0xffffffffu); };
+    return (u(q) - u(p)) * (v(r) - v(p)) - (v(q) - v(p)) * (u(r) - u(p));
+}
+
+/// Triangulates a convex ring (counter-clockwise in (u, v), indices into keys, points on a straight
+/// side allowed) without a new vertex: n - 2 triangles, each time the ear whose new edge is shortest
+/// in space, never an ear of three points of one side, nor one that leaves the rest on one line.
+template <class Emit>
+void clipEars(const std::vector<int>& ring, const std::vector<std::uint64_t>& keys, const std::vector<Eigen::Vector3d>& pos,
+              const Emit& emit)
+{
+    thread_local std::vector<int> poly;
+    poly.assign(ring.begin(), ring.end());
+    while (poly.size() > 3) {
+        const int size = static_cast<int>(poly.size());
+        int best = -1;
+        double bestLength = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < size; ++k) {
+            const int p = poly[(k + size - 1) % size], c = poly[k], q = poly[(k + 1) % size];
+            if (cross2(keys[p], keys[c], keys[q]) <= 0) continue; // a point inside a side
+            const double length = (pos[p] - pos[q]).squaredNorm();
+            if (length >= bestLength) continue;
+            bool flat = true; // the rest, from q round to p, on the line pq?
+            for (int r = (k + 2) % size; r != k && flat; r = (r + 1) % size)
+                if (cross2(keys[p], keys[q], keys[poly[r]]) != 0) flat = false;
+            if (flat) continue;
+            best = k;
+            bestLength = length;
+        }
+        if (best < 0) break; // cannot happen for a convex ring with a positive area
+        emit(poly[(best + size - 1) % size], poly[best], poly[(best + 1) % size]);
+        poly.erase(poly.begin() + best);
+    }
+    if (poly.size() == 3 && cross2(keys[poly[0]], keys[poly[1]], keys[poly[2]]) > 0) emit(poly[0], poly[1], poly[2]);
+}
 
 /// The adaptive mesh with local bounds (docs/surfaces.md, "Local refinement").
 PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptions& options, TessellationReport* report)
@@ -770,7 +952,6 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             return Eigen::Vector2d(static_cast<double>(keys[k] >> 32) * inv, static_cast<double>(keys[k] & 0xffffffffu) * inv);
         };
         for (std::size_t li = 0; li < leaves.size(); ++li) {
-            const Leaf& l = leaves[li];
             const int i00 = cornerIndex[4 * li], i10 = cornerIndex[4 * li + 1], i11 = cornerIndex[4 * li + 2],
                       i01 = cornerIndex[4 * li + 3];
             ring.clear();
@@ -793,16 +974,14 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             for (int k = i01 - 1; k > i00; --k) ring.push_back(k);
             hanging[3] = i01 - i00 - 1;
 
-            auto emit = [&](int a, int b, int c, const Eigen::Vector2d* centreUv, const Eigen::Vector3d* centrePos,
-                            int centreId) {
-                const int ia = a < 0 ? centreId : ids[a], ib = ids[b], ic = ids[c];
+            auto emit = [&](int a, int b, int c) {
+                const int ia = ids[a], ib = ids[b], ic = ids[c];
                 if (ia == ib || ib == ic || ia == ic) return; // at a collapsed side
                 if (options.flipNormals) faces.insert(faces.end(), {ia, ic, ib});
                 else faces.insert(faces.end(), {ia, ib, ic});
                 if (options.sampleDeviation) {
-                    const std::array<Eigen::Vector2d, 3> uv{a < 0 ? *centreUv : uvOf(a), uvOf(b), uvOf(c)};
-                    const std::array<Eigen::Vector3d, 3> xyz{a < 0 ? *centrePos : keyPos[a], keyPos[b], keyPos[c]};
-                    const TriangleDeviation d = sampleTriangleDeviation(patch, uv, xyz);
+                    const TriangleDeviation d =
+                        sampleTriangleDeviation(patch, {uvOf(a), uvOf(b), uvOf(c)}, {keyPos[a], keyPos[b], keyPos[c]});
                     rep.measuredParametric = std::max(rep.measuredParametric, d.parametric);
                     rep.measuredGeometric = std::max(rep.measuredGeometric, d.geometric);
                 }
@@ -812,33 +991,25 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 // The shorter diagonal (the bound holds for either).
                 const int a = ring[0], b = ring[1], c = ring[2], d = ring[3];
                 if ((keyPos[a] - keyPos[c]).squaredNorm() <= (keyPos[b] - keyPos[d]).squaredNorm()) {
-                    emit(a, b, c, nullptr, nullptr, -1);
-                    emit(a, c, d, nullptr, nullptr, -1);
+                    emit(a, b, c);
+                    emit(a, c, d);
                 } else {
-                    emit(a, b, d, nullptr, nullptr, -1);
-                    emit(b, c, d, nullptr, nullptr, -1);
+                    emit(a, b, d);
+                    emit(b, c, d);
                 }
                 continue;
             }
-            // A corner whose two sides have no extra points: fan from it over the two far sides
-            // (every triangle lies in one half of the leaf). Otherwise fan from the centre.
+            // A corner whose two sides have no extra points: fan from it over the two far sides.
+            // Otherwise clip ears. Every triangle has its corners in the leaf, so it has the leaf's
+            // bound (docs/surfaces.md, "The error bound of one triangle", Lemma 2).
             int from = -1;
             for (int c = 0; c < 4 && from < 0; ++c)
                 if (hanging[c] == 0 && hanging[(c + 3) % 4] == 0) from = c;
             if (from >= 0) {
                 const int o = corner[from];
-                for (int k = 1; k + 1 < n; ++k) emit(ring[o], ring[(o + k) % n], ring[(o + k + 1) % n], nullptr, nullptr, -1);
+                for (int k = 1; k + 1 < n; ++k) emit(ring[o], ring[(o + k) % n], ring[(o + k + 1) % n]);
             } else {
-                const Eigen::Vector2d cuv((l.u0 + l.u1) * 0.5 * inv, (l.v0 + l.v1) * 0.5 * inv);
-                const Jet1 j = jet1(patch, cuv.x(), cuv.y());
-                Eigen::Vector3d nrm = j.fu.cross(j.fv);
-                nrm = nrm.norm() > 1e-10 * j.fu.norm() * j.fv.norm() && nrm.norm() > 0 ? Eigen::Vector3d(nrm.normalized())
-                                                                                      : patch.normal(cuv.x(), cuv.y());
-                const int centreId = static_cast<int>(positions.size());
-                positions.push_back(j.p);
-                normals.push_back(nrm);
-                texcoords.push_back(cuv);
-                for (int k = 0; k < n; ++k) emit(-1, ring[k], ring[(k + 1) % n], &cuv, &j.p, centreId);
+                clipEars(ring, keys, keyPos, [&](int a, int b, int c) { emit(a, b, c); });
             }
         }
     }

@@ -14,8 +14,10 @@
 //     patch's control net by de Casteljau into a tree of dyadic sub-rectangles until the bound of
 //     each leaf, from the second differences of its own sub-net,
 //         (m(m-1) max|D_uu b| + 2 m n max|D_uv b| + n(n-1) max|D_vv b|) / 8,
-//     is at most the tolerance; leaves next to finer leaves are fanned (from a corner or their
-//     centre) so that no vertex lies inside another triangle's edge. Refinement::PatchGrid is the
+//     is at most the tolerance (with the geometric measure, or a pointwise geometric bound over
+//     the leaf is); leaves next to finer leaves are fanned from a corner or cut by ear clipping
+//     (every triangle has its corners in the leaf, which keeps the leaf's bound) so that no vertex
+//     lies inside another triangle's edge. Refinement::PatchGrid is the
 //     older global bound: one nu x nv grid per patch,
 //         tessellationErrorBound(patch, nu, nv) = M_uu/(8 nu^2) + M_uv/(4 nu nv) + M_vv/(8 nv^2);
 //   - conforming and crack-free: the samples on a patch side are the union of the leaf corners of
