@@ -5,6 +5,8 @@
 
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "render/renderer.h"
 #include "scene/overlay.h"
@@ -49,6 +51,7 @@ private:
     BufferHandle grid_, axes_;
     BufferHandle overlayLines_, overlayTop_, overlayPoints_;
     double gridScale_ = 0;
+    std::vector<std::pair<double, int>> drawOrder_; // this frame's surfaces, nearest first
 };
 
 } // namespace freeform::editor

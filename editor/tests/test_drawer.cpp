@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "freeform/core/error.h"
 #include "render/recording_renderer.h"
@@ -172,4 +174,35 @@ TEST_CASE("recording renderer: a buffer that is not live cannot be drawn, update
     r.release(h);
     CHECK_THROWS_AS(r.drawLines(h, Mat4f::Identity()), Error);
     CHECK(r.liveBuffers() == 1);
+}
+
+TEST_CASE("recording renderer: surfaces are drawn nearest first, whatever their order in the document", "[editor][drawer]")
+{
+    // Two flat bilinear patches, "low" in the plane z = 0 and "high" in z = 5, low first in the
+    // document. Seen from above (view "top", the eye on +z), high is nearer and must be drawn first;
+    // seen from below, low. A hidden fragment is then rejected by the depth test before it is shaded.
+    const std::string path = kTmp + "/drawer-two-patches.json";
+    test::writeText(path, R"({"format": "freeform", "version": 1, "objects": [
+      {"name": "low", "type": "bezier_surface", "degree": [1, 1], "points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]]},
+      {"name": "high", "type": "bezier_surface", "degree": [1, 1], "points": [[[0, 0, 5], [0, 1, 5]], [[1, 0, 5], [1, 1, 5]]]}]})");
+    Scene scene = Scene::load(path);
+    REQUIRE(scene.itemCount() == 2);
+    RecordingRenderer r;
+    SceneDrawer drawer(r);
+    // The z of the first vertex of each mesh drawn, in drawing order.
+    auto drawnHeights = [&]() {
+        std::vector<float> z;
+        for (const auto& call : r.calls(Kind::Mesh)) z.push_back(r.buffer(call.handle).mesh.positions(2, 0));
+        return z;
+    };
+    for (const auto& [view, first, second] : {std::tuple{"top", 5.0f, 0.0f}, std::tuple{"bottom", 0.0f, 5.0f}}) {
+        scene.camera.setView(view);
+        scene.camera.fit(scene.bounds(), 4.0 / 3.0);
+        CHECK(drawer.draw(scene, 400, 300) == 4); // 2 triangles each
+        const std::vector<float> z = drawnHeights();
+        INFO("view " << view);
+        REQUIRE(z.size() == 2);
+        CHECK(z[0] == first);
+        CHECK(z[1] == second);
+    }
 }
