@@ -364,7 +364,7 @@ void App::validateSelection()
     }
 }
 
-void App::frame(int width, int height, bool withUi)
+void App::frame(int width, int height, bool withUi, bool stillImage)
 {
     const auto t0 = std::chrono::steady_clock::now();
     if (withUi) buildUi();
@@ -383,7 +383,7 @@ void App::frame(int width, int height, bool withUi)
     lastChange_ = scene_.changeCount();
     validateSelection();
     interaction_.fillOverlay(scene_, ui_.selection, view(), overlay_);
-    ui_.triangles = drawer_->draw(scene_, width, height, ui_.selection.item, &overlay_);
+    ui_.triangles = drawer_->draw(scene_, width, height, ui_.selection.item, &overlay_, stillImage);
     if (withUi) {
         renderer_->bindOverlayTarget();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -427,7 +427,7 @@ Image App::renderImage()
 {
     // The panels settle their layout over the first frames (auto-sized windows appear on the second).
     const int frames = options_.noUi ? 1 : 3;
-    for (int i = 0; i < frames; ++i) frame(options_.width, options_.height, !options_.noUi);
+    for (int i = 0; i < frames; ++i) frame(options_.width, options_.height, !options_.noUi, true);
     return renderer_->readPixels();
 }
 
@@ -457,7 +457,9 @@ void App::printFrameStats(int frames)
     std::sort(sorted.begin(), sorted.end());
     const double mean = std::accumulate(times.begin(), times.end(), 0.0) / double(times.size());
     std::printf("renderer: %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
-    std::printf("size: %dx%d, samples: %d, shading: %s\n", options_.width, options_.height, scene_.display.samples,
+    // samples: the multisample count the frames used (docs/editor.md, "Anti-aliasing").
+    std::printf("antialiasing: %s\n", scene_.display.antialiasing == Antialiasing::Auto ? "auto" : "always");
+    std::printf("size: %dx%d, samples: %d, shading: %s\n", options_.width, options_.height, drawer_->samples(),
                 scene_.display.shading == Shading::Flat ? "flat" : scene_.display.shading == Shading::Gouraud ? "gouraud" : "phong");
     std::printf("triangles: %ld\nvertices: %ld\n", ui_.triangles, vertices);
     std::printf("tessellation_ms: %.3f\nfirst_frame_ms: %.3f\n", tessellation, first);

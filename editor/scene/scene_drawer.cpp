@@ -145,7 +145,7 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
     gpu.normalLength = normalLength;
 }
 
-long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const Overlay* overlay)
+long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const Overlay* overlay, bool stillImage)
 {
     scene.updateGeometry();
     const DisplaySettings& d = scene.display;
@@ -204,7 +204,8 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
         gridScale_ = extent;
     }
 
-    renderer_.resizeTarget(frame.width, frame.height, d.samples);
+    samples_ = effectiveSamples(d, software_, stillImage);
+    renderer_.resizeTarget(frame.width, frame.height, samples_);
     renderer_.beginFrame(frame, lights);
     const Mat4f identity = Mat4f::Identity();
     if (d.grid) renderer_.drawLines(grid_, identity);

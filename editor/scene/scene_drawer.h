@@ -16,7 +16,7 @@ namespace freeform::editor {
 
 class SceneDrawer {
 public:
-    explicit SceneDrawer(Renderer& renderer) : renderer_(renderer) {}
+    explicit SceneDrawer(Renderer& renderer) : renderer_(renderer), software_(renderer.software()) {}
     ~SceneDrawer();
     SceneDrawer(const SceneDrawer&) = delete;
     SceneDrawer& operator=(const SceneDrawer&) = delete;
@@ -26,8 +26,13 @@ public:
 
     /// Draws the whole scene into the renderer's target (updateGeometry first). `selected` is the
     /// highlighted item or -1; `overlay` (may be null) is drawn last: its lines depth-tested, its
-    /// on-top lines and points over everything. Returns the number of triangles drawn.
-    long draw(Scene& scene, int width, int height, int selected = -1, const Overlay* overlay = nullptr);
+    /// on-top lines and points over everything. `stillImage`: a screenshot rather than a frame of
+    /// an interactive view (multisampled under Antialiasing::Auto even by a software renderer).
+    /// Returns the number of triangles drawn.
+    long draw(Scene& scene, int width, int height, int selected = -1, const Overlay* overlay = nullptr,
+              bool stillImage = false);
+    /// The multisample count of the last frame drawn (effectiveSamples of its display settings).
+    int samples() const { return samples_; }
 
     /// Forgets every GPU buffer (after the scene was replaced).
     void clear();
@@ -47,6 +52,8 @@ private:
     void releaseAll(Gpu& gpu);
 
     Renderer& renderer_;
+    bool software_ = false;                 // renderer_.software(), asked once
+    int samples_ = 0;
     std::map<long, Gpu> gpu_;               // by stable item id (SceneItem::id)
     BufferHandle grid_, axes_;
     BufferHandle overlayLines_, overlayTop_, overlayPoints_;

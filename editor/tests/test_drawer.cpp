@@ -7,6 +7,7 @@
 
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "freeform/core/error.h"
@@ -204,5 +205,41 @@ TEST_CASE("recording renderer: surfaces are drawn nearest first, whatever their 
         REQUIRE(z.size() == 2);
         CHECK(z[0] == first);
         CHECK(z[1] == second);
+    }
+}
+
+TEST_CASE("renderer names: llvmpipe, softpipe and swrast are software renderers, GPUs are not", "[editor][drawer]")
+{
+    CHECK(isSoftwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
+    CHECK(isSoftwareRenderer("softpipe"));
+    CHECK(isSoftwareRenderer("Software Rasterizer"));
+    CHECK(isSoftwareRenderer("zink (llvmpipe (LLVM 15.0.6, 256 bits))"));
+    CHECK_FALSE(isSoftwareRenderer("NVIDIA GeForce RTX 3080/PCIe/SSE2"));
+    CHECK_FALSE(isSoftwareRenderer("AMD Radeon RX 6800 XT (navi21, LLVM 15.0.6, DRM 3.49, 6.1.0-13-amd64)"));
+    CHECK_FALSE(isSoftwareRenderer("Mesa Intel(R) UHD Graphics 620 (KBL GT2)"));
+    CHECK_FALSE(isSoftwareRenderer("recording"));
+}
+
+TEST_CASE("recording renderer: auto anti-aliasing multisamples a GPU's frames and screenshots, not a software renderer's frames",
+          "[editor][drawer]")
+{
+    Scene scene = tetrahedron();
+    for (const auto& [name, frameSamples] : {std::pair<const char*, int>{"llvmpipe (LLVM 15.0.6, 256 bits)", 0},
+                                             std::pair<const char*, int>{"NVIDIA GeForce RTX 3080/PCIe/SSE2", 4}}) {
+        INFO(name);
+        RecordingRenderer r;
+        r.rendererName = name;
+        SceneDrawer drawer(r);
+        scene.display.antialiasing = Antialiasing::Auto;
+        scene.display.samples = 4;
+        drawer.draw(scene, 320, 200);
+        CHECK(r.samples() == frameSamples);
+        CHECK(drawer.samples() == frameSamples);
+        drawer.draw(scene, 320, 200, -1, nullptr, true); // a screenshot
+        CHECK(r.samples() == 4);
+        scene.display.antialiasing = Antialiasing::Always;
+        scene.display.samples = 2;
+        drawer.draw(scene, 320, 200);
+        CHECK(r.samples() == 2);
     }
 }
