@@ -377,8 +377,14 @@ void App::frame(int width, int height, bool withUi, bool stillImage)
     overlay_.clear();
     ToolContext context = toolContext();
     tools_.update(context, overlay_);
-    scene_.updateViewTolerance(height); // re-tessellates when the zoom changed the pixel size by 2x
+    // A zoom that changes the pixel size by 2x re-tessellates in the background (the scene keeps
+    // drawing the old meshes and swaps the new ones in when they are ready; edits are rebuilt at
+    // once). Headless runs (--screenshot, --frames, --replay, --save) wait for it every frame, so
+    // what they draw and pick is deterministic: the synchronous result.
+    scene_.setBackgroundTessellation(true); // (idempotent; also for a scene opened since)
+    scene_.updateViewTolerance(height);
     scene_.updateGeometry();
+    if (options_.headless()) scene_.finishTessellation();
     if (dirty) ui_.updateMs = millisecondsSince(t1);
     lastChange_ = scene_.changeCount();
     validateSelection();
@@ -434,8 +440,9 @@ Image App::renderImage()
 void App::printFrameStats(int frames)
 {
     auto t0 = std::chrono::steady_clock::now();
+    scene_.setBackgroundTessellation(true);
     scene_.updateViewTolerance(options_.height);
-    scene_.updateGeometry();
+    scene_.finishTessellation();
     const double tessellation = millisecondsSince(t0);
     long vertices = 0;
     for (int i = 0; i < scene_.itemCount(); ++i)

@@ -430,7 +430,7 @@ void displayPanel(Scene& scene, UiState& s)
                 for (int k = 0; k < 4; ++k)
                     if (d.samples == counts[k]) choice = k + 1;
             if (d.antialiasing == Antialiasing::Always && choice == 0) choice = 3; // a count not offered: shown as 4x
-            if (ImGui::Combo("anti-aliasing", &choice, "auto\0off\0002x\0004x\0008x\0") && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
+            if (ImGui::Combo("anti-alias", &choice, "auto\0off\0002x\0004x\0008x\0") && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
                 d.antialiasing = choice == 0 ? Antialiasing::Auto : Antialiasing::Always;
                 if (choice > 0) d.samples = counts[choice - 1];
                 else if (d.samples == 0) d.samples = 4;
