@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -237,4 +238,36 @@ TEST_CASE("background: an export is tessellated to the world tolerance and leave
     CHECK(readPolygonMesh(path).faceCount() == expected);
     for (int i = 0; i < scene.itemCount(); ++i) CHECK(scene.item(i).revision == revisions[static_cast<std::size_t>(i)]);
     CHECK_FALSE(scene.tessellationPending());
+}
+
+TEST_CASE("background: a subdivision surface follows the view's tolerance too, with the synchronous result", "[editor][background]")
+{
+    // An inline Catmull-Clark cube cage (8 vertices, 6 quads, counter-clockwise from outside).
+    const std::string path = kTmp + "/background-cube.json";
+    {
+        std::ofstream out(path);
+        out << R"({"format": "freeform", "version": 1, "objects": [
+          {"name": "cube", "type": "subdivision_surface", "scheme": "catmark",
+           "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0],[0,0,1],[1,0,1],[1,1,1],[0,1,1]],
+           "faces": [[0,3,2,1],[4,5,6,7],[0,1,5,4],[1,2,6,5],[2,3,7,6],[3,0,4,7]]}]})";
+    }
+    Scene scene = Scene::load(path, 1280.0 / 800.0);
+    REQUIRE(scene.itemCount() == 1);
+    REQUIRE(scene.item(0).geometry.surface);
+    const int worldFaces = scene.item(0).geometry.surface->faceCount();
+    scene.setBackgroundTessellation(true);
+    // Closer: the view's half pixel differs from the world tolerance 1e-3, and the cage is
+    // re-tessellated for it in the background.
+    scene.camera.distance /= 8;
+    scene.updateViewTolerance(800);
+    const double view = scene.tessellationTolerance();
+    REQUIRE(view != scene.display.tolerance);
+    scene.finishTessellation();
+    CHECK(scene.backgroundStats().applied == 1);
+    CHECK(scene.item(0).builtTolerance == view);
+    const ItemGeometry expected = synchronous(scene, 0, view);
+    REQUIRE(expected.surface);
+    CHECK(sameMesh(*scene.item(0).geometry.surface, *expected.surface));
+    INFO("faces at the world tolerance " << worldFaces << ", at the view's " << expected.surface->faceCount());
+    CHECK(expected.surface->faceCount() != worldFaces); // the tolerance reaches the subdivision tessellation
 }
