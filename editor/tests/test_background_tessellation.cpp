@@ -258,7 +258,7 @@ TEST_CASE("background: a subdivision surface follows the view's tolerance too, w
     scene.setBackgroundTessellation(true);
     // Closer: the view's half pixel differs from the world tolerance 1e-3, and the cage is
     // re-tessellated for it in the background.
-    scene.camera.distance /= 8;
+    scene.camera.distance /= 2;
     scene.updateViewTolerance(800);
     const double view = scene.tessellationTolerance();
     REQUIRE(view != scene.display.tolerance);
