@@ -244,6 +244,9 @@ std::string App::statusHint()
     }
     const std::string& message = tools_.message();
     if (!message.empty()) hint += "   |   " + message;
+    // The old meshes are drawn while the background job for the view's tolerance runs (never in
+    // headless runs, which wait for it).
+    if (scene_.tessellationPending()) hint += "   |   tessellating for the view...";
     return hint;
 }
 
