@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -49,6 +50,21 @@ App* appOf(GLFWwindow* window)
 double millisecondsSince(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// CPU time of the whole process (every thread: llvmpipe's rasteriser threads included), in ms.
+double processCpuMilliseconds()
+{
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+double median(std::vector<double> values)
+{
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n == 0 ? 0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 const char* kAutosaveFile = "autosave.json";
@@ -225,6 +241,9 @@ std::string App::statusHint()
     }
     const std::string& message = tools_.message();
     if (!message.empty()) hint += "   |   " + message;
+    // The old meshes are drawn while the background job for the view's tolerance runs (never in
+    // headless runs, which wait for it).
+    if (scene_.tessellationPending()) hint += "   |   tessellating for the view...";
     return hint;
 }
 
@@ -353,7 +372,7 @@ void App::validateSelection()
     }
 }
 
-void App::frame(int width, int height, bool withUi)
+void App::frame(int width, int height, bool withUi, bool stillImage)
 {
     const auto t0 = std::chrono::steady_clock::now();
     if (withUi) buildUi();
@@ -366,13 +385,19 @@ void App::frame(int width, int height, bool withUi)
     overlay_.clear();
     ToolContext context = toolContext();
     tools_.update(context, overlay_);
-    scene_.updateViewTolerance(height); // re-tessellates when the zoom changed the pixel size by 2x
+    // A zoom that changes the pixel size by 2x re-tessellates in the background (the scene keeps
+    // drawing the old meshes and swaps the new ones in when they are ready; edits are rebuilt at
+    // once). Headless runs (--screenshot, --frames, --replay, --save) wait for it every frame, so
+    // what they draw and pick is deterministic: the synchronous result.
+    scene_.setBackgroundTessellation(true); // (idempotent; also for a scene opened since)
+    scene_.updateViewTolerance(height);
     scene_.updateGeometry();
+    if (options_.headless()) scene_.finishTessellation();
     if (dirty) ui_.updateMs = millisecondsSince(t1);
     lastChange_ = scene_.changeCount();
     validateSelection();
     interaction_.fillOverlay(scene_, ui_.selection, view(), overlay_);
-    ui_.triangles = drawer_->draw(scene_, width, height, ui_.selection.item, &overlay_);
+    ui_.triangles = drawer_->draw(scene_, width, height, ui_.selection.item, &overlay_, stillImage);
     if (withUi) {
         renderer_->bindOverlayTarget();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -416,15 +441,16 @@ Image App::renderImage()
 {
     // The panels settle their layout over the first frames (auto-sized windows appear on the second).
     const int frames = options_.noUi ? 1 : 3;
-    for (int i = 0; i < frames; ++i) frame(options_.width, options_.height, !options_.noUi);
+    for (int i = 0; i < frames; ++i) frame(options_.width, options_.height, !options_.noUi, true);
     return renderer_->readPixels();
 }
 
 void App::printFrameStats(int frames)
 {
     auto t0 = std::chrono::steady_clock::now();
+    scene_.setBackgroundTessellation(true);
     scene_.updateViewTolerance(options_.height);
-    scene_.updateGeometry();
+    scene_.finishTessellation();
     const double tessellation = millisecondsSince(t0);
     long vertices = 0;
     for (int i = 0; i < scene_.itemCount(); ++i)
@@ -433,25 +459,30 @@ void App::printFrameStats(int frames)
     frame(options_.width, options_.height, false);
     renderer_->finish();
     const double first = millisecondsSince(t0);
-    std::vector<double> times;
+    std::vector<double> times, cpu;
     for (int i = 0; i < frames; ++i) {
         t0 = std::chrono::steady_clock::now();
+        const double c0 = processCpuMilliseconds();
         frame(options_.width, options_.height, false);
         renderer_->finish();
         times.push_back(millisecondsSince(t0));
+        cpu.push_back(processCpuMilliseconds() - c0);
     }
     std::vector<double> sorted = times;
     std::sort(sorted.begin(), sorted.end());
-    const double median = sorted.size() % 2 ? sorted[sorted.size() / 2]
-                                            : 0.5 * (sorted[sorted.size() / 2 - 1] + sorted[sorted.size() / 2]);
     const double mean = std::accumulate(times.begin(), times.end(), 0.0) / double(times.size());
     std::printf("renderer: %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
-    std::printf("size: %dx%d, samples: %d, shading: %s\n", options_.width, options_.height, scene_.display.samples,
+    // samples: the multisample count the frames used (docs/editor.md, "Anti-aliasing").
+    std::printf("antialiasing: %s\n", scene_.display.antialiasing == Antialiasing::Auto ? "auto" : "always");
+    std::printf("size: %dx%d, samples: %d, shading: %s\n", options_.width, options_.height, drawer_->samples(),
                 scene_.display.shading == Shading::Flat ? "flat" : scene_.display.shading == Shading::Gouraud ? "gouraud" : "phong");
     std::printf("triangles: %ld\nvertices: %ld\n", ui_.triangles, vertices);
     std::printf("tessellation_ms: %.3f\nfirst_frame_ms: %.3f\n", tessellation, first);
     std::printf("frames: %d\nframe_ms_median: %.3f\nframe_ms_mean: %.3f\nframe_ms_min: %.3f\nframe_ms_max: %.3f\n", frames,
-                median, mean, sorted.front(), sorted.back());
+                median(times), mean, sorted.front(), sorted.back());
+    // CPU time of all the process's threads per frame: less sensitive to other processes on a
+    // shared machine than the wall-clock time (docs/performance.md, "Editor frame time").
+    std::printf("frame_cpu_ms_median: %.3f\n", median(cpu));
 }
 
 // ------------------------------------------------------------------------------------ actions

@@ -103,7 +103,9 @@ private:
     std::string stateText() const;
     std::string lastState_;   // interactive --state: the text last written
 
-    void frame(int width, int height, bool withUi);
+    /// One frame; stillImage: for a screenshot (multisampled under Antialiasing::Auto, see
+    /// scene/settings.h), not a frame of the interactive view.
+    void frame(int width, int height, bool withUi, bool stillImage = false);
     void buildUi();
     void carryOutPending();
     void replaceScene(Scene scene, bool keepAutosave = false);

@@ -44,7 +44,10 @@ void applyOptions(Scene& scene, const Options& o)
     if (o.shading) d.shading = *o.shading == "flat" ? Shading::Flat : *o.shading == "gouraud" ? Shading::Gouraud : Shading::Phong;
     if (o.lighting) d.specular = *o.lighting == "blinn" ? SpecularModel::Blinn : SpecularModel::Phong;
     if (o.analysis) d.analysis = *o.analysis == "reflection_lines" ? SurfaceAnalysis::ReflectionLines : SurfaceAnalysis::None;
-    if (o.samples) d.samples = *o.samples;
+    if (o.samples) {
+        d.samples = *o.samples; // asked for on the command line: on every renderer
+        d.antialiasing = Antialiasing::Always;
+    }
     if (o.wireframe) d.wireframe = true;
     if (o.flipNormals) d.flipNormals = true;
     if (o.tolerance) {

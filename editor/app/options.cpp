@@ -108,7 +108,9 @@ view (override what the document says):
   --analysis none|reflection_lines  --wireframe  --flip-normals (draw with negated normals)
   --tolerance T          adaptive tessellation tolerance (world units)
   --segments N           uniform tessellation with N x N quads per patch, for every surface
-  --samples N            multisampling (0 = off; default 4)
+  --samples N            multisampling with N samples on every renderer (0 = off); without it,
+                         the document's (default: auto, 4 on a GPU and in screenshots, none
+                         for the frames of a software renderer such as llvmpipe)
 
 environment: FREEFORM_AUTOSAVE_DIR (the autosave folder; headless runs autosave only when it is
 set), FREEFORM_AUTOSAVE_INTERVAL (seconds between autosaves, default 60).

@@ -130,6 +130,7 @@ public:
         lines_ = Program("lines", "", shaders::kColorVertex, "", shaders::kLineFragment);
         discs_ = Program("discs", "", shaders::kColorVertex, "", shaders::kDiscFragment);
         glGetIntegerv(GL_MAX_SAMPLES, &maxSamples_);
+        if (const GLubyte* n = glGetString(GL_RENDERER)) name_ = reinterpret_cast<const char*>(n);
     }
 
     ~GlRenderer() override
@@ -382,6 +383,7 @@ public:
     }
 
     void finish() override { glFinish(); }
+    std::string name() const override { return name_; }
 
 private:
     Buffers& acquire(BufferHandle& handle, Buffers::Kind kind)
@@ -440,6 +442,7 @@ private:
     std::map<int, Buffers> buffers_;
     int nextId_ = 1;
     GLint maxSamples_ = 0;
+    std::string name_;
     int width_ = 0, height_ = 0, samples_ = 0;
     GLuint msFbo_ = 0, msColor_ = 0, msDepth_ = 0;
     GLuint resolveFbo_ = 0, resolveColor_ = 0, resolveDepth_ = 0;

@@ -64,6 +64,9 @@ public:
     void presentToWindow(int, int) override {}
     Image readPixels() override;
     void finish() override {}
+    /// rendererName: "recording" unless a test pretends to be another renderer.
+    std::string name() const override { return rendererName; }
+    std::string rendererName = "recording";
 
     /// The draw calls of the frame begun last (complete once endFrame was called).
     const std::vector<DrawCall>& calls() const { return calls_; }

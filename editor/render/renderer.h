@@ -9,6 +9,7 @@
 // endFrame (resolves multisampling into the target). readPixels returns the last frame.
 
 #include <memory>
+#include <string>
 
 #include "render/render_types.h"
 
@@ -49,7 +50,16 @@ public:
     virtual Image readPixels() = 0;
     /// Blocks until the GPU has finished every command (for frame timing).
     virtual void finish() = 0;
+    /// The renderer's name (OpenGL: GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)").
+    virtual std::string name() const = 0;
+    /// Whether this is a software rasteriser (isSoftwareRenderer(name())).
+    bool software() const;
 };
+
+/// Whether a GL_RENDERER string names one of Mesa's software rasterisers: it contains "llvmpipe",
+/// "softpipe", "swrast" or "Software Rasterizer" (case-insensitive; zink on lavapipe, "zink
+/// (llvmpipe ...)", too). Everything else is taken for a GPU.
+bool isSoftwareRenderer(const std::string& glRenderer);
 
 /// The OpenGL 3.3 core backend; needs a current context with a loader (epoxy) ready.
 std::unique_ptr<Renderer> createGlRenderer();

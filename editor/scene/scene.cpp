@@ -14,6 +14,7 @@
 #include "freeform/surface/patch_complex.h"
 #include "freeform/tessellate/tessellate.h"
 #include "scene/json_read.h"
+#include "scene/tessellation_worker.h"
 
 namespace freeform::editor {
 
@@ -346,39 +347,61 @@ void Scene::setUpAxis(int i, UpAxis up)
     modified_ = true;
 }
 
-PolygonMesh Scene::mergedMesh()
+namespace {
+
+/// The meshes, merged into one (vertex indices shifted).
+PolygonMesh mergeMeshes(const std::vector<const PolygonMesh*>& meshes)
 {
-    updateGeometry();
     PolygonMesh out;
-    std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> positions, normals;
     Eigen::Index total = 0;
-    for (const SceneItem& item : items_)
-        if (item.settings.visible && item.geometry.surface) total += item.geometry.surface->positions.cols();
+    for (const PolygonMesh* m : meshes) total += m->positions.cols();
     out.positions.resize(3, total);
     out.normals.resize(3, total);
     Eigen::Index offset = 0;
-    for (const SceneItem& item : items_) {
-        if (!item.settings.visible || !item.geometry.surface) continue;
-        const PolygonMesh& m = *item.geometry.surface;
-        out.positions.middleCols(offset, m.positions.cols()) = m.positions;
-        out.normals.middleCols(offset, m.normals.cols()) = m.normals;
-        for (int f = 0; f < m.faceCount(); ++f) {
-            std::vector<int> face(m.face(f), m.face(f) + m.faceSize(f));
+    for (const PolygonMesh* m : meshes) {
+        out.positions.middleCols(offset, m->positions.cols()) = m->positions;
+        out.normals.middleCols(offset, m->normals.cols()) = m->normals;
+        for (int f = 0; f < m->faceCount(); ++f) {
+            std::vector<int> face(m->face(f), m->face(f) + m->faceSize(f));
             for (int& v : face) v += static_cast<int>(offset);
             out.addFace(face.begin(), face.end());
         }
-        offset += m.positions.cols();
+        offset += m->positions.cols();
     }
     return out;
 }
 
+} // namespace
+
+PolygonMesh Scene::mergedMesh()
+{
+    updateGeometry();
+    std::vector<const PolygonMesh*> meshes;
+    for (const SceneItem& item : items_)
+        if (item.settings.visible && item.geometry.surface) meshes.push_back(&*item.geometry.surface);
+    return mergeMeshes(meshes);
+}
+
 void Scene::exportMesh(const std::string& path)
 {
-    // Exports keep the world tolerance (display.tolerance), not the view's pixel tolerance.
-    const double view = viewTolerance_;
-    if (view > 0) viewTolerance_ = 0, invalidateGeometry();
-    const PolygonMesh mesh = mergedMesh();
-    if (view > 0) viewTolerance_ = view, invalidateGeometry();
+    // Exports keep the world tolerance (display.tolerance), not the view's pixel tolerance: an
+    // object drawn at the view's tolerance is tessellated again for the file only; what the view
+    // draws stays as it is.
+    updateGeometry();
+    std::vector<ItemGeometry> world;
+    world.reserve(items_.size()); // no reallocation: pointers into it are kept below
+    std::vector<const PolygonMesh*> meshes;
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+        const SceneItem& item = items_[i];
+        if (!item.settings.visible) continue;
+        const ItemGeometry* g = &item.geometry;
+        if (followsViewTolerance(item) && item.builtTolerance != display.tolerance) {
+            world.push_back(buildGeometry(document_.objects[i].data, item.settings, display.tolerance, documentDirectory()));
+            g = &world.back();
+        }
+        if (g->surface) meshes.push_back(&*g->surface);
+    }
+    const PolygonMesh mesh = mergeMeshes(meshes);
     if (mesh.faceCount() == 0) throw Error("export: the scene has no visible surfaces or meshes");
     writePolygonMesh(mesh, path);
 }
@@ -647,25 +670,33 @@ void Scene::invalidateGeometry()
         if (item.kind == SceneItem::Kind::DocumentObject) item.geometryDirty = true;
 }
 
+void Scene::buildItem(std::size_t i)
+{
+    SceneItem& item = items_[i];
+    if (item.kind == SceneItem::Kind::DocumentObject) {
+        item.builtTolerance = tessellationTolerance();
+        item.geometry = buildGeometry(document_.objects[i].data, item.settings, item.builtTolerance, documentDirectory());
+    } else {
+        try {
+            item.geometry = buildMeshGeometry(resolve(item.meshPath), item.up);
+        } catch (const Error& e) {
+            item.geometry = ItemGeometry{};
+            item.geometry.error = e.what();
+        }
+    }
+    if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
+        item.scalars.clear();
+    item.geometryDirty = false;
+    item.revision = item.topology = nextRevision();
+}
+
 void Scene::updateGeometry()
 {
-    for (std::size_t i = 0; i < items_.size(); ++i) {
-        SceneItem& item = items_[i];
-        if (!item.geometryDirty) continue;
-        if (item.kind == SceneItem::Kind::DocumentObject) {
-            item.geometry = buildGeometry(document_.objects[i].data, item.settings, tessellationTolerance(), documentDirectory());
-        } else {
-            try {
-                item.geometry = buildMeshGeometry(resolve(item.meshPath), item.up);
-            } catch (const Error& e) {
-                item.geometry = ItemGeometry{};
-                item.geometry.error = e.what();
-            }
-        }
-        if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
-            item.scalars.clear();
-        item.geometryDirty = false;
-        item.revision = item.topology = nextRevision();
+    for (std::size_t i = 0; i < items_.size(); ++i)
+        if (items_[i].geometryDirty) buildItem(i);
+    if (backgroundOn_) {
+        takeBackgroundResult();
+        submitStale();
     }
     updateDerived();
 }
@@ -687,7 +718,117 @@ void Scene::updateViewTolerance(int height)
     }
     if ((t == 0) != (viewTolerance_ == 0) || t > 2 * viewTolerance_ || t < viewTolerance_ / 2) {
         viewTolerance_ = t;
-        invalidateGeometry();
+        // In the background, updateGeometry finds the items built for another tolerance itself.
+        if (!backgroundOn_) invalidateGeometry();
+    }
+}
+
+// ------------------------------------------------------------------------------------ background
+
+BackgroundTessellation::BackgroundTessellation() = default;
+BackgroundTessellation::~BackgroundTessellation() = default;
+BackgroundTessellation::BackgroundTessellation(const BackgroundTessellation&) {}
+BackgroundTessellation& BackgroundTessellation::operator=(const BackgroundTessellation& other)
+{
+    if (this != &other) *this = BackgroundTessellation();
+    return *this;
+}
+BackgroundTessellation::BackgroundTessellation(BackgroundTessellation&&) noexcept = default;
+BackgroundTessellation& BackgroundTessellation::operator=(BackgroundTessellation&&) noexcept = default;
+
+void Scene::setBackgroundTessellation(bool on)
+{
+    if (on == backgroundOn_) return;
+    backgroundOn_ = on;
+    if (!on) {
+        background_ = BackgroundTessellation(); // stops and joins the worker; its result is not wanted
+        for (SceneItem& item : items_)
+            if (stale(item)) item.geometryDirty = true;
+    }
+}
+
+TessellationWorker& Scene::tessellationWorker()
+{
+    if (!background_.worker) background_.worker = std::make_unique<TessellationWorker>();
+    return *background_.worker;
+}
+
+bool Scene::followsViewTolerance(const SceneItem& item) const
+{
+    if (item.kind != SceneItem::Kind::DocumentObject || item.type == "lattice") return false;
+    const Tessellation& t = item.settings.tessellation;
+    if (t.tolerance > 0) return false; // its own tolerance
+    // Uniform surfaces ignore the tolerance; a curve's polyline follows it in either mode.
+    return t.mode == Tessellation::Mode::Adaptive || item.geometry.curve.cols() > 0;
+}
+
+bool Scene::stale(const SceneItem& item) const
+{
+    return !item.geometryDirty && followsViewTolerance(item) && item.builtTolerance != tessellationTolerance();
+}
+
+bool Scene::tessellationPending() const
+{
+    if (background_.generation != 0) return true;
+    for (const SceneItem& item : items_)
+        if (stale(item)) return true;
+    return false;
+}
+
+void Scene::takeBackgroundResult()
+{
+    if (!background_.worker || background_.generation == 0) return;
+    std::optional<TessellationResult> result = background_.worker->take();
+    if (!result) return;
+    if (result->generation != background_.generation) { // cannot happen: a superseded job never publishes
+        backgroundStats_.dropped += static_cast<long>(result->items.size());
+        return;
+    }
+    background_.generation = 0;
+    for (TessellationResult::Item& r : result->items) {
+        const int i = indexOf(r.id);
+        // Only onto the content the job copied, for the tolerance wanted now.
+        if (i < 0 || items_[static_cast<std::size_t>(i)].key != r.key || items_[static_cast<std::size_t>(i)].geometryDirty ||
+            result->tolerance != tessellationTolerance()) {
+            ++backgroundStats_.dropped;
+            continue;
+        }
+        SceneItem& item = items_[static_cast<std::size_t>(i)];
+        item.geometry = std::move(r.geometry);
+        item.builtTolerance = result->tolerance;
+        if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
+            item.scalars.clear();
+        item.revision = item.topology = nextRevision();
+        ++backgroundStats_.applied;
+    }
+}
+
+void Scene::submitStale()
+{
+    const double t = tessellationTolerance();
+    if (background_.generation != 0 && background_.tolerance == t) return; // on its way
+    TessellationJob job;
+    job.tolerance = t;
+    for (std::size_t i = 0; i < items_.size(); ++i)
+        if (stale(items_[i]))
+            job.items.push_back({items_[i].id, items_[i].key, document_.objects[i].data, items_[i].settings});
+    if (job.items.empty() && background_.generation == 0) return;
+    // A job for another tolerance is superseded (an empty job only cancels it).
+    job.generation = ++background_.lastGeneration;
+    job.directory = documentDirectory();
+    const bool cancelOnly = job.items.empty();
+    if (!cancelOnly) ++backgroundStats_.jobs;
+    tessellationWorker().submit(std::move(job));
+    background_.generation = cancelOnly ? 0 : background_.lastGeneration;
+    background_.tolerance = t;
+}
+
+void Scene::finishTessellation()
+{
+    updateGeometry();
+    while (backgroundOn_ && background_.generation != 0) {
+        background_.worker->wait();
+        updateGeometry();
     }
 }
 

@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +65,25 @@ struct SceneItem {
                                           // renames, undo/redo and reordering, never reused
     long deforms = 0;                     // lattice: the id of the mesh it deforms (from
                                           // settings.ffd.mesh, the document's form), 0: none
+    double builtTolerance = 0;            // the world tolerance `geometry` was built for
+                                          // (buildGeometry's argument; 0: not built)
+};
+
+class TessellationWorker;
+
+/// A scene's background tessellation (scene/tessellation_worker.h): the worker, made at the first
+/// job, and the job in flight. A copy of a scene starts without a worker and without a job.
+struct BackgroundTessellation {
+    std::unique_ptr<TessellationWorker> worker;
+    long generation = 0;   // the job in flight, 0: none
+    double tolerance = 0;  // its tolerance
+    long lastGeneration = 0;
+    BackgroundTessellation();
+    ~BackgroundTessellation();
+    BackgroundTessellation(const BackgroundTessellation&);
+    BackgroundTessellation& operator=(const BackgroundTessellation&);
+    BackgroundTessellation(BackgroundTessellation&&) noexcept;
+    BackgroundTessellation& operator=(BackgroundTessellation&&) noexcept;
 };
 
 /// What undo and redo restore: the document objects and the items without their derived geometry.
@@ -171,7 +191,9 @@ public:
     long changeCount() const { return changes_; }
 
     /// Rebuilds the geometry of dirty items (tessellation, sampling), then evaluates the derived
-    /// items whose inputs changed (scene/derived.h: the meshes lattices deform).
+    /// items whose inputs changed (scene/derived.h: the meshes lattices deform). With background
+    /// tessellation on, it also swaps in the result of a finished background job and submits the
+    /// items built for another tolerance than tessellationTolerance() as a new job.
     void updateGeometry();
     /// The lattice -> mesh links evaluated by updateGeometry, by the lattice item's id.
     const std::map<long, FfdLink>& ffdLinks() const { return ffdLinks_; }
@@ -198,8 +220,44 @@ public:
     /// Marks all geometry dirty (e.g. after the tessellation tolerance changed).
     void invalidateGeometry();
 
+    // ---- background tessellation (docs/editor.md, "Tessellation to the view")
+    /// Off (the default): a new view tolerance marks every object dirty and updateGeometry
+    /// rebuilds them at once. On (the editor's window): items whose geometry depends on the
+    /// tolerance and was built for another one are "stale"; updateGeometry hands copies of them to
+    /// a worker thread, keeps their old geometry until the result is back, then swaps it in on the
+    /// calling thread, item by item, only where the item's content key is still the one copied (an
+    /// edit meanwhile gives a new key and its own synchronous rebuild). A newer tolerance
+    /// supersedes the job in flight. Edits are always rebuilt synchronously.
+    void setBackgroundTessellation(bool on);
+    bool backgroundTessellation() const { return backgroundOn_; }
+    /// Whether some item waits for the current tolerance (a job in flight or not yet submitted).
+    bool tessellationPending() const;
+    /// Blocks until every item is built for the current tolerance, waiting for the job in flight
+    /// and applying it: headless runs call it every frame, so they are deterministic (the same
+    /// geometry as the synchronous path).
+    void finishTessellation();
+    /// Background counters: jobs submitted, items swapped in, results dropped (their item was
+    /// edited or removed, or the tolerance had changed, while the job ran).
+    struct BackgroundStats {
+        long jobs = 0, applied = 0, dropped = 0;
+    };
+    const BackgroundStats& backgroundStats() const { return backgroundStats_; }
+    /// The worker (made now if there is none yet): tests use its hold to interleave an edit with a
+    /// running job deterministically.
+    TessellationWorker& tessellationWorker();
+
 private:
     double viewTolerance_ = 0;
+    /// Whether item's geometry depends on tessellationTolerance() (curves, surfaces and cages
+    /// tessellated adaptively without a tolerance of their own).
+    bool followsViewTolerance(const SceneItem& item) const;
+    bool stale(const SceneItem& item) const;
+    void buildItem(std::size_t i);
+    void takeBackgroundResult();
+    void submitStale();
+    bool backgroundOn_ = false;
+    BackgroundTessellation background_;
+    BackgroundStats backgroundStats_;
     void rebuildItems();
     void updateDerived();
     void resolveLink(SceneItem& item) const;

@@ -163,7 +163,7 @@ std::optional<std::pair<float, float>> scalarRange(const Scene& scene)
     return std::make_pair(lo, hi);
 }
 
-long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const Overlay* overlay)
+long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const Overlay* overlay, bool stillImage)
 {
     scene.updateGeometry();
     const DisplaySettings& d = scene.display;
@@ -222,17 +222,33 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
         gridScale_ = extent;
     }
 
-    renderer_.resizeTarget(frame.width, frame.height, d.samples);
+    samples_ = effectiveSamples(d, software_, stillImage);
+    renderer_.resizeTarget(frame.width, frame.height, samples_);
     renderer_.beginFrame(frame, lights);
     const Mat4f identity = Mat4f::Identity();
     if (d.grid) renderer_.drawLines(grid_, identity);
     if (d.axes) renderer_.drawLines(axes_, identity);
 
-    long triangles = 0;
     const std::optional<std::pair<float, float>> range = scalarRange(scene);
+    // Surfaces front to back (by the depth of their bounding box's nearest point along the view
+    // direction, ties by index): with the depth test before shading, a fragment hidden by a nearer
+    // surface drawn earlier is never shaded, and per-fragment lighting is most of a frame under a
+    // software rasteriser (docs/performance.md, "Editor frame time"). Surfaces are opaque, so the
+    // picture does not depend on the order (except where two surfaces meet at equal depth).
+    const Eigen::Vector3d eye = scene.camera.eye(), forward = -scene.camera.back();
+    drawOrder_.clear();
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& item = scene.item(i);
-        if (!item.settings.visible) continue;
+        if (!item.settings.visible || item.geometry.bounds.isEmpty()) continue;
+        const Eigen::AlignedBox3d& b = item.geometry.bounds;
+        const Eigen::Vector3d nearest(forward.x() >= 0 ? b.min().x() : b.max().x(), forward.y() >= 0 ? b.min().y() : b.max().y(),
+                                      forward.z() >= 0 ? b.min().z() : b.max().z());
+        drawOrder_.emplace_back((nearest - eye).dot(forward), i);
+    }
+    std::sort(drawOrder_.begin(), drawOrder_.end());
+    long triangles = 0;
+    for (const auto& [depth, i] : drawOrder_) {
+        const SceneItem& item = scene.item(i);
         const Gpu& gpu = gpu_[item.id];
         if (gpu.mesh) {
             SurfaceStyle style;

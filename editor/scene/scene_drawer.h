@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "render/renderer.h"
 #include "scene/overlay.h"
@@ -21,7 +22,7 @@ std::optional<std::pair<float, float>> scalarRange(const Scene& scene);
 
 class SceneDrawer {
 public:
-    explicit SceneDrawer(Renderer& renderer) : renderer_(renderer) {}
+    explicit SceneDrawer(Renderer& renderer) : renderer_(renderer), software_(renderer.software()) {}
     ~SceneDrawer();
     SceneDrawer(const SceneDrawer&) = delete;
     SceneDrawer& operator=(const SceneDrawer&) = delete;
@@ -31,8 +32,13 @@ public:
 
     /// Draws the whole scene into the renderer's target (updateGeometry first). `selected` is the
     /// highlighted item or -1; `overlay` (may be null) is drawn last: its lines depth-tested, its
-    /// on-top lines and points over everything. Returns the number of triangles drawn.
-    long draw(Scene& scene, int width, int height, int selected = -1, const Overlay* overlay = nullptr);
+    /// on-top lines and points over everything. `stillImage`: a screenshot rather than a frame of
+    /// an interactive view (multisampled under Antialiasing::Auto even by a software renderer).
+    /// Returns the number of triangles drawn.
+    long draw(Scene& scene, int width, int height, int selected = -1, const Overlay* overlay = nullptr,
+              bool stillImage = false);
+    /// The multisample count of the last frame drawn (effectiveSamples of its display settings).
+    int samples() const { return samples_; }
 
     /// Forgets every GPU buffer (after the scene was replaced).
     void clear();
@@ -52,10 +58,13 @@ private:
     void releaseAll(Gpu& gpu);
 
     Renderer& renderer_;
+    bool software_ = false;                 // renderer_.software(), asked once
+    int samples_ = 0;
     std::map<long, Gpu> gpu_;               // by stable item id (SceneItem::id)
     BufferHandle grid_, axes_;
     BufferHandle overlayLines_, overlayTop_, overlayPoints_;
     double gridScale_ = 0;
+    std::vector<std::pair<double, int>> drawOrder_; // this frame's surfaces, nearest first
 };
 
 } // namespace freeform::editor

@@ -97,6 +97,7 @@ Json DisplaySettings::toJson() const
     j["lights"] = std::move(lightArray);
     j["background"] = json::array(background);
     j["samples"] = samples;
+    j["antialiasing"] = antialiasing == Antialiasing::Auto ? "auto" : "always";
     j["tolerance"] = tolerance;
     if (scalarAuto) j["scalar_range"] = "auto";
     else j["scalar_range"] = {json::tidy(scalarMin), json::tidy(scalarMax)};
@@ -109,7 +110,7 @@ DisplaySettings DisplaySettings::fromJson(const Json& j)
     json::requireObject(j, path);
     onlyKnown(j, path, {"shading", "lighting", "material", "back_color", "wireframe", "flip_normals", "analysis", "stripes",
                         "control_nets", "control_points", "normals", "normal_length", "grid", "axes", "point_size",
-                        "headlight", "headlight_color", "lights", "background", "samples", "tolerance", "scalar_range"});
+                        "headlight", "headlight_color", "lights", "background", "samples", "antialiasing", "tolerance", "scalar_range"});
     DisplaySettings s;
     s.shading = static_cast<Shading>(json::choice(j, "shading", path, {"flat", "gouraud", "phong"}, static_cast<int>(s.shading)));
     s.specular = static_cast<SpecularModel>(json::choice(j, "lighting", path, {"phong", "blinn"}, static_cast<int>(s.specular)));
@@ -149,6 +150,7 @@ DisplaySettings DisplaySettings::fromJson(const Json& j)
     json::readVector(j, "background", path, s.background);
     json::read(j, "samples", path, s.samples);
     if (s.samples < 0 || s.samples > 16) json::fail(path + ".samples", "must lie in 0..16");
+    s.antialiasing = static_cast<Antialiasing>(json::choice(j, "antialiasing", path, {"auto", "always"}, static_cast<int>(s.antialiasing)));
     json::read(j, "tolerance", path, s.tolerance);
     if (!(s.tolerance > 0)) json::fail(path + ".tolerance", "must be positive");
     if (!(s.stripes > 0)) json::fail(path + ".stripes", "must be positive");
@@ -168,6 +170,12 @@ DisplaySettings DisplaySettings::fromJson(const Json& j)
         }
     }
     return s;
+}
+
+int effectiveSamples(const DisplaySettings& display, bool softwareRenderer, bool stillImage)
+{
+    if (display.antialiasing == Antialiasing::Auto && softwareRenderer && !stillImage) return 0;
+    return display.samples;
 }
 
 Json ObjectSettings::toJson() const

@@ -6,6 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "freeform/core/error.h"
 #include "render/recording_renderer.h"
@@ -178,4 +181,71 @@ TEST_CASE("recording renderer: a buffer that is not live cannot be drawn, update
     r.release(h);
     CHECK_THROWS_AS(r.drawLines(h, Mat4f::Identity()), Error);
     CHECK(r.liveBuffers() == 1);
+}
+
+TEST_CASE("recording renderer: surfaces are drawn nearest first, whatever their order in the document", "[editor][drawer]")
+{
+    // Two flat bilinear patches, "low" in the plane z = 0 and "high" in z = 5, low first in the
+    // document. Seen from above (view "top", the eye on +z), high is nearer and must be drawn first;
+    // seen from below, low. A hidden fragment is then rejected by the depth test before it is shaded.
+    const std::string path = kTmp + "/drawer-two-patches.json";
+    test::writeText(path, R"({"format": "freeform", "version": 1, "objects": [
+      {"name": "low", "type": "bezier_surface", "degree": [1, 1], "points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]]},
+      {"name": "high", "type": "bezier_surface", "degree": [1, 1], "points": [[[0, 0, 5], [0, 1, 5]], [[1, 0, 5], [1, 1, 5]]]}]})");
+    Scene scene = Scene::load(path);
+    REQUIRE(scene.itemCount() == 2);
+    RecordingRenderer r;
+    SceneDrawer drawer(r);
+    // The z of the first vertex of each mesh drawn, in drawing order.
+    auto drawnHeights = [&]() {
+        std::vector<float> z;
+        for (const auto& call : r.calls(Kind::Mesh)) z.push_back(r.buffer(call.handle).mesh.positions(2, 0));
+        return z;
+    };
+    for (const auto& [view, first, second] : {std::tuple{"top", 5.0f, 0.0f}, std::tuple{"bottom", 0.0f, 5.0f}}) {
+        scene.camera.setView(view);
+        scene.camera.fit(scene.bounds(), 4.0 / 3.0);
+        CHECK(drawer.draw(scene, 400, 300) == 4); // 2 triangles each
+        const std::vector<float> z = drawnHeights();
+        INFO("view " << view);
+        REQUIRE(z.size() == 2);
+        CHECK(z[0] == first);
+        CHECK(z[1] == second);
+    }
+}
+
+TEST_CASE("renderer names: llvmpipe, softpipe and swrast are software renderers, GPUs are not", "[editor][drawer]")
+{
+    CHECK(isSoftwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
+    CHECK(isSoftwareRenderer("softpipe"));
+    CHECK(isSoftwareRenderer("Software Rasterizer"));
+    CHECK(isSoftwareRenderer("zink (llvmpipe (LLVM 15.0.6, 256 bits))"));
+    CHECK_FALSE(isSoftwareRenderer("NVIDIA GeForce RTX 3080/PCIe/SSE2"));
+    CHECK_FALSE(isSoftwareRenderer("AMD Radeon RX 6800 XT (navi21, LLVM 15.0.6, DRM 3.49, 6.1.0-13-amd64)"));
+    CHECK_FALSE(isSoftwareRenderer("Mesa Intel(R) UHD Graphics 620 (KBL GT2)"));
+    CHECK_FALSE(isSoftwareRenderer("recording"));
+}
+
+TEST_CASE("recording renderer: auto anti-aliasing multisamples a GPU's frames and screenshots, not a software renderer's frames",
+          "[editor][drawer]")
+{
+    Scene scene = tetrahedron();
+    for (const auto& [name, frameSamples] : {std::pair<const char*, int>{"llvmpipe (LLVM 15.0.6, 256 bits)", 0},
+                                             std::pair<const char*, int>{"NVIDIA GeForce RTX 3080/PCIe/SSE2", 4}}) {
+        INFO(name);
+        RecordingRenderer r;
+        r.rendererName = name;
+        SceneDrawer drawer(r);
+        scene.display.antialiasing = Antialiasing::Auto;
+        scene.display.samples = 4;
+        drawer.draw(scene, 320, 200);
+        CHECK(r.samples() == frameSamples);
+        CHECK(drawer.samples() == frameSamples);
+        drawer.draw(scene, 320, 200, -1, nullptr, true); // a screenshot
+        CHECK(r.samples() == 4);
+        scene.display.antialiasing = Antialiasing::Always;
+        scene.display.samples = 2;
+        drawer.draw(scene, 320, 200);
+        CHECK(r.samples() == 2);
+    }
 }

@@ -253,6 +253,35 @@ TEST_CASE("camera and display settings read back what they write; bad values are
     REQUIRE_THROWS_WITH(Camera::fromJson(cam), Catch::Contains("editor.camera.distance"));
 }
 
+TEST_CASE("display: anti-aliasing is auto unless the document says always; auto drops multisampling only for a software renderer's frames",
+          "[editor]")
+{
+    // A document written before the field existed (samples 4, no "antialiasing") reads as auto.
+    Json old = DisplaySettings{}.toJson();
+    old.erase("antialiasing");
+    CHECK(DisplaySettings::fromJson(old).antialiasing == Antialiasing::Auto);
+    CHECK(DisplaySettings{}.toJson()["antialiasing"] == "auto");
+    DisplaySettings d;
+    d.antialiasing = Antialiasing::Always;
+    d.samples = 2;
+    CHECK(d.toJson()["antialiasing"] == "always");
+    CHECK(DisplaySettings::fromJson(d.toJson()) == d);
+    Json bad = d.toJson();
+    bad["antialiasing"] = "sometimes";
+    REQUIRE_THROWS_WITH(DisplaySettings::fromJson(bad), Catch::Contains("editor.display.antialiasing"));
+
+    // The rule, case by case: (antialiasing, software renderer, still image) -> samples used.
+    DisplaySettings a; // auto, 4
+    CHECK(effectiveSamples(a, false, false) == 4);
+    CHECK(effectiveSamples(a, false, true) == 4);
+    CHECK(effectiveSamples(a, true, false) == 0);
+    CHECK(effectiveSamples(a, true, true) == 4);
+    a.samples = 0; // off stays off
+    CHECK(effectiveSamples(a, false, true) == 0);
+    CHECK(effectiveSamples(d, true, false) == 2); // always: everywhere
+    CHECK(effectiveSamples(d, false, false) == 2);
+}
+
 TEST_CASE("scene: the pixel tolerance gives the world size of that many pixels at the nearest depth, redone only past 2x",
           "[editor][scene]")
 {

@@ -540,6 +540,22 @@ void displayPanel(Scene& scene, UiState& s)
         }
         ImGui::SliderFloat("point size", &d.pointSize, 2.0f, 20.0f, "%.0f px");
         tooltip(s, "Diameter of the control point discs, pixels");
+        {
+            // Anti-aliasing (docs/editor.md): auto (display.samples on a GPU and in screenshots,
+            // none for a software renderer's frames), or a fixed multisample count everywhere.
+            const int counts[] = {0, 2, 4, 8};
+            int choice = 0;
+            if (d.antialiasing == Antialiasing::Always)
+                for (int k = 0; k < 4; ++k)
+                    if (d.samples == counts[k]) choice = k + 1;
+            if (d.antialiasing == Antialiasing::Always && choice == 0) choice = 3; // a count not offered: shown as 4x
+            if (ImGui::Combo("anti-alias", &choice, "auto\0off\0002x\0004x\0008x\0") && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
+                d.antialiasing = choice == 0 ? Antialiasing::Auto : Antialiasing::Always;
+                if (choice > 0) d.samples = counts[choice - 1];
+                else if (d.samples == 0) d.samples = 4;
+            }
+            tooltip(s, "Multisampling: auto = the document's samples on a GPU and in screenshots, none for the frames of a software renderer (llvmpipe); or a fixed count everywhere");
+        }
         const double lo = 1e-6, hi = 1.0;
         const double plo = 0, phi = 8;
         ImGui::SliderScalar("px tolerance", ImGuiDataType_Double, &scene.pixelTolerance, &plo, &phi, "%.2f px");
