@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -38,6 +39,7 @@ using freeform::test::putBytes;
 using freeform::test::slurp;
 using freeform::test::writeText;
 using Catch::Matchers::Contains;
+using Catch::Matchers::Equals;
 using Catch::Matchers::StartsWith;
 using Catch::Matchers::WithinRel;
 namespace fs = std::filesystem;
@@ -215,6 +217,40 @@ TEST_CASE("JSON nested tens of thousands deep is refused before any recursion", 
     CHECK_THROWS_WITH(MeshFile::read(tmp("deep.gltf")), Contains("deep.gltf") && Contains("nested deeper"));
 }
 
+TEST_CASE("The JSON gate says where: the path to the value nested too deep or the object repeating a key", "[hardening][json]")
+{
+    // Hand-written locations: the path a reader would follow, its first 8 components only.
+    const std::string deepDoc = "{\"format\":\"freeform\",\"version\":1,\"objects\":[{\"name\":\"c\"},{\"name\":\"d\",\"editor\":{\"m\":" +
+                                nested(300) + "}}]}";
+    CHECK_THROWS_WITH(freeform::checkJsonText(deepDoc, "d.json"),
+                      Contains("d.json: values are nested deeper than 256 levels (at objects[1].editor.m[0][0][0][0]...)"));
+    CHECK_THROWS_WITH(freeform::checkJsonText("[1, [2, {\"x\": {\"k\": 1, \"k\": 2}}]]", "k.json"),
+                      Contains("k.json: the key \"k\" appears twice in one object (at [1][1].x)"));
+    // At the top level there is no path to give.
+    CHECK_THROWS_WITH(freeform::checkJsonText("{\"k\": 1, \"k\": 2}", "top.json"), Equals("top.json: the key \"k\" appears twice in one object"));
+}
+
+TEST_CASE("formatDocument gates editor members held as text: an error naming the object, not a stack overflow", "[hardening][json]")
+{
+    // A Document built in memory (the editor's tools, the Python bindings) carries each editor
+    // member as text; nlohmann's dump of a tree 100,000 deep recursed past the stack (SIGSEGV).
+    freeform::Document doc;
+    freeform::DocumentObject o;
+    o.name = "curve one";
+    o.data = freeform::BezierCurveData{Eigen::MatrixXd::Identity(2, 2)};
+    o.editor = "{\"a\":" + nested(100000) + "}";
+    doc.objects.push_back(o);
+    CHECK_THROWS_WITH(freeform::formatDocument(doc), Contains("object \"curve one\".editor") && Contains("nested deeper than 256"));
+    doc.objects[0].editor = R"({"visible": false, "visibl\u0065": true})";
+    CHECK_THROWS_WITH(freeform::formatDocument(doc), Contains("object \"curve one\".editor") && Contains("\"visible\" appears twice"));
+    doc.objects[0].editor = R"({"visible": false})";
+    doc.editor = "{\"display\": " + nested(100000) + "}";
+    CHECK_THROWS_WITH(freeform::formatDocument(doc), Contains("editor: values are nested deeper than 256 levels (at display"));
+    doc.editor.clear();
+    // A valid one still writes and reads back.
+    CHECK(freeform::parseDocument(freeform::formatDocument(doc), "back.json").object("curve one").editor == R"({"visible":false})");
+}
+
 TEST_CASE("JSON keys: duplicates are refused, escaped keys are the same key", "[hardening][json]")
 {
     CHECK_THROWS_WITH(freeform::parseDocument("{\"format\":\"freeform\",\"version\":1,\"version\":1,\"objects\":[]}", "dup.json"),
@@ -383,6 +419,73 @@ TEST_CASE("A PLY header line written by Blender 2.47 is kept as a comment", "[ha
     CHECK(slurp(tmp("blender_out.ply")) == ply);
 }
 
+TEST_CASE("The leniency table of docs/mesh-io.md: OFF variants, OBJ statements passed through, glTF extensions", "[hardening][leniency]")
+{
+    // OFF variants (Geomview's prefixes in the order ST C N): read with the hand values below and
+    // written back byte for byte; other dimensions are refused by name.
+    struct Variant {
+        const char* name;
+        const char* vertices;
+        bool normals, texcoords;
+    };
+    const Variant variants[] = {
+        {"NOFF", "0 0 0 0 0 1\n2 0 0 0 0 1\n0 3 0 0 0 1\n", true, false},
+        {"CNOFF", "0 0 0 0 0 1 1 0 0 1\n2 0 0 0 0 1 0 1 0 1\n0 3 0 0 0 1 0 0 1 1\n", true, false},
+        {"STOFF", "0 0 0 0.25 0.5\n2 0 0 1 0.5\n0 3 0 0.25 1\n", false, true},
+        {"STCOFF", "0 0 0 255 0 0 0.25 0.5\n2 0 0 0 255 0 1 0.5\n0 3 0 0 0 255 0.25 1\n", false, true},
+    };
+    for (const Variant& v : variants) {
+        INFO(v.name);
+        const std::string text = std::string(v.name) + "\n# a comment after the keyword\n3 1 0\n" + v.vertices + "# and between\n3 0 1 2\n";
+        const std::string name = std::string("variant_") + v.name + ".off";
+        writeText(tmp(name), text);
+        MeshFile file = MeshFile::read(tmp(name));
+        REQUIRE(file.positions().cols() == 3);
+        CHECK(file.positions().col(1) == Eigen::Vector3d(2, 0, 0));
+        CHECK(file.positions().col(2) == Eigen::Vector3d(0, 3, 0));
+        if (v.normals) {
+            REQUIRE(file.normals().cols() == 3);
+            CHECK(file.normals().col(2) == Eigen::Vector3d(0, 0, 1));
+        }
+        if (v.texcoords) {
+            const freeform::PolygonMesh mesh = file.toPolygonMesh();
+            REQUIRE(mesh.texcoords.cols() == 3);
+            CHECK(mesh.texcoords.col(1) == Eigen::Vector2d(1, 0.5));
+        }
+        file.write(tmp("back_" + name));
+        CHECK(slurp(tmp("back_" + name)) == text);
+    }
+    CHECK_THAT(readError("four.off", "4OFF\n1 0 0\n0 0 0 0\n"), Contains("four.off") && Contains("4OFF"));
+    CHECK_THAT(readError("ndim.off", "nOFF\n4\n1 0 0\n0 0 0 0\n"), Contains("ndim.off") && Contains("nOFF"));
+
+    // OBJ statements the reader does not use are passed through unchanged.
+    const std::string obj = "mtllib m.mtl\no thing\ng part\ns 1\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvp 0.5\n"
+                            "cstype bezier\ndeg 1\nl 1 2\np 3\nf 1 2 3\nxvendor_ext 1 2 3\n";
+    writeText(tmp("pass.obj"), obj);
+    MeshFile o = MeshFile::read(tmp("pass.obj"));
+    CHECK(o.positions().cols() == 3);
+    o.positions()(2, 1) = 0.5;
+    o.write(tmp("pass_back.obj"));
+    std::string expected = obj;
+    expected.replace(expected.find("v 1 0 0"), 7, "v 1 0 0.5");
+    CHECK(slurp(tmp("pass_back.obj")) == expected);
+
+    // glTF: unknown extensions are kept; extensions that change the geometry, if required, are refused by name.
+    for (const char* ext : {"KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"}) {
+        INFO(ext);
+        std::string g = gltf("", "");
+        g.insert(g.size() - 1, std::string(",\"extensionsUsed\":[\"") + ext + "\"],\"extensionsRequired\":[\"" + ext + "\"]");
+        CHECK_THAT(readError("ext.gltf", g), Contains("ext.gltf") && Contains(ext));
+    }
+    std::string g = gltf("", "");
+    g.insert(g.size() - 1, ",\"extensionsUsed\":[\"VENDOR_thing\"],\"extensions\":{\"VENDOR_thing\":{\"x\":1}}");
+    writeText(tmp("vendor.gltf"), g);
+    MeshFile vendor = MeshFile::read(tmp("vendor.gltf"));
+    CHECK(vendor.positions().cols() == 3);
+    vendor.write(tmp("vendor_back.gltf"));
+    CHECK_THAT(slurp(tmp("vendor_back.gltf")), Contains("VENDOR_thing") && Contains("\"x\""));
+}
+
 // ------------------------------------------------------------------ CLI: one error line, no JSON, no signal
 
 TEST_CASE("The CLI on hostile meshes: exit 1, one error line naming the file, nothing on stdout", "[hardening][cli]")
@@ -401,6 +504,45 @@ TEST_CASE("The CLI on hostile meshes: exit 1, one error line naming the file, no
         CHECK(r.out.empty());
         CHECK_THAT(r.err, Contains("error:") && Contains(name));
     }
+    // A points file of `freeform interpolate` nested 100,000 deep; the output must not appear.
+    writeText(tmp("cli_deep_points.json"), "{\"points\": " + nested(100000) + "}");
+    std::error_code ec;
+    fs::remove(tmp("cli_deep_out.json"), ec);
+    const auto r = freeform::test::cli("interpolate '" + tmp("cli_deep_points.json") + "' -o '" + tmp("cli_deep_out.json") + "'");
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Contains("error:") && Contains("cli_deep_points.json") && Contains("nested deeper than 256"));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(tmp("cli_deep_out.json")));
+}
+
+TEST_CASE("info and ffd say which path a mesh took: Assimp (not lossless) or the lossless readers", "[hardening][cli][assimp]")
+{
+    const std::string box = "/usr/share/assimp/models/FBX/box.fbx";
+    if (!fs::exists(box)) {
+        WARN("assimp-testmodels is not installed: the Assimp path of info and ffd was not tried");
+        return;
+    }
+    const std::string cube = std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/cube.obj";
+    // info: "reader" first, only when the file went through Assimp (docs/cli.md).
+    const auto viaAssimp = freeform::test::cli("info '" + box + "'");
+    REQUIRE(viaAssimp.status == 0);
+    const nlohmann::ordered_json a = nlohmann::ordered_json::parse(viaAssimp.out);
+    CHECK(a.begin().key() == "reader");
+    CHECK(a["reader"] == "assimp (not lossless)");
+    const auto lossless = freeform::test::cli("info '" + cube + "'");
+    REQUIRE(lossless.status == 0);
+    CHECK_FALSE(nlohmann::json::parse(lossless.out).contains("reader"));
+    // ffd: "reader" always.
+    REQUIRE(freeform::test::cli("lattice --fit '" + box + "' -o '" + tmp("box_lattice.json") + "'").status == 0);
+    const auto deformed = freeform::test::cli("ffd '" + box + "' --lattice '" + tmp("box_lattice.json") + "' -o '" + tmp("box_out.ply") + "'");
+    INFO(deformed.err);
+    REQUIRE(deformed.status == 0);
+    CHECK(nlohmann::json::parse(deformed.out)["reader"] == "assimp (not lossless)");
+    REQUIRE(freeform::test::cli("lattice --fit '" + cube + "' -o '" + tmp("cube_lattice.json") + "'").status == 0);
+    const auto plain = freeform::test::cli("ffd '" + cube + "' --lattice '" + tmp("cube_lattice.json") + "' -o '" + tmp("cube_out.obj") + "'");
+    REQUIRE(plain.status == 0);
+    CHECK(nlohmann::json::parse(plain.out)["reader"] == "freeform (lossless)");
 }
 
 // ------------------------------------------------------------------ fuzz findings
@@ -433,7 +575,7 @@ TEST_CASE("Every input the fuzzers found reads to an Error or a mesh, never a cr
         } catch (const Error&) {
         }
     }
-    CHECK(count >= 0);
+    CHECK(count >= 3); // the three findings of issue 16 (tests/regressions/README.md); more may follow
 }
 
 // ------------------------------------------------------------------ subdivision cages from the wild

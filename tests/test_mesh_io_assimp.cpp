@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <tuple>
 #include <cmath>
@@ -142,6 +143,73 @@ TEST_CASE("Every writer's output reads back through Assimp, face for face and co
         for (std::size_t f = 0; f < ours.size(); ++f) {
             REQUIRE(theirs[f].size() == ours[f].size());
             for (std::size_t k = 0; k < ours[f].size(); ++k) CHECK((theirs[f][k] - ours[f][k]).norm() < 1e-5);
+        }
+    }
+}
+
+TEST_CASE("The text writers (ASCII PLY with colours, ASCII STL) read back through Assimp value for value", "[mesh_io][assimp]")
+{
+    // The samples are binary PLY and STL; MeshFile::write keeps a file's encoding, so the ASCII
+    // writers are checked on hand-written files: positions moved, colours kept, all compared with
+    // what Assimp reads (hand values, not our reader's).
+    const std::string out = std::string(FREEFORM_TEST_TMP) + "/assimp_text_";
+    {
+        std::ofstream(out + "in.ply") << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                         "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                                         "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                                         "0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 255 128 0\n3 0 1 2\n3 0 2 3\n";
+        freeform::MeshFile file = freeform::MeshFile::read(out + "in.ply");
+        file.positions().row(2).array() += 0.25;
+        file.write(out + "out.ply");
+        {
+            std::ifstream written(out + "out.ply");
+            std::string magic, format, encoding;
+            std::getline(written, magic);
+            written >> format >> encoding;
+            REQUIRE(encoding == "ascii"); // still the ASCII writer
+        }
+        Assimp::Importer importer;
+        const aiScene* scene = importer.ReadFile(out + "out.ply", 0);
+        INFO(importer.GetErrorString());
+        REQUIRE(scene != nullptr);
+        REQUIRE(scene->mNumMeshes == 1);
+        const aiMesh* m = scene->mMeshes[0];
+        REQUIRE(m->mNumFaces == 2);
+        REQUIRE(m->HasVertexColors(0));
+        const double corners[2][3][3] = {{{0, 0, 0.25}, {1, 0, 0.25}, {1, 1, 0.25}}, {{0, 0, 0.25}, {1, 1, 0.25}, {0, 1, 0.25}}};
+        const double colours[2][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}, {1, 128.0 / 255, 0}}};
+        for (unsigned f = 0; f < 2; ++f) {
+            REQUIRE(m->mFaces[f].mNumIndices == 3);
+            for (unsigned k = 0; k < 3; ++k) {
+                const unsigned v = m->mFaces[f].mIndices[k];
+                CHECK(m->mVertices[v].x == Approx(corners[f][k][0]).margin(1e-6));
+                CHECK(m->mVertices[v].y == Approx(corners[f][k][1]).margin(1e-6));
+                CHECK(m->mVertices[v].z == Approx(corners[f][k][2]).margin(1e-6));
+                CHECK(m->mColors[0][v].r == Approx(colours[f][k][0]).margin(1e-6));
+                CHECK(m->mColors[0][v].g == Approx(colours[f][k][1]).margin(1e-6));
+                CHECK(m->mColors[0][v].b == Approx(colours[f][k][2]).margin(1e-6));
+            }
+        }
+    }
+    {
+        std::ofstream(out + "in.stl") << "solid two\n"
+                                         "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 2 0 0\nvertex 2 3 0\nendloop\nendfacet\n"
+                                         "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 2 3 0\nvertex 0 3 0\nendloop\nendfacet\n"
+                                         "endsolid two\n";
+        freeform::MeshFile file = freeform::MeshFile::read(out + "in.stl");
+        file.positions().row(0).array() -= 0.5;
+        file.write(out + "out.stl");
+        std::ifstream written(out + "out.stl");
+        std::string first;
+        written >> first;
+        REQUIRE(first == "solid"); // still the ASCII writer
+        const auto theirs = assimpFaces(out + "out.stl");
+        const std::vector<std::vector<Eigen::Vector3d>> expected = {
+            {{-0.5, 0, 0}, {1.5, 0, 0}, {1.5, 3, 0}}, {{-0.5, 0, 0}, {1.5, 3, 0}, {-0.5, 3, 0}}};
+        REQUIRE(theirs.size() == expected.size());
+        for (std::size_t f = 0; f < expected.size(); ++f) {
+            REQUIRE(theirs[f].size() == 3);
+            for (std::size_t k = 0; k < 3; ++k) CHECK((theirs[f][k] - expected[f][k]).norm() < 1e-6);
         }
     }
 }

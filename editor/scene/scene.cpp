@@ -8,6 +8,7 @@
 
 #include "freeform/io/bpt.h"
 #include "freeform/io/geometry_data.h"
+#include "freeform/io/json_check.h"
 #include "freeform/io/file.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/subdivision/subdivision_surface.h"
@@ -124,7 +125,15 @@ Scene Scene::load(const std::string& path, double aspect)
     bool hasCamera = false;
     if (!scene.document_.editor.empty()) {
         try {
-            const Json e = Json::parse(scene.document_.editor);
+            // Through the library's one JSON gate (docs/mesh-io.md, "Hostile input"): the text
+            // may come from anywhere a Document does, not only from readDocument's checked file.
+            checkJsonText(scene.document_.editor, "editor");
+            Json e;
+            try {
+                e = Json::parse(scene.document_.editor);
+            } catch (const Json::exception& x) {
+                throw Error(std::string("editor: not valid JSON: ") + x.what());
+            }
             for (const auto& [key, value] : e.items())
                 if (key != "camera" && key != "display" && key != "meshes") json::fail("editor." + key, "unknown field");
             if (e.contains("camera")) {
@@ -165,7 +174,7 @@ Scene Scene::load(const std::string& path, double aspect)
         const DocumentObject& o = scene.document_.objects[i];
         if (o.editor.empty()) continue;
         try {
-            scene.items_[i].settings = ObjectSettings::fromJson(Json::parse(o.editor), "object \"" + o.name + "\".editor");
+            scene.items_[i].settings = ObjectSettings::fromText(o.editor, "object \"" + o.name + "\".editor"); // gated
         } catch (const Error& e) {
             throw Error(path + ": " + e.what());
         }

@@ -8,9 +8,12 @@
 
 #include <freeform/core/error.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "interaction/replay.h"
+#include "scene/scene.h"
 #include "scene/settings.h"
 
 using namespace freeform;
@@ -95,4 +98,77 @@ TEST_CASE("Settings from text refuse deep nesting and repeated keys, naming the 
     CHECK(DisplaySettings::fromText(R"({"wireframe": true})", "display.json").wireframe);
     CHECK_FALSE(ObjectSettings::fromText(R"({"visible": false})", "object \"a\".editor").visible);
     CHECK(has(message([&] { DisplaySettings::fromText("{\"wireframe\": ", "display.json"); }), "display.json: not valid JSON"));
+}
+
+namespace {
+
+// A document of one curve "c" whose editor member is `editor` (JSON text), written to the test's
+// temporary folder.
+std::string documentWithEditor(const std::string& name, const std::string& objectEditor, const std::string& documentEditor = "")
+{
+    const std::string path = std::string(FREEFORM_TEST_TMP) + "/" + name;
+    std::filesystem::create_directories(FREEFORM_TEST_TMP);
+    std::ofstream out(path, std::ios::binary);
+    out << R"({"format": "freeform", "version": 1, "objects": [{"name": "c", "type": "bezier_curve", "points": [[0,0],[1,2],[4,0]])";
+    if (!objectEditor.empty()) out << ", \"editor\": " << objectEditor;
+    out << "}]";
+    if (!documentEditor.empty()) out << ", \"editor\": " << documentEditor;
+    out << "}\n";
+    return path;
+}
+
+} // namespace
+
+TEST_CASE("The scene refuses an editor member nested 100,000 deep or repeating a key, naming the object, and keeps its document", "[scene][hardening]")
+{
+    // The scene the editor holds before it tries to open the bad files (app.cpp opens into a new
+    // Scene and swaps it in only on success).
+    Scene scene = Scene::load(documentWithEditor("gate_good.json", R"({"visible": false})"));
+    REQUIRE(scene.itemCount() == 1);
+    REQUIRE_FALSE(scene.item(0).settings.visible);
+    const std::string before = scene.text();
+
+    const std::string deepPath = documentWithEditor("gate_deep.json", "{\"material\": " + deepObject(100000) + "}");
+    const std::string deep = message([&] { scene = Scene::load(deepPath); });
+    INFO(deep);
+    CHECK(has(deep, "gate_deep.json"));
+    CHECK(has(deep, "nested deeper than 256"));
+    CHECK(has(deep, "objects[0].editor.material"));
+
+    const std::string twicePath = documentWithEditor("gate_twice.json", R"({"visible": false, "visibl\u0065": true})");
+    const std::string twice = message([&] { scene = Scene::load(twicePath); });
+    INFO(twice);
+    CHECK(has(twice, "gate_twice.json"));
+    CHECK(has(twice, "\"visible\" appears twice"));
+    CHECK(has(twice, "objects[0].editor"));
+
+    // The document's own editor member (camera, display, meshes) likewise.
+    const std::string displayPath = documentWithEditor("gate_display.json", "", R"({"display": {"wireframe": true, "wireframe": false}})");
+    const std::string display = message([&] { scene = Scene::load(displayPath); });
+    INFO(display);
+    CHECK(has(display, "gate_display.json"));
+    CHECK(has(display, "\"wireframe\" appears twice"));
+    CHECK(has(display, "editor.display"));
+
+    // An object built in memory (a tool, a paste) carries its editor member as text: it passes the
+    // same gate, the error names the object, and nothing changes (no object, no undo step).
+    const std::size_t steps = scene.history().size();
+    DocumentObject o = scene.object(0);
+    o.name = "d";
+    o.editor = "{\"material\": " + deepObject(100000) + "}";
+    const std::string added = message([&] { scene.addObject(o); });
+    INFO(added);
+    CHECK(has(added, "object \"d\".editor"));
+    CHECK(has(added, "nested deeper than 256"));
+    DocumentObject c = scene.object(0);
+    c.editor = R"({"visible": false, "visible": true})";
+    const std::string replaced = message([&] { scene.replaceObject(0, c); });
+    INFO(replaced);
+    CHECK(has(replaced, "object \"c\".editor"));
+    CHECK(has(replaced, "\"visible\" appears twice"));
+
+    CHECK(scene.itemCount() == 1);
+    CHECK(scene.history().size() == steps);
+    CHECK_FALSE(scene.item(0).settings.visible);
+    CHECK(scene.text() == before);
 }

@@ -22,6 +22,13 @@ inline ProcessResult runCli(const std::vector<std::string>& args)
     r.status = freeform::cli::run(args, out, err);
     r.out = out.str();
     r.err = err.str();
+    bool help = false;
+    std::string line;
+    for (const std::string& a : args) {
+        help = help || a == "--help" || a == "-h" || a == "--version";
+        line += (line.empty() ? "" : " ") + a;
+    }
+    checkStdoutContract(r, help, line);
     return r;
 }
 

@@ -1,6 +1,12 @@
 #pragma once
 // Runs a command line through the shell and captures stdout, stderr and the exit status, for the
-// command-line contract tests.
+// command-line contract tests. Every run of the command-line tool (cli() here, runCli() in
+// support/cli.h) also checks docs/cli.md's stdout contract: one JSON object on one line, or nothing
+// (and nothing after an error); --help and --version, which print their text there, are the
+// exceptions.
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -47,10 +53,33 @@ inline ProcessResult run(const std::string& commandLine)
     return r;
 }
 
+/// docs/cli.md: stdout holds one JSON object on one line, or nothing; nothing when the command
+/// failed. `asksForHelp`: the arguments hold --help, -h or --version (their text goes to stdout).
+inline void checkStdoutContract(const ProcessResult& r, bool asksForHelp, const std::string& arguments)
+{
+    if (asksForHelp || r.out.empty()) return;
+    INFO("freeform " << arguments << "\nstdout: " << r.out.substr(0, 400));
+    CHECK(r.status == 0);
+    CHECK(r.out.back() == '\n');
+    CHECK(r.out.find('\n') == r.out.size() - 1);
+    bool object = false;
+    try {
+        object = nlohmann::json::parse(r.out).is_object();
+    } catch (const nlohmann::json::exception&) {
+    }
+    CHECK(object);
+}
+
 /// The freeform command-line tool with arguments.
 inline ProcessResult cli(const std::string& arguments)
 {
-    return run(std::string("'") + FREEFORM_CLI + "' " + arguments);
+    ProcessResult r = run(std::string("'") + FREEFORM_CLI + "' " + arguments);
+    const std::string padded = " " + arguments + " ";
+    const bool help = padded.find(" --help ") != std::string::npos || padded.find(" -h ") != std::string::npos ||
+                      padded.find(" --help=") != std::string::npos || padded.find("'--help'") != std::string::npos ||
+                      padded.find(" --version ") != std::string::npos;
+    checkStdoutContract(r, help, arguments);
+    return r;
 }
 
 } // namespace freeform::test

@@ -646,6 +646,22 @@ Document readDocument(const std::string& path)
     return parseDocument(readFile(path), path);
 }
 
+namespace {
+
+// An editor member held as text (a Document built in memory need not come from readDocument)
+// passes the one JSON gate before it becomes a tree: nlohmann's dump below recurses on depth.
+Json editorJson(const std::string& text, const std::string& source)
+{
+    checkJsonText(text, source);
+    try {
+        return Json::parse(text);
+    } catch (const Json::exception& e) {
+        throw Error(source + ": not valid JSON: " + e.what());
+    }
+}
+
+} // namespace
+
 std::string formatDocument(const Document& document)
 {
     Json root;
@@ -657,10 +673,10 @@ std::string formatDocument(const Document& document)
         j["name"] = o.name;
         j["type"] = objectType(o.data);
         std::visit(ObjectWriter{j}, o.data);
-        if (!o.editor.empty()) j["editor"] = Json::parse(o.editor);
+        if (!o.editor.empty()) j["editor"] = editorJson(o.editor, "object \"" + o.name + "\".editor");
         root["objects"].push_back(std::move(j));
     }
-    if (!document.editor.empty()) root["editor"] = Json::parse(document.editor);
+    if (!document.editor.empty()) root["editor"] = editorJson(document.editor, "editor");
     return root.dump(2) + "\n";
 }
 

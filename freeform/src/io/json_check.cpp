@@ -24,34 +24,26 @@ public:
     std::string problem;   // set when the handler stopped the parse
     bool syntax = false;   // the text is not valid JSON
 
-    bool null() { return true; }
-    bool boolean(bool) { return true; }
-    bool number_integer(Json::number_integer_t) { return true; }
-    bool number_unsigned(Json::number_unsigned_t) { return true; }
-    bool number_float(Json::number_float_t, const std::string&) { return true; }
-    bool string(std::string&) { return true; }
-    bool binary(Json::binary_t&) { return true; }
+    bool null() { return value(); }
+    bool boolean(bool) { return value(); }
+    bool number_integer(Json::number_integer_t) { return value(); }
+    bool number_unsigned(Json::number_unsigned_t) { return value(); }
+    bool number_float(Json::number_float_t, const std::string&) { return value(); }
+    bool string(std::string&) { return value(); }
+    bool binary(Json::binary_t&) { return value(); }
 
-    bool start_object(std::size_t) { return open(true); }
-    bool end_object()
-    {
-        keys_.pop_back();
-        --depth_;
-        return true;
-    }
-    bool start_array(std::size_t) { return open(false); }
-    bool end_array()
-    {
-        keys_.pop_back();
-        --depth_;
-        return true;
-    }
+    bool start_object(std::size_t) { return open(false); }
+    bool end_object() { return close(); }
+    bool start_array(std::size_t) { return open(true); }
+    bool end_array() { return close(); }
     bool key(std::string& k)
     {
-        if (!keys_.back().insert(k).second) {
-            problem = "the key \"" + k + "\" appears twice in one object";
+        Frame& f = frames_.back();
+        if (!f.keys.insert(k).second) {
+            problem = "the key \"" + k + "\" appears twice in one object" + where(frames_.size() - 1);
             return false;
         }
+        f.key = k;
         return true;
     }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&)
@@ -61,20 +53,71 @@ public:
     }
 
 private:
-    bool open(bool object)
+    // One open array or object: the index of its current element, or its keys so far and the
+    // current one (for the location in the message).
+    struct Frame {
+        bool array = false;
+        std::size_t index = 0;
+        std::set<std::string> keys;
+        std::string key;
+    };
+
+    bool value()
     {
-        if (++depth_ > maxDepth_) {
-            problem = "values are nested deeper than " + std::to_string(maxDepth_) + " levels";
+        if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+        return true;
+    }
+    bool open(bool array)
+    {
+        value();
+        if (static_cast<int>(frames_.size()) + 1 > maxDepth_) {
+            problem = "values are nested deeper than " + std::to_string(maxDepth_) + " levels" + where(frames_.size());
             return false;
         }
-        keys_.emplace_back();
-        (void)object;
+        frames_.push_back(Frame{array, 0, {}, {}});
+        return true;
+    }
+    bool close()
+    {
+        frames_.pop_back();
         return true;
     }
 
+    // " (at objects[0].editor.a...)": the path to the value being read through the outer `levels`
+    // open values, its first components only (at the depth limit it is hundreds long); empty at
+    // the top level.
+    std::string where(std::size_t levels) const
+    {
+        constexpr std::size_t kShown = 8;
+        std::string path;
+        std::size_t shown = 0;
+        for (std::size_t i = 0; i < levels; ++i) {
+            const Frame& f = frames_[i];
+            if (shown == kShown) {
+                path += "...";
+                break;
+            }
+            if (f.array) {
+                if (f.index == 0) break; // an array with no element yet: the array itself
+                path += '[';
+                path += std::to_string(f.index - 1);
+                path += ']';
+            } else {
+                if (f.key.empty() && f.keys.empty()) break; // an object before its first key
+                if (!path.empty()) path += ".";
+                path += f.key;
+            }
+            ++shown;
+        }
+        if (path.empty()) return path;
+        std::string at(" (at ");
+        at += path;
+        at += ')';
+        return at;
+    }
+
     int maxDepth_;
-    int depth_ = 0;
-    std::vector<std::set<std::string>> keys_;
+    std::vector<Frame> frames_;
 };
 
 } // namespace

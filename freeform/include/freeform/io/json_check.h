@@ -15,8 +15,8 @@ namespace freeform {
 /// Deepest nesting of arrays and objects accepted (the top-level value is depth 1).
 inline constexpr int kMaxJsonDepth = 256;
 
-/// Error "SOURCE: ..." when the text nests deeper than maxDepth or repeats a key in one object. A
-/// syntax error stops the check silently: the parse that follows reports it with its position.
+/// Error "SOURCE: ... (at PATH)" when the text nests deeper than maxDepth or repeats a key in one
+/// object; PATH (its first components) says where, e.g. objects[0].editor. A syntax error stops the check silently: the parse that follows reports it with its position.
 void checkJsonText(std::string_view text, const std::string& source, int maxDepth = kMaxJsonDepth);
 
 } // namespace freeform
