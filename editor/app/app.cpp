@@ -310,16 +310,9 @@ std::optional<std::string> App::chooseFile(bool save, const std::string& title, 
 
 void App::writeState(const std::string& path) const
 {
-    // Written whole under another name, then renamed: a reader never sees half a file.
-    const std::string temporary = path + ".part";
-    {
-        std::ofstream out(temporary, std::ios::binary);
-        out << stateText();
-        if (!out) throw Error("cannot write the state to " + temporary);
-    }
-    std::error_code ec;
-    fs::rename(temporary, path, ec);
-    if (ec) throw Error("cannot write the state to " + path + ": " + ec.message());
+    // The library's atomic writer (io/file.h): a reader never sees half a file, and a run killed
+    // while writing leaves nothing behind.
+    writeFileAtomically(path, stateText());
 }
 
 void App::viewSize(int& width, int& height) const
