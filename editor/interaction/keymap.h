@@ -26,6 +26,7 @@ enum class KeyContext {
     Spline,     // spline joint handle modes (SplineTool)
     Patch,      // Bezier patches (PatchTool)
     Lattice,    // lattices and FFD (LatticeTool)
+    Cage,       // subdivision cages: creases and corners (CageTool)
     Edit,       // selection and editing options (Interaction)
     View,       // camera, display and windows (App)
 };
@@ -47,6 +48,8 @@ enum class KeyAction {
     CreatePatch,
     // Lattice
     FitLattice, DirectManipulation, ApplyLattice,
+    // Cage
+    CageEdgeMode, SetCrease, ClearCrease, SetCorner, ClearCorner,
     // Edit
     SelectAll, SelectNone, Deselect, Grab, ToggleGizmo, ToggleSoft, ToggleSnap, SoftLarger, SoftSmaller,
     // View

@@ -2,7 +2,7 @@
 
 namespace freeform::editor {
 
-Tools::Tools() : all_{&curve_, &spline_, &patch_, &lattice_} {}
+Tools::Tools() : all_{&curve_, &spline_, &patch_, &lattice_, &cage_} {}
 
 bool Tools::onKey(ToolContext& c, int key, int mods)
 {
@@ -28,6 +28,7 @@ void Tools::update(ToolContext& c, Overlay& o)
     curve_.update(c, o);
     patch_.update(c, o);
     lattice_.update(c, o);
+    cage_.update(c, o);
 }
 
 void Tools::reset()

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/cage_tool.h"
 #include "tools/curve_tool.h"
 #include "tools/lattice_tool.h"
 #include "tools/patch_tool.h"
@@ -48,6 +49,7 @@ public:
     SplineTool& spline() { return spline_; }
     PatchTool& patch() { return patch_; }
     LatticeTool& lattice() { return lattice_; }
+    CageTool& cage() { return cage_; }
     /// The tools in dispatch order.
     const std::vector<Tool*>& all() const { return all_; }
 
@@ -60,6 +62,7 @@ private:
     SplineTool spline_{message_};
     PatchTool patch_{message_};
     LatticeTool lattice_{message_};
+    CageTool cage_{message_};
     std::vector<Tool*> all_;
 };
 
