@@ -17,7 +17,10 @@ void CageTool::drawPanel(ToolContext& c)
     if (!isCage(c.scene, item)) return;
     const auto& d = std::get<SubdivisionSurfaceData>(c.scene.object(item).data);
     ImGui::TextUnformatted("Subdivision cage");
-    if (!d.mesh.empty()) ImGui::TextDisabled("cage file: %s (written inline on the first edit)", d.mesh.c_str());
+    if (!d.mesh.empty()) {
+        ImGui::TextDisabled("cage file: %s", d.mesh.c_str());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("written inline on the first crease, corner or vertex edit; the file stays as it is");
+    }
 
     static const char* schemes[] = {"catmark", "loop"};
     int scheme = d.scheme == "loop" ? 1 : 0;
@@ -36,29 +39,31 @@ void CageTool::drawPanel(ToolContext& c)
         int creases = 0, corners = 0;
         for (const EdgeCrease& e : cage->creases) creases += e.sharpness > 0;
         for (const VertexCorner& v : cage->corners) corners += v.sharpness > 0;
-        ImGui::Text("cage: %d vertices, %d faces, %d creases, %d corners", cage->mesh.vertexCount(), cage->mesh.faceCount(), creases,
-                    corners);
+        ImGui::Text("cage: %d vertices, %d faces", cage->mesh.vertexCount(), cage->mesh.faceCount());
+        ImGui::Text("      %d creases, %d corners", creases, corners);
     }
     if (g.surface) ImGui::Text("limit surface: %d triangles", g.surface->faceCount());
     ImGui::Checkbox("show creases and corners", &showCage);
 
     ImGui::Separator();
-    ImGui::Checkbox("edge mode (E): click picks an edge", &edgeMode);
+    ImGui::Checkbox("edge mode (E)", &edgeMode);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("a click in the view picks the nearest edge of this cage");
     float s = static_cast<float>(sharpness);
     if (ImGui::SliderFloat("sharpness", &s, 0.0f, 10.0f, s >= 10.0f ? "%.1f (infinite)" : "%.2f")) sharpness = s;
     const bool pickedHere = pickedEdge() && pickedItem() == c.scene.item(item).id;
     if (pickedHere) {
         const auto& e = *pickedEdge();
         ImGui::Text("edge %d-%d: sharpness %.3g", e[0], e[1], cage ? edgeSharpness(*cage, e[0], e[1]) : 0.0);
-        if (ImGui::Button("set crease (S)")) setCrease(c, item, e[0], e[1], sharpness);
+        if (ImGui::Button("crease (S)")) setCrease(c, item, e[0], e[1], sharpness);
         ImGui::SameLine();
-        if (ImGui::Button("clear crease (Shift+S)")) clearCrease(c, item, e[0], e[1]);
+        if (ImGui::Button("clear (Shift+S)")) clearCrease(c, item, e[0], e[1]);
     } else {
         ImGui::TextDisabled("no edge picked (E, then click an edge)");
     }
     char label[64];
-    std::snprintf(label, sizeof label, "set corners of %zu point(s) (Alt+S)", c.selection.points.size());
-    if (ImGui::Button(label)) setCorners(c, item, c.selection.points, sharpness);
+    std::snprintf(label, sizeof label, "corners: %zu point(s)", c.selection.points.size());
+    ImGui::TextUnformatted(label);
+    if (ImGui::Button("corner (Alt+S)")) setCorners(c, item, c.selection.points, sharpness);
     ImGui::SameLine();
     if (ImGui::Button("clear (Alt+Shift+S)")) setCorners(c, item, c.selection.points, 0);
 }
