@@ -3,14 +3,13 @@
 #include <memory>
 
 #include "command.h"
-#include "typed_document.h"
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
 namespace {
 
-/// The joints from the document layer's continuity() (a bezier_spline, or a deboor_spline through the
-/// A-frame; 2D or 3D).
+/// The joints from the document layer's continuity() (a bezier_spline, a deboor_spline through the
+/// A-frame, a nurbs_curve at its knots; 2D or 3D).
 Json report(const TypedDocument& doc, const TypedObject& object, const ContinuityTolerances<double>& tol)
 {
     Json joints = Json::array();
@@ -45,12 +44,7 @@ Json continuity(const ContinuityOptions& o)
         tol.relative = tol.angle = o.tolerance;
     }
     const TypedDocument doc = TypedDocument::read(o.positional[0]);
-    const TypedObject& object = objectNamed(doc, o.object);
-    if (std::holds_alternative<NurbsCurveData>(object.data())) {
-        const Document plain = doc.toDocument();
-        return nurbsContinuity(plain, plain.object(o.object), tol);
-    }
-    return report(doc, object, tol);
+    return report(doc, doc.object(o.object), tol); // every curve type, nurbs_curve included
 }
 
 } // namespace

@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "convert.h"
-#include "typed_document.h"
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
 
@@ -29,7 +28,7 @@ Json convertSpline(const ConvertOptions& o)
         end = parseEndCondition(o.end, "--end");
     }
     TypedDocument doc = TypedDocument::read(o.positional[0]);
-    const ObjectId id = objectNamed(doc, name).id();
+    const ObjectId id = doc.object(name).id();
     const std::string from = doc.object(id).type();
     freeform::convertSpline(doc, id, to, end); // the document layer: the A-frame or its inverse
     writeDocument(doc.toDocument(), output);

@@ -3,7 +3,6 @@
 #include <memory>
 
 #include "command.h"
-#include "typed_document.h"
 #include "freeform/core/error.h"
 
 namespace freeform::cli {
@@ -20,7 +19,7 @@ Json eval(const EvalOptions& o)
     expectPositional(o.positional, 1, "the document (freeform eval DOC.json --object NAME --at T)");
     if (o.derivatives < 0) throw UsageError("option --derivatives: the order must not be negative");
     const TypedDocument doc = TypedDocument::read(o.positional[0]);
-    const TypedObject& object = objectNamed(doc, o.object);
+    const TypedObject& object = doc.object(o.object);
     const std::string type = object.type();
     const auto it = evaluators().find(type);
     if (it == evaluators().end())

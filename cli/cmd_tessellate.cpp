@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "command.h"
-#include "typed_document.h"
 #include "freeform/document/operations.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/mesh_io.h"
@@ -58,21 +57,19 @@ Json tessellateCommand(const TessellateOptions& o)
     options.sampleDeviation = true;
 
     PatchComplex complex;
-    std::vector<const DocumentObject*> rational; // rational_bezier_surface, nurbs_surface
-    std::optional<Document> document;
+    std::vector<const TypedObject*> rational; // rational_bezier_surface, nurbs_surface (tessellate_rational.cpp)
+    std::optional<TypedDocument> document;
     if (hasExtension(input, ".bpt")) {
         if (given(o.objectGiven)) throw UsageError("option --object applies to documents, not .bpt files");
         complex = readBpt(input);
     } else {
-        const TypedDocument doc = TypedDocument::read(input);
-        document = doc.toDocument(); // plain data for the rational surfaces (tessellate_rational.cpp)
-        const Document& plain = *document;
+        const TypedDocument& doc = document.emplace(TypedDocument::read(input));
         if (given(o.objectGiven)) {
-            const TypedObject& object = objectNamed(doc, o.object);
-            if (isRationalSurface(plain.object(o.object))) rational.push_back(&plain.object(o.object));
+            const TypedObject& object = doc.object(o.object);
+            if (isRationalSurface(object)) rational.push_back(&object);
             else complex = surfacePatches(doc, object);
         } else {
-            for (const DocumentObject& obj : plain.objects)
+            for (const TypedObject& obj : doc.objects())
                 if (isRationalSurface(obj)) rational.push_back(&obj);
             const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(),
                                                 [](const TypedObject& t) { return AnySurface::of(t).has_value(); });

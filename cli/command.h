@@ -106,12 +106,10 @@ struct RationalMeshes {
     int patches = 0;       // Bézier patches (after extraction)
     double errorBound = 0; // the largest certified bound
 };
-bool isRationalSurface(const DocumentObject& object);
-RationalMeshes tessellateRationalSurfaces(const Document& doc, const std::vector<const DocumentObject*>& objects,
+bool isRationalSurface(const TypedObject& object);
+RationalMeshes tessellateRationalSurfaces(const TypedDocument& doc, const std::vector<const TypedObject*>& objects,
                                           const TessellationOptions& options);
 PolygonMesh mergeMeshes(const std::vector<PolygonMesh>& meshes);
-/// `freeform continuity` on a nurbs_curve through the document layer (convert_rational.cpp).
-Json nurbsContinuity(const Document& doc, const DocumentObject& object, const ContinuityTolerances<double>& tol);
 
 /// `freeform interpolate --degree P` (interpolate_nurbs.cpp): writes the nurbs_curve "interpolant".
 Json interpolateNurbsCommand(const PointColumns& points, const std::vector<double>& params, Parametrization param,

@@ -3,8 +3,6 @@
 // (--to bezier_spline, rational_bezier_curve, bezier_surface, rational_bezier_surface), through the
 // document layer (document/operations.h: toNurbsData, fromNurbsData).
 
-#include <filesystem>
-
 #include "convert.h"
 #include "freeform/document/operations.h"
 
@@ -44,28 +42,6 @@ Json convertRational(const ConvertOptions& o)
             else return 0;
         },
         doc.object(id).data());
-    return out;
-}
-
-Json nurbsContinuity(const Document& doc, const DocumentObject& object, const ContinuityTolerances<double>& tol)
-{
-    Document one;
-    one.source = doc.source;
-    one.objects.push_back(object);
-    const TypedDocument typed(one, std::filesystem::path(doc.source).parent_path().string());
-    Json joints = Json::array();
-    for (const auto& j : continuity(typed, typed.objects().front(), tol)) {
-        Json e;
-        e["joint"] = j.joint;
-        e["t"] = j.t;
-        e["C"] = j.C;
-        e["G"] = j.G;
-        e["jumps"] = j.jumps;
-        joints.push_back(std::move(e));
-    }
-    Json out;
-    out["object"] = object.name;
-    out["joints"] = std::move(joints);
     return out;
 }
 

@@ -1,34 +1,28 @@
 // `freeform tessellate` for rational_bezier_surface and nurbs_surface objects: through the
 // document layer (tessellateObject, the certified rational bound of tessellate_rational.h).
 
-#include <filesystem>
-
 #include "command.h"
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
 
-bool isRationalSurface(const DocumentObject& object)
+bool isRationalSurface(const TypedObject& object)
 {
-    return std::holds_alternative<RationalBezierSurfaceData>(object.data) || std::holds_alternative<NurbsSurfaceData>(object.data);
+    return object.type() == "rational_bezier_surface" || object.type() == "nurbs_surface";
 }
 
-RationalMeshes tessellateRationalSurfaces(const Document& doc, const std::vector<const DocumentObject*>& objects,
+RationalMeshes tessellateRationalSurfaces(const TypedDocument& doc, const std::vector<const TypedObject*>& objects,
                                           const TessellationOptions& options)
 {
-    Document subset;
-    subset.source = doc.source;
-    for (const DocumentObject* o : objects) subset.objects.push_back(*o);
-    const TypedDocument typed(subset, std::filesystem::path(doc.source).parent_path().string());
     RationalMeshes out;
     ObjectTessellation settings;
     settings.tolerance = options.tolerance;
     settings.segments = options.segmentsU;
     settings.flip = options.flipNormals;
-    for (const TypedObject& o : typed.objects()) {
+    for (const TypedObject* o : objects) {
         TessellationReport report;
-        const auto mesh = tessellateObject(o, settings, &report);
-        if (!mesh) throw Error(typed.what(o) + ": type " + o.type() + " is not a surface");
+        const auto mesh = tessellateObject(*o, settings, &report);
+        if (!mesh) throw Error(doc.what(*o) + ": type " + o->type() + " is not a surface");
         out.patches += static_cast<int>(report.segments.size());
         out.errorBound = std::max(out.errorBound, report.errorBound);
         out.meshes.push_back(*mesh);

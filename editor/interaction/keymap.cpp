@@ -79,6 +79,12 @@ std::vector<KeyBinding> makeKeymap()
         {GLFW_KEY_L, 0, kPlain, C::Lattice, A::FitLattice, "L (imported mesh selected)", "fit a lattice to it (degrees and margin in the panel)"},
         {GLFW_KEY_D, 0, kPlain, C::Lattice, A::DirectManipulation, "D", "direct manipulation on / off (drag a point of a deformed mesh; the lattice follows)"},
         {GLFW_KEY_A, kShift, kPlainShift, C::Lattice, A::ApplyLattice, "Shift+A (lattice selected)", "apply it exactly to the document's curves, splines, patches and cages (as freeform ffd DOC)"},
+        // Subdivision cages.
+        {GLFW_KEY_E, 0, kPlainShift, C::Cage, A::CageEdgeMode, "E (cage selected)", "edge mode on / off: a click picks a cage edge"},
+        {GLFW_KEY_S, 0, kPlainShift, C::Cage, A::SetCrease, "S (cage edge picked)", "crease: set the picked edge's sharpness to the panel's value"},
+        {GLFW_KEY_S, kShift, kPlainShift, C::Cage, A::ClearCrease, "Shift+S (cage edge picked)", "crease: clear the picked edge's sharpness"},
+        {GLFW_KEY_S, kAlt, kPlainShift, C::Cage, A::SetCorner, "Alt+S (cage points selected)", "corner: set the selected vertices' sharpness to the panel's value"},
+        {GLFW_KEY_S, kAlt | kShift, kPlainShift, C::Cage, A::ClearCorner, "Alt+Shift+S (cage points selected)", "corner: clear the selected vertices' sharpness"},
         // Editing.
         {GLFW_KEY_A, 0, kCtrl | kShift | kAlt, C::Edit, A::SelectAll, "A", "select all points"},
         {GLFW_KEY_A, kAlt, kCtrl | kAlt, C::Edit, A::SelectNone, "Alt+A", "select no point"},
@@ -144,6 +150,7 @@ const char* contextTitle(KeyContext context)
     case KeyContext::Patch: return "Tools: patches";
     case KeyContext::Nurbs: return "Tools: rational and NURBS objects";
     case KeyContext::Lattice: return "Tools: lattices";
+    case KeyContext::Cage: return "Tools: subdivision cages";
     case KeyContext::Edit: return "Editing";
     case KeyContext::View: return "View";
     }

@@ -27,6 +27,7 @@ enum class KeyContext {
     Patch,      // Bezier patches (PatchTool)
     Nurbs,      // rational and NURBS objects: circles, arcs, knots, weights (NurbsTool)
     Lattice,    // lattices and FFD (LatticeTool)
+    Cage,       // subdivision cages: creases and corners (CageTool)
     Edit,       // selection and editing options (Interaction)
     View,       // camera, display and windows (App)
 };
@@ -50,6 +51,8 @@ enum class KeyAction {
     CreateCircle, CreateArc, CircleCancel, InsertKnot, DeBoorConstruction,
     // Lattice
     FitLattice, DirectManipulation, ApplyLattice,
+    // Cage
+    CageEdgeMode, SetCrease, ClearCrease, SetCorner, ClearCorner,
     // Edit
     SelectAll, SelectNone, Deselect, Grab, ToggleGizmo, ToggleSoft, ToggleSnap, SoftLarger, SoftSmaller,
     // View

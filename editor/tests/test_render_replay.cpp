@@ -31,31 +31,16 @@
 #include "interaction/replay.h"
 #include "scene/scene.h"
 #include "support/process.h"
+#include "support/replay_session.h"
 
 using namespace freeform;
 using namespace freeform::editor;
+using namespace freeform::editor::replay_test;
 using Json = nlohmann::ordered_json;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::string kTmp = FREEFORM_TEST_TMP;
-constexpr int kW = 1280, kH = 800;
-
-template <typename... Parts>
-std::string cat(const Parts&... parts)
-{
-    std::ostringstream s;
-    (s << ... << parts);
-    return s.str();
-}
-
-/// Runs the editor (see test_render.cpp for the leak-check note); `environment` is prepended.
-test::ProcessResult runEditor(const std::string& arguments, const std::string& environment = "")
-{
-    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" ", environment, " '", FREEFORM_EDITOR, "' ", arguments));
-}
 
 const Eigen::Vector3d kPoints[4] = {{-2, 0, 0}, {-1, 0, 1.5}, {1, 0, 1.5}, {2, 0, 0}};
 
@@ -67,17 +52,11 @@ std::string curveDocument()
     static bool written = false;
     if (written) return doc;
     written = true;
-    const Eigen::Vector3d back = Eigen::Vector3d(1, -2, 1).normalized(), right = Eigen::Vector3d(2, 1, 0).normalized();
-    Eigen::Matrix3d frame;
-    frame << right, back.cross(right), back;
-    const Eigen::Quaterniond q(frame);
     Json j = {{"format", "freeform"}, {"version", 1}};
     Json points = Json::array();
     for (const auto& p : kPoints) points.push_back({p.x(), p.y(), p.z()});
     j["objects"] = Json::array({{{"name", "c"}, {"type", "bezier_curve"}, {"points", points}}});
-    j["editor"] = {{"camera",
-                    {{"target", {0.0, 0.0, 0.75}}, {"distance", 9.0}, {"orientation", {q.w(), q.x(), q.y(), q.z()}}, {"fovy", 35.0},
-                     {"projection", "perspective"}, {"orbit", "turntable"}}}};
+    j["editor"] = {{"camera", frontRightCamera(Eigen::Vector3d(0, 0, 0.75), 9.0)}};
     test::writeText(source, j.dump(2));
     const auto r = runEditor(cat("'", source, "' --save '", doc, "'"));
     INFO(r.err);
@@ -123,35 +102,6 @@ Eigen::Vector3d hitViewPlane(const HandCamera& c, double x, double y, const Eige
     return o + ((p - o).dot(c.back) / d.dot(c.back)) * d;
 }
 
-Json move(const Eigen::Vector2d& p)
-{
-    return {{"type", "move"}, {"x", p.x()}, {"y", p.y()}};
-}
-Json press(const Eigen::Vector2d& p)
-{
-    return {{"type", "press"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}};
-}
-Json release(const Eigen::Vector2d& p)
-{
-    return {{"type", "release"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}};
-}
-Json key(const std::string& k, const std::vector<std::string>& mods = {})
-{
-    Json e = {{"type", "key"}, {"key", k}};
-    if (!mods.empty()) e["mods"] = mods;
-    return e;
-}
-
-/// Appends press, two moves and a release.
-void drag(Json& events, const Eigen::Vector2d& from, const Eigen::Vector2d& to)
-{
-    events.push_back(move(from));
-    events.push_back(press(from));
-    events.push_back(move(0.5 * (from + to)));
-    events.push_back(move(to));
-    events.push_back(release(to));
-}
-
 /// Appends a click on the curve (its end, point 0) to select it.
 void selectCurve(Json& events, const Scene& scene)
 {
@@ -164,14 +114,7 @@ void selectCurve(Json& events, const Scene& scene)
 /// Runs a replay of `events` on the curve document and returns the saved file.
 std::string replay(const std::string& name, const Json& events, const std::string& environment = "")
 {
-    const std::string file = cat(kTmp, "/replay_", name, ".events.json"), out = cat(kTmp, "/replay_", name, ".out.json");
-    test::writeText(file, Json{{"events", events}}.dump(1));
-    fs::remove(out);
-    const auto r = runEditor(cat("'", curveDocument(), "' --replay '", file, "' --save '", out, "' --size ", kW, "x", kH), environment);
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    REQUIRE(fs::exists(out));
-    return out;
+    return replayAndSave(curveDocument(), cat("replay_", name), events, environment);
 }
 
 } // namespace

@@ -31,41 +31,19 @@
 #include "interaction/replay.h"
 #include "scene/scene.h"
 #include "support/process.h"
+#include "support/replay_session.h"
 #include "tools/curve_tools.h"
 
 using namespace freeform;
 using namespace freeform::editor;
+using namespace freeform::editor::replay_test;
 using Json = nlohmann::ordered_json;
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTmp = FREEFORM_TEST_TMP;
-constexpr int kW = 1280, kH = 800;
-
-template <typename... Parts>
-std::string cat(const Parts&... parts)
-{
-    std::ostringstream s;
-    (s << ... << parts);
-    return s.str();
-}
-
-test::ProcessResult runEditor(const std::string& arguments)
-{
-    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' ", arguments));
-}
-
-Json cameraJson()
-{
-    const Eigen::Vector3d back = Eigen::Vector3d(1, -2, 1).normalized(), right = Eigen::Vector3d(2, 1, 0).normalized();
-    Eigen::Matrix3d frame;
-    frame << right, back.cross(right), back;
-    const Eigen::Quaterniond q(frame);
-    return {{"target", {0.0, 0.0, 0.75}}, {"distance", 9.0}, {"orientation", {q.w(), q.x(), q.y(), q.z()}},
-            {"fovy", 35.0}, {"projection", "perspective"}, {"orbit", "turntable"}};
-}
+Json cameraJson() { return frontRightCamera(Eigen::Vector3d(0, 0, 0.75), 9.0); }
 
 std::string document()
 {
@@ -86,42 +64,7 @@ std::string document()
 
 std::string replay(const std::string& name, const Json& events)
 {
-    const std::string file = cat(kTmp, "/modes_", name, ".events.json"), out = cat(kTmp, "/modes_", name, ".out.json");
-    test::writeText(file, Json{{"events", events}}.dump(1));
-    fs::remove(out);
-    const auto r = runEditor(cat("'", document(), "' --replay '", file, "' --save '", out, "' --size ", kW, "x", kH));
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    REQUIRE(fs::exists(out));
-    return out;
-}
-
-Json move(const Eigen::Vector2d& p) { return {{"type", "move"}, {"x", p.x()}, {"y", p.y()}}; }
-Json button(const char* type, const Eigen::Vector2d& p, bool shift = false)
-{
-    Json e = {{"type", type}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}};
-    if (shift) e["mods"] = {"shift"};
-    return e;
-}
-Json key(const std::string& k, const std::vector<std::string>& mods = {})
-{
-    Json e = {{"type", "key"}, {"key", k}};
-    if (!mods.empty()) e["mods"] = mods;
-    return e;
-}
-void click(Json& events, const Eigen::Vector2d& p, bool shift = false)
-{
-    events.push_back(move(p));
-    events.push_back(button("press", p, shift));
-    events.push_back(button("release", p, shift));
-}
-void drag(Json& events, const Eigen::Vector2d& from, const Eigen::Vector2d& to)
-{
-    events.push_back(move(from));
-    events.push_back(button("press", from));
-    events.push_back(move(0.5 * (from + to)));
-    events.push_back(move(to));
-    events.push_back(button("release", to));
+    return replayAndSave(document(), cat("modes_", name), events);
 }
 
 const std::vector<Eigen::Vector2d> kClicks = {{380, 520}, {480, 260}, {640, 470}, {760, 250.5}, {900, 540}};

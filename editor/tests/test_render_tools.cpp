@@ -39,46 +39,24 @@
 #include "interaction/replay.h"
 #include "scene/scene.h"
 #include "support/process.h"
+#include "support/replay_session.h"
 
 using namespace freeform;
 using namespace freeform::editor;
+using namespace freeform::editor::replay_test;
 using Json = nlohmann::ordered_json;
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTmp = FREEFORM_TEST_TMP;
-constexpr int kW = 1280, kH = 800;
-
 // The Properties window (ui/ui.cpp): 290 pixels wide, 8 from the right edge, 420 high, 8 below the
 // 19-pixel menu bar; so its bottom edge is at y = 447.
 constexpr double kPanelBottom = 19 + 8 + 420;
 const Eigen::Vector2d kPanelScroll(1100, 60); // over the panel, off its scrolling child windows
 
-template <typename... Parts>
-std::string cat(const Parts&... parts)
-{
-    std::ostringstream s;
-    (s << ... << parts);
-    return s.str();
-}
-
-test::ProcessResult runEditor(const std::string& arguments)
-{
-    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' ", arguments));
-}
-
 /// A camera looking from the front right above (as the editor saves it).
-Json camera(const Eigen::Vector3d& target, double distance)
-{
-    const Eigen::Vector3d back = Eigen::Vector3d(1, -2, 1).normalized(), right = Eigen::Vector3d(2, 1, 0).normalized();
-    Eigen::Matrix3d frame;
-    frame << right, back.cross(right), back;
-    const Eigen::Quaterniond q(frame);
-    return {{"target", {target.x(), target.y(), target.z()}}, {"distance", distance}, {"orientation", {q.w(), q.x(), q.y(), q.z()}},
-            {"fovy", 35.0}, {"projection", "perspective"}, {"orbit", "turntable"}};
-}
+Json camera(const Eigen::Vector3d& target, double distance) { return frontRightCamera(target, distance); }
 
 /// Writes `j` and lets the editor save it once, so that a load and a save reproduce it byte for byte.
 std::string writeDocument(const std::string& name, const Json& j)
@@ -94,42 +72,14 @@ std::string writeDocument(const std::string& name, const Json& j)
 /// Runs a replay of `events` on `doc` and returns the saved file.
 std::string replay(const std::string& doc, const std::string& name, const Json& events)
 {
-    const std::string file = cat(kTmp, "/tools_", name, ".events.json"), out = cat(kTmp, "/tools_", name, ".out.json");
-    test::writeText(file, Json{{"events", events}}.dump(1));
-    fs::remove(out);
-    const auto r = runEditor(cat("'", doc, "' --replay '", file, "' --save '", out, "' --size ", kW, "x", kH));
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    REQUIRE(fs::exists(out));
-    return out;
+    return replayAndSave(doc, cat("tools_", name), events);
 }
 
-Json move(const Eigen::Vector2d& p) { return {{"type", "move"}, {"x", p.x()}, {"y", p.y()}}; }
-Json press(const Eigen::Vector2d& p) { return {{"type", "press"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}}; }
-Json release(const Eigen::Vector2d& p) { return {{"type", "release"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}}; }
-Json key(const std::string& k, const std::vector<std::string>& mods = {})
+/// A click and one frame after it.
+void clickFrame(Json& events, const Eigen::Vector2d& p)
 {
-    Json e = {{"type", "key"}, {"key", k}};
-    if (!mods.empty()) e["mods"] = mods;
-    return e;
-}
-Json frames(int count) { return {{"type", "frame"}, {"count", count}}; }
-
-void click(Json& events, const Eigen::Vector2d& p)
-{
-    events.push_back(move(p));
-    events.push_back(press(p));
-    events.push_back(release(p));
+    click(events, p);
     events.push_back(frames(1));
-}
-
-void drag(Json& events, const Eigen::Vector2d& from, const Eigen::Vector2d& to)
-{
-    events.push_back(move(from));
-    events.push_back(press(from));
-    events.push_back(move(0.5 * (from + to)));
-    events.push_back(move(to));
-    events.push_back(release(to));
 }
 
 /// Scrolls the Properties window to its end.
@@ -215,8 +165,8 @@ TEST_CASE("the mirrored handle mode (key 3) makes a C0 joint C1 by the continuit
 
     const Scene scene = Scene::load(doc);
     Json events = Json::array();
-    click(events, worldToPixel(scene, kW, kH, points[0])); // selects the spline
-    click(events, worldToPixel(scene, kW, kH, points[3])); // selects the joint point
+    clickFrame(events, worldToPixel(scene, kW, kH, points[0])); // selects the spline
+    clickFrame(events, worldToPixel(scene, kW, kH, points[3])); // selects the joint point
     events.push_back(key("3"));
     const std::string out = replay(doc, "mirror", events);
 
@@ -247,7 +197,7 @@ TEST_CASE("a lattice fitted to an imported mesh, dragged and exported, gives fre
 
     // Phase 1: select the mesh (a click on its middle) and fit a lattice (L, degrees 3 x 3 x 3).
     Json fit = Json::array();
-    click(fit, worldToPixel(scene, kW, kH, Eigen::Vector3d::Zero()));
+    clickFrame(fit, worldToPixel(scene, kW, kH, Eigen::Vector3d::Zero()));
     fit.push_back(key("L"));
     const std::string fitted = replay(doc, "ffd_fit", fit);
     const std::vector<Eigen::Vector3d> rest = savedPoints(fitted, "sphere_lattice");
@@ -262,12 +212,12 @@ TEST_CASE("a lattice fitted to an imported mesh, dragged and exported, gives fre
     drag(events, corner, corner + Eigen::Vector2d(43, -34));
     events.push_back(key("Escape")); // deselects the point (the lattice stays selected)
     scrollPanelToEnd(events);
-    click(events, {1000, kPanelBottom - 64});           // "det J colour map"
-    click(events, {1080, kPanelBottom - 41});           // the export path field
+    clickFrame(events, {1000, kPanelBottom - 64});           // "det J colour map"
+    clickFrame(events, {1080, kPanelBottom - 41});           // the export path field
     events.push_back(key("A", {"ctrl"}));               // select its text ...
     events.push_back({{"type", "text"}, {"text", exported}}); // ... and type over it
     events.push_back(key("Enter"));
-    click(events, {1220, kPanelBottom - 41});           // "export deformed"
+    clickFrame(events, {1220, kPanelBottom - 41});           // "export deformed"
     const std::string out = replay(doc, "ffd", events);
     REQUIRE(fs::exists(exported));
 
@@ -324,12 +274,12 @@ TEST_CASE("all joints of a cubic spline set to C2 through the panel are C2; undo
 
     const Scene scene = Scene::load(doc);
     Json events = Json::array();
-    click(events, worldToPixel(scene, kW, kH, points[0]));
+    clickFrame(events, worldToPixel(scene, kW, kH, points[0]));
     scrollPanelToEnd(events);
     // The spline panel ends with the joints table (two rows); the "all joints" combo is above it,
     // and its list opens below it: free, aligned, mirrored, C2.
-    click(events, {1040, kPanelBottom - 85});
-    click(events, {1020, kPanelBottom - 10});
+    clickFrame(events, {1040, kPanelBottom - 85});
+    clickFrame(events, {1020, kPanelBottom - 10});
     const std::string out = replay(doc, "c2", events);
 
     const std::vector<Eigen::Vector3d> after = savedPoints(out, "s");
@@ -368,7 +318,7 @@ TEST_CASE("a curve drawn by clicking has its points under the clicks, in the vie
     const std::vector<Eigen::Vector2d> clicks = {{420.25, 520}, {500, 300.5}, {700, 280}, {820.75, 560.125}};
     Json events = Json::array();
     events.push_back(key("C"));
-    for (const auto& p : clicks) click(events, p);
+    for (const auto& p : clicks) clickFrame(events, p);
     events.push_back(key("Enter"));
     const std::string out = replay(doc, "draw", events);
 
@@ -402,7 +352,7 @@ TEST_CASE("a spline drawn with Shift+C passes through the clicks and is C2 by fr
     const std::vector<Eigen::Vector2d> clicks = {{380, 520}, {480, 260}, {640, 470}, {760, 250.5}, {900, 540}};
     Json events = Json::array();
     events.push_back(key("C", {"shift"}));
-    for (const auto& p : clicks) click(events, p);
+    for (const auto& p : clicks) clickFrame(events, p);
     events.push_back(key("Enter"));
     const std::string out = replay(doc, "draw_spline", events);
 
@@ -459,7 +409,7 @@ TEST_CASE("fit/apply lattice by --replay then --save writes freeform ffd's objec
             }
     REQUIRE(target != centre);
     Json events = Json::array();
-    click(events, target);
+    clickFrame(events, target);
     events.push_back(key("A", {"shift"}));
     events.push_back(frames(2));
     const std::string out = replay(doc, "every_type", events);

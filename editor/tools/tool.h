@@ -1,5 +1,5 @@
 #pragma once
-// The interface of one editing tool (curves, spline joints, patches, lattices): like a polyscope
+// The interface of one editing tool (curves, spline joints, patches, lattices, subdivision cages): like a polyscope
 // structure, a tool owns its state, handles the keys of its keymap context (interaction/keymap.h)
 // and the pointer events it wants, fills the overlay with its construction geometry each frame, and
 // draws its own panel section. Tools (tools/tools.h) holds one of each and dispatches to them in a

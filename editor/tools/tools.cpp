@@ -2,7 +2,7 @@
 
 namespace freeform::editor {
 
-Tools::Tools() : all_{&curve_, &spline_, &patch_, &nurbs_, &lattice_} {}
+Tools::Tools() : all_{&curve_, &spline_, &patch_, &nurbs_, &lattice_, &cage_} {}
 
 bool Tools::onKey(ToolContext& c, int key, int mods)
 {
@@ -29,6 +29,7 @@ void Tools::update(ToolContext& c, Overlay& o)
     patch_.update(c, o);
     nurbs_.update(c, o);
     lattice_.update(c, o);
+    cage_.update(c, o);
 }
 
 void Tools::reset()

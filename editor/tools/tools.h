@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/cage_tool.h"
 #include "tools/curve_tool.h"
 #include "tools/lattice_tool.h"
 #include "tools/nurbs_tool.h"
@@ -50,6 +51,7 @@ public:
     PatchTool& patch() { return patch_; }
     LatticeTool& lattice() { return lattice_; }
     NurbsTool& nurbs() { return nurbs_; }
+    CageTool& cage() { return cage_; }
     /// The tools in dispatch order.
     const std::vector<Tool*>& all() const { return all_; }
 
@@ -63,6 +65,7 @@ private:
     PatchTool patch_{message_};
     LatticeTool lattice_{message_};
     NurbsTool nurbs_{message_};
+    CageTool cage_{message_};
     std::vector<Tool*> all_;
 };
 

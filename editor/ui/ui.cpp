@@ -431,7 +431,7 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                         else if constexpr (std::is_same_v<T, DeBoorSplineData>) ImGui::Text("degree %d, end %s", d.degree, d.end.c_str());
                         else if constexpr (std::is_same_v<T, BezierSurfaceData> || std::is_same_v<T, DeBoorSurfaceData>) ImGui::Text("degree %d x %d", d.degree[0], d.degree[1]);
                         else if constexpr (std::is_same_v<T, LatticeData>) ImGui::Text("degree %d x %d x %d", d.degree[0], d.degree[1], d.degree[2]);
-                        else if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) ImGui::Text("scheme %s", d.scheme.c_str());
+                        else if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) {} // scheme, boundary, creases: the cage tool's panel
                         else ImGui::Text("%s", objectType(ObjectData(d)).c_str()); // rational and NURBS types
                     },
                     scene.object(selected).data);

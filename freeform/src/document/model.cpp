@@ -9,6 +9,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/io/geometry_data.h"
+#include "../io/object_lookup.h"
 
 namespace freeform {
 namespace {
@@ -153,9 +154,9 @@ const TypedObject* TypedDocument::find(const std::string& name) const
 const TypedObject& TypedDocument::object(const std::string& name) const
 {
     if (const TypedObject* o = find(name)) return *o;
-    std::string names;
-    for (const TypedObject& o : objects_) names += (names.empty() ? "" : ", ") + o.name();
-    throw Error(source + ": no object \"" + name + "\" (the document has " + (names.empty() ? "no objects" : names) + ")");
+    std::vector<std::string> names;
+    for (const TypedObject& o : objects_) names.push_back(o.name());
+    throw Error(noObjectMessage(source, name, names)); // the reader's message (src/io/object_lookup.h)
 }
 
 const TypedObject& TypedDocument::object(ObjectId id) const

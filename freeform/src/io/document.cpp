@@ -16,6 +16,7 @@
 #include "freeform/core/error.h"
 #include "freeform/io/file.h"
 #include "freeform/io/json_check.h"
+#include "object_lookup.h"
 
 namespace freeform {
 
@@ -110,16 +111,27 @@ PointColumns pointList(const Json& j, const std::string& field, int dim, const W
     return out;
 }
 
-std::vector<double> positiveList(const Json& j, const std::string& field, const Where& w)
+/// An array of positive numbers (spline intervals, weights); `what` names one in the message
+/// ("interval length must be positive"). `count`: the size it must have (npos: any).
+std::vector<double> positiveNumbers(const Json& j, const std::string& field, const char* what, const Where& w,
+                                    std::size_t count = std::string::npos)
 {
     if (!j.is_array()) w.fail(field, "expected an array of numbers, found " + typeName(j));
+    if (count != std::string::npos && j.size() != count)
+        w.fail(field, "has " + std::to_string(j.size()) + " weights for " + std::to_string(count) + " points");
     std::vector<double> out;
     for (std::size_t i = 0; i < j.size(); ++i) {
-        const double v = number(j[i], field + "[" + std::to_string(i) + "]", w);
-        if (!(v > 0)) w.fail(field + "[" + std::to_string(i) + "]", "interval length must be positive");
+        const std::string f = field + "[" + std::to_string(i) + "]";
+        const double v = number(j[i], f, w);
+        if (!(v > 0)) w.fail(f, std::string(what) + " must be positive");
         out.push_back(v);
     }
     return out;
+}
+
+std::vector<double> positiveList(const Json& j, const std::string& field, const Where& w)
+{
+    return positiveNumbers(j, field, "interval length", w);
 }
 
 template <std::size_t N>
@@ -169,17 +181,7 @@ PointColumns pointGrid(const Json& j, int& rows, int& cols, const Where& w)
 /// Positive weights, one per point: a flat list (curves) of `count` numbers.
 std::vector<double> weightList(const Json& j, const std::string& field, std::size_t count, const Where& w)
 {
-    if (!j.is_array()) w.fail(field, "expected an array of numbers, found " + typeName(j));
-    if (j.size() != count)
-        w.fail(field, "has " + std::to_string(j.size()) + " weights for " + std::to_string(count) + " points");
-    std::vector<double> out;
-    for (std::size_t i = 0; i < j.size(); ++i) {
-        const std::string f = field + "[" + std::to_string(i) + "]";
-        const double v = number(j[i], f, w);
-        if (!(v > 0)) w.fail(f, "weight must be positive");
-        out.push_back(v);
-    }
-    return out;
+    return positiveNumbers(j, field, "weight", w, count);
 }
 
 /// Positive weights as a rows x cols grid [[w, ...], ...] (surfaces), flattened row by row.
@@ -195,6 +197,16 @@ std::vector<double> weightGrid(const Json& j, const std::string& field, int rows
         out.insert(out.end(), row.begin(), row.end());
     }
     return out;
+}
+
+/// The "weights" of a rational curve or surface in the shape of its points, one positive weight
+/// per point: a flat list of `cols` numbers for a curve (rows 0), a rows x cols grid for a surface
+/// (flattened row by row). Empty when absent and not `required` (NURBS: all weights 1).
+std::vector<double> weightsOf(const Json& obj, int rows, int cols, bool required, const Where& w)
+{
+    if (!required && !obj.contains("weights")) return {};
+    const Json& j = member(obj, "weights", w);
+    return rows == 0 ? weightList(j, "weights", static_cast<std::size_t>(cols), w) : weightGrid(j, "weights", rows, cols, w);
 }
 
 /// A knot vector for `count` control points of degree p: count + p + 1 finite non-decreasing
@@ -230,7 +242,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         RationalBezierCurveData d;
         d.points = pointList(member(obj, "points", w), "points", 0, w);
         if (d.points.cols() - 1 > 67) w.fail("points", "degree above the maximum 67");
-        d.weights = weightList(member(obj, "weights", w), "weights", static_cast<std::size_t>(d.points.cols()), w);
+        d.weights = weightsOf(obj, 0, static_cast<int>(d.points.cols()), true, w);
         return d;
     }
     if (type == "rational_bezier_surface") {
@@ -243,7 +255,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
             w.fail("points", "grid is " + std::to_string(rows) + " x " + std::to_string(cols) + ", degree [" +
                                  std::to_string(d.degree[0]) + ", " + std::to_string(d.degree[1]) + "] needs " +
                                  std::to_string(d.degree[0] + 1) + " x " + std::to_string(d.degree[1] + 1));
-        d.weights = weightGrid(member(obj, "weights", w), "weights", rows, cols, w);
+        d.weights = weightsOf(obj, rows, cols, true, w);
         return d;
     }
     if (type == "nurbs_curve") {
@@ -257,7 +269,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
             w.fail("points", std::to_string(count) + " points are too few for degree " + std::to_string(d.degree) +
                                  " (needs at least " + std::to_string(d.degree + 1) + ")");
         d.knots = knotList(member(obj, "knots", w), "knots", d.degree, count, w);
-        if (obj.contains("weights")) d.weights = weightList(obj["weights"], "weights", static_cast<std::size_t>(count), w);
+        d.weights = weightsOf(obj, 0, static_cast<int>(count), false, w);
         return d;
     }
     if (type == "nurbs_surface") {
@@ -275,7 +287,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         if (!knots.is_array() || knots.size() != 2) w.fail("knots", "expected an array of two knot vectors (u, v)");
         d.knots[0] = knotList(knots[0], "knots[0]", d.degree[0], d.rows, w);
         d.knots[1] = knotList(knots[1], "knots[1]", d.degree[1], d.cols, w);
-        if (obj.contains("weights")) d.weights = weightGrid(obj["weights"], "weights", d.rows, d.cols, w);
+        d.weights = weightsOf(obj, d.rows, d.cols, false, w);
         return d;
     }
     if (type == "bezier_curve") {
@@ -570,10 +582,17 @@ std::string objectType(const ObjectData& data)
 const DocumentObject& Document::object(const std::string& name) const
 {
     if (const DocumentObject* o = find(name)) return *o;
-    std::string names;
-    for (const auto& o : objects) names += (names.empty() ? "" : ", ") + o.name;
-    throw Error(source + ": no object named \"" + name + "\"" +
-                (names.empty() ? std::string(" (the document has no objects)") : " (objects: " + names + ")"));
+    std::vector<std::string> names;
+    for (const auto& o : objects) names.push_back(o.name);
+    throw Error(noObjectMessage(source, name, names));
+}
+
+std::string noObjectMessage(const std::string& source, const std::string& name, const std::vector<std::string>& names)
+{
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    return source + ": no object named \"" + name + "\"" +
+           (list.empty() ? std::string(" (the document has no objects)") : " (objects: " + list + ")");
 }
 
 DocumentObject* Document::find(const std::string& name)

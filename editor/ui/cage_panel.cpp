@@ -1,0 +1,71 @@
+// The cage tool's panel (tools/cage_tool.h): the section of the Properties window for a selected
+// subdivision_surface. It only reads the scene and calls the tool's operations, so every change is
+// one undo step made by the tool.
+
+#include <imgui.h>
+
+#include <cstdio>
+#include <string>
+
+#include "tools/cage_tool.h"
+
+namespace freeform::editor {
+
+void CageTool::drawPanel(ToolContext& c)
+{
+    const int item = c.selection.item;
+    if (!isCage(c.scene, item)) return;
+    const auto& d = std::get<SubdivisionSurfaceData>(c.scene.object(item).data);
+    ImGui::TextUnformatted("Subdivision cage");
+    if (!d.mesh.empty()) {
+        ImGui::TextDisabled("cage file: %s", d.mesh.c_str());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("written inline on the first crease, corner or vertex edit; the file stays as it is");
+    }
+
+    static const char* schemes[] = {"catmark", "loop"};
+    int scheme = d.scheme == "loop" ? 1 : 0;
+    if (ImGui::Combo("scheme", &scheme, "Catmull-Clark (catmark)\0Loop (triangles only)\0")) setScheme(c, item, schemes[scheme]);
+    static const char* boundaries[] = {"edge_only", "edge_and_corner", "none"};
+    int boundary = d.boundary == "edge_and_corner" ? 1 : d.boundary == "none" ? 2 : 0;
+    if (ImGui::Combo("boundary", &boundary, "edge only\0edge and corner\0none\0")) setBoundary(c, item, boundaries[boundary]);
+    const Tessellation& t = c.scene.item(item).settings.tessellation;
+    int level = t.mode == Tessellation::Mode::Uniform ? t.segments : 0;
+    if (ImGui::SliderInt("level", &level, 0, 32, level == 0 ? "adaptive" : "%d segments")) setLevel(c, item, level);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("segments per cage edge of the limit surface's tessellation (0: adaptive to the tolerance)");
+
+    const std::optional<SubdivisionCage> cage = cageOf(c.scene, item);
+    const ItemGeometry& g = c.scene.item(item).geometry;
+    if (cage) {
+        int creases = 0, corners = 0;
+        for (const EdgeCrease& e : cage->creases) creases += e.sharpness > 0;
+        for (const VertexCorner& v : cage->corners) corners += v.sharpness > 0;
+        ImGui::Text("cage: %d vertices, %d faces", cage->mesh.vertexCount(), cage->mesh.faceCount());
+        ImGui::Text("      %d creases, %d corners", creases, corners);
+    }
+    if (g.surface) ImGui::Text("limit surface: %d triangles", g.surface->faceCount());
+    ImGui::Checkbox("show creases and corners", &showCage);
+
+    ImGui::Separator();
+    ImGui::Checkbox("edge mode (E)", &edgeMode);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("a click in the view picks the nearest edge of this cage");
+    float s = static_cast<float>(sharpness);
+    if (ImGui::SliderFloat("sharpness", &s, 0.0f, 10.0f, s >= 10.0f ? "%.1f (infinite)" : "%.2f")) sharpness = s;
+    const bool pickedHere = pickedEdge() && pickedItem() == c.scene.item(item).id;
+    if (pickedHere) {
+        const auto& e = *pickedEdge();
+        ImGui::Text("edge %d-%d: sharpness %.3g", e[0], e[1], cage ? edgeSharpness(*cage, e[0], e[1]) : 0.0);
+        if (ImGui::Button("crease (S)")) setCrease(c, item, e[0], e[1], sharpness);
+        ImGui::SameLine();
+        if (ImGui::Button("clear (Shift+S)")) clearCrease(c, item, e[0], e[1]);
+    } else {
+        ImGui::TextDisabled("no edge picked (E, then click an edge)");
+    }
+    char label[64];
+    std::snprintf(label, sizeof label, "corners: %zu point(s)", c.selection.points.size());
+    ImGui::TextUnformatted(label);
+    if (ImGui::Button("corner (Alt+S)")) setCorners(c, item, c.selection.points, sharpness);
+    ImGui::SameLine();
+    if (ImGui::Button("clear (Alt+Shift+S)")) setCorners(c, item, c.selection.points, 0);
+}
+
+} // namespace freeform::editor
