@@ -96,16 +96,16 @@ TEST_CASE("a piecewise rational Bézier surface (parm u and v with the patch end
 {
     // Half a cylinder of radius 1: two quarter circles in u (patch ends 0 0.5 2), two linear pieces
     // in v (ends 0 1 3, heights z 0 1 3, so z = v). 5 x 3 points listed u fastest.
-    const double s2 = 0.7071067811865476;
-    const double x[5] = {1, 1, 0, -1, -1}, y[5] = {0, 1, 1, 1, 0}, w[5] = {1, s2, 1, s2, 1}, z[3] = {0, 1, 3};
-    std::string text;
-    for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 5; ++i)
-            text += "v " + std::to_string(x[i]) + " " + std::to_string(y[i]) + " " + std::to_string(z[j]) + " " +
-                    (w[i] == 1 ? std::string("1") : std::string("0.7071067811865476")) + "\n";
-    text += "o halfcyl\ncstype rat bezier\ndeg 2 1\nsurf 0 2 0 3";
-    for (int k = 1; k <= 15; ++k) text += " " + std::to_string(k);
-    text += "\nparm u 0 0.5 2\nparm v 0 1 3\nend\n";
+    const double h = 0.7071067811865476;
+    const double x[5] = {1, 1, 0, -1, -1}, y[5] = {0, 1, 1, 1, 0}, w[5] = {1, h, 1, h, 1}, z[3] = {0, 1, 3};
+    const std::string text =
+        "v 1 0 0 1\nv 1 1 0 0.7071067811865476\nv 0 1 0 1\n"
+        "v -1 1 0 0.7071067811865476\nv -1 0 0 1\nv 1 0 1 1\n"
+        "v 1 1 1 0.7071067811865476\nv 0 1 1 1\nv -1 1 1 0.7071067811865476\n"
+        "v -1 0 1 1\nv 1 0 3 1\nv 1 1 3 0.7071067811865476\n"
+        "v 0 1 3 1\nv -1 1 3 0.7071067811865476\nv -1 0 3 1\n"
+        "o halfcyl\ncstype rat bezier\ndeg 2 1\nsurf 0 2 0 3 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15\n"
+        "parm u 0 0.5 2\nparm v 0 1 3\nend\n";
     const Document d = parseObjFreeform(text, "halfcyl.obj");
     REQUIRE(d.objects.size() == 1);
     const auto& s = std::get<NurbsSurfaceData>(d.objects[0].data);
@@ -151,9 +151,10 @@ TEST_CASE("a piecewise rational Bézier surface (parm u and v with the patch end
     CHECK(s2.weights == s.weights);
     CHECK(formatObjFreeform(back) == written);
     // A polynomial piecewise Bézier surface is read the same way, without weights.
-    std::string poly = "v 0 0 0\nv 1 0 0\nv 2 0 1\nv 0 1 0\nv 1 1 0\nv 2 1 1\n"
+    const std::string poly = "v 0 0 0\nv 1 0 0\nv 2 0 1\nv 0 1 0\nv 1 1 0\nv 2 1 1\n"
                        "cstype bezier\ndeg 1 1\nsurf 0 2 0 1 1 2 3 4 5 6\nparm u 0 1 2\nparm v 0 1\nend\n";
-    const auto& ps = std::get<NurbsSurfaceData>(parseObjFreeform(poly).objects[0].data);
+    const Document polyDoc = parseObjFreeform(poly);
+    const auto& ps = std::get<NurbsSurfaceData>(polyDoc.objects[0].data);
     CHECK(ps.weights.empty());
     CHECK(ps.knots[0] == std::vector<double>{0, 0, 1, 2, 2});
     CHECK(ps.points.col(2 * 2 + 1) == Eigen::Vector3d(2, 1, 1));
