@@ -80,7 +80,8 @@ public:
         const HPoints& h = hom_.controlPoints();
         const int n = static_cast<int>(h.cols()) - 1;
         Wide b[kMaxDegree + 1][Dim + 1];
-        for (int i = 0; i <= n; ++i)
+        for (int c = 0; c <= Dim; ++c) b[0][c] = static_cast<Wide>(h(c, 0)); // n >= 0: never empty
+        for (int i = 1; i <= n; ++i)
             for (int c = 0; c <= Dim; ++c) b[i][c] = static_cast<Wide>(h(c, i));
         const Wide tt = static_cast<Wide>(t), s = Wide(1) - tt;
         for (int k = 1; k <= n; ++k)
