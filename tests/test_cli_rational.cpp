@@ -454,7 +454,7 @@ TEST_CASE("rational document: freeform interpolate --degree P passes through the
     CHECK(test::runCli({"interpolate", in, "--degree", "3", "--end", "periodic", "-o", tmp("x.json")}).status == 2);
 }
 
-TEST_CASE("rational document: freeform ffd DOC composes the 3D NURBS curve, skips 2D objects and rational surfaces unchanged")
+TEST_CASE("rational document: freeform ffd DOC composes the 3D NURBS curve and the rational surfaces, skips 2D objects")
 {
     const std::string path = tmp("rational_ffd.json"), lat = tmp("rational_ffd_lattice.json"), out = tmp("rational_ffd_out.json");
     {
@@ -471,13 +471,40 @@ TEST_CASE("rational document: freeform ffd DOC composes the 3D NURBS curve, skip
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
     // The one rule of docs/ffd.md (deformDocument): the 3D nurbs_curve "b" is composed exactly (it
-    // stays a nurbs_curve, its degree times l+m+n = 3); the 2D curves and the rational surfaces
-    // (no exact composition yet) are skipped and copied unchanged.
-    REQUIRE(j["objects"].size() == 1);
+    // stays a nurbs_curve, its degree times l+m+n = 3), and so are the rational_bezier_surface "cyl"
+    // (degrees (2, 1) times 3) and the nurbs_surface "ns" (same, breakpoints kept); the 2D curves
+    // are skipped and copied unchanged.
+    REQUIRE(j["objects"].size() == 3);
     CHECK(j["objects"][0]["name"] == "b");
     CHECK(j["objects"][0]["type"] == "nurbs_curve");
-    CHECK(j["skipped"].size() == 4);
+    CHECK(j["objects"][1]["name"] == "cyl");
+    CHECK(j["objects"][1]["type"] == "rational_bezier_surface");
+    CHECK(j["objects"][1]["degree"] == Json::array({6, 3}));
+    CHECK(j["objects"][1]["inside"] == true);
+    CHECK(j["objects"][2]["name"] == "ns");
+    CHECK(j["objects"][2]["type"] == "nurbs_surface");
+    CHECK(j["objects"][2]["degree"] == Json::array({6, 3}));
+    CHECK(j["skipped"].size() == 2);
     const Document before = parseDocument(kDoc, "k"), after = readDocument(out);
-    CHECK(formatDocument(after).find("\"nurbs_surface\"") != std::string::npos);
     CHECK(std::get<NurbsCurveData>(after.object("circle").data).knots == std::get<NurbsCurveData>(before.object("circle").data).knots);
+    const auto& ns = std::get<NurbsSurfaceData>(after.object("ns").data);
+    CHECK(ns.knots[0] == std::vector<double>{0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2});
+    CHECK(ns.knots[1] == std::vector<double>{0, 0, 0, 0, 3, 3, 3, 3});
+    // Against the lattice applied point by point to the original surfaces' points: the trilinear
+    // map, written out here (x + sum B d with only the corner (1, 1, 1) displaced by (1, 0, 0)).
+    auto map = [](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d stu = (p - Eigen::Vector3d(-2, -2, -1)) / 4;
+        return Eigen::Vector3d(p + stu[0] * stu[1] * stu[2] * Eigen::Vector3d(1, 0, 0));
+    };
+    const TypedDocument a(parseDocument(kDoc, "k")), b = TypedDocument::read(out);
+    double worst = 0;
+    for (int i = 0; i <= 20; ++i)
+        for (int k = 0; k <= 20; ++k) {
+            const double u = i / 20.0, v = k / 20.0;
+            const Eigen::Vector3d p = evaluate(a, a.object("cyl"), {u, v}, 0).point;
+            worst = std::max(worst, (evaluate(b, b.object("cyl"), {u, v}, 0).point - map(p)).norm() / map(p).norm());
+            const Eigen::Vector3d q = evaluate(a, a.object("ns"), {2 * u, 3 * v}, 0).point;
+            worst = std::max(worst, (evaluate(b, b.object("ns"), {2 * u, 3 * v}, 0).point - map(q)).norm() / map(q).norm());
+        }
+    CHECK(worst <= 1e-12);
 }

@@ -92,6 +92,78 @@ TEST_CASE("a piecewise rational Bézier curve becomes a NURBS curve with double 
     CHECK(q.weights == std::vector<double>{1, 0.7071067811865476, 1});
 }
 
+TEST_CASE("a piecewise rational Bézier surface (parm u and v with the patch ends) becomes a NURBS surface", "[obj][nurbs]")
+{
+    // Half a cylinder of radius 1: two quarter circles in u (patch ends 0 0.5 2), two linear pieces
+    // in v (ends 0 1 3, heights z 0 1 3, so z = v). 5 x 3 points listed u fastest.
+    const double h = 0.7071067811865476;
+    const double x[5] = {1, 1, 0, -1, -1}, y[5] = {0, 1, 1, 1, 0}, w[5] = {1, h, 1, h, 1}, z[3] = {0, 1, 3};
+    const std::string text =
+        "v 1 0 0 1\nv 1 1 0 0.7071067811865476\nv 0 1 0 1\n"
+        "v -1 1 0 0.7071067811865476\nv -1 0 0 1\nv 1 0 1 1\n"
+        "v 1 1 1 0.7071067811865476\nv 0 1 1 1\nv -1 1 1 0.7071067811865476\n"
+        "v -1 0 1 1\nv 1 0 3 1\nv 1 1 3 0.7071067811865476\n"
+        "v 0 1 3 1\nv -1 1 3 0.7071067811865476\nv -1 0 3 1\n"
+        "o halfcyl\ncstype rat bezier\ndeg 2 1\nsurf 0 2 0 3 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15\n"
+        "parm u 0 0.5 2\nparm v 0 1 3\nend\n";
+    const Document d = parseObjFreeform(text, "halfcyl.obj");
+    REQUIRE(d.objects.size() == 1);
+    const auto& s = std::get<NurbsSurfaceData>(d.objects[0].data);
+    CHECK(s.degree == std::array<int, 2>{2, 1});
+    CHECK(s.rows == 5);
+    CHECK(s.cols == 3);
+    CHECK(s.knots[0] == std::vector<double>{0, 0, 0, 0.5, 0.5, 2, 2, 2});
+    CHECK(s.knots[1] == std::vector<double>{0, 0, 1, 3, 3});
+    // Value for value: point (i, j) and its weight where the file put them.
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 3; ++j) {
+            CHECK(s.points.col(i * 3 + j) == Eigen::Vector3d(x[i], y[i], z[j]));
+            CHECK(s.weights[static_cast<std::size_t>(i * 3 + j)] == w[i]);
+        }
+    const NurbsSurface<double, 3> surface(2, 1, s.knots[0], s.knots[1], PointMatrix<double, 3>(s.points),
+                                          Eigen::Map<const Eigen::VectorXd>(s.weights.data(), 15));
+    for (double u : {0.0, 0.2, 0.5, 0.9, 1.4, 2.0})
+        for (double v : {0.0, 0.4, 1.0, 2.2, 3.0}) {
+            const Eigen::Vector3d p = surface.evaluate(u, v);
+            CHECK(std::abs(p.head<2>().norm() - 1.0) <= 1e-15);
+            CHECK(std::abs(p.z() - v) <= 1e-15 * 3);
+            CHECK(p.y() >= 0);
+        }
+    // Patch (1, 1) on its own, as a rational Bézier patch in local parameters, against the NURBS.
+    PointMatrix<double, 3> pts(3, 6);
+    Eigen::VectorXd pw(6);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 2; ++j) {
+            pts.col(i * 2 + j) = Eigen::Vector3d(x[2 + i], y[2 + i], z[1 + j]);
+            pw[i * 2 + j] = w[2 + i];
+        }
+    const RationalBezierSurface<double, 3> patch(2, 1, pts, pw);
+    for (double a : {0.0, 0.3, 0.8})
+        for (double b : {0.1, 0.6, 1.0})
+            CHECK((patch.evaluate(a, b) - surface.evaluate(0.5 + 1.5 * a, 1 + 2 * b)).norm() <= 1e-15 * 4);
+    // The tool writes it as the same nurbs_surface (cstype rat bspline); that file round trips byte for byte.
+    const std::string written = formatObjFreeform(d);
+    CHECK(written.find("cstype rat bspline\ndeg 2 1\n") != std::string::npos);
+    const Document back = parseObjFreeform(written, "back.obj");
+    const auto& s2 = std::get<NurbsSurfaceData>(back.objects[0].data);
+    CHECK(s2.knots == s.knots);
+    CHECK(s2.points == s.points);
+    CHECK(s2.weights == s.weights);
+    CHECK(formatObjFreeform(back) == written);
+    // A polynomial piecewise Bézier surface is read the same way, without weights.
+    const std::string poly = "v 0 0 0\nv 1 0 0\nv 2 0 1\nv 0 1 0\nv 1 1 0\nv 2 1 1\n"
+                       "cstype bezier\ndeg 1 1\nsurf 0 2 0 1 1 2 3 4 5 6\nparm u 0 1 2\nparm v 0 1\nend\n";
+    const Document polyDoc = parseObjFreeform(poly);
+    const auto& ps = std::get<NurbsSurfaceData>(polyDoc.objects[0].data);
+    CHECK(ps.weights.empty());
+    CHECK(ps.knots[0] == std::vector<double>{0, 0, 1, 2, 2});
+    CHECK(ps.points.col(2 * 2 + 1) == Eigen::Vector3d(2, 1, 1));
+    // A count that does not fit the patches the parm lists give is refused with the line.
+    CHECK(err("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\ncstype rat bezier\ndeg 1 1\nsurf 0 2 0 1 1 2 3 4 5\n"
+              "parm u 0 1 2\nparm v 0 1\nend\n")
+              .find("line 8: 5 control points do not fit 2 x 1 patches of degree (1, 1)") != std::string::npos);
+}
+
 TEST_CASE("a hand-written bilinear B-spline patch: u varies fastest, the grid from the knot counts", "[obj][nurbs]")
 {
     // 3 x 2 points P(i, j) = (i, j, i j) with knots u 0 0 1 2 2 (x = u exactly: the Greville

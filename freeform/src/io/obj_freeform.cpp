@@ -339,11 +339,16 @@ private:
         } else {
             const int m = e.du, n = e.dv;
             const int expected = (m + 1) * (n + 1);
+            if (count > expected && e.parmU.size() >= 2 && e.parmV.size() >= 2) {
+                finishPiecewiseSurface(e, object);
+                objects_.push_back(std::move(object));
+                return;
+            }
             if (count != expected) {
                 const bool piecewise = count > expected;
                 fail(e.line, std::to_string(count) + std::string(" control points do not fit degree (") + std::to_string(m) + ", " +
                                  std::to_string(n) + std::string("), which needs ") + std::to_string(expected) +
-                                 (piecewise ? " (piecewise surfaces are not supported: one patch per surf)" : ""));
+                                 (piecewise ? " (a surface of several patches needs \"parm u\" and \"parm v\" with the patch ends)" : ""));
             }
             for (const auto* p : {&e.parmU, &e.parmV})
                 if (!p->empty() && p->size() != 2) fail(line, "a single Bézier patch has two parm values per direction");
@@ -369,6 +374,43 @@ private:
             }
         }
         objects_.push_back(std::move(object));
+    }
+
+    /// A Bézier surf of several patches: parm u (v) holds the Lu + 1 (Lv + 1) increasing patch ends,
+    /// the (Lu m + 1) x (Lv n + 1) control points run u fastest, neighbouring patches share their
+    /// boundary row. Read as a nurbs_surface whose interior knots have multiplicity m (n): the same
+    /// surface, patch (a, b) on [parm u a, a+1] x [parm v b, b+1].
+    void finishPiecewiseSurface(const Element& e, DocumentObject& object)
+    {
+        const int m = e.du, n = e.dv;
+        const int lu = static_cast<int>(e.parmU.size()) - 1, lv = static_cast<int>(e.parmV.size()) - 1;
+        const int rows = lu * m + 1, cols = lv * n + 1;
+        const int count = static_cast<int>(e.indices.size());
+        if (count != rows * cols)
+            fail(e.line, std::to_string(count) + " control points do not fit " + std::to_string(lu) + " x " + std::to_string(lv) +
+                             " patches of degree (" + std::to_string(m) + ", " + std::to_string(n) + ") (parm u and parm v), which need (" +
+                             std::to_string(lu) + "*" + std::to_string(m) + " + 1)(" + std::to_string(lv) + "*" + std::to_string(n) +
+                             " + 1) = " + std::to_string(rows * cols));
+        auto knots = [](const std::vector<double>& ends, int d) {
+            std::vector<double> k(static_cast<std::size_t>(d + 1), ends.front());
+            for (std::size_t i = 1; i + 1 < ends.size(); ++i) k.insert(k.end(), static_cast<std::size_t>(d), ends[i]);
+            k.insert(k.end(), static_cast<std::size_t>(d + 1), ends.back());
+            return k;
+        };
+        NurbsSurfaceData s;
+        s.degree = {m, n};
+        s.knots = {knots(e.parmU, m), knots(e.parmV, n)};
+        s.rows = rows;
+        s.cols = cols;
+        s.points.resize(3, rows * cols);
+        const std::vector<double> w = e.rational ? weightsOf(e) : std::vector<double>();
+        if (!w.empty()) s.weights.resize(w.size());
+        for (int k = 0; k < count; ++k) {
+            const int i = k % rows, j = k / rows;
+            s.points.col(i * cols + j) = vertices_[static_cast<std::size_t>(e.indices[static_cast<std::size_t>(k)])];
+            if (!w.empty()) s.weights[static_cast<std::size_t>(i * cols + j)] = w[static_cast<std::size_t>(k)];
+        }
+        object.data = std::move(s);
     }
 
     std::string source_;

@@ -223,4 +223,186 @@ NurbsCurve<double, 3> deformCurve(const RationalLattice& lattice, const NurbsCur
     return NurbsCurve<double, 3>(KnotVector<double>(std::move(knots), D, "deformCurve"), std::move(h));
 }
 
+namespace {
+
+/// A tensor Bernstein polynomial of degrees (du, dv), coefficient (i, j) at i * (dv + 1) + j.
+struct Poly2 {
+    int du = 0, dv = 0;
+    std::vector<long double> c;
+    Poly2() = default;
+    Poly2(int u, int v, long double value = 0) : du(u), dv(v), c(static_cast<std::size_t>((u + 1) * (v + 1)), value) {}
+    long double& at(int i, int j) { return c[static_cast<std::size_t>(i * (dv + 1) + j)]; }
+    long double at(int i, int j) const { return c[static_cast<std::size_t>(i * (dv + 1) + j)]; }
+};
+
+std::vector<long double> binomialRow(int n)
+{
+    std::vector<long double> row(static_cast<std::size_t>(n + 1));
+    for (int k = 0; k <= n; ++k) row[static_cast<std::size_t>(k)] = static_cast<long double>(binomial(n, k));
+    return row;
+}
+
+/// The product by the Bernstein product formula in both variables (long double):
+///   (pq)_(k,l) = sum C(a,i) C(b,k-i) C(c,j) C(d,l-j) / (C(a+b,k) C(c+d,l)) p_ij q_(k-i,l-j).
+Poly2 product(const Poly2& p, const Poly2& q)
+{
+    Poly2 out(p.du + q.du, p.dv + q.dv);
+    const auto bpu = binomialRow(p.du), bqu = binomialRow(q.du), bpv = binomialRow(p.dv), bqv = binomialRow(q.dv);
+    const auto bu = binomialRow(out.du), bv = binomialRow(out.dv);
+    for (int i = 0; i <= p.du; ++i)
+        for (int j = 0; j <= p.dv; ++j) {
+            const long double a = p.at(i, j) * bpu[static_cast<std::size_t>(i)] * bpv[static_cast<std::size_t>(j)];
+            if (a == 0) continue;
+            for (int k = 0; k <= q.du; ++k)
+                for (int l = 0; l <= q.dv; ++l)
+                    out.at(i + k, j + l) += a * q.at(k, l) * bqu[static_cast<std::size_t>(k)] * bqv[static_cast<std::size_t>(l)];
+        }
+    for (int k = 0; k <= out.du; ++k)
+        for (int l = 0; l <= out.dv; ++l)
+            out.at(k, l) /= bu[static_cast<std::size_t>(k)] * bv[static_cast<std::size_t>(l)];
+    return out;
+}
+
+void addScaled(Poly2& acc, const Poly2& p, long double s)
+{
+    if (acc.c.empty()) acc = Poly2(p.du, p.dv);
+    for (std::size_t i = 0; i < p.c.size(); ++i) acc.c[i] += s * p.c[i];
+}
+
+/// W^e (e >= 0) as a polynomial of degrees (e du, e dv); W^0 = 1.
+Poly2 power(const Poly2& w, int e)
+{
+    Poly2 out(0, 0, 1.0L);
+    for (int k = 0; k < e; ++k) out = product(out, w);
+    return out;
+}
+
+} // namespace
+
+RationalBezierSurface<double, 3> deformSurface(const RationalLattice& rl, const RationalBezierSurface<double, 3>& surface,
+                                               double strength)
+{
+    const Lattice& lattice = rl.lattice();
+    const auto& deg = lattice.degrees();
+    const int m = surface.degreeU(), n = surface.degreeV();
+    const int sum = deg[0] + deg[1] + deg[2];
+    const bool rational = !rl.isPolynomial();
+    const int factor = rational ? 1 + sum : sum;
+    const int degreeU = m * factor, degreeV = n * factor;
+    if (degreeU > kMaxDegree || degreeV > kMaxDegree)
+        throw Error("deformSurface: the deformed patch would have degrees (" + std::to_string(degreeU) + ", " +
+                    std::to_string(degreeV) + ") (" + (rational ? "(m (1 + l+m+n), n (1 + l+m+n))" : "(m (l+m+n), n (l+m+n))") +
+                    "), above " + std::to_string(kMaxDegree));
+    if (!std::isfinite(strength)) throw Error("deformSurface: strength is not finite");
+    const auto& h = surface.homogeneous().controlPoints(); // 4 x (m+1)(n+1): (w b, w)
+    const bool unitWeights = (h.row(3).array() == 1.0).all();
+    if (!rational && unitWeights) // the polynomial composition of volume/deform.h
+        return RationalBezierSurface<double, 3>(deformSurface(lattice, BezierSurface<double, 3>(m, n, h.topRows<3>()), strength));
+
+    Poly2 W(m, n), A[3] = {Poly2(m, n), Poly2(m, n), Poly2(m, n)};
+    for (Eigen::Index r = 0; r < h.cols(); ++r) {
+        W.c[static_cast<std::size_t>(r)] = h(3, r);
+        for (int c = 0; c < 3; ++c) A[c].c[static_cast<std::size_t>(r)] = h(c, r);
+    }
+    // Homogeneous lattice coordinates S_a = dual_a . (A - X0 W) and the composed basis
+    // C(L,i) S^i (W - S)^(L-i), of degrees (m L, n L) per axis.
+    std::vector<Poly2> basis[3];
+    for (int a = 0; a < 3; ++a) {
+        Poly2 S(m, n), R(m, n);
+        for (std::size_t r = 0; r < W.c.size(); ++r) {
+            long double x = 0;
+            for (int c = 0; c < 3; ++c)
+                x += static_cast<long double>(lattice.dual()(a, c)) *
+                     (A[c].c[r] - static_cast<long double>(lattice.origin()[c]) * W.c[r]);
+            S.c[r] = x;
+            R.c[r] = W.c[r] - x;
+        }
+        const int L = deg[a];
+        std::vector<Poly2> sp{Poly2(0, 0, 1.0L)}, rp{Poly2(0, 0, 1.0L)};
+        for (int k = 1; k <= L; ++k) {
+            sp.push_back(product(sp.back(), S));
+            rp.push_back(product(rp.back(), R));
+        }
+        for (int i = 0; i <= L; ++i) {
+            Poly2 b = product(sp[static_cast<std::size_t>(i)], rp[static_cast<std::size_t>(L - i)]);
+            const long double c = static_cast<long double>(binomial(L, i));
+            for (auto& v : b.c) v *= c;
+            basis[a].push_back(std::move(b));
+        }
+    }
+    // N~ (3 coordinates) and, for a rational lattice, D~: degrees (m L, n L). The sum over k is a
+    // linear combination, the sums over i and j Bernstein products.
+    Poly2 N[3], D;
+    const auto& disp = lattice.displacements();
+    for (int i = 0; i <= deg[0]; ++i)
+        for (int j = 0; j <= deg[1]; ++j) {
+            const Poly2 st = product(basis[0][static_cast<std::size_t>(i)], basis[1][static_cast<std::size_t>(j)]);
+            Poly2 gN[3], gD;
+            for (int k = 0; k <= deg[2]; ++k) {
+                const int idx = lattice.index(i, j, k);
+                const long double w = rl.weights()[idx];
+                const Poly2& bk = basis[2][static_cast<std::size_t>(k)];
+                if (rational) addScaled(gD, bk, w);
+                for (int c = 0; c < 3; ++c) addScaled(gN[c], bk, w * static_cast<long double>(disp(c, idx)));
+            }
+            if (rational) addScaled(D, product(st, gD), 1.0L);
+            for (int c = 0; c < 3; ++c) addScaled(N[c], product(st, gN[c]), 1.0L);
+        }
+    // Rational lattice: (A D~ + s W N~) / (W D~). Polynomial lattice: (A W^(L-1) + s N~) / W^L.
+    const Poly2 left = rational ? D : power(W, sum - 1);
+    const Poly2 weight = product(W, left);
+    PointMatrix<double, 4> out(4, (degreeU + 1) * (degreeV + 1));
+    const long double s = strength;
+    for (int c = 0; c < 3; ++c) {
+        const Poly2 a = product(A[c], left);
+        const Poly2 b = rational ? product(W, N[c]) : N[c];
+        for (std::size_t r = 0; r < a.c.size(); ++r) out(c, static_cast<Eigen::Index>(r)) = static_cast<double>(a.c[r] + s * b.c[r]);
+    }
+    for (std::size_t r = 0; r < weight.c.size(); ++r) out(3, static_cast<Eigen::Index>(r)) = static_cast<double>(weight.c[r]);
+    for (Eigen::Index r = 0; r < out.cols(); ++r)
+        if (!(out(3, r) > 0))
+            throw Error("deformSurface: composed weight " + std::to_string(r) +
+                        " is not positive (the patch leaves the rational lattice's box)");
+    return RationalBezierSurface<double, 3>(BezierSurface<double, 4>(degreeU, degreeV, std::move(out)));
+}
+
+NurbsSurface<double, 3> deformSurface(const RationalLattice& lattice, const NurbsSurface<double, 3>& surface, double strength)
+{
+    const auto patches = surface.bezierPatches();
+    const std::vector<double> bu = surface.knotsU().breakpoints(), bv = surface.knotsV().breakpoints();
+    const int nu = static_cast<int>(bu.size()) - 1, nv = static_cast<int>(bv.size()) - 1;
+    std::vector<RationalBezierSurface<double, 3>> composed;
+    composed.reserve(patches.size());
+    for (const auto& patch : patches) {
+        if (surface.isRational()) {
+            composed.push_back(deformSurface(lattice, patch, strength));
+        } else {
+            // A polynomial surface's patches: the extracted points themselves, weights exactly 1.
+            const BezierSurface<double, 3> poly(patch.degreeU(), patch.degreeV(),
+                                                patch.homogeneous().controlPoints().topRows<3>());
+            composed.push_back(deformSurface(lattice, RationalBezierSurface<double, 3>(poly), strength));
+        }
+    }
+    const int du = composed.front().degreeU(), dv = composed.front().degreeV();
+    auto knots = [](const std::vector<double>& br, int d) {
+        std::vector<double> k(static_cast<std::size_t>(d + 1), br.front());
+        for (std::size_t i = 1; i + 1 < br.size(); ++i) k.insert(k.end(), static_cast<std::size_t>(d), br[i]);
+        k.insert(k.end(), static_cast<std::size_t>(d + 1), br.back());
+        return k;
+    };
+    const int cu = nu * du + 1, cv = nv * dv + 1;
+    PointMatrix<double, 4> h(4, cu * cv);
+    // Patch (pu, pv) point (a, b) is net point (pu du + a, pv dv + b); a shared boundary keeps the
+    // first patch's value (the neighbours agree there to rounding).
+    for (int pu = nu - 1; pu >= 0; --pu)
+        for (int pv = nv - 1; pv >= 0; --pv) {
+            const auto& c = composed[static_cast<std::size_t>(pu * nv + pv)].homogeneous().controlPoints();
+            for (int a = 0; a <= du; ++a)
+                for (int b = 0; b <= dv; ++b)
+                    h.col((pu * du + a) * cv + pv * dv + b) = c.col(a * (dv + 1) + b);
+        }
+    return NurbsSurface<double, 3>(KnotVector<double>(knots(bu, du), du, "deformSurface (knots in u)"),
+                                   KnotVector<double>(knots(bv, dv), dv, "deformSurface (knots in v)"), std::move(h));
+}
+
 } // namespace freeform

@@ -165,6 +165,9 @@ struct DeformDocumentReport {
 ///     the composition raises the degree and it becomes a bezier_spline of degree 3 (l+m+n);
 ///   - deboor_surface: the same when affine (stays a deboor_surface); otherwise skipped (its exact
 ///     image is several Bézier patches, which one object of the format cannot hold);
+///   - rational_bezier_curve / nurbs_curve / rational_bezier_surface / nurbs_surface (3D): composed
+///     exactly (volume/deform_rational.h), NURBS span by span (patch by patch) through the Bézier
+///     extraction, keeping the breakpoints; the same type; outside the box as for Bézier objects;
 ///   - subdivision_surface: its cage is deformed as a cage (vertices through deformPoints, the
 ///     outside policy as for meshes; a cage from a mesh file is written inline); the limit surface
 ///     of the moved cage is the moved limit surface only when the lattice is affine (exact).

@@ -12,8 +12,10 @@
 // variables (surface/rational_bezier_surface.h); evaluateGrid(): the batch path for a grid of
 // parameters (basis values tabulated once per grid row and column, one homogeneous sum of
 // (q+1) terms per point after a per-row reduction in u); bezierPatches(): Bézier extraction by the
-// extraction operators of both knot vectors.
+// extraction operators of both knot vectors; removeKnotU/V(), elevatedU/V(), reducedU/V(): the
+// curve algorithms of curve/nurbs_curve.h on every column (row) of the net, one decision for all.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -305,6 +307,106 @@ public:
         return NurbsSurface(ku_, rows.front().knotVector(), std::move(h));
     }
 
+    /// Result of removeKnotU/V() and reducedU/V(): the new surface and the error the operation
+    /// reports. The error is the largest of the per-row curve errors (NurbsCurve::removeKnot,
+    /// reduced); since S(u, v) = sum_j N_j(v) C_j(u) with basis functions summing to 1, it bounds
+    /// max |new - old| over the surface for a polynomial surface (the homogeneous surfaces' difference
+    /// for a rational one).
+    struct Approximation {
+        NurbsSurface surface;
+        Scalar error;
+    };
+
+    /// Removes one occurrence of the interior knot u from the u knot vector: NurbsCurve::removeKnot
+    /// (The NURBS Book, A5.8, homogeneous) on every column of the net (the curves in u, one per v
+    /// index). One knot and one row of control points less.
+    Approximation removeKnotU(Scalar u) const
+    {
+        auto curves = curvesU();
+        Scalar error(0);
+        for (auto& c : curves) {
+            auto r = c.removeKnot(u);
+            error = std::max(error, r.error);
+            c = std::move(r.curve);
+        }
+        return {fromCurvesU(curves, kv_), error};
+    }
+    /// The same in v (every row of the net).
+    Approximation removeKnotV(Scalar v) const
+    {
+        auto t = transposed().removeKnotU(v);
+        return {t.surface.transposed(), t.error};
+    }
+
+    /// Degree p + times in u (q + times in v): NurbsCurve::elevated on every column (row) of the
+    /// net; every interior knot's multiplicity grows by times. The surface is unchanged.
+    NurbsSurface elevatedU(int times = 1) const
+    {
+        auto curves = curvesU();
+        for (auto& c : curves) c = c.elevated(times);
+        return fromCurvesU(curves, kv_);
+    }
+    NurbsSurface elevatedV(int times = 1) const { return transposed().elevatedU(times).transposed(); }
+
+    /// Degree p - 1 in u (p >= 2), as NurbsCurve::reduced but with one decision for the whole net:
+    /// every column's Bézier pieces reduced (ends kept) and joined C0, then the interior knots
+    /// removed towards their original multiplicities, a removal taken (in every column) only while
+    /// the accumulated error stays within `tolerance`. `error` bounds max |new - old| as above.
+    Approximation reducedU(Scalar tolerance = Scalar(0)) const
+    {
+        const int p = degreeU();
+        if (p < 2) throw Error("NurbsSurface::reducedU: degree " + std::to_string(p) + " in u cannot be reduced (needs 2 or more)");
+        const std::vector<Scalar> br = ku_.breakpoints();
+        for (std::size_t k = 1; k + 1 < br.size(); ++k)
+            if (ku_.multiplicity(br[k]) > p)
+                throw Error("NurbsSurface::reducedU: the surface is broken at knot " +
+                            std::to_string(static_cast<long double>(br[k])) + " in u");
+        std::vector<NurbsCurve<Scalar, Dim>> curves;
+        Scalar error(0);
+        for (const auto& c : curvesU()) {
+            std::vector<HPoints> pieces;
+            for (const auto& piece : c.bezierPieces()) {
+                const auto red = piece.homogeneous().reduced();
+                for (Eigen::Index i = 0; i < red.curve.controlPoints().cols(); ++i)
+                    if (!(red.curve.controlPoints()(Dim, i) > Scalar(0)))
+                        throw Error("NurbsSurface::reducedU: a reduced weight is not positive");
+                pieces.push_back(red.curve.controlPoints());
+                error = std::max(error, red.errorBound);
+            }
+            curves.push_back(detail::joinPieces<Scalar, Dim>(pieces, br, std::vector<bool>(br.size(), false), p - 1));
+        }
+        for (std::size_t k = 1; k + 1 < br.size(); ++k) {
+            const int target = std::max(ku_.multiplicity(br[k]), 1);
+            for (int r = 0; r < (p - 1) - target; ++r) {
+                std::vector<NurbsCurve<Scalar, Dim>> next;
+                Scalar e(0);
+                for (const auto& c : curves) {
+                    auto removed = c.removeKnot(br[k]);
+                    e = std::max(e, removed.error);
+                    next.push_back(std::move(removed.curve));
+                }
+                if (error + e > tolerance) break;
+                error += e;
+                curves = std::move(next);
+            }
+        }
+        return {fromCurvesU(curves, kv_), error};
+    }
+    Approximation reducedV(Scalar tolerance = Scalar(0)) const
+    {
+        auto t = transposed().reducedU(tolerance);
+        return {t.surface.transposed(), t.error};
+    }
+
+    /// The same surface with u and v exchanged: S^T(v, u) = S(u, v).
+    NurbsSurface transposed() const
+    {
+        HPoints h(Dim + 1, hom_.cols());
+        for (int i = 0; i < countU(); ++i)
+            for (int j = 0; j < countV(); ++j) h.col(j * countU() + i) = hom_.col(index(i, j));
+        return NurbsSurface(kv_, ku_, std::move(h));
+    }
+
     /// From knot vectors and homogeneous points (w P, w), point (i, j) at column i * countV + j.
     NurbsSurface(Knots ku, Knots kv, HPoints hom) : ku_(std::move(ku)), kv_(std::move(kv)), hom_(std::move(hom))
     {
@@ -356,6 +458,27 @@ public:
     Scalar clampV(Scalar v) const { return v < kv_.front() ? kv_.front() : v > kv_.back() ? kv_.back() : v; }
 
 private:
+    /// The net's columns as curves in u (one per v index j).
+    std::vector<NurbsCurve<Scalar, Dim>> curvesU() const
+    {
+        std::vector<NurbsCurve<Scalar, Dim>> cols;
+        for (int j = 0; j < countV(); ++j) {
+            HPoints c(Dim + 1, countU());
+            for (int i = 0; i < countU(); ++i) c.col(i) = hom_.col(index(i, j));
+            cols.push_back(NurbsCurve<Scalar, Dim>(ku_, std::move(c)));
+        }
+        return cols;
+    }
+    /// The surface whose column j is cols[j] (all on one knot vector in u), knots kv in v.
+    static NurbsSurface fromCurvesU(const std::vector<NurbsCurve<Scalar, Dim>>& cols, const Knots& kv)
+    {
+        const int nu = cols.front().controlCount(), nv = static_cast<int>(cols.size());
+        HPoints h(Dim + 1, nu * nv);
+        for (int i = 0; i < nu; ++i)
+            for (int j = 0; j < nv; ++j) h.col(i * nv + j) = cols[static_cast<std::size_t>(j)].homogeneousPoints().col(i);
+        return NurbsSurface(cols.front().knotVector(), kv, std::move(h));
+    }
+
     Knots ku_, kv_;
     HPoints hom_;
     bool rational_ = false;

@@ -22,10 +22,25 @@
 // result is a NURBS of that degree with the original breakpoints (interior knots of full
 // multiplicity). Both equal the point-wise map wherever the curve lies in the lattice box (and
 // everywhere under the extrapolate policy).
+//
+// Surfaces (docs/ffd.md, "Documents"): a rational Bézier patch A(u,v)/W(u,v) of degrees (m, n)
+// composes the same way with tensor Bernstein products in two variables:
+//   - rational lattice (some weight != 1): p' = (A D~ + w_s W N~) / (W D~), degrees
+//     (m (1 + L), n (1 + L)), L = l+m+n of the lattice;
+//   - polynomial lattice (every weight 1, D~ = W^L identically): p' = (A W^(L-1) + w_s N~) / W^L,
+//     degrees (m L, n L) as for polynomial patches; a patch whose weights are all 1 takes the
+//     polynomial deformSurface of volume/deform.h, so the result is that patch bit for bit.
+// A NURBS surface is composed patch by patch through its Bézier extraction (bezierPatches()); the
+// result is a NURBS surface of those degrees with the original breakpoints in u and v (interior
+// knots of full multiplicity, C0 joints in the net; the geometry keeps the smoothness the map gives
+// it). The normal of the composed surface is cof(J) times the original normal (chain rule), so
+// surface normals map as for polynomial lattices.
 
 #include <Eigen/Core>
 
 #include "freeform/curve/nurbs_curve.h"
+#include "freeform/surface/nurbs_surface.h"
+#include "freeform/surface/rational_bezier_surface.h"
 #include "freeform/mesh/polygon_mesh.h"
 #include "freeform/volume/deform.h"
 #include "freeform/volume/lattice.h"
@@ -71,5 +86,16 @@ RationalBezierCurve<double, 3> deformCurve(const RationalLattice& lattice, const
 /// p (1 + l+m+n) with the curve's breakpoints.
 NurbsCurve<double, 3> deformCurve(const RationalLattice& lattice, const NurbsCurve<double, 3>& curve,
                                   double strength = 1);
+
+/// The rational Bézier patch pushed through the lattice exactly (see the header comment for the
+/// degrees). Error when a degree would exceed kMaxDegree, the strength is not finite, or (rational
+/// lattice, patch outside the box) a composed weight is not positive.
+RationalBezierSurface<double, 3> deformSurface(const RationalLattice& lattice,
+                                               const RationalBezierSurface<double, 3>& surface, double strength = 1);
+
+/// The NURBS surface pushed through the lattice exactly, patch by patch: a NURBS surface with the
+/// original breakpoints in u and v, degrees as for its patches.
+NurbsSurface<double, 3> deformSurface(const RationalLattice& lattice, const NurbsSurface<double, 3>& surface,
+                                      double strength = 1);
 
 } // namespace freeform
