@@ -553,6 +553,13 @@ void loadBuffers(GltfSource& src, const std::string& bin)
     src.slots.resize(src.buffers.size());
 }
 
+/// Room for `added` more elements, growing the capacity at least twofold.
+template <class T>
+void growFor(std::vector<T>& v, std::size_t added)
+{
+    if (v.size() + added > v.capacity()) v.reserve(std::max(v.size() + added, 2 * v.capacity()));
+}
+
 void readEditable(GltfSource& src)
 {
     const Json& meshes = arrayMember(src.doc, "meshes", src.path);
@@ -573,9 +580,12 @@ void readEditable(GltfSource& src)
         if (expectedCount >= 0 && v.count != expectedCount)
             throw Error(src.path + ": accessor " + std::to_string(accessor) + " (" + what + ") has " + std::to_string(v.count) +
                         " elements, POSITION has " + std::to_string(expectedCount));
-        into.reserve(into.size() + static_cast<std::size_t>(v.count) * static_cast<std::size_t>(rows));
+        // Reserve geometrically: an exact reserve per accessor would copy everything read so far
+        // for every accessor (quadratic in the accessor count; benchmarks/bench_mesh_io.cpp).
+        const std::size_t added = static_cast<std::size_t>(v.count) * static_cast<std::size_t>(rows);
+        growFor(into, added);
         std::vector<BinarySlot>& slots = src.slots[static_cast<std::size_t>(v.buffer)];
-        slots.reserve(slots.size() + static_cast<std::size_t>(v.count) * static_cast<std::size_t>(rows));
+        growFor(slots, added);
         for (int i = 0; i < v.count; ++i)
             for (int k = 0; k < rows; ++k) {
                 const std::size_t offset = v.at(i, k);
