@@ -247,6 +247,8 @@ private:
     int degree_;
 };
 
+extern template class KnotVector<float>;
 extern template class KnotVector<double>;
+extern template class KnotVector<long double>;
 
 } // namespace freeform

@@ -717,7 +717,11 @@ typename NurbsCurve<Scalar, Dim>::Approximation NurbsCurve<Scalar, Dim>::reduced
     return {std::move(c), error};
 }
 
+extern template class NurbsCurve<float, 2>;
+extern template class NurbsCurve<float, 3>;
 extern template class NurbsCurve<double, 2>;
 extern template class NurbsCurve<double, 3>;
+extern template class NurbsCurve<long double, 2>;
+extern template class NurbsCurve<long double, 3>;
 
 } // namespace freeform

@@ -248,7 +248,11 @@ private:
     }
 };
 
+extern template class RationalBezierCurve<float, 2>;
+extern template class RationalBezierCurve<float, 3>;
 extern template class RationalBezierCurve<double, 2>;
 extern template class RationalBezierCurve<double, 3>;
+extern template class RationalBezierCurve<long double, 2>;
+extern template class RationalBezierCurve<long double, 3>;
 
 } // namespace freeform

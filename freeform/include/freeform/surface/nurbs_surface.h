@@ -484,6 +484,8 @@ private:
     bool rational_ = false;
 };
 
+extern template class NurbsSurface<float, 3>;
 extern template class NurbsSurface<double, 3>;
+extern template class NurbsSurface<long double, 3>;
 
 } // namespace freeform

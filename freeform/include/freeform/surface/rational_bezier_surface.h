@@ -149,6 +149,8 @@ private:
     Homogeneous hom_;
 };
 
+extern template class RationalBezierSurface<float, 3>;
 extern template class RationalBezierSurface<double, 3>;
+extern template class RationalBezierSurface<long double, 3>;
 
 } // namespace freeform
