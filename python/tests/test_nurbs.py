@@ -497,7 +497,7 @@ def test_document_object_refuses_types_without_a_python_object(tmp_path):
     doc = ff.Document.load(str(path))
     with pytest.raises(ff.Error, match='object "cage".*subdivision_surface has no Python object'):
         doc.object("cage")
-    with pytest.raises(ff.Error, match=r"no object \"nope\" \(the document has cage\)"):
+    with pytest.raises(ff.Error, match=r"no object named \"nope\" \(objects: cage\)"):
         doc.object("nope")
 
 
