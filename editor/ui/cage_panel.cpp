@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tools/cage_tool.h"
+#include "ui/ui.h"
 
 namespace freeform::editor {
 
@@ -25,9 +26,11 @@ void CageTool::drawPanel(ToolContext& c)
     static const char* schemes[] = {"catmark", "loop"};
     int scheme = d.scheme == "loop" ? 1 : 0;
     if (ImGui::Combo("scheme", &scheme, "Catmull-Clark (catmark)\0Loop (triangles only)\0")) setScheme(c, item, schemes[scheme]);
+    tooltip("Subdivision scheme (the object's scheme field): Catmull-Clark for any polygons, Loop for triangle cages only");
     static const char* boundaries[] = {"edge_only", "edge_and_corner", "none"};
     int boundary = d.boundary == "edge_and_corner" ? 1 : d.boundary == "none" ? 2 : 0;
     if (ImGui::Combo("boundary", &boundary, "edge only\0edge and corner\0none\0")) setBoundary(c, item, boundaries[boundary]);
+    tooltip("Boundary interpolation (the object's boundary field): edge only, edge and corner (corners stay put), or none");
     const Tessellation& t = c.scene.item(item).settings.tessellation;
     int level = t.mode == Tessellation::Mode::Uniform ? t.segments : 0;
     if (ImGui::SliderInt("level", &level, 0, 32, level == 0 ? "adaptive" : "%d segments")) setLevel(c, item, level);
@@ -44,19 +47,23 @@ void CageTool::drawPanel(ToolContext& c)
     }
     if (g.surface) ImGui::Text("limit surface: %d triangles", g.surface->faceCount());
     ImGui::Checkbox("show creases and corners", &showCage);
+    tooltip("Overlay: crease edges orange (red when infinitely sharp), sharp corners as points, the picked edge yellow");
 
     ImGui::Separator();
     ImGui::Checkbox("edge mode (E)", &edgeMode);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("a click in the view picks the nearest edge of this cage");
     float s = static_cast<float>(sharpness);
     if (ImGui::SliderFloat("sharpness", &s, 0.0f, 10.0f, s >= 10.0f ? "%.1f (infinite)" : "%.2f")) sharpness = s;
+    tooltip("The sharpness that crease (S) and corner (Alt+S) set; 10 or more is infinitely sharp");
     const bool pickedHere = pickedEdge() && pickedItem() == c.scene.item(item).id;
     if (pickedHere) {
         const auto& e = *pickedEdge();
         ImGui::Text("edge %d-%d: sharpness %.3g", e[0], e[1], cage ? edgeSharpness(*cage, e[0], e[1]) : 0.0);
         if (ImGui::Button("crease (S)")) setCrease(c, item, e[0], e[1], sharpness);
+        tooltip("Give the picked edge the sharpness above (one undo step)");
         ImGui::SameLine();
         if (ImGui::Button("clear (Shift+S)")) clearCrease(c, item, e[0], e[1]);
+        tooltip("Remove the picked edge's crease (one undo step)");
     } else {
         ImGui::TextDisabled("no edge picked (E, then click an edge)");
     }
@@ -64,8 +71,10 @@ void CageTool::drawPanel(ToolContext& c)
     std::snprintf(label, sizeof label, "corners: %zu point(s)", c.selection.points.size());
     ImGui::TextUnformatted(label);
     if (ImGui::Button("corner (Alt+S)")) setCorners(c, item, c.selection.points, sharpness);
+    tooltip("Give the selected cage vertices the corner sharpness above (one undo step)");
     ImGui::SameLine();
     if (ImGui::Button("clear (Alt+Shift+S)")) setCorners(c, item, c.selection.points, 0);
+    tooltip("Remove the corner sharpness of the selected cage vertices (one undo step)");
 }
 
 } // namespace freeform::editor

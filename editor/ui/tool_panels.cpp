@@ -359,11 +359,13 @@ void NurbsTool::drawToolbar(ToolContext&)
         if (creating_) cancelCreating();
         else startCreating(false);
     }
+    tooltip("Exact circle (a closed rational nurbs_curve): click the centre, then a point of the circle");
     ImGui::SameLine();
     if (ImGui::Button(creating_ && arc_ ? "cancel arc (Esc)" : "arc (Shift+U)")) {
         if (creating_) cancelCreating();
         else startCreating(true);
     }
+    tooltip("Exact arc: click the centre, the start, then the end (counter-clockwise); up to 90 degrees a rational_bezier_curve, beyond a nurbs_curve");
 }
 
 void NurbsTool::drawPanel(ToolContext& c)
@@ -392,23 +394,30 @@ void NurbsTool::drawPanel(ToolContext& c)
         }
         ImGui::SetNextItemWidth(120);
         ImGui::InputDouble("##weight", &typedWeight, 0, 0, "%.6g");
+        tooltip("The weight to give the selected control points (> 0); Alt + drag a point scales it instead");
         ImGui::SameLine();
         if (ImGui::Button(c.selection.points.size() > 1 ? "set the selected points' weight" : "set weight"))
             setWeights(c, item, c.selection.points, typedWeight);
+        tooltip("Set the selected points' weight to the typed value (one undo step)");
     }
     const bool curve = type == "nurbs_curve" || type == "rational_bezier_curve";
     if (curve) ImGui::Checkbox("de Boor construction at t (T)", &construction);
+    if (curve) tooltip("Show the de Boor construction (homogeneous, projected) at the slider's parameter t");
     if (type != "nurbs_curve" && type != "nurbs_surface") return;
     ImGui::Separator();
     ImGui::TextUnformatted("Knots");
     ImGui::Checkbox("show knots (dots, ticks = multiplicity; surfaces: isolines)", &showKnots);
+    tooltip("Curves: a dot at each distinct knot, one tick per unit of multiplicity (red: C0 or less). Surfaces: isoparametric lines at the knots");
     if (type == "nurbs_surface") {
         ImGui::RadioButton("in u", &direction, 0);
+        tooltip("Insert knots in the u direction (every column of the net)");
         ImGui::SameLine();
         ImGui::RadioButton("in v", &direction, 1);
+        tooltip("Insert knots in the v direction (every row of the net)");
     }
     float tf = static_cast<float>(t);
     if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
+    tooltip("A parameter along the domain, 0 = its start, 1 = its end (the de Boor construction and knot insertion use it)");
     double u = sliderParameter(c);
     ImGui::SetNextItemWidth(120);
     if (ImGui::InputDouble("u (knot value)", &u, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
@@ -420,7 +429,9 @@ void NurbsTool::drawPanel(ToolContext& c)
         const double b = sliderParameter(c);
         t = b > a ? std::clamp((u - a) / (b - a), 0.0, 1.0) : saved;
     }
+    tooltip("The parameter u in the knot range itself; Enter moves the slider there");
     if (ImGui::Button("insert knot at u (K)")) insertKnot(c, sliderParameter(c), direction);
+    tooltip("Boehm knot insertion at u: one more control point (row, column), the shape unchanged (one undo step)");
     // The knot vector(s), each distinct value with its multiplicity.
     const ObjectData& data = c.scene.object(item).data;
     auto list = [](const std::vector<double>& knots) {
