@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <initializer_list>
+#include <limits>
 #include <string>
 
 #include "freeform/core/error.h"
@@ -30,6 +31,15 @@ inline double number(const Json& j, const std::string& path)
     return v;
 }
 
+/// v as a T, refused (not cast: a float cast out of range is undefined) when T cannot hold it.
+template <typename T>
+T narrow(double v, const std::string& path)
+{
+    if (std::abs(v) > static_cast<double>(std::numeric_limits<T>::max()))
+        fail(path, "number is out of range (beyond single precision)");
+    return static_cast<T>(v);
+}
+
 inline void read(const Json& obj, const char* key, const std::string& path, double& out)
 {
     if (obj.contains(key)) out = number(obj[key], path + "." + key);
@@ -37,7 +47,7 @@ inline void read(const Json& obj, const char* key, const std::string& path, doub
 
 inline void read(const Json& obj, const char* key, const std::string& path, float& out)
 {
-    if (obj.contains(key)) out = static_cast<float>(number(obj[key], path + "." + key));
+    if (obj.contains(key)) out = narrow<float>(number(obj[key], path + "." + key), path + "." + key);
 }
 
 inline void read(const Json& obj, const char* key, const std::string& path, int& out)
@@ -62,8 +72,10 @@ void readVector(const Json& obj, const char* key, const std::string& path, Vecto
     const std::string where = path + "." + key;
     if (!a.is_array() || a.size() != static_cast<std::size_t>(out.size()))
         fail(where, "expected an array of " + std::to_string(out.size()) + " numbers");
-    for (Eigen::Index i = 0; i < out.size(); ++i)
-        out[i] = static_cast<typename Vector::Scalar>(number(a[static_cast<std::size_t>(i)], where + "[" + std::to_string(i) + "]"));
+    for (Eigen::Index i = 0; i < out.size(); ++i) {
+        const std::string at = where + "[" + std::to_string(i) + "]";
+        out[i] = narrow<typename Vector::Scalar>(number(a[static_cast<std::size_t>(i)], at), at);
+    }
 }
 
 /// Reads a string member that must be one of `allowed`; returns its index in the list.

@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "interaction/replay.h"
@@ -171,4 +172,21 @@ TEST_CASE("The scene refuses an editor member nested 100,000 deep or repeating a
     CHECK(scene.history().size() == steps);
     CHECK_FALSE(scene.item(0).settings.visible);
     CHECK(scene.text() == before);
+}
+
+TEST_CASE("Settings refuse numbers a float cannot hold instead of storing infinity (fuzz_editor_settings finding)", "[settings][hardening][regressions]")
+{
+    // Found by fuzz_editor_settings in CI: a material colour of 0.61e308 was cast to float (undefined;
+    // infinity in practice), written back as null, and the written settings no longer read back.
+    const std::string text = R"({"visible": false, "material": {"ambient": [0.1, 0.1, 0.1], "diffuse": [0.7, 0.61e308, 0.5],
+                                 "specular": [0.3, 0.3, 0.3], "shininess": 32}})";
+    CHECK_THROWS_WITH(ObjectSettings::fromText(text, "objects[0].editor"),
+                      Catch::Contains("objects[0].editor.material.diffuse[1]") && Catch::Contains("out of range"));
+    // The largest float itself is kept, and reads back after a write.
+    const std::string edge = R"({"material": {"diffuse": [0.7, 3.4028234663852886e38, 0.5]}})";
+    const ObjectSettings s = ObjectSettings::fromText(edge, "o");
+    CHECK(s.material.diffuse[1] == std::numeric_limits<float>::max());
+    // A display setting stored as float (the headlight colour) is refused the same way.
+    CHECK_THROWS_WITH(DisplaySettings::fromText(R"({"headlight_color": [1e39, 0, 0]})", "doc.editor.display"),
+                      Catch::Contains("headlight_color[0]") && Catch::Contains("out of range"));
 }
