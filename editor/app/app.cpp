@@ -266,6 +266,11 @@ std::string App::stateText() const
     j["objects"] = scene_.itemCount();
     j["notice"] = ui_.notice;
     j["tooltip"] = ui_.tooltip;
+    if (ui_.statsText.empty()) j["stats"] = nullptr;
+    else j["stats"] = ui_.statsText;
+    nlohmann::ordered_json widgets = nlohmann::ordered_json::object();
+    for (const auto& p : ui_.widgets) widgets[p.name] = {p.x, p.y, p.width, p.height};
+    j["widgets"] = widgets;
     if (ui_.legendRect[2] > 0)
         j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
                        {"min", ui_.legendMin},
@@ -981,6 +986,13 @@ void App::replay(const std::vector<ReplayEvent>& events)
         case ReplayEvent::Type::Open:
             open(e.text);
             break;
+        case ReplayEvent::Type::Drop: {
+            // What the window's GLFW drop callback calls, with the same arguments.
+            std::vector<const char*> paths;
+            for (const std::string& path : e.paths) paths.push_back(path.c_str());
+            onDrop(static_cast<int>(paths.size()), paths.data());
+            break;
+        }
         case ReplayEvent::Type::Resize:
             // As a window resized by the user: the view and the panels get the new size.
             options_.width = e.width;

@@ -171,6 +171,16 @@ std::vector<ReplayEvent> parseReplay(const std::string& text, const std::string&
             onlyFields(e, where, {"type", "path"});
             ev.type = ReplayEvent::Type::Open;
             ev.text = string(e, "path", where);
+        } else if (type == "drop") {
+            onlyFields(e, where, {"type", "paths"});
+            ev.type = ReplayEvent::Type::Drop;
+            if (!e.contains("paths")) fail(where, "missing \"paths\"");
+            const Json& list = e["paths"];
+            if (!list.is_array() || list.empty()) fail(where + ".paths", "expected a non-empty array of paths");
+            for (const Json& path : list) {
+                if (!path.is_string()) fail(where + ".paths", "expected a non-empty array of paths");
+                ev.paths.push_back(path.get<std::string>());
+            }
         } else if (type == "resize") {
             onlyFields(e, where, {"type", "width", "height"});
             ev.type = ReplayEvent::Type::Resize;
@@ -181,7 +191,7 @@ std::vector<ReplayEvent> parseReplay(const std::string& text, const std::string&
             ev.width = e["width"].get<int>();
             ev.height = e["height"].get<int>();
         } else {
-            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, resize)");
+            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, drop, resize)");
         }
         ev.mods = mods(e, where);
         events.push_back(std::move(ev));

@@ -14,7 +14,7 @@ namespace freeform::editor {
 class Scene;
 
 struct ReplayEvent {
-    enum class Type { Move, Press, Release, Key, KeyPress, KeyRelease, Text, Scroll, Frame, Open, Resize };
+    enum class Type { Move, Press, Release, Key, KeyPress, KeyRelease, Text, Scroll, Frame, Open, Resize, Drop };
     Type type = Type::Frame;
     double x = 0, y = 0;        // pixels, origin top left (move, press, release, scroll)
     bool hasPosition = false;   // scroll: x and y given
@@ -25,6 +25,7 @@ struct ReplayEvent {
     int count = 1;              // frame
     int width = 0, height = 0;  // resize: the window's new size in pixels
     std::string text;           // text (UTF-8), open (path)
+    std::vector<std::string> paths; // drop: the files dropped on the window
 };
 
 /// Parses the events file text; Error naming the event index and field on anything unexpected

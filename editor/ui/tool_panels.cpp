@@ -265,7 +265,9 @@ void LatticeTool::drawPanel(ToolContext& c)
         ImGui::EndCombo();
     }
     float w = static_cast<float>(settings.ffd.strength);
-    if (ImGui::SliderFloat("strength", &w, 0.0f, 1.0f, "%.3f")) {
+    const bool strengthChanged = ImGui::SliderFloat("strength", &w, 0.0f, 1.0f, "%.3f");
+    recordWidget("strength");
+    if (strengthChanged) {
         settings.ffd.strength = w;
         c.scene.setSettings(item, settings, "strength");
     }
@@ -320,9 +322,12 @@ void LatticeTool::drawPanel(ToolContext& c)
         const float button = ImGui::CalcTextSize("export deformed").x + 2 * ImGui::GetStyle().FramePadding.x;
         ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - button - ImGui::GetStyle().ItemSpacing.x));
         ImGui::InputText("##export", exportPath, sizeof exportPath);
+        recordWidget("export path");
         tooltip("Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
         ImGui::SameLine();
-        if (ImGui::Button("export deformed")) exportDeformed(c, item, exportPath);
+        const bool exportClicked = ImGui::Button("export deformed");
+        recordWidget("export deformed");
+        if (exportClicked) exportDeformed(c, item, exportPath);
         tooltip("Write the deformed mesh (computed in double, as freeform ffd does) to the path on the left");
     }
     if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, item);

@@ -135,6 +135,13 @@ void tooltip(const char* text)
     else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
 }
 
+void recordWidget(const char* name)
+{
+    if (!currentState || !ImGui::IsItemVisible()) return;
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    currentState->widgets.push_back({name, lo.x, lo.y, hi.x - lo.x, hi.y - lo.y});
+}
+
 bool scalarRangeControls(DisplaySettings& d)
 {
     bool changed = ImGui::Checkbox("auto range", &d.scalarAuto);
@@ -743,6 +750,7 @@ void helpWindow(UiState& s)
 
 void statsWindow(UiState& s)
 {
+    s.statsText.clear();
     if (!s.showStats) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - statusHeight() - 8), ImGuiCond_Always,
@@ -750,8 +758,12 @@ void statsWindow(UiState& s)
     ImGui::SetNextWindowBgAlpha(0.6f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
-    if (ImGui::Begin("Frame statistics", nullptr, flags))
-        ImGui::Text("frame %.2f ms   update %.2f ms   %ld triangles", s.frameMs, s.updateMs, s.triangles);
+    if (ImGui::Begin("Frame statistics", nullptr, flags)) {
+        char text[160];
+        std::snprintf(text, sizeof text, "frame %.2f ms   update %.2f ms   %ld triangles", s.frameMs, s.updateMs, s.triangles);
+        ImGui::TextUnformatted(text);
+        s.statsText = text;
+    }
     ImGui::End();
 }
 
@@ -901,6 +913,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     state.layoutHeight = vp->Size.y;
     currentState = &state;
     state.tooltip.clear();
+    state.widgets.clear();
     mainMenu(scene, state, actions);
     statusBar(state);
     colourLegend(scene, state);

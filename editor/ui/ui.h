@@ -88,6 +88,12 @@ struct UiState {
     float legendMin = 0, legendMax = 0;
     /// The tooltip shown in the last frame (empty: none), for --state.
     std::string tooltip;
+    /// The frame statistics overlay's text as drawn in the last frame (empty: not shown), for
+    /// --state.
+    std::string statsText;
+    /// Where some controls were drawn in the last frame (name, x, y, width, height in pixels; see
+    /// recordWidget), for --state: tests that drive a control find it there.
+    std::vector<PanelRect> widgets;
     /// The up axis File > Import gives OBJ, PLY, STL and OFF files (their formats have no
     /// convention): the last choice in the Import dialog, Z at first. glTF and GLB are always Y.
     UpAxis importUp = UpAxis::Z;
@@ -98,6 +104,9 @@ void tooltip(UiState& state, const char* text);
 /// The same for the panels that have no UiState at hand (the tools' panels); it records into the
 /// state drawUi was last called with.
 void tooltip(const char* text);
+/// Records the last widget's rectangle under `name` in the state drawUi was last called with
+/// (UiState::widgets, --state's `widgets`) when it is visible (not clipped or scrolled away).
+void recordWidget(const char* name);
 
 /// The scalar colour map's range controls: "auto" or fixed min/max (DisplaySettings). True when
 /// something changed.
