@@ -18,6 +18,9 @@
 //     docs/editor.md puts it on a stripe and light between stripes; on a half cylinder facing the
 //     view the stripes are straight and equally spaced, 23 across the scanline through its middle,
 //     each pixel dark or light as the formula computed here says;
+//   - the "First steps" C0 patch pair (examples/data/c0-patches.json) with reflection lines, seen
+//     from above: every pixel dark or light as the formula says with the hand-derived normals of
+//     the two height fields, so the stripes break at the shared edge;
 //   - `--frames N`: exit 0, nothing on stderr, stdout exactly the documented keys (N frames, the
 //     hand-counted triangles, min <= median, mean <= max).
 
@@ -590,6 +593,63 @@ TEST_CASE("reflection lines: a half cylinder facing the view has 23 straight str
     }
 }
 
+TEST_CASE("First steps: the reflection lines of the C0 patch pair break at the shared edge, as the formula says", "[render][reflection]")
+{
+    // examples/data/c0-patches.json: two bicubic patches over x in [-1.5, 0] and [0, 1.5], y in
+    // [-0.75, 0.75], whose control points are evenly spaced in x and y, so the surface is the
+    // height field z = s(x) + y^2 / 3 + c with slope ds/dx = 0.6 on the left and -0.6 on the right
+    // (the rows rise by 0.3 every 0.5; across y the Bezier heights (A, B, B, A), A - B = 0.25, give
+    // dz/dy = 0.75 (2v - 1) / 1.5 = y / 1.5). The unit normal is (-z_x, -z_y, 1) / N. Seen from
+    // above (orthographic, turned 45 degrees about the view axis, so that the eye's x is
+    // (cos 45, sin 45, 0)) the eye normal's z is positive and the stripe phase is 12 n.x_eye: on
+    // each side a different function of y, so the stripes do not meet at x = 0.
+    const Json source = Json::parse(test::slurp(cat(FREEFORM_SOURCE_DIR, "/examples/data/c0-patches.json")));
+    constexpr double kStripes = 12, gamma = M_PI / 4;
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(gamma, Eigen::Vector3d::UnitZ()));
+    const Json camera = {{"target", {0.0, 0.0, 0.6}}, {"distance", 5.0}, {"orientation", {q.w(), q.x(), q.y(), q.z()}},
+                         {"fovy", 35.0}, {"projection", "orthographic"}, {"orbit", "turntable"}};
+    const Json editor = {{"camera", camera},
+                         {"display", {{"analysis", "reflection_lines"}, {"grid", false}, {"axes", false}, {"background", {0.5, 0.5, 0.5}}}}};
+    const std::string doc = writeDoc("reflection_c0", document(source["objects"], editor)), png = cat(kTmp, "/promises_reflection_c0.png");
+    fs::remove(png);
+    const auto r = runEditor(cat("'", doc, "' --screenshot '", png, "' --no-ui --size ", kW, "x", kH));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const test::RgbImage image = test::loadPng(png);
+    REQUIRE(image.width == kW);
+    const Scene scene = Scene::load(doc);
+    const Eigen::Vector3d ex(std::cos(gamma), std::sin(gamma), 0), ey(-std::sin(gamma), std::cos(gamma), 0);
+    const Eigen::Vector2d o = worldToPixel(scene, kW, kH, {0, 0, 0.6}), unit = worldToPixel(scene, kW, kH, Eigen::Vector3d(0, 0, 0.6) + ex);
+    const double scale = (unit - o).norm();
+    REQUIRE(scale > 150);
+    auto expectedDistance = [&](double x, double y) {
+        const double zx = x < 0 ? 0.6 : -0.6, zy = y / 1.5;
+        const Eigen::Vector3d n = Eigen::Vector3d(-zx, -zy, 1).normalized();
+        const double phase = kStripes * n.dot(ex);
+        return std::abs(phase - std::round(phase));
+    };
+    int agree = 0, disagree = 0, breaks = 0;
+    for (int row = 0; row < kH; ++row)
+        for (int col = 0; col < kW; ++col) {
+            const double a = (col + 0.5 - o.x()) / scale, b = -(row + 0.5 - o.y()) / scale;
+            const Eigen::Vector2d w = a * ex.head<2>() + b * ey.head<2>(); // world x, y under the pixel
+            if (std::abs(w.x()) < 4 / scale || std::abs(w.x()) > 1.5 - 4 / scale || std::abs(w.y()) > 0.75 - 4 / scale) continue;
+            const double d = expectedDistance(w.x(), w.y());
+            const unsigned char* p = image.at(col, row);
+            if (d < 0.25 - 0.06) (isDark(p) ? agree : disagree) += 1;
+            else if (d > 0.25 + 0.06) (isLight(p) ? agree : disagree) += 1;
+        }
+    // Along the edge: how many places have a dark stripe on one side and light on the other.
+    for (double y = -0.7; y <= 0.7; y += 0.01) {
+        const double left = expectedDistance(-1e-9, y), right = expectedDistance(1e-9, y);
+        breaks += (left < 0.19 && right > 0.31) || (left > 0.31 && right < 0.19);
+    }
+    INFO(agree << " pixels as the formula says, " << disagree << " not; " << breaks << " of 141 places along the edge dark on one side, light on the other");
+    CHECK(agree > 100000);
+    CHECK(disagree <= agree / 1000); // a few pixels at the patches' tessellation seams
+    CHECK(breaks > 30);
+}
+
 // --------------------------------------------------------------------------------------- --frames
 
 TEST_CASE("--frames N prints the documented statistics and nothing else on stdout", "[render][frames]")
@@ -629,6 +689,18 @@ TEST_CASE("--frames N prints the documented statistics and nothing else on stdou
     CHECK(lo <= mean);
     CHECK(mean <= hi);
     CHECK(cpu >= 0);
+
+    // The samples its frames used (docs/editor.md, "Anti-aliasing"): under auto none for a
+    // software renderer's frames; --samples 2 forces two on every renderer.
+    const bool software = values["renderer"].find("llvmpipe") != std::string::npos || values["renderer"].find("softpipe") != std::string::npos;
+    CHECK(values["antialiasing"] == "auto");
+    if (software) CHECK(values["size"] == "320x200, samples: 0, shading: phong");
+    const auto forced = runEditor(cat("'", doc, "' --frames 2 --size 320x200 --samples 2"));
+    REQUIRE(forced.status == 0);
+    std::map<std::string, std::string> forcedValues;
+    for (const auto& [k, v] : keyLines(forced.out)) forcedValues[k] = v;
+    CHECK(forcedValues["antialiasing"] == "always");
+    CHECK(forcedValues["size"] == "320x200, samples: 2, shading: phong");
 
     // A wrong count: exit 2, one error line, nothing on stdout.
     const auto bad = runEditor(cat("'", doc, "' --frames 0"));
