@@ -21,6 +21,8 @@
 //   - the "First steps" C0 patch pair (examples/data/c0-patches.json) with reflection lines, seen
 //     from above: every pixel dark or light as the formula says with the hand-derived normals of
 //     the two height fields, so the stripes break at the shared edge;
+//   - the wireframe overlay: on a uniformly tessellated plane, the triangle edges cross a row of
+//     pixels exactly at the cell boundaries and cell middles computed from the corners;
 //   - `--frames N`: exit 0, nothing on stderr, stdout exactly the documented keys (N frames, the
 //     hand-counted triangles, min <= median, mean <= max).
 
@@ -491,13 +493,13 @@ double phaseDistance(const Eigen::Vector3d& n, double stripes)
 bool isDark(const unsigned char* c) { return c[0] < 40 && c[1] < 40 && c[2] < 40; }
 bool isLight(const unsigned char* c) { return c[0] > 215 && c[1] > 215 && c[2] > 215; }
 
-std::string reflectionShot(const std::string& name, const Json& objects)
+std::string reflectionShot(const std::string& name, const Json& objects, const std::string& extra = "")
 {
     const Json editor = {{"camera", frontCamera(5, "orthographic")},
                          {"display", {{"analysis", "reflection_lines"}, {"grid", false}, {"axes", false}, {"background", {0.5, 0.5, 0.5}}}}};
     const std::string doc = writeDoc(name, document(objects, editor)), png = cat(kTmp, "/promises_", name, ".png");
     fs::remove(png);
-    const auto r = runEditor(cat("'", doc, "' --screenshot '", png, "' --no-ui --size ", kW, "x", kH));
+    const auto r = runEditor(cat("'", doc, "' --screenshot '", png, "' --no-ui --size ", kW, "x", kH, " ", extra));
     INFO(r.err);
     REQUIRE(r.status == 0);
     return doc;
@@ -648,6 +650,54 @@ TEST_CASE("First steps: the reflection lines of the C0 patch pair break at the s
     CHECK(agree > 100000);
     CHECK(disagree <= agree / 1000); // a few pixels at the patches' tessellation seams
     CHECK(breaks > 30);
+}
+
+TEST_CASE("the wireframe overlay (W) draws every triangle edge of the tessellation where it lies", "[render][wireframe]")
+{
+    // The light plane of the reflection-line case (one colour, 242) tessellated uniformly in 6 x 6
+    // cells, with and without --wireframe. On the row through the middle of a row of cells the
+    // edges cross at every cell boundary (the 5 inner ones) and each cell's diagonal crosses at the
+    // cell's middle (whichever diagonal it is): 11 dark lines inside the plane, equally spaced at
+    // half a cell, at the places computed here from the corners' pixels.
+    constexpr int kCells = 6;
+    const double light = -std::asin(6.5 / 12);
+    const Eigen::Vector3d c(0, 0, 0), t(std::cos(light), std::sin(light), 0);
+    Json object = plane("p", c, t, 0.9, 0.8);
+    object["editor"] = {{"tessellation", {{"mode", "uniform"}, {"segments", kCells}}}};
+    const std::string doc = reflectionShot("wireframe_off", Json::array({object}));
+    reflectionShot("wireframe_on", Json::array({object}), "--wireframe");
+    const test::RgbImage off = test::loadPng(cat(kTmp, "/promises_wireframe_off.png")), on = test::loadPng(cat(kTmp, "/promises_wireframe_on.png"));
+    REQUIRE(off.width == kW);
+    REQUIRE(on.width == kW);
+    const Scene scene = Scene::load(doc);
+    const Eigen::Vector2d left = worldToPixel(scene, kW, kH, c - 0.9 * t), right = worldToPixel(scene, kW, kH, c + 0.9 * t);
+    const double width = right.x() - left.x();
+    REQUIRE(width > 200);
+    // The middle of cell row 2 (of 0..5) along z in [-0.8, 0.8].
+    const int row = static_cast<int>(std::floor(worldToPixel(scene, kW, kH, c + Eigen::Vector3d(0, 0, -0.8 + 1.6 * 2.5 / kCells)).y()));
+    auto darkRuns = [&](const test::RgbImage& image) {
+        std::vector<double> centres;
+        int start = -1;
+        const int x0 = static_cast<int>(std::ceil(left.x())) + 4, x1 = static_cast<int>(std::floor(right.x())) - 4;
+        for (int x = x0; x <= x1 + 1; ++x) {
+            const bool dark = x <= x1 && image.at(x, row)[0] < 200;
+            if (dark && start < 0) start = x;
+            if (!dark && start >= 0) {
+                centres.push_back(0.5 * (start + x)); // pixels start..x-1: centre (start + x) / 2
+                start = -1;
+            }
+        }
+        return centres;
+    };
+    CHECK(darkRuns(off).empty()); // the plane alone is one light colour
+    const std::vector<double> lines = darkRuns(on);
+    INFO("row " << row << ", plane from x = " << left.x() << " to " << right.x());
+    REQUIRE(lines.size() == 2 * kCells - 1);
+    for (int m = 1; m < 2 * kCells; ++m) {
+        const double expected = left.x() + width * m / (2.0 * kCells);
+        INFO("line " << m << " at " << lines[m - 1] << ", expected " << expected);
+        CHECK(std::abs(lines[m - 1] - expected) <= 1.5);
+    }
 }
 
 // --------------------------------------------------------------------------------------- --frames
