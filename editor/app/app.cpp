@@ -266,6 +266,10 @@ std::string App::stateText() const
     j["objects"] = scene_.itemCount();
     j["notice"] = ui_.notice;
     j["tooltip"] = ui_.tooltip;
+    nlohmann::ordered_json overflows = nlohmann::ordered_json::array();
+    for (const Overflow& o : ui_.overflows)
+        overflows.push_back({{"panel", o.panel}, {"label", o.label}, {"needed", o.needed}, {"available", o.available}});
+    j["overflows"] = overflows;
     if (ui_.legendRect[2] > 0)
         j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
                        {"min", ui_.legendMin},

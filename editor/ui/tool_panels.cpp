@@ -12,6 +12,7 @@
 
 #include "freeform/core/error.h"
 #include "tools/tools.h"
+#include "ui/fit.h"
 #include "ui/ui.h"
 
 namespace freeform::editor {
@@ -146,6 +147,7 @@ void SplineTool::drawPanel(ToolContext& c)
                 jumps += buffer;
             }
             ImGui::TextUnformatted(jumps.c_str());
+            fitItem(jumps.c_str());
         }
         ImGui::EndTable();
     }

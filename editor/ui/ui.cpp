@@ -305,6 +305,7 @@ void outliner(Scene& scene, UiState& s)
             ImGui::PopID();
         }
         if (scene.itemCount() == 0) ImGui::TextDisabled("empty: open or import a file, or drop one here");
+        fitPanel();
     }
     ImGui::End();
 }
@@ -340,10 +341,24 @@ void controlPointTable(Scene& scene, int index, UiState& s)
                     s.error = e.what();
                 }
             }
+            {
+                // Each of the dim fields: (width - spacings) / dim, as ImGui lays them out.
+                const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+                const float labelWidth = ImGui::CalcTextSize(label.c_str()).x;
+                const float fields = ImGui::GetItemRectSize().x - (labelWidth > 0 ? spacing + labelWidth : 0);
+                const float each = (fields - spacing * float(dim - 1)) / float(dim);
+                for (int r = 0; r < dim; ++r) {
+                    char text[32];
+                    std::snprintf(text, sizeof text, "%.6g", value[r]);
+                    const float need = fieldWidthFor(text);
+                    fitWidth(text, need, each);
+                }
+            }
             tooltip(s, "Control point coordinates; type new ones and press Enter (one undo step)");
             ImGui::PopID();
         }
     }
+    fitPanel();
     ImGui::EndChild();
 }
 
@@ -483,6 +498,7 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             }
             actions.toolPanels();
         }
+        fitPanel();
     }
     ImGui::End();
 }
@@ -611,6 +627,7 @@ void displayPanel(Scene& scene, UiState& s)
             if (retessellate) scene.invalidateGeometry();
         }
         ImGui::PopItemWidth();
+        fitPanel();
     }
     ImGui::End();
 }
@@ -883,10 +900,12 @@ void statusBar(UiState& s)
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 2));
     if (ImGui::Begin("##status", nullptr, flags)) {
         ImGui::TextUnformatted(s.statusHint.c_str());
+        fitItem(s.statusHint.c_str());
         tooltip(s, s.statusHint.c_str()); // the whole text, where a narrow window cuts the line
         if (!s.notice.empty()) {
             ImGui::SameLine();
             ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "   |   %s", s.notice.c_str());
+            fitItem(s.notice.c_str());
         }
     }
     ImGui::End();
@@ -900,6 +919,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     state.layoutWidth = vp->Size.x;
     state.layoutHeight = vp->Size.y;
     currentState = &state;
+    recordOverflowsInto(&state.overflows);
     state.tooltip.clear();
     mainMenu(scene, state, actions);
     statusBar(state);
@@ -914,6 +934,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     const bool proceed = unsavedDialog(scene, state, actions);
     errorDialog(state);
     state.relayout = false;
+    recordOverflowsInto(nullptr);
     currentState = nullptr;
     return proceed;
 }
