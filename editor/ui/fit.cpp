@@ -33,6 +33,20 @@ void record(const std::string& label, float needed, float available)
     if (records->size() < kMaxRecords) records->push_back({panel, label, needed, available});
 }
 
+/// Inside a window or table that scrolls sideways (its scroll bar shown) everything can be reached;
+/// a table's column still measuring its content (its first frames) has no width yet.
+bool measuring()
+{
+    const ImGuiTable* t = ImGui::GetCurrentTable();
+    return t && (t->IsInitializing || (t->CurrentColumn >= 0 && t->Columns[t->CurrentColumn].AutoFitQueue != 0));
+}
+
+bool scrollsSideways()
+{
+    const ImGuiWindow* w = ImGui::GetCurrentWindowRead();
+    return (w && w->ScrollbarX) || measuring();
+}
+
 } // namespace
 
 void recordOverflowsInto(std::vector<Overflow>* list)
@@ -42,7 +56,7 @@ void recordOverflowsInto(std::vector<Overflow>* list)
 
 void fitItem(const char* label)
 {
-    if (!records) return;
+    if (!records || scrollsSideways()) return;
     const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
     // The draw list's clip rectangle is the panel's visible inner area, or inside a table the
     // cell's column (clipped to the table).
@@ -50,22 +64,31 @@ void fitItem(const char* label)
     record(label, max.x - min.x, right - min.x);
 }
 
+void fitText(const char* text)
+{
+    if (!records || scrollsSideways()) return;
+    const float x = ImGui::GetCursorScreenPos().x;
+    const float right = std::min(ImGui::GetWindowDrawList()->GetClipRectMax().x, x + ImGui::GetContentRegionAvail().x);
+    record(text, ImGui::CalcTextSize(text).x, right - x);
+}
+
 void fitValue(const char* text)
 {
-    if (!records) return;
+    if (!records || measuring()) return;
     const float width = ImGui::GetItemRectSize().x;
     record(text, fieldWidthFor(text), width);
     fitItem(text);
 }
 
-void fitPanel()
+void fitPanel(const std::string& what)
 {
     if (!records) return;
     const ImGuiWindow* w = ImGui::GetCurrentWindowRead();
     if (!w || w->ScrollbarX || w->SkipItems) return;
-    // IdealMaxPos: the right edge of everything laid out this frame, a table at its natural width.
-    const float left = w->DC.CursorStartPos.x;
-    record("(widest row)", w->DC.IdealMaxPos.x - left, w->InnerClipRect.Max.x - left);
+    // CursorMaxPos: the right edge of everything laid out this frame; IdealMaxPos: the same with a
+    // table at its natural width.
+    const float left = w->DC.CursorStartPos.x, right = std::max(w->DC.CursorMaxPos.x, w->DC.IdealMaxPos.x);
+    record(what.empty() ? std::string("(widest row)") : "(widest row, " + what + ")", right - left, w->InnerClipRect.Max.x - left);
 }
 
 void fitWidth(const char* label, float needed, float available)

@@ -23,8 +23,13 @@ struct Overflow {
 void recordOverflowsInto(std::vector<Overflow>* list);
 
 /// The last item (text, button, field ...) against the visible area it was drawn in: the panel's
-/// clip rectangle, or its table cell's. `label` names it in the record.
+/// clip rectangle, or its table cell's. `label` names it in the record. Inside a window or table
+/// that scrolls sideways everything can be reached, and nothing is recorded.
 void fitItem(const char* label);
+
+/// A text about to be drawn at the cursor (e.g. a table header): its width against the room to the
+/// right of the cursor (the cell's or the panel's, whichever ends first).
+void fitText(const char* text);
 
 /// A value drawn inside the last item (a numeric field): its text and the frame padding against the
 /// item's width; also fitItem(text).
@@ -32,8 +37,9 @@ void fitValue(const char* text);
 
 /// The current panel as a whole, before its End(): the widest thing laid out in it (including a
 /// table's natural width) against its visible width. A panel with a horizontal scroll bar shows
-/// everything and passes.
-void fitPanel();
+/// everything and passes. Recorded as "(widest row)", or "(widest row, <what>)" with `what` (e.g.
+/// the selected object's type).
+void fitPanel(const std::string& what = "");
 
 /// A text that needs `needed` pixels and gets `available`.
 void fitWidth(const char* label, float needed, float available);
