@@ -4,6 +4,7 @@
 #include <imgui_internal.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace freeform::editor {
 
@@ -89,6 +90,18 @@ void fitPanel(const std::string& what)
     // table at its natural width.
     const float left = w->DC.CursorStartPos.x, right = std::max(w->DC.CursorMaxPos.x, w->DC.IdealMaxPos.x);
     record(what.empty() ? std::string("(widest row)") : "(widest row, " + what + ")", right - left, w->InnerClipRect.Max.x - left);
+}
+
+void fitFields(const char* const texts[], int n, float reserve, bool centred)
+{
+    if (!records || n < 1 || measuring()) return;
+    const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+    const float full = ImGui::CalcItemWidth() - reserve;
+    // ImGui's PushMultiItemsWidths: n - 1 fields of this width, the last one the rest.
+    const float one = std::max(1.0f, std::floor((full - spacing * float(n - 1)) / float(n)));
+    const float last = std::max(1.0f, std::floor(full - (one + spacing) * float(n - 1)));
+    for (int k = 0; k < n; ++k)
+        record(texts[k], centred ? ImGui::CalcTextSize(texts[k]).x + 2 : fieldWidthFor(texts[k]), k + 1 < n ? one : last);
 }
 
 void fitWidth(const char* label, float needed, float available)

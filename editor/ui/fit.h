@@ -44,6 +44,13 @@ void fitPanel(const std::string& what = "");
 /// A text that needs `needed` pixels and gets `available`.
 void fitWidth(const char* label, float needed, float available);
 
+/// Before a widget of n fields in a row (DragFloat3, InputFloat2, ColorEdit3 ...) of the next
+/// item width: each of the n texts against its field's width, as ImGui divides the width (less
+/// `reserve`, e.g. a colour swatch and its spacing). A typed field (InputFloat2: the text from the
+/// frame's left padding) needs the text and both paddings; a drag field (`centred`: ImGui centres
+/// the text and clips it at the frame) the text and 1 px on each side.
+void fitFields(const char* const texts[], int n, float reserve = 0, bool centred = false);
+
 /// The width a numeric field needs to show `text` whole (the text and the frame's padding).
 float fieldWidthFor(const char* text);
 

@@ -138,8 +138,31 @@ void notePanel(UiState& s, const char* name)
     s.panels.push_back({name, p.x, p.y, z.x, z.y});
 }
 
+/// The texts of n float fields at a printf format (for fitFields).
+struct FieldTexts {
+    char text[4][32];
+    const char* pointers[4];
+    FieldTexts(const float* v, int n, const char* format)
+    {
+        for (int k = 0; k < n && k < 4; ++k) {
+            std::snprintf(text[k], sizeof text[k], format, double(v[k]));
+            pointers[k] = text[k];
+        }
+    }
+};
+
+/// The next item as wide as the row less its own label (three-field rows: colours, positions).
+void widthBesideOwnLabel(const char* label)
+{
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize(label, nullptr, true).x - ImGui::GetStyle().ItemInnerSpacing.x);
+}
+
 bool colorEdit(const char* label, Vec3f& c)
 {
+    // Three drag fields of "%0.3f" beside the colour swatch (ImGui's ColorEdit3 with the Float
+    // flag), as wide as the row allows.
+    widthBesideOwnLabel(label);
+    fitFields(FieldTexts(c.data(), 3, "%0.3f").pointers, 3, ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x, true);
     return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float);
 }
 
@@ -195,6 +218,7 @@ bool scalarRangeControls(DisplaySettings& d)
             "Off: the fixed range below (default 0 to 2; det J = 1, the volume kept, in the middle).");
     if (!d.scalarAuto) {
         float range[2] = {d.scalarMin, d.scalarMax};
+        fitFields(FieldTexts(range, 2, "%.3g").pointers, 2);
         if (ImGui::InputFloat2("min, max", range, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && std::isfinite(range[0]) &&
             std::isfinite(range[1]) && range[0] < range[1]) {
             d.scalarMin = range[0];
@@ -320,11 +344,20 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::EndMenu();
     }
     ImGui::Separator();
-    const std::string title = (scene.path().empty() ? std::string("untitled") : scene.path()) + (scene.modified() ? " *" : "");
-    ImGui::TextUnformatted(title.c_str());
+    const std::string full = (scene.path().empty() ? std::string("untitled") : scene.path()) + (scene.modified() ? " *" : "");
     char stats[96];
     std::snprintf(stats, sizeof stats, "   %ld triangles   %.1f ms", s.triangles, s.frameMs);
+    // The document's path, or only its file name where the whole path and the figures do not fit.
+    const float room = ImGui::GetWindowDrawList()->GetClipRectMax().x - ImGui::GetCursorScreenPos().x - ImGui::CalcTextSize(stats).x -
+                       2 * ImGui::GetStyle().ItemSpacing.x;
+    std::string title = full;
+    if (ImGui::CalcTextSize(full.c_str()).x > room && !scene.path().empty())
+        title = std::filesystem::path(scene.path()).filename().string() + (scene.modified() ? " *" : "");
+    ImGui::TextUnformatted(title.c_str());
+    fitItem(title.c_str());
+    if (title != full) tooltip(s, full.c_str());
     ImGui::TextDisabled("%s", stats);
+    fitItem(stats);
     ImGui::EndMainMenuBar();
 }
 
@@ -734,6 +767,8 @@ void displayPanel(Scene& scene, UiState& s)
                 ImGui::SameLine();
                 const bool removeIt = ImGui::SmallButton("remove");
                 tooltip(s, "Remove this light");
+                widthBesideOwnLabel("position");
+                fitFields(FieldTexts(d.lights[i].position.data(), 3, "%.3f").pointers, 3, 0, true);
                 ImGui::DragFloat3("position", d.lights[i].position.data(), 0.05f);
                 tooltip(s, "The light's position in world coordinates (drag, or double-click to type)");
                 colorEdit("colour", d.lights[i].color);
