@@ -390,7 +390,11 @@ void outliner(Scene& scene, UiState& s)
             tooltip(s, tip.c_str());
             ImGui::PopID();
         }
-        if (scene.itemCount() == 0) ImGui::TextDisabled("empty: open or import a file, or drop one here");
+        if (scene.itemCount() == 0) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+            ImGui::TextWrapped("empty: open or import a file, or drop one here");
+            ImGui::PopStyleColor();
+        }
         fitPanel();
     }
     ImGui::End();
@@ -463,6 +467,7 @@ void controlPointTable(Scene& scene, int index, UiState& s)
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
                 const std::string label = std::to_string(k);
+                ImGui::AlignTextToFramePadding();
                 ImGui::TextUnformatted(label.c_str());
                 fitItem(label.c_str());
                 bool entered = false;
