@@ -143,6 +143,7 @@ void SplineTool::drawPanel(ToolContext& c)
             ImGui::TableNextColumn();
             char number[16];
             std::snprintf(number, sizeof number, "%d", r.joint);
+            ImGui::AlignTextToFramePadding();
             ImGui::TextUnformatted(number);
             fitItem(number);
             ImGui::TableNextColumn();
@@ -158,6 +159,7 @@ void SplineTool::drawPanel(ToolContext& c)
             ImGui::TableNextColumn();
             char levels[32];
             std::snprintf(levels, sizeof levels, "C%d G%d", r.C, r.G);
+            ImGui::AlignTextToFramePadding();
             ImGui::TextUnformatted(levels);
             fitItem(levels);
             ImGui::TableNextColumn();
@@ -170,6 +172,7 @@ void SplineTool::drawPanel(ToolContext& c)
             }
             char jump[32] = "-";
             if (order < r.jumps.size()) std::snprintf(jump, sizeof jump, "%zu: %.1e", order, r.jumps[order]);
+            ImGui::AlignTextToFramePadding();
             ImGui::TextUnformatted(jump);
             fitItem(jump);
             tooltip(jumps.c_str());
