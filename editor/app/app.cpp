@@ -271,6 +271,10 @@ std::string App::stateText() const
     nlohmann::ordered_json widgets = nlohmann::ordered_json::object();
     for (const auto& p : ui_.widgets) widgets[p.name] = {p.x, p.y, p.width, p.height};
     j["widgets"] = widgets;
+    nlohmann::ordered_json overflows = nlohmann::ordered_json::array();
+    for (const Overflow& o : ui_.overflows)
+        overflows.push_back({{"panel", o.panel}, {"label", o.label}, {"needed", o.needed}, {"available", o.available}});
+    j["overflows"] = overflows;
     if (ui_.legendRect[2] > 0)
         j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
                        {"min", ui_.legendMin},

@@ -19,7 +19,10 @@ void CageTool::drawPanel(ToolContext& c)
     const auto& d = std::get<SubdivisionSurfaceData>(c.scene.object(item).data);
     ImGui::TextUnformatted("Subdivision cage");
     if (!d.mesh.empty()) {
-        ImGui::TextDisabled("cage file: %s", d.mesh.c_str());
+        // Wrapped: a path can be longer than the panel is wide.
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("cage file: %s", d.mesh.c_str());
+        ImGui::PopStyleColor();
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("written inline on the first crease, corner or vertex edit; the file stays as it is");
     }
 
@@ -65,7 +68,9 @@ void CageTool::drawPanel(ToolContext& c)
         if (ImGui::Button("clear (Shift+S)")) clearCrease(c, item, e[0], e[1]);
         tooltip("Remove the picked edge's crease (one undo step)");
     } else {
-        ImGui::TextDisabled("no edge picked (E, then click an edge)");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("no edge picked (E, then click an edge)");
+        ImGui::PopStyleColor();
     }
     char label[64];
     std::snprintf(label, sizeof label, "corners: %zu point(s)", c.selection.points.size());

@@ -12,6 +12,7 @@
 
 #include "freeform/core/error.h"
 #include "tools/tools.h"
+#include "ui/fit.h"
 #include "ui/ui.h"
 
 namespace freeform::editor {
@@ -119,33 +120,62 @@ void SplineTool::drawPanel(ToolContext& c)
         ImGui::TextWrapped("%s", e.what());
     }
     const std::vector<JointMode> modes = jointModes(c.scene, item);
+    // Four narrow columns, so that the table fits the panel's default width (at 900 x 600 too):
+    // the joint's number, its mode, its C / G levels, and the jump of the lowest derivative that is
+    // not continuous (order k = C + 1, at most 3); all three jumps in the cell's tooltip.
     if (ImGui::BeginTable("joints", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
-        ImGui::TableSetupColumn("joint");
-        ImGui::TableSetupColumn("mode");
-        ImGui::TableSetupColumn("C / G");
-        ImGui::TableSetupColumn("jumps |f_R^(k) - f_L^(k)|");
-        ImGui::TableHeadersRow();
+        static const char* heads[] = {"#", "mode", "C / G", "jump"};
+        static const char* headTips[] = {"The joint's number along the spline (0: its start)",
+                                         "The joint's handle mode (keys 1-4 with a point of it selected)",
+                                         "The continuity the joint has: C (derivatives equal) and G (geometric) orders",
+                                         "k: |f_R^(k) - f_L^(k)|, the jump of the lowest derivative order k that is not continuous\n"
+                                         "(k = C + 1, at most 3); hover a value for the jumps of orders 1, 2 and 3"};
+        for (const char* h : heads) ImGui::TableSetupColumn(h);
+        ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+        for (int column = 0; column < 4; ++column) {
+            ImGui::TableSetColumnIndex(column);
+            fitText(heads[column]);
+            ImGui::TableHeader(heads[column]);
+            tooltip(headTips[column]);
+        }
         for (const JointContinuity<double>& r : report) {
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
-            ImGui::Text("%d", r.joint);
+            char number[16];
+            std::snprintf(number, sizeof number, "%d", r.joint);
+            ImGui::AlignTextToFramePadding();
+            ImGui::TextUnformatted(number);
+            fitItem(number);
             ImGui::TableNextColumn();
             int mode = static_cast<int>(modes[static_cast<std::size_t>(r.joint)]);
             ImGui::PushID(r.joint);
             ImGui::SetNextItemWidth(90);
             if (ImGui::Combo("##mode", &mode, names, 4)) setJointMode(c, static_cast<JointMode>(mode), r.joint);
+            fitWidth(names[mode], ImGui::CalcTextSize(names[mode]).x + 2 * ImGui::GetStyle().FramePadding.x + ImGui::GetFrameHeight(),
+                     ImGui::GetItemRectSize().x);
+            fitItem(names[mode]);
             tooltip("This joint's handle mode: free (C0), aligned (G1), mirrored (C1), C2 (cubic splines)");
             ImGui::PopID();
             ImGui::TableNextColumn();
-            ImGui::Text("C%d G%d", r.C, r.G);
+            char levels[32];
+            std::snprintf(levels, sizeof levels, "C%d G%d", r.C, r.G);
+            ImGui::AlignTextToFramePadding();
+            ImGui::TextUnformatted(levels);
+            fitItem(levels);
             ImGui::TableNextColumn();
+            const std::size_t order = std::min<std::size_t>(static_cast<std::size_t>(std::max(r.C, 0)) + 1, 3);
             std::string jumps;
             for (std::size_t k = 1; k < r.jumps.size() && k <= 3; ++k) {
-                char buffer[32];
-                std::snprintf(buffer, sizeof buffer, "%s%.2e", k > 1 ? "  " : "", r.jumps[k]);
+                char buffer[48];
+                std::snprintf(buffer, sizeof buffer, "%sorder %zu: %.3e", k > 1 ? "\n" : "", k, r.jumps[k]);
                 jumps += buffer;
             }
-            ImGui::TextUnformatted(jumps.c_str());
+            char jump[32] = "-";
+            if (order < r.jumps.size()) std::snprintf(jump, sizeof jump, "%zu: %.1e", order, r.jumps[order]);
+            ImGui::AlignTextToFramePadding();
+            ImGui::TextUnformatted(jump);
+            fitItem(jump);
+            tooltip(jumps.c_str());
         }
         ImGui::EndTable();
     }
@@ -211,8 +241,10 @@ void PatchTool::drawPanel(ToolContext& c)
         tooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
                 "(the table follows every change of the patches)");
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
-        if (ImGui::BeginTable("edges", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit,
+        // Patch names make the edge column wide: the table scrolls sideways, that column frozen.
+        if (ImGui::BeginTable("edges", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit,
                               ImVec2(0, 180))) {
+            ImGui::TableSetupScrollFreeze(1, 1);
             ImGui::TableSetupColumn("edge");
             ImGui::TableSetupColumn("level");
             ImGui::TableSetupColumn("angle (deg)");
@@ -385,7 +417,9 @@ void NurbsTool::drawPanel(ToolContext& c)
     ImGui::TextUnformatted("Weights (Alt + drag a point: scale)");
     const std::vector<double> weights = weightsOf(c.scene, item);
     if (c.selection.points.empty()) {
-        ImGui::TextDisabled("select control points to type their weight");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("select control points to type their weight");
+        ImGui::PopStyleColor();
     } else {
         const int k = c.selection.points.back();
         if (k >= 0 && k < static_cast<int>(weights.size()) && (item != typedItem_ || k != typedPoint_)) {
@@ -394,14 +428,15 @@ void NurbsTool::drawPanel(ToolContext& c)
             typedItem_ = item, typedPoint_ = k;
         }
         if (k >= 0 && k < static_cast<int>(weights.size())) {
-            ImGui::Text("point %d: weight %.6g%s", k, weights[static_cast<std::size_t>(k)],
-                        c.selection.points.size() > 1 ? " (last selected)" : "");
+            ImGui::TextWrapped("point %d: weight %.6g%s", k, weights[static_cast<std::size_t>(k)],
+                               c.selection.points.size() > 1 ? " (last selected)" : "");
         }
         ImGui::SetNextItemWidth(120);
         ImGui::InputDouble("##weight", &typedWeight, 0, 0, "%.6g");
         tooltip("The weight to give the selected control points (> 0); Alt + drag a point scales it instead");
-        ImGui::SameLine();
-        if (ImGui::Button(c.selection.points.size() > 1 ? "set the selected points' weight" : "set weight"))
+        const char* setLabel = c.selection.points.size() > 1 ? "set the selected points' weight" : "set weight";
+        sameLineIfFits(setLabel);
+        if (ImGui::Button(setLabel))
             setWeights(c, item, c.selection.points, typedWeight);
         tooltip("Set the selected points' weight to the typed value (one undo step)");
     }
@@ -411,7 +446,7 @@ void NurbsTool::drawPanel(ToolContext& c)
     if (type != "nurbs_curve" && type != "nurbs_surface") return;
     ImGui::Separator();
     ImGui::TextUnformatted("Knots");
-    ImGui::Checkbox("show knots (dots, ticks = multiplicity; surfaces: isolines)", &showKnots);
+    ImGui::Checkbox("show knots", &showKnots);
     tooltip("Curves: a dot at each distinct knot, one tick per unit of multiplicity (red: C0 or less). Surfaces: isoparametric lines at the knots");
     if (type == "nurbs_surface") {
         ImGui::RadioButton("in u", &direction, 0);

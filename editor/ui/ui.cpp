@@ -42,10 +42,50 @@ bool dialogKey(ImGuiKey key, int& since)
     return ImGui::GetFrameCount() > since && ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false);
 }
 
+/// The status bar's lines at most: the text wraps at the window's width (the hint first, so the
+/// active tool or mode and what the next click does are never the part cut); beyond this many
+/// lines the rest is cut (its tooltip holds the whole text) and recorded (ui/fit.h).
+constexpr int kStatusMaxLines = 3;
+
+/// The status bar's height for this frame (set by drawUi from the text and the window's width).
+float statusBarHeight = 0;
+
 /// Height of the status bar at the bottom of the window.
 float statusHeight()
 {
-    return ImGui::GetFrameHeight() + 2;
+    return statusBarHeight > 0 ? statusBarHeight : ImGui::GetFrameHeight() + 2;
+}
+
+/// The status bar's width for text (the window less its padding of 8 on each side).
+float statusTextWidth()
+{
+    return std::max(ImGui::GetMainViewport()->Size.x - 16, 1.0f);
+}
+
+/// The notice after the hint, on the same line when both fit on one.
+std::string statusNotice(const UiState& s)
+{
+    return s.notice.empty() ? std::string() : "   |   " + s.notice;
+}
+
+/// Lines the status bar needs for its text: one when hint and notice fit on one line, else the
+/// hint wrapped and the notice wrapped below it.
+int statusLines(const UiState& s)
+{
+    const float width = statusTextWidth(), line = ImGui::GetTextLineHeight();
+    const std::string notice = statusNotice(s);
+    if (ImGui::CalcTextSize(s.statusHint.c_str()).x + ImGui::CalcTextSize(notice.c_str()).x <= width) return 1;
+    auto lines = [&](const std::string& text) {
+        return text.empty() ? 0 : static_cast<int>(std::lround(ImGui::CalcTextSize(text.c_str(), nullptr, false, width).y / line));
+    };
+    return std::max(1, lines(s.statusHint) + lines(s.notice));
+}
+
+/// The status bar's height for `lines` lines of text (one line: the height it always had).
+float statusHeightFor(int lines)
+{
+    const int shown = std::min(lines, kStatusMaxLines);
+    return ImGui::GetFrameHeight() + 2 + float(shown - 1) * ImGui::GetTextLineHeightWithSpacing();
 }
 
 /// The panels' places for a window of the current size: Scene top left, Display below it to the
@@ -73,6 +113,19 @@ Layout panelLayout()
     return l;
 }
 
+/// Keeps the next panel's bottom above the status bar, which grows when its text wraps: a height
+/// limit from the panel's top (where it was last frame, or where the layout puts it now).
+void keepAboveStatusBar(const UiState& s, const char* name, const ImVec2& layoutPos)
+{
+    float top = layoutPos.y;
+    if (!s.relayout)
+        for (const auto& r : s.panels)
+            if (r.name == name) top = r.y;
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    const float limit = vp->Pos.y + vp->Size.y - statusHeight() - 8 - top;
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(limit, 60.0f)));
+}
+
 /// Remembers where the current window is (for --state).
 void notePanel(UiState& s, const char* name)
 {
@@ -85,8 +138,31 @@ void notePanel(UiState& s, const char* name)
     s.panels.push_back({name, p.x, p.y, z.x, z.y});
 }
 
+/// The texts of n float fields at a printf format (for fitFields).
+struct FieldTexts {
+    char text[4][32];
+    const char* pointers[4];
+    FieldTexts(const float* v, int n, const char* format)
+    {
+        for (int k = 0; k < n && k < 4; ++k) {
+            std::snprintf(text[k], sizeof text[k], format, double(v[k]));
+            pointers[k] = text[k];
+        }
+    }
+};
+
+/// The next item as wide as the row less its own label (three-field rows: colours, positions).
+void widthBesideOwnLabel(const char* label)
+{
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize(label, nullptr, true).x - ImGui::GetStyle().ItemInnerSpacing.x);
+}
+
 bool colorEdit(const char* label, Vec3f& c)
 {
+    // Three drag fields of "%0.3f" beside the colour swatch (ImGui's ColorEdit3 with the Float
+    // flag), as wide as the row allows.
+    widthBesideOwnLabel(label);
+    fitFields(FieldTexts(c.data(), 3, "%0.3f").pointers, 3, ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x, true);
     return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float);
 }
 
@@ -149,6 +225,7 @@ bool scalarRangeControls(DisplaySettings& d)
             "Off: the fixed range below (default 0 to 2; det J = 1, the volume kept, in the middle).");
     if (!d.scalarAuto) {
         float range[2] = {d.scalarMin, d.scalarMax};
+        fitFields(FieldTexts(range, 2, "%.3g").pointers, 2);
         if (ImGui::InputFloat2("min, max", range, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && std::isfinite(range[0]) &&
             std::isfinite(range[1]) && range[0] < range[1]) {
             d.scalarMin = range[0];
@@ -274,11 +351,20 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::EndMenu();
     }
     ImGui::Separator();
-    const std::string title = (scene.path().empty() ? std::string("untitled") : scene.path()) + (scene.modified() ? " *" : "");
-    ImGui::TextUnformatted(title.c_str());
+    const std::string full = (scene.path().empty() ? std::string("untitled") : scene.path()) + (scene.modified() ? " *" : "");
     char stats[96];
     std::snprintf(stats, sizeof stats, "   %ld triangles   %.1f ms", s.triangles, s.frameMs);
+    // The document's path, or only its file name where the whole path and the figures do not fit.
+    const float room = ImGui::GetWindowDrawList()->GetClipRectMax().x - ImGui::GetCursorScreenPos().x - ImGui::CalcTextSize(stats).x -
+                       2 * ImGui::GetStyle().ItemSpacing.x;
+    std::string title = full;
+    if (ImGui::CalcTextSize(full.c_str()).x > room && !scene.path().empty())
+        title = std::filesystem::path(scene.path()).filename().string() + (scene.modified() ? " *" : "");
+    ImGui::TextUnformatted(title.c_str());
+    fitItem(title.c_str());
+    if (title != full) tooltip(s, full.c_str());
     ImGui::TextDisabled("%s", stats);
+    fitItem(stats);
     ImGui::EndMainMenuBar();
 }
 
@@ -311,12 +397,39 @@ void outliner(Scene& scene, UiState& s)
             tooltip(s, tip.c_str());
             ImGui::PopID();
         }
-        if (scene.itemCount() == 0) ImGui::TextDisabled("empty: open or import a file, or drop one here");
+        if (scene.itemCount() == 0) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+            ImGui::TextWrapped("empty: open or import a file, or drop one here");
+            ImGui::PopStyleColor();
+        }
+        fitPanel();
     }
     ImGui::End();
 }
 
-/// Editable control points of a document object (one row per point).
+/// The widest of the coordinates' texts at the fields' precision (kPointFormat), for the control
+/// point table's columns: computed again only when the item's content changes (its key).
+constexpr const char* kPointFormat = "%.6g";
+
+float widestCoordinate(const SceneItem& item, const PointColumns& points)
+{
+    static long cachedId = -1, cachedKey = -1;
+    static Eigen::Index cachedCount = -1;
+    static float cachedWidth = 0;
+    if (item.id == cachedId && item.key == cachedKey && points.size() == cachedCount) return cachedWidth;
+    float widest = 0;
+    char text[32];
+    for (Eigen::Index k = 0; k < points.size(); ++k) {
+        std::snprintf(text, sizeof text, kPointFormat, points.data()[k]);
+        widest = std::max(widest, ImGui::CalcTextSize(text).x);
+    }
+    cachedId = item.id, cachedKey = item.key, cachedCount = points.size(), cachedWidth = widest;
+    return widest;
+}
+
+/// Editable control points of a document object: a table of one row per point, its number and
+/// one field per coordinate; every field gets the width of the widest coordinate's text (when
+/// the columns are wider than the panel the table scrolls sideways, the number column frozen).
 void controlPointTable(Scene& scene, int index, UiState& s)
 {
     const DocumentObject& object = scene.object(index);
@@ -330,28 +443,66 @@ void controlPointTable(Scene& scene, int index, UiState& s)
     const int dim = static_cast<int>(points->rows());
     const int count = static_cast<int>(points->cols());
     if (!ImGui::CollapsingHeader(("control points (" + std::to_string(count) + ")").c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
-    ImGui::BeginChild("points", ImVec2(0, 220), true);
-    ImGuiListClipper clipper;
-    clipper.Begin(count);
-    while (clipper.Step()) {
-        for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
-            double value[3] = {0, 0, 0};
-            for (int r = 0; r < dim; ++r) value[r] = (*points)(r, k);
-            ImGui::PushID(k);
-            const std::string label = std::to_string(k);
-            if (ImGui::InputScalarN(label.c_str(), ImGuiDataType_Double, value, dim, nullptr, nullptr, "%.6g",
-                                    ImGuiInputTextFlags_EnterReturnsTrue)) {
-                try {
-                    scene.setControlPoint(index, k, Eigen::Vector3d(value[0], value[1], value[2]));
-                } catch (const Error& e) {
-                    s.error = e.what();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    // Narrow cell and frame paddings, so that three fields of typical values fit the panel.
+    const ImVec2 cellPadding(2, 1), framePadding(2, style.FramePadding.y);
+    const float field = std::max(widestCoordinate(scene.item(index), *points), ImGui::CalcTextSize("x").x) + 2 * framePadding.x;
+    const float number = ImGui::CalcTextSize(std::to_string(std::max(count - 1, 0)).c_str()).x;
+    const float natural = number + float(dim) * field + float(dim + 1) * 2 * cellPadding.x + float(dim + 2) + style.ScrollbarSize;
+    ImGuiTableFlags flags = ImGuiTableFlags_BordersOuter | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                            ImGuiTableFlags_SizingFixedFit;
+    if (natural > ImGui::GetContentRegionAvail().x) flags |= ImGuiTableFlags_ScrollX;
+    ImGui::PushStyleVar(ImGuiStyleVar_CellPadding, cellPadding);
+    if (ImGui::BeginTable("points", dim + 1, flags, ImVec2(0, 220))) {
+        ImGui::TableSetupScrollFreeze(1, 1);
+        ImGui::TableSetupColumn("#", ImGuiTableColumnFlags_WidthFixed, number);
+        // Sharing the panel's width when they fit (each then at least `field` wide), else each
+        // `field` wide and the table scrolls.
+        const bool scroll = (flags & ImGuiTableFlags_ScrollX) != 0;
+        static const char* axes[] = {"x", "y", "z"};
+        for (int r = 0; r < dim; ++r)
+            ImGui::TableSetupColumn(axes[r], scroll ? ImGuiTableColumnFlags_WidthFixed : ImGuiTableColumnFlags_WidthStretch, scroll ? field : 1.0f);
+        ImGui::TableHeadersRow();
+        ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, framePadding);
+        ImGuiListClipper clipper;
+        clipper.Begin(count);
+        while (clipper.Step()) {
+            for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
+                double value[3] = {0, 0, 0};
+                for (int r = 0; r < dim; ++r) value[r] = (*points)(r, k);
+                ImGui::PushID(k);
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                const std::string label = std::to_string(k);
+                ImGui::AlignTextToFramePadding();
+                ImGui::TextUnformatted(label.c_str());
+                fitItem(label.c_str());
+                bool entered = false;
+                for (int r = 0; r < dim; ++r) {
+                    ImGui::TableNextColumn();
+                    ImGui::PushID(r);
+                    ImGui::SetNextItemWidth(-FLT_MIN);
+                    entered |= ImGui::InputDouble("##c", &value[r], 0, 0, kPointFormat, ImGuiInputTextFlags_EnterReturnsTrue);
+                    char text[32];
+                    std::snprintf(text, sizeof text, kPointFormat, value[r]);
+                    fitValue(text);
+                    tooltip(s, "Control point coordinates; type new ones and press Enter (one undo step)");
+                    ImGui::PopID();
                 }
+                if (entered) {
+                    try {
+                        scene.setControlPoint(index, k, Eigen::Vector3d(value[0], value[1], value[2]));
+                    } catch (const Error& e) {
+                        s.error = e.what();
+                    }
+                }
+                ImGui::PopID();
             }
-            tooltip(s, "Control point coordinates; type new ones and press Enter (one undo step)");
-            ImGui::PopID();
         }
+        ImGui::PopStyleVar();
+        ImGui::EndTable();
     }
-    ImGui::EndChild();
+    ImGui::PopStyleVar();
 }
 
 /// Numeric entry for the selected points: one point's coordinates, or the centroid of several
@@ -376,7 +527,33 @@ void selectedPoints(Scene& scene, int index, UiState& s)
     label += std::to_string(ks.size() == 1 ? ks.front() : static_cast<int>(ks.size()));
     if (ks.size() > 1) label += " points (centre)";
     ImGui::TextUnformatted(label.c_str());
-    if (ImGui::InputScalarN("##selected", ImGuiDataType_Double, value, 3, nullptr, nullptr, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+    // One field per coordinate, each as wide as the widest of the three texts: in one row when
+    // three fit the panel's width, else one per row with its axis's name.
+    char texts[3][32];
+    float widest = 0;
+    for (int r = 0; r < 3; ++r) {
+        std::snprintf(texts[r], sizeof texts[r], kPointFormat, value[r]);
+        widest = std::max(widest, fieldWidthFor(texts[r]));
+    }
+    const float spacing = ImGui::GetStyle().ItemInnerSpacing.x, avail = ImGui::GetContentRegionAvail().x;
+    const bool oneRow = 3 * widest + 2 * spacing <= avail;
+    static const char* axes[] = {"x", "y", "z"};
+    bool entered = false;
+    for (int r = 0; r < 3; ++r) {
+        ImGui::PushID(r);
+        if (oneRow) {
+            if (r > 0) ImGui::SameLine(0, spacing);
+            ImGui::SetNextItemWidth((avail - 2 * spacing) / 3);
+        } else {
+            ImGui::SetNextItemWidth(avail - spacing - ImGui::CalcTextSize("x").x);
+        }
+        entered |= ImGui::InputDouble(oneRow ? "##selected" : axes[r], &value[r], 0, 0, kPointFormat, ImGuiInputTextFlags_EnterReturnsTrue);
+        fitValue(texts[r]);
+        tooltip(s, ks.size() == 1 ? "The selected point's coordinates: type new ones and press Enter"
+                                  : "The selected points' centre: a new one moves them all by the same offset (Enter)");
+        ImGui::PopID();
+    }
+    if (entered) {
         const Eigen::Vector3d target(value[0], value[1], value[2]);
         Eigen::Matrix3Xd moved(3, static_cast<Eigen::Index>(ks.size()));
         for (std::size_t j = 0; j < ks.size(); ++j)
@@ -387,8 +564,6 @@ void selectedPoints(Scene& scene, int index, UiState& s)
             s.error = e.what();
         }
     }
-    tooltip(s, ks.size() == 1 ? "The selected point's coordinates: type new ones and press Enter"
-                              : "The selected points' centre: a new one moves them all by the same offset (Enter)");
 }
 
 /// Snapping, proportional editing and the gizmo.
@@ -415,6 +590,7 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
     const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
     ImGui::SetNextWindowPos(l.propertiesPos, cond);
     ImGui::SetNextWindowSize(l.propertiesSize, cond);
+    keepAboveStatusBar(s, "Properties", l.propertiesPos);
     if (ImGui::Begin("Properties")) {
         notePanel(s, "Properties");
         const int selected = s.selection.item;
@@ -473,7 +649,12 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                 }
             }
             if (changed) scene.setSettings(selected, settings);
-            if (!item.geometry.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", item.geometry.error.c_str());
+            if (!item.geometry.error.empty()) {
+                // Wrapped: an error names files and fields and is longer than the panel is wide.
+                ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.3f, 1));
+                ImGui::TextWrapped("%s", item.geometry.error.c_str());
+                ImGui::PopStyleColor();
+            }
             if (item.kind == SceneItem::Kind::DocumentObject) {
                 selectedPoints(scene, selected, s);
                 editOptions(scene, s);
@@ -490,6 +671,7 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             }
             actions.toolPanels();
         }
+        fitPanel(selected >= 0 && selected < scene.itemCount() ? scene.item(selected).type + " selected" : std::string());
     }
     ImGui::End();
 }
@@ -501,6 +683,7 @@ void displayPanel(Scene& scene, UiState& s)
     const ImGuiCond cond = s.relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
     ImGui::SetNextWindowPos(l.displayPos, cond);
     ImGui::SetNextWindowSize(l.displaySize, cond);
+    keepAboveStatusBar(s, "Display", l.displayPos);
     if (ImGui::Begin("Display", &s.showDisplay)) {
         notePanel(s, "Display");
         // Room for the longest label ("normal length", "px tolerance") beside the widgets.
@@ -596,6 +779,8 @@ void displayPanel(Scene& scene, UiState& s)
                 ImGui::SameLine();
                 const bool removeIt = ImGui::SmallButton("remove");
                 tooltip(s, "Remove this light");
+                widthBesideOwnLabel("position");
+                fitFields(FieldTexts(d.lights[i].position.data(), 3, "%.3f").pointers, 3, 0, true);
                 ImGui::DragFloat3("position", d.lights[i].position.data(), 0.05f);
                 tooltip(s, "The light's position in world coordinates (drag, or double-click to type)");
                 colorEdit("colour", d.lights[i].color);
@@ -618,6 +803,7 @@ void displayPanel(Scene& scene, UiState& s)
             if (retessellate) scene.invalidateGeometry();
         }
         ImGui::PopItemWidth();
+        fitPanel();
     }
     ImGui::End();
 }
@@ -894,11 +1080,33 @@ void statusBar(UiState& s)
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBringToFrontOnFocus;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 2));
     if (ImGui::Begin("##status", nullptr, flags)) {
-        ImGui::TextUnformatted(s.statusHint.c_str());
-        tooltip(s, s.statusHint.c_str()); // the whole text, where a narrow window cuts the line
-        if (!s.notice.empty()) {
-            ImGui::SameLine();
-            ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "   |   %s", s.notice.c_str());
+        const int lines = statusLines(s);
+        const ImVec4 noticeColour(1.0f, 0.8f, 0.4f, 1.0f);
+        if (lines == 1) {
+            ImGui::TextUnformatted(s.statusHint.c_str());
+            fitItem(s.statusHint.c_str());
+            tooltip(s, s.statusHint.c_str()); // the whole text, where a narrow window cuts the line
+            if (!s.notice.empty()) {
+                ImGui::SameLine(0, 0);
+                ImGui::TextColored(noticeColour, "%s", statusNotice(s).c_str());
+                fitItem(s.notice.c_str());
+            }
+        } else {
+            // Wrapped: the hint (the tool or mode, then what the next click does) on the first
+            // lines, the notice below; beyond kStatusMaxLines the end is cut, and recorded.
+            ImGui::PushTextWrapPos(0);
+            ImGui::TextUnformatted(s.statusHint.c_str());
+            tooltip(s, s.statusHint.c_str()); // the whole text, where a narrow window cuts the line
+            if (!s.notice.empty()) {
+                ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(ImGui::GetStyle().ItemSpacing.x, 0));
+                ImGui::TextColored(noticeColour, "%s", s.notice.c_str());
+                ImGui::PopStyleVar();
+            }
+            ImGui::PopTextWrapPos();
+            if (lines > kStatusMaxLines) {
+                const std::string all = s.statusHint + statusNotice(s);
+                fitWidth(all.c_str(), ImGui::CalcTextSize(all.c_str()).x, float(kStatusMaxLines) * statusTextWidth());
+            }
         }
     }
     ImGui::End();
@@ -912,6 +1120,8 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     state.layoutWidth = vp->Size.x;
     state.layoutHeight = vp->Size.y;
     currentState = &state;
+    recordOverflowsInto(&state.overflows);
+    statusBarHeight = statusHeightFor(statusLines(state));
     state.tooltip.clear();
     state.widgets.clear();
     mainMenu(scene, state, actions);
@@ -927,6 +1137,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     const bool proceed = unsavedDialog(scene, state, actions);
     errorDialog(state);
     state.relayout = false;
+    recordOverflowsInto(nullptr);
     currentState = nullptr;
     return proceed;
 }

@@ -11,6 +11,7 @@
 #include "interaction/interaction.h"
 #include "interaction/selection.h"
 #include "scene/scene.h"
+#include "ui/fit.h"
 
 namespace freeform::editor {
 
@@ -97,6 +98,9 @@ struct UiState {
     /// The up axis File > Import gives OBJ, PLY, STL and OFF files (their formats have no
     /// convention): the last choice in the Import dialog, Z at first. glTF and GLB are always Y.
     UpAxis importUp = UpAxis::Z;
+    /// Every text the panels drew without the room it needs, over the whole session (ui/fit.h;
+    /// for --state, "overflows").
+    std::vector<Overflow> overflows;
 };
 
 /// The tooltip of the last widget (ImGui 1.86 has no SetItemTooltip): shown while it is hovered.
