@@ -284,6 +284,10 @@ std::string App::statusHint()
     return hint;
 }
 
+namespace {
+constexpr Eigen::Index kStatePixelLimit = 4096; // --state: control points listed in "pixels" at most
+} // namespace
+
 std::string App::stateText() const
 {
     nlohmann::ordered_json j;
@@ -301,6 +305,22 @@ std::string App::stateText() const
                    {"target", {scene_.camera.target.x(), scene_.camera.target.y(), scene_.camera.target.z()}}};
     j["status"] = ui_.statusHint;
     j["objects"] = scene_.itemCount();
+    // The selection, with its control points' places on screen (tests driving the real window
+    // click and drag there): null when nothing is selected.
+    const Selection& sel = ui_.selection;
+    if (sel.item >= 0 && sel.item < scene_.itemCount()) {
+        const ViewTransform v = ViewTransform::of(scene_, w, h);
+        const Eigen::Matrix3Xd points = scene_.controlPoints(sel.item);
+        nlohmann::ordered_json pixels = nullptr; // (not for large meshes: the text is made every frame)
+        if (points.cols() <= kStatePixelLimit) pixels = nlohmann::ordered_json::array();
+        for (Eigen::Index k = 0; k < points.cols() && points.cols() <= kStatePixelLimit; ++k) {
+            if (const auto q = v.toPixel(points.col(k))) pixels.push_back({q->x(), q->y()});
+            else pixels.push_back(nullptr);
+        }
+        j["selection"] = {{"item", scene_.item(sel.item).name}, {"type", scene_.item(sel.item).type}, {"points", sel.points}, {"pixels", pixels}};
+    } else {
+        j["selection"] = nullptr;
+    }
     j["notice"] = ui_.notice;
     j["tooltip"] = ui_.tooltip;
     if (ui_.legendRect[2] > 0)
