@@ -5,11 +5,16 @@
 # frame, Enter held across frames). One task end to end:
 #   1. File > Open with Ctrl+O, the path of a corrupt document typed, Enter held for 0.3 s: the
 #      error dialog is up with the file's error, and the document is unchanged;
-#   2. Escape closes it; the wheel turned over the Properties panel (pointer moved there in the
-#      same instant) leaves the camera alone; turned over the view it zooms;
-#   3. the window resized to 900 x 600: every panel lies inside it, Properties against its right
+#   2. Escape closes it; Ctrl+I, data/meshes/sphere.gltf typed, Enter and at once a click at the
+#      window's centre: the sphere is imported (Y up) and selected (--state "selection"); L fits
+#      a lattice, two of its points are dragged, Ctrl+Z undoes the second drag, Ctrl+S saves: the
+#      saved lattice is at rest but for the first point dragged, the mesh kept with "up": "y";
+#   3. the wheel turned over the Properties panel (pointer moved there in the same instant)
+#      leaves the camera alone; turned over the view it zooms;
+#   4. the window resized to 900 x 600: every panel lies inside it, Properties against its right
 #      edge; Ctrl+Q asks about the unsaved change (the zoom moved the document's camera).
-# Usage: real_window.sh EDITOR WORKDIR. Exit 77 (skipped) without Xvfb or xdotool; < 60 s.
+# Usage: real_window.sh EDITOR WORKDIR. Exit 77 (skipped) without Xvfb or xdotool; < 60 s (about
+# 25-35 s on the shared, loaded machine).
 set -u
 EDITOR=$1
 WORK=$2
@@ -180,4 +185,4 @@ xdotool key --clearmodifiers ctrl+q
 wait_for "Ctrl+Q asks about the unsaved camera change" "s['unsaved_dialog'] and s['modified']"
 kill "$EDITOR_PID"; wait "$EDITOR_PID" 2>/dev/null
 EDITOR_PID=
-echo "ok: open error with Enter held, scroll over a panel and over the view, resize to 900 x 600, quit asks"
+echo "ok: open error with Enter held, glTF sphere imported and clicked, lattice drags, undo, save, scroll over a panel and over the view, resize to 900 x 600, quit asks"
