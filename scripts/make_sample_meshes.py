@@ -10,7 +10,10 @@
                           uvs and uchar colours
   sphere.off              the same, as OFF (NOFF with normals)
   sphere.stl              the same surface as binary STL triangles (quads split)
-  sphere.gltf + .bin      the same vertices, triangles, float normals and uvs, a material
+  sphere.gltf + .bin      the same vertices, triangles, float normals and uvs, a material, in glTF's
+                          own axes: Y up (the specification), so a point (x, y, z) of the other files
+                          is stored as (x, z, -y) and the poles lie along +-y; read Y up, turned by
+                          (x, y, z) -> (x, -z, y), it is the same sphere as the others, poles along z
   sphere.glb              the same as one binary glTF
 
 The files are written by this script, not by the library, so tests can read them as independent data.
@@ -139,7 +142,12 @@ def write_sphere(verts, faces):
     with open(os.path.join(OUT, "sphere.stl"), "wb") as f:
         f.write(bytes(data))
 
-    # glTF: positions, normals, uvs, uint16 indices
+    # glTF: positions, normals, uvs, uint16 indices; Y up (glTF's axes): (x, y, z) -> (x, z, -y),
+    # a rotation, so the triangles keep their orientation. (The negation is exact in float.)
+    def y_up(p):
+        return (p[0], p[2], -p[1] if p[1] != 0 else 0.0)
+
+    verts = [(y_up(v[0]), y_up(v[1]), v[2], v[3]) for v in verts]
     pos = b"".join(struct.pack("<3f", *v[0]) for v in verts)
     nor = b"".join(struct.pack("<3f", *v[1]) for v in verts)
     uv = b"".join(struct.pack("<2f", v[2][0], 1 - v[2][1]) for v in verts)

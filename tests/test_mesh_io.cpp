@@ -562,12 +562,27 @@ TEST_CASE("The sample meshes of data/meshes agree across formats and round-trip 
     CHECK(obj.normals.cols() == 266);
     CHECK(obj.texcoords.cols() == 266);
     const Eigen::Matrix<double, 3, Eigen::Dynamic> asFloat = obj.positions.cast<float>().cast<double>();
+    // glTF is Y up (its specification): the glTF samples store the OBJ's point (x, y, z) as
+    // (x, z, -y), so that the import's quarter turn (x, y, z) -> (x, -z, y) gives the OBJ's point
+    // back and the poles (0, 0, +-1) of the others lie at (0, +-1, 0) in the file. Written out by
+    // hand: a row permutation and a sign, exact in float.
+    Eigen::Matrix<double, 3, Eigen::Dynamic> yUp(3, asFloat.cols());
+    yUp.row(0) = asFloat.row(0);
+    yUp.row(1) = asFloat.row(2);
+    yUp.row(2) = -asFloat.row(1);
     for (const char* name : {"sphere.ply", "sphere.gltf", "sphere.glb", "sphere.off", "sphere.stl"}) {
         INFO(name);
         const PolygonMesh mesh = freeform::readPolygonMesh(dir + name);
         REQUIRE(mesh.vertexCount() == 266); // STL: welded back to the shared vertices
         const bool single = std::string(name) != "sphere.off";
-        CHECK(mesh.positions == (single ? asFloat : obj.positions));
+        const bool gltf = std::string(name).find(".gl") != std::string::npos;
+        CHECK(mesh.positions == (gltf ? yUp : single ? asFloat : obj.positions));
+        if (gltf) {
+            // The poles: vertex 0 is the top (0, 0, 1) of the OBJ, vertex 265 the bottom.
+            CHECK(mesh.positions.col(0) == Eigen::Vector3d(0, 1, 0));
+            CHECK(mesh.positions.col(265) == Eigen::Vector3d(0, -1, 0));
+            CHECK(mesh.normals.col(0) == Eigen::Vector3d(0, 1, 0));
+        }
         const bool triangles = std::string(name).find(".gl") != std::string::npos || std::string(name) == "sphere.stl";
         CHECK(mesh.faceCount() == (triangles ? 24 * 2 + 240 * 2 : 288));
     }

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cfloat>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -170,26 +171,61 @@ void App::buildUi()
     } else {
         takeInput();
         ImGui_ImplGlfw_NewFrame();
+        // The backend polls the live pointer and buttons; ImGui must see them as the queue has
+        // them, in step with the events it gets this frame (see InputEvent in app.h).
+        ImGuiIO& io = ImGui::GetIO();
+        if (haveQueuedCursor_ && io.MousePos.x != -FLT_MAX) io.MousePos = ImVec2(float(queuedX_), float(queuedY_));
+        for (int b = 0; b < 5; ++b) io.MouseDown[b] = queuedDown_[b];
     }
     ImGui::NewFrame();
     if (!options_.headless()) dispatchInput();
     ui_.statusHint = statusHint();
     if (drawUi(scene_, ui_, *this)) carryOutPending();
+    const int dialogs = uiSignature();
+    if (dialogs != dialogs_) holdInput_ = true;
+    dialogs_ = dialogs;
     ImGui::Render();
+}
+
+int App::uiSignature() const
+{
+    // The dialogs up, and whether any ImGui popup (menus included) is open.
+    return static_cast<int>(ui_.pathDialog) | (ui_.error.empty() ? 0 : 1 << 4) | (static_cast<int>(ui_.pending) << 5) |
+           (ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopup) ? 1 << 10 : 0);
 }
 
 void App::takeInput()
 {
     // In order, until a key or button would change a second time in this frame: the rest waits.
+    // A button press or a scroll waits until it is the first event of a frame that follows a frame
+    // without key, character or button events, and a pointer move after it waits for the next
+    // frame, so that ImGui judges it at its place, against windows that are up to date (app.h).
+    if (holdInput_) { // ImGui's windows changed in the previous frame: one frame for them to settle
+        holdInput_ = false;
+        lastFrameTookKeys_ = false;
+        return;
+    }
     std::vector<std::pair<InputEvent::Type, int>> changed;
     std::size_t taken = 0;
+    bool tookKeys = false, tookPress = false;
     for (; taken < input_.size(); ++taken) {
         const InputEvent& e = input_[taken];
+        const bool press = (e.type == InputEvent::Type::Button && e.action == GLFW_PRESS) || e.type == InputEvent::Type::Scroll;
+        if (press && (taken > 0 || lastFrameTookKeys_)) break;
+        if (e.type == InputEvent::Type::Cursor && tookPress) break;
         if (e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Button) {
             const std::pair<InputEvent::Type, int> id{e.type, e.code};
             if (std::find(changed.begin(), changed.end(), id) != changed.end()) break;
             changed.push_back(id);
         }
+        tookPress = tookPress || press;
+        tookKeys = tookKeys || e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Char || e.type == InputEvent::Type::Button;
+        if (e.type == InputEvent::Type::Cursor) {
+            haveQueuedCursor_ = true;
+            queuedX_ = e.x;
+            queuedY_ = e.y;
+        }
+        if (e.type == InputEvent::Type::Button && e.code >= 0 && e.code < 5) queuedDown_[e.code] = e.action == GLFW_PRESS;
         switch (e.type) {
         case InputEvent::Type::Key: ImGui_ImplGlfw_KeyCallback(window_, e.code, e.scancode, e.action, e.mods); break;
         case InputEvent::Type::Char: ImGui_ImplGlfw_CharCallback(window_, e.ch); break;
@@ -200,6 +236,7 @@ void App::takeInput()
         frameInput_.push_back(e);
     }
     input_.erase(input_.begin(), input_.begin() + static_cast<std::ptrdiff_t>(taken));
+    lastFrameTookKeys_ = tookKeys;
 }
 
 void App::dispatchInput()
@@ -247,6 +284,10 @@ std::string App::statusHint()
     return hint;
 }
 
+namespace {
+constexpr Eigen::Index kStatePixelLimit = 4096; // --state: control points listed in "pixels" at most
+} // namespace
+
 std::string App::stateText() const
 {
     nlohmann::ordered_json j;
@@ -264,6 +305,22 @@ std::string App::stateText() const
                    {"target", {scene_.camera.target.x(), scene_.camera.target.y(), scene_.camera.target.z()}}};
     j["status"] = ui_.statusHint;
     j["objects"] = scene_.itemCount();
+    // The selection, with its control points' places on screen (tests driving the real window
+    // click and drag there): null when nothing is selected.
+    const Selection& sel = ui_.selection;
+    if (sel.item >= 0 && sel.item < scene_.itemCount()) {
+        const ViewTransform v = ViewTransform::of(scene_, w, h);
+        const Eigen::Matrix3Xd points = scene_.controlPoints(sel.item);
+        nlohmann::ordered_json pixels = nullptr; // (not for large meshes: the text is made every frame)
+        if (points.cols() <= kStatePixelLimit) pixels = nlohmann::ordered_json::array();
+        for (Eigen::Index k = 0; k < points.cols() && points.cols() <= kStatePixelLimit; ++k) {
+            if (const auto q = v.toPixel(points.col(k))) pixels.push_back({q->x(), q->y()});
+            else pixels.push_back(nullptr);
+        }
+        j["selection"] = {{"item", scene_.item(sel.item).name}, {"type", scene_.item(sel.item).type}, {"points", sel.points}, {"pixels", pixels}};
+    } else {
+        j["selection"] = nullptr;
+    }
     j["notice"] = ui_.notice;
     j["tooltip"] = ui_.tooltip;
     if (ui_.statsText.empty()) j["stats"] = nullptr;

@@ -89,6 +89,19 @@ private:
     // of one key in the same frame would be lost; such a release waits for the next frame. The
     // view's handlers get the events after ImGui::NewFrame, when io.WantCapture* describe the
     // pointer's current place (a scroll over a panel is the panel's).
+    //
+    // ImGui decides whether the pointer is over one of its windows at NewFrame, from the pointer
+    // position it is given and the windows of the previous frame. So, when the queue lags behind
+    // the X server (slow frames, fast input), ImGui is given the queue's pointer position and
+    // button state, not the live ones; a button press or a scroll is taken only as the first
+    // event of a frame after a frame that took no key, character or button event (a dialog that
+    // such an event closed is still in the previous frame's windows: a click just after its Enter
+    // fell on the closed dialog and was lost, issue 12); and a pointer move after a press waits
+    // for the next frame (the press is judged where it happened). --replay renders a frame before
+    // each press, which is why replayed sessions never showed the lost click. After a frame that
+    // opened or closed a dialog or popup, the next frame takes no input at all: the field a dialog
+    // focuses takes keys only from the frame after it appeared (a path typed at once after Ctrl+I
+    // lost its first character).
     struct InputEvent {
         enum class Type { Key, Char, Button, Scroll, Cursor } type = Type::Key;
         int code = 0, scancode = 0, action = 0, mods = 0;
@@ -99,6 +112,13 @@ private:
     void takeInput();        // before NewFrame: this frame's events to ImGui's backend
     void dispatchInput();    // after NewFrame: the same events to the view's handlers
     std::vector<InputEvent> input_, frameInput_;
+    bool holdInput_ = false;                   // the previous frame opened or closed a dialog or popup
+    int dialogs_ = 0;                          // which dialogs and popups were up (uiSignature)
+    int uiSignature() const;
+    bool lastFrameTookKeys_ = false;           // the previous frame took a key, character or button event
+    bool haveQueuedCursor_ = false;            // a pointer position has come through the queue
+    double queuedX_ = 0, queuedY_ = 0;         // the pointer as the queue has it (ImGui's MousePos)
+    bool queuedDown_[5] = {};                  // the buttons as the queue has them (ImGui's MouseDown)
     std::string statusHint();
     std::string stateText() const;
     std::string lastState_;   // interactive --state: the text last written

@@ -116,6 +116,43 @@ TEST_CASE("up axis: a Y-up glTF stands up along +z; an OBJ stays as it is", "[ed
     CHECK(positionsOf(chosen, 0) == turnedByHand());
 }
 
+TEST_CASE("up axis: the sample sphere.gltf (Y up) imports as the same sphere as sphere.obj (Z up), poles along z", "[editor][up]")
+{
+    // data/meshes/sphere.gltf stores the OBJ's point (x, y, z) as (x, z, -y) in float (glTF's own
+    // Y-up axes, scripts/make_sample_meshes.py). Imported Y up it must land on the OBJ's points,
+    // rounded to float, and its poles at (0, 0, +-1) as the OBJ's (the old file, written in Z-up
+    // axes, had them at (0, -+1, 0) after the import).
+    const std::string dir = std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/";
+    Scene scene;
+    scene.importFile(dir + "sphere.gltf");
+    scene.importFile(dir + "sphere.obj");
+    scene.updateGeometry();
+    REQUIRE(scene.itemCount() == 2);
+    CHECK(scene.item(0).up == UpAxis::Y);
+    CHECK(scene.item(1).up == UpAxis::Z);
+    // Each of the glTF's points is one of the OBJ's rounded to float: within half a float step
+    // (2^-24 for coordinates below 2 in size) in every coordinate, and no two share one.
+    const std::set<std::vector<double>> gltfPoints = positionsOf(scene, 0), objPoints = positionsOf(scene, 1);
+    REQUIRE(gltfPoints.size() == 266);
+    REQUIRE(objPoints.size() == 266);
+    std::set<std::vector<double>> matched;
+    for (const std::vector<double>& p : gltfPoints) {
+        int near = 0;
+        for (const std::vector<double>& q : objPoints)
+            if (std::abs(p[0] - q[0]) <= 0x1p-24 && std::abs(p[1] - q[1]) <= 0x1p-24 && std::abs(p[2] - q[2]) <= 0x1p-24) {
+                ++near;
+                matched.insert(q);
+            }
+        INFO(p[0] << " " << p[1] << " " << p[2]);
+        CHECK(near == 1);
+    }
+    CHECK(matched.size() == 266);
+    for (int i = 0; i < 2; ++i) {
+        CHECK(positionsOf(scene, i).count({0, 0, 1}) == 1);
+        CHECK(positionsOf(scene, i).count({0, 0, -1}) == 1);
+    }
+}
+
 TEST_CASE("up axis: saved as meshes[].up, read back; absent means Z; a wrong value names the field", "[editor][up]")
 {
     const std::string gltf = written("tetra2.gltf", tetrahedron()), obj = written("tetra2.obj", tetrahedron());
