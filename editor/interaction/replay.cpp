@@ -180,8 +180,15 @@ std::vector<ReplayEvent> parseReplay(const std::string& text, const std::string&
             }
             ev.width = e["width"].get<int>();
             ev.height = e["height"].get<int>();
+        } else if (type == "tooltip_audit") {
+            onlyFields(e, where, {"type", "step"});
+            ev.type = ReplayEvent::Type::TooltipAudit;
+            if (e.contains("step")) {
+                ev.step = number(e, "step", where);
+                if (!(ev.step >= 1 && ev.step <= 100)) fail(where + ".step", "expected a number of pixels in 1..100");
+            }
         } else {
-            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, resize)");
+            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, resize, tooltip_audit)");
         }
         ev.mods = mods(e, where);
         events.push_back(std::move(ev));
