@@ -20,7 +20,7 @@ bool isChrome(ImGuiID id)
     ImGuiContext& g = *GImGui;
     for (ImGuiWindow* w : g.Windows) {
         if (id == w->MoveId || id == ImHashStr("#COLLAPSE", 0, w->ID) || id == ImHashStr("#CLOSE", 0, w->ID) ||
-            id == ImGui::GetWindowScrollbarID(w, ImGuiAxis_X) || id == ImGui::GetWindowScrollbarID(w, ImGuiAxis_Y))
+            id == ImHashStr("#SCROLLX", 0, w->ID) || id == ImHashStr("#SCROLLY", 0, w->ID))
             return true;
         for (int n = 0; n < 4; ++n)
             if (id == ImGui::GetWindowResizeCornerID(w, n) || id == ImGui::GetWindowResizeBorderID(w, static_cast<ImGuiDir>(n)))
@@ -92,6 +92,7 @@ struct Sweep {
     float step;
     TooltipAudit audit;
     std::map<ImGuiID, std::size_t> index; // item id -> audit.items
+    int scrolled = 0;                     // > 0 while a panel is scrolled by the sweep
 
     /// One point: the pointer there, a frame, the hovered item and the tooltip.
     void point(float x, float y, const std::string& window)
@@ -106,10 +107,11 @@ struct Sweep {
         auto found = index.find(id);
         if (found == index.end()) {
             TooltipAuditItem item;
-            item.window = window;
+            item.window = g.HoveredWindow ? g.HoveredWindow->RootWindow->Name : window; // a window on top may hide the one swept
             item.x = x;
             item.y = y;
             item.tooltip = shown;
+            item.scrolled = scrolled > 0;
             item.text = shownTooltip;
             item.path = idPath(id, frame); // the pointer stays on it meanwhile
             found = index.emplace(id, audit.items.size()).first;
@@ -144,6 +146,7 @@ struct Sweep {
         for (float s = page; s < w->ScrollMax.y + page; s += page) positions.push_back(std::min(s, w->ScrollMax.y));
         for (std::size_t k = 0; k < positions.size(); ++k) {
             ImGui::SetScrollY(w, positions[k]);
+            scrolled += k > 0;
             settle();
             ImRect r = whole && k == 0 ? w->Rect() : w->InnerClipRect;
             r.ClipWithFull(clip);
@@ -156,6 +159,7 @@ struct Sweep {
                     c->Rect().Overlaps(inner))
                     children.push_back(c);
             for (ImGuiWindow* c : children) window(c, inner, false, name);
+            scrolled -= k > 0;
         }
         ImGui::SetScrollY(w, original);
         settle();
