@@ -272,7 +272,7 @@ std::string App::stateText() const
         for (const TooltipAudit& a : audits_) {
             nlohmann::ordered_json items = nlohmann::ordered_json::array(), missing = nlohmann::ordered_json::array();
             for (const TooltipAuditItem& item : a.items) {
-                items.push_back({{"window", item.window}, {"path", item.path}, {"x", item.x}, {"y", item.y}, {"hovered", item.hovered},
+                items.push_back({{"window", item.window}, {"path", item.path}, {"x", item.x}, {"y", item.y}, {"scrolled", item.scrolled}, {"hovered", item.hovered},
                                  {"tooltip", item.tooltip}, {"text", item.text}});
                 if (!item.tooltip) missing.push_back(item.window + ": " + item.path);
             }

@@ -21,6 +21,7 @@ struct TooltipAuditItem {
     std::string window;    // the top-level window (panel, menu, dialog) it was found in
     std::string path;      // its ID path, e.g. Properties > "tessellation" (labels quoted, numbers as pushed)
     float x = 0, y = 0;    // the first point where it was hovered (window pixels)
+    bool scrolled = false; // found while the sweep had scrolled a panel (x, y then need that scroll)
     int hovered = 0;       // how many points of the grid hovered it
     bool tooltip = false;  // a tooltip was open at every one of them
     std::string text;      // the tooltip text the panels reported at the first point (may be "" if drawn by ImGui itself)
