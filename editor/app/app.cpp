@@ -999,7 +999,7 @@ void App::replay(const std::vector<ReplayEvent>& events)
             // A test hook (docs/editor.md): the pointer swept over every panel, frames of the
             // panels only; the result goes to --state.
             if (withUi)
-                audits_.push_back(auditTooltips([this](const std::function<void()>& hook) { buildUi(hook); }, ui_.tooltip, float(e.step)));
+                audits_.push_back(auditTooltips([this](const std::function<void()>& hook) { buildUi(hook); }, ui_.tooltip, float(e.step), e.windows));
             break;
         case ReplayEvent::Type::Resize:
             // As a window resized by the user: the view and the panels get the new size.

@@ -168,7 +168,7 @@ struct Sweep {
 
 } // namespace
 
-TooltipAudit auditTooltips(const Frame& frame, const std::string& shownTooltip, float step)
+TooltipAudit auditTooltips(const Frame& frame, const std::string& shownTooltip, float step, const std::vector<std::string>& windows)
 {
     ImGuiContext& g = *GImGui;
     const ImVec2 mouse = g.IO.MousePos;
@@ -183,6 +183,7 @@ TooltipAudit auditTooltips(const Frame& frame, const std::string& shownTooltip, 
     for (ImGuiWindow* w : g.Windows) {
         if (!w->Active || (w->Flags & (ImGuiWindowFlags_ChildWindow | ImGuiWindowFlags_Tooltip))) continue;
         if (popupOpen && !(w->Flags & ImGuiWindowFlags_Popup)) continue;
+        if (!windows.empty() && std::find(windows.begin(), windows.end(), std::string(w->Name)) == windows.end()) continue;
         roots.push_back(w);
     }
     const ImGuiViewport* vp = ImGui::GetMainViewport();

@@ -39,6 +39,8 @@ struct TooltipAudit {
 /// says; `shownTooltip` is the tooltip text the panels report for the last frame. `step` <= 0:
 /// half of ImGui's line height with spacing. The pointer and the scroll positions are put back
 /// afterwards. Needs a current ImGui context that has rendered at least one frame.
-TooltipAudit auditTooltips(const std::function<void(const std::function<void()>&)>& frame, const std::string& shownTooltip, float step);
+/// `windows`: only the top-level windows of these names (empty: every one shown).
+TooltipAudit auditTooltips(const std::function<void(const std::function<void()>&)>& frame, const std::string& shownTooltip, float step,
+                           const std::vector<std::string>& windows = {});
 
 } // namespace freeform::editor

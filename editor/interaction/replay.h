@@ -25,6 +25,7 @@ struct ReplayEvent {
     int count = 1;              // frame
     int width = 0, height = 0;  // resize: the window's new size in pixels
     double step = 0;            // tooltip_audit: the sweep's step in pixels (0: half a line height)
+    std::vector<std::string> windows; // tooltip_audit: only these top-level windows (empty: all)
     std::string text;           // text (UTF-8), open (path)
 };
 
