@@ -14,7 +14,8 @@
 //     continuity table), de Boor surface, subdivision cage, lattice bound to a mesh, the mesh
 //     itself (up axis, fit lattice), NURBS and rational curves and surfaces: each brings its tool
 //     panel; the Display panel with reflection lines and normals, and with the det J scalar map;
-//   - the collapsed headers opened (editing, material, back faces);
+//   - the collapsed headers opened (editing, material, back faces), proportional editing (O) and
+//     the curvature comb (V) on (their sliders show);
 //   - the File, Edit, View and Help menus opened;
 //   - the Open, Save as, Import (with its up axis), Export, unsaved-changes and error dialogs and
 //     the help window (F1).
@@ -171,6 +172,7 @@ TEST_CASE("issue 12: every control of every panel, menu and dialog has a tooltip
         events.push_back(frames(2));
         events.push_back(name == objects.front().first ? audit() : auditProperties()); // the other panels once with a selection
         events.push_back(key("A"));
+        if (name == "curve3") events.push_back(key("V")); // the curvature comb: its scale slider shows
         events.push_back(frames(2));
         events.push_back(auditProperties());
     }
@@ -193,13 +195,16 @@ TEST_CASE("issue 12: every control of every panel, menu and dialog has a tooltip
     for (std::size_t k = 0; k < objects.size(); ++k) {
         checkComplete(selected[2 * k], objects[k].first + " selected", 15, expected[k]);
         checkComplete(selected[2 * k + 1], objects[k].first + " and all its points selected", 15,
-                      objects[k].first == "cube" ? std::vector<std::string>{} : std::vector<std::string>{"\"##selected\" > 0"});
+                      objects[k].first == "cube"     ? std::vector<std::string>{}
+                      : objects[k].first == "curve3" ? std::vector<std::string>{"\"##selected\" > 0", "\"comb scale\""}
+                                                     : std::vector<std::string>{"\"##selected\" > 0"});
     }
 
     // The patch complex's edge continuity table (the button clicked in the tall window, then back
     // to 1280 x 800) and the collapsed headers opened: Properties > editing and material (the
     // lower one first), Display > material and back faces.
     Json open = tall;
+    open.push_back(key("O")); // proportional editing (before a panel has the keyboard): its radius slider shows
     click(open, at(selected.back(), "\"edge continuity of all patches\""));
     open.push_back({{"type", "resize"}, {"width", kW}, {"height", kH}});
     open.push_back(frames(2));
@@ -212,7 +217,7 @@ TEST_CASE("issue 12: every control of every panel, menu and dialog has a tooltip
     open.push_back(audit());
     checkComplete(audits("types_open", doc, open, 1)[0], "patch complex with its edge table, headers open", 40,
                   {"\"edges\" > 0 > \"edge\"", "\"edges\" > 1 > \"level\"", "\"edges\" > 2 > \"angle (deg)\"", "\"edges\" > 3 > \"gap (units)\"",
-                   "\"snap to grid (Shift+Tab)\"", "\"own material\"", "\"back faces\" > \"##X\"", "\"shininess\""});
+                   "\"snap to grid (Shift+Tab)\"", "\"radius (+/-)\"", "\"own material\"", "\"back faces\" > \"##X\"", "\"shininess\""});
 
     // NURBS and rational objects (a second document, the Display panel with the det J scalar
     // map): the same Scene rows, checked against the run's own first audit.
