@@ -158,7 +158,7 @@ double App::aspect() const
     return double(std::max(w, 1)) / double(std::max(h, 1));
 }
 
-void App::buildUi()
+void App::buildUi(const std::function<void()>& afterNewFrame)
 {
     ImGui_ImplOpenGL3_NewFrame();
     if (options_.headless()) {
@@ -178,6 +178,7 @@ void App::buildUi()
         for (int b = 0; b < 5; ++b) io.MouseDown[b] = queuedDown_[b];
     }
     ImGui::NewFrame();
+    if (afterNewFrame) afterNewFrame();
     if (!options_.headless()) dispatchInput();
     ui_.statusHint = statusHint();
     if (drawUi(scene_, ui_, *this)) carryOutPending();
@@ -332,6 +333,19 @@ std::string App::stateText() const
     for (const Overflow& o : ui_.overflows)
         overflows.push_back({{"panel", o.panel}, {"label", o.label}, {"needed", o.needed}, {"available", o.available}});
     j["overflows"] = overflows;
+    if (!audits_.empty()) {
+        nlohmann::ordered_json audits = nlohmann::ordered_json::array();
+        for (const TooltipAudit& a : audits_) {
+            nlohmann::ordered_json items = nlohmann::ordered_json::array(), missing = nlohmann::ordered_json::array();
+            for (const TooltipAuditItem& item : a.items) {
+                items.push_back({{"window", item.window}, {"path", item.path}, {"x", item.x}, {"y", item.y}, {"scrolled", item.scrolled}, {"hovered", item.hovered},
+                                 {"tooltip", item.tooltip}, {"text", item.text}});
+                if (!item.tooltip) missing.push_back(item.window + ": " + item.path);
+            }
+            audits.push_back({{"points", a.points}, {"step", a.step}, {"windows", a.windows}, {"items", items}, {"missing", missing}});
+        }
+        j["tooltip_audits"] = audits;
+    }
     if (ui_.legendRect[2] > 0)
         j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
                        {"min", ui_.legendMin},
@@ -1054,6 +1068,12 @@ void App::replay(const std::vector<ReplayEvent>& events)
             onDrop(static_cast<int>(paths.size()), paths.data());
             break;
         }
+        case ReplayEvent::Type::TooltipAudit:
+            // A test hook (docs/editor.md): the pointer swept over every panel, frames of the
+            // panels only; the result goes to --state.
+            if (withUi)
+                audits_.push_back(auditTooltips([this](const std::function<void()>& hook) { buildUi(hook); }, ui_.tooltip, float(e.step), e.windows));
+            break;
         case ReplayEvent::Type::Resize:
             // As a window resized by the user: the view and the panels get the new size.
             options_.width = e.width;

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include "app/options.h"
 #include "app/recent_files.h"
+#include "app/tooltip_audit.h"
 #include "interaction/interaction.h"
 #include "interaction/keymap.h"
 #include "interaction/replay.h"
@@ -122,11 +124,13 @@ private:
     std::string statusHint();
     std::string stateText() const;
     std::string lastState_;   // interactive --state: the text last written
+    std::vector<TooltipAudit> audits_; // replay event tooltip_audit: the results, for --state
 
     /// One frame; stillImage: for a screenshot (multisampled under Antialiasing::Auto, see
     /// scene/settings.h), not a frame of the interactive view.
     void frame(int width, int height, bool withUi, bool stillImage = false);
-    void buildUi();
+    /// One frame of the panels; `afterNewFrame` (the tooltip audit's hook) runs right after ImGui::NewFrame.
+    void buildUi(const std::function<void()>& afterNewFrame = {});
     void carryOutPending();
     void replaceScene(Scene scene, bool keepAutosave = false);
     void viewSize(int& width, int& height) const;

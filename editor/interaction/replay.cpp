@@ -190,8 +190,23 @@ std::vector<ReplayEvent> parseReplay(const std::string& text, const std::string&
             }
             ev.width = e["width"].get<int>();
             ev.height = e["height"].get<int>();
+        } else if (type == "tooltip_audit") {
+            onlyFields(e, where, {"type", "step", "windows"});
+            ev.type = ReplayEvent::Type::TooltipAudit;
+            if (e.contains("windows")) {
+                const Json& w = e["windows"];
+                if (!w.is_array() || w.empty()) fail(where + ".windows", "expected a non-empty array of window names");
+                for (const Json& name : w) {
+                    if (!name.is_string()) fail(where + ".windows", "expected a non-empty array of window names");
+                    ev.windows.push_back(name.get<std::string>());
+                }
+            }
+            if (e.contains("step")) {
+                ev.step = number(e, "step", where);
+                if (!(ev.step >= 1 && ev.step <= 100)) fail(where + ".step", "expected a number of pixels in 1..100");
+            }
         } else {
-            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, drop, resize)");
+            fail(where + ".type", "unknown event type \"" + type + "\" (move, press, release, key, key_press, key_release, text, scroll, frame, open, drop, resize, tooltip_audit)");
         }
         ev.mods = mods(e, where);
         events.push_back(std::move(ev));

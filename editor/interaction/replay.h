@@ -14,7 +14,7 @@ namespace freeform::editor {
 class Scene;
 
 struct ReplayEvent {
-    enum class Type { Move, Press, Release, Key, KeyPress, KeyRelease, Text, Scroll, Frame, Open, Resize, Drop };
+    enum class Type { Move, Press, Release, Key, KeyPress, KeyRelease, Text, Scroll, Frame, Open, Resize, Drop, TooltipAudit };
     Type type = Type::Frame;
     double x = 0, y = 0;        // pixels, origin top left (move, press, release, scroll)
     bool hasPosition = false;   // scroll: x and y given
@@ -24,6 +24,8 @@ struct ReplayEvent {
     double dy = 0;              // scroll
     int count = 1;              // frame
     int width = 0, height = 0;  // resize: the window's new size in pixels
+    double step = 0;            // tooltip_audit: the sweep's step in pixels (0: half a line height)
+    std::vector<std::string> windows; // tooltip_audit: only these top-level windows (empty: all)
     std::string text;           // text (UTF-8), open (path)
     std::vector<std::string> paths; // drop: the files dropped on the window
 };

@@ -450,3 +450,27 @@ TEST_CASE("parseReplay reads every event type and rejects malformed files naming
     CHECK(message("[1, 2]").find("expected an object") != std::string::npos);
     CHECK(message("{\"events\": [").find("not valid JSON") != std::string::npos);
 }
+
+TEST_CASE("parseReplay reads tooltip_audit (the tooltip test's hook) and rejects a bad step or window list", "[interaction]")
+{
+    const auto events = parseReplay(R"({"events": [{"type": "tooltip_audit"}, {"type": "tooltip_audit", "step": 4.5, "windows": ["Properties", "Scene"]}]})");
+    REQUIRE(events.size() == 2);
+    CHECK(events[0].type == ReplayEvent::Type::TooltipAudit);
+    CHECK(events[0].step == 0); // the default: half a line height
+    CHECK(events[0].windows.empty());
+    CHECK(events[1].step == 4.5);
+    CHECK(events[1].windows == std::vector<std::string>{"Properties", "Scene"});
+    auto message = [](const std::string& text) {
+        try {
+            parseReplay(text, "e.json");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK(message(R"({"events": [{"type": "tooltip_audit", "step": 0}]})").find("events[0].step") != std::string::npos);
+    CHECK(message(R"({"events": [{"type": "tooltip_audit", "step": 101}]})").find("events[0].step") != std::string::npos);
+    CHECK(message(R"({"events": [{"type": "tooltip_audit", "windows": []}]})").find("events[0].windows") != std::string::npos);
+    CHECK(message(R"({"events": [{"type": "tooltip_audit", "windows": [3]}]})").find("events[0].windows") != std::string::npos);
+    CHECK(message(R"({"events": [{"type": "tooltip_audit", "count": 3}]})").find("events[0].count") != std::string::npos);
+}

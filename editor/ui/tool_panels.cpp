@@ -6,6 +6,7 @@
 #include "ui/tool_panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h> // TableGetHeaderRowHeight: the header row as TableHeadersRow makes it
 
 #include <algorithm>
 #include <cstdio>
@@ -27,6 +28,20 @@ void sameLineIfFits(const char* next)
     const float width = ImGui::CalcTextSize(next).x + 2 * style.FramePadding.x;
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+}
+
+/// A table's header row as ImGui::TableHeadersRow makes it (same height, same IDs), with a
+/// tooltip on each column's header (`tips`: one per column).
+void headersRow(const char* const* tips)
+{
+    ImGui::TableNextRow(ImGuiTableRowFlags_Headers, ImGui::TableGetHeaderRowHeight());
+    for (int n = 0; n < ImGui::TableGetColumnCount(); ++n) {
+        if (!ImGui::TableSetColumnIndex(n)) continue;
+        ImGui::PushID(n);
+        ImGui::TableHeader(ImGui::TableGetColumnName(n));
+        tooltip(tips[n]);
+        ImGui::PopID();
+    }
 }
 
 std::string selectedType(const ToolContext& c)
@@ -249,7 +264,11 @@ void PatchTool::drawPanel(ToolContext& c)
             ImGui::TableSetupColumn("level");
             ImGui::TableSetupColumn("angle (deg)");
             ImGui::TableSetupColumn("gap (units)");
-            ImGui::TableHeadersRow();
+            static const char* const tips[] = {"The two patches and their sides (u0, u1, v0, v1) that meet at the edge",
+                                               "C1: derivatives across agree; G1: tangent planes agree; C0: only positions",
+                                               "The largest angle between the two tangent planes along the edge, degrees",
+                                               "The largest distance between the two sides' points along the edge, world units"};
+            headersRow(tips);
             for (const EdgeContinuity& e : edges_) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();

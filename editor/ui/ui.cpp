@@ -243,12 +243,19 @@ namespace {
 void mainMenu(Scene& scene, UiState& s, UiActions& actions)
 {
     if (!ImGui::BeginMainMenuBar()) return;
-    if (ImGui::BeginMenu("File")) {
+    // A menu's title has its tooltip while the menu is closed (open, the menu itself shows).
+    const bool fileMenu = ImGui::BeginMenu("File");
+    if (!fileMenu) tooltip(s, "New, Open, Save, Import a mesh or .bpt, Export the tessellation, Quit");
+    if (fileMenu) {
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
         tooltip(s, "An empty document (asks first when there are unsaved changes)");
         if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
         tooltip(s, "Open a freeform document (.json), a .bpt patch file or a mesh");
-        if (ImGui::BeginMenu("Open recent", !actions.recentFiles().empty())) {
+        const bool recentMenu = ImGui::BeginMenu("Open recent", !actions.recentFiles().empty());
+        if (!recentMenu)
+            tooltip(s, actions.recentFiles().empty() ? "The last 8 documents opened or saved (none yet)"
+                                                     : "The last 8 documents opened or saved, most recent first");
+        if (recentMenu) {
             // Most recent first; a file that is gone is shown greyed and cannot be chosen.
             for (const std::string& path : actions.recentFiles()) {
                 std::error_code ec;
@@ -276,7 +283,9 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Close the editor (asks first when there are unsaved changes)");
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Edit")) {
+    const bool editMenu = ImGui::BeginMenu("Edit");
+    if (!editMenu) tooltip(s, "Undo, redo, select points, snapping, proportional editing, the gizmo");
+    if (editMenu) {
         const auto& h = scene.history();
         const std::string undoText = h.canUndo() ? "Undo " + h.undoLabel() : std::string("Undo");
         const std::string redoText = h.canRedo() ? "Redo " + h.redoLabel() : std::string("Redo");
@@ -304,7 +313,9 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Arrows and squares at the selected points' centre: drag along an axis or in a plane");
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("View")) {
+    const bool viewMenu = ImGui::BeginMenu("View");
+    if (!viewMenu) tooltip(s, "Shading, the camera's side and projection, fitting, the Display panel, statistics");
+    if (viewMenu) {
         DisplaySettings& d = scene.display;
         int shading = static_cast<int>(d.shading);
         bool shadingChanged = ImGui::RadioButton("flat", &shading, 0);
@@ -345,7 +356,9 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Frame time, update time and triangle count at the bottom of the view");
         ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Help")) {
+    const bool helpMenu = ImGui::BeginMenu("Help");
+    if (!helpMenu) tooltip(s, "The controls and the first steps (F1)");
+    if (helpMenu) {
         ImGui::MenuItem("Controls", "F1", &s.showHelp);
         tooltip(s, "First steps, the mouse and every key");
         ImGui::EndMenu();
@@ -442,7 +455,9 @@ void controlPointTable(Scene& scene, int index, UiState& s)
         object.data);
     const int dim = static_cast<int>(points->rows());
     const int count = static_cast<int>(points->cols());
-    if (!ImGui::CollapsingHeader(("control points (" + std::to_string(count) + ")").c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const bool open = ImGui::CollapsingHeader(("control points (" + std::to_string(count) + ")").c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    tooltip(s, "Show or hide the table of every control point's coordinates (click to fold)");
+    if (!open) return;
     const ImGuiStyle& style = ImGui::GetStyle();
     // Narrow cell and frame paddings, so that three fields of typical values fit the panel.
     const ImVec2 cellPadding(2, 1), framePadding(2, style.FramePadding.y);
@@ -462,7 +477,16 @@ void controlPointTable(Scene& scene, int index, UiState& s)
         static const char* axes[] = {"x", "y", "z"};
         for (int r = 0; r < dim; ++r)
             ImGui::TableSetupColumn(axes[r], scroll ? ImGuiTableColumnFlags_WidthFixed : ImGuiTableColumnFlags_WidthStretch, scroll ? field : 1.0f);
-        ImGui::TableHeadersRow();
+        // The header row as TableHeadersRow makes it, with a tooltip on each column's head.
+        ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+        for (int column = 0; column <= dim; ++column) {
+            if (!ImGui::TableSetColumnIndex(column)) continue;
+            ImGui::PushID(column);
+            ImGui::TableHeader(ImGui::TableGetColumnName(column));
+            tooltip(s, column == 0 ? "The control point's index (its place in the control net)"
+                                   : "The control point's coordinate along this axis, world units; type a value and press Enter");
+            ImGui::PopID();
+        }
         ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, framePadding);
         ImGuiListClipper clipper;
         clipper.Begin(count);
@@ -569,7 +593,9 @@ void selectedPoints(Scene& scene, int index, UiState& s)
 /// Snapping, proportional editing and the gizmo.
 void editOptions(Scene& scene, UiState& s)
 {
-    if (!ImGui::CollapsingHeader("editing")) return;
+    const bool open = ImGui::CollapsingHeader("editing");
+    tooltip(s, "Snapping to the grid, proportional editing and the translate gizmo (click to unfold)");
+    if (!open) return;
     ImGui::Checkbox("snap to grid (Shift+Tab)", &s.edit.snap);
     tooltip(s, "Dragged points land on multiples of the ground grid's step");
     ImGui::Checkbox("proportional (O)", &s.edit.soft);
@@ -621,8 +647,12 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             }
             if (item.geometry.surface) {
                 ImGui::Text("%d vertices, %d triangles", item.geometry.surface->vertexCount(), item.geometry.surface->faceCount());
-                if (item.kind == SceneItem::Kind::DocumentObject &&
-                    ImGui::CollapsingHeader("tessellation", ImGuiTreeNodeFlags_DefaultOpen)) {
+                bool tessellationOpen = false;
+                if (item.kind == SceneItem::Kind::DocumentObject) {
+                    tessellationOpen = ImGui::CollapsingHeader("tessellation", ImGuiTreeNodeFlags_DefaultOpen);
+                    tooltip(s, "How finely this object is cut into triangles for the view and exports (click to fold)");
+                }
+                if (tessellationOpen) {
                     int mode = static_cast<int>(settings.tessellation.mode);
                     changed |= ImGui::Combo("mode", &mode, "adaptive\0uniform\0");
                     tooltip(s, "Adaptive: to a distance; uniform: a fixed number of segments per patch side");
@@ -642,7 +672,9 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                     changed |= ImGui::Checkbox("reverse orientation", &settings.tessellation.flip);
                     tooltip(s, "Reverse the triangles and normals (inside out)");
                 }
-                if (ImGui::CollapsingHeader("material")) {
+                const bool materialOpen = ImGui::CollapsingHeader("material");
+                tooltip(s, "This object's own colours and shininess (click to unfold)");
+                if (materialOpen) {
                     changed |= ImGui::Checkbox("own material", &settings.ownMaterial);
                     tooltip(s, "Use a material of this object's own rather than the Display panel's");
                     if (settings.ownMaterial) changed |= materialEditor(settings.material);
@@ -754,15 +786,20 @@ void displayPanel(Scene& scene, UiState& s)
             ImGui::SliderScalar("tolerance", ImGuiDataType_Double, &d.tolerance, &lo, &hi, "%.2e", ImGuiSliderFlags_Logarithmic);
             tooltip(s, "Tessellation tolerance of surfaces and curves, world units (exports use it too)");
         }
-        if (ImGui::CollapsingHeader("material")) materialEditor(d.material);
-        tooltip(s, "The default material of surfaces");
-        if (ImGui::CollapsingHeader("back faces, background")) {
+        const bool materialOpen = ImGui::CollapsingHeader("material");
+        tooltip(s, "The default material of surfaces (click to unfold)");
+        if (materialOpen) materialEditor(d.material);
+        const bool backOpen = ImGui::CollapsingHeader("back faces, background");
+        tooltip(s, "The colour of back faces and of the view's background (click to unfold)");
+        if (backOpen) {
             colorEdit("back faces", d.backColor);
             tooltip(s, "Diffuse colour of back faces (seen through openings or inside out)");
             colorEdit("background", d.background);
             tooltip(s, "The view's background colour");
         }
-        if (ImGui::CollapsingHeader("lights", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const bool lightsOpen = ImGui::CollapsingHeader("lights", ImGuiTreeNodeFlags_DefaultOpen);
+        tooltip(s, "The headlight and up to 7 point lights (click to fold)");
+        if (lightsOpen) {
             ImGui::Checkbox("headlight", &d.headlight);
             tooltip(s, "A light at the eye, moving with the camera");
             if (d.headlight) {
@@ -927,7 +964,9 @@ void helpWindow(UiState& s)
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowSize(ImVec2(std::min(700.0f, vp->Size.x - 40), std::min(600.0f, vp->Size.y - 60)), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Controls", &s.showHelp)) {
-        if (ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen)) ImGui::TextUnformatted(firstStepsHelp());
+        const bool open = ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen);
+        tooltip(s, "Three short tasks: draw a C2 spline, smooth a patch pair, deform a mesh (click to fold)");
+        if (open) ImGui::TextUnformatted(firstStepsHelp());
         const std::string controls = controlsHelp();
         ImGui::TextUnformatted(controls.c_str());
     }
