@@ -252,7 +252,8 @@ void PatchTool::drawPanel(ToolContext& c)
     if (!edges_.empty()) {
         int g1 = 0, c1 = 0;
         for (const EdgeContinuity& e : edges_) g1 += e.g1, c1 += e.c1;
-        ImGui::Text("%zu edges: %d C1, %d G1, %zu C0", edges_.size(), c1, g1, edges_.size() - static_cast<std::size_t>(g1));
+        ImGui::Text("%zu %s: %d C1, %d G1, %zu C0", edges_.size(), edges_.size() == 1 ? "edge" : "edges", c1, g1,
+                    edges_.size() - static_cast<std::size_t>(g1));
         tooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
                 "(the table follows every change of the patches)");
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
