@@ -22,16 +22,7 @@ public:
     Matrix2X texcoords;
     Eigen::MatrixXd colors;
 
-    PolygonMesh polygonMesh(const Values& now) const override
-    {
-        PolygonMesh mesh;
-        mesh.positions = now.positions;
-        if (now.normals.cols() == now.positions.cols()) mesh.normals = now.normals;
-        mesh.texcoords = texcoords;
-        mesh.faceVertices = faceVertices;
-        mesh.faceStart = faceStart;
-        return mesh;
-    }
+    PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices, texcoords); }
 
     Eigen::MatrixXd vertexColors() const override { return colors; }
 

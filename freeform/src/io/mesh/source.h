@@ -111,6 +111,20 @@ void requireText(const std::string& path, const std::string& text, const char* f
 /// The lower-case extension without the dot ("obj"), or empty.
 std::string extensionOf(const std::string& path);
 
+/// The mesh of an indexed face list (OFF, PLY, Assimp): the positions as they are now, their
+/// normals when there is one per position, the faces and texture coordinates as read.
+inline PolygonMesh indexedMesh(const Values& now, const std::vector<int>& faceStart, const std::vector<int>& faceVertices,
+                               const Matrix2X& texcoords = Matrix2X())
+{
+    PolygonMesh mesh;
+    mesh.positions = now.positions;
+    if (now.normals.cols() == now.positions.cols()) mesh.normals = now.normals;
+    mesh.texcoords = texcoords;
+    mesh.faceVertices = faceVertices;
+    mesh.faceStart = faceStart;
+    return mesh;
+}
+
 /// The file as read, with the editable numbers as they were in it.
 class Source {
 public:
