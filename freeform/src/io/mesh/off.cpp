@@ -13,18 +13,10 @@ namespace freeform::meshio {
 
 namespace {
 
-class OffSource final : public Source {
+class OffSource final : public IndexedSource {
 public:
     std::string text;
     std::vector<TextSlot> slots;
-    std::vector<int> faceStart{0};
-    std::vector<int> faceVertices;
-    Matrix2X texcoords;
-    Eigen::MatrixXd colors;
-
-    PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices, texcoords); }
-
-    Eigen::MatrixXd vertexColors() const override { return colors; }
 
     void writeSame(const std::string& target, const std::string&, const Values& now) const override
     {

@@ -79,20 +79,12 @@ const char* typeName(BinaryType t)
     return "?";
 }
 
-class PlySource final : public Source {
+class PlySource final : public IndexedSource {
 public:
     std::string bytes; // the whole file
     Encoding encoding = Encoding::Ascii;
     std::vector<TextSlot> textSlots;
     std::vector<BinarySlot> binarySlots;
-    std::vector<int> faceStart{0};
-    std::vector<int> faceVertices;
-    Matrix2X texcoords;
-    Eigen::MatrixXd colors;
-
-    PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices, texcoords); }
-
-    Eigen::MatrixXd vertexColors() const override { return colors; }
 
     void writeSame(const std::string& target, const std::string&, const Values& now) const override
     {

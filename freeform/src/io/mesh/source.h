@@ -153,6 +153,19 @@ public:
     virtual void writeSame(const std::string& path, const std::string& targetFormat, const Values& now) const = 0;
 };
 
+/// A file of positions and an indexed face list, with texture coordinates and vertex colours when
+/// it has them (OFF, PLY).
+class IndexedSource : public Source {
+public:
+    std::vector<int> faceStart{0};
+    std::vector<int> faceVertices;
+    Matrix2X texcoords;
+    Eigen::MatrixXd colors;
+
+    PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices, texcoords); }
+    Eigen::MatrixXd vertexColors() const override { return colors; }
+};
+
 // ---- readers (the text or bytes of the whole file; path for messages)
 std::unique_ptr<Source> readObj(const std::string& path, std::string text);
 std::unique_ptr<Source> readPly(const std::string& path, std::string bytes);
