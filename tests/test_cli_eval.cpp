@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli.h"
+#include "support/cli_errors.h"
 
 namespace {
 /// In process (support/cli.h); "help texts" and "bad usage exits 2" start the binary.
@@ -15,6 +16,7 @@ freeform::test::ProcessResult cli(const std::string& arguments)
 } // namespace
 using freeform::test::writeText;
 using Json = nlohmann::json;
+using freeform::test::requireError;
 
 namespace {
 std::string tmp(const std::string& name)
@@ -29,17 +31,6 @@ std::string curveDoc()
         {"name": "c", "type": "bezier_curve", "points": [[0,0],[1,2],[3,2],[4,0]]},
         {"name": "h", "type": "bezier_curve", "points": [[0,0,0],[0.1,0.2,0.3],[1,1,1]]}]})");
     return path;
-}
-
-/// A failing run: exit status, one "error:" line on stderr, nothing on stdout.
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
 }
 } // namespace
 

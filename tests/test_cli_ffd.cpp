@@ -12,6 +12,7 @@
 #include <freeform/io/mesh_io.h>
 
 #include "support/cli.h"
+#include "support/cli_errors.h"
 
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
@@ -23,6 +24,7 @@ freeform::test::ProcessResult cli(const std::string& arguments)
 using freeform::test::slurp;
 using freeform::test::writeText;
 using Json = nlohmann::json;
+using freeform::test::requireError;
 
 namespace {
 
@@ -39,16 +41,6 @@ std::string sample(const std::string& name)
 bool exists(const std::string& path)
 {
     return std::filesystem::exists(path);
-}
-
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
 }
 
 /// Writes the lattice document for `mesh` and returns its JSON.

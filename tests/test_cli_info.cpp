@@ -13,6 +13,7 @@
 
 #include "support/meshes.h"
 #include "support/cli.h"
+#include "support/cli_errors.h"
 
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
@@ -23,6 +24,7 @@ freeform::test::ProcessResult cli(const std::string& arguments)
 } // namespace
 using freeform::test::writeText;
 using Json = nlohmann::json;
+using freeform::test::requireError;
 
 namespace {
 
@@ -47,16 +49,6 @@ std::string writeObj(const freeform::PolygonMesh& m, const std::string& name)
     const std::string path = tmp(name);
     writeText(path, text.str());
     return path;
-}
-
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
 }
 
 } // namespace

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "support/cli.h"
+#include "support/cli_errors.h"
 
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
@@ -21,6 +22,7 @@ freeform::test::ProcessResult cli(const std::string& arguments)
 using freeform::test::slurp;
 using freeform::test::writeText;
 using Json = nlohmann::json;
+using freeform::test::requireError;
 
 namespace {
 
@@ -44,16 +46,6 @@ const char* kJump = R"({"name": "j", "type": "bezier_spline", "degree": 3,
     "points": [[0,0],[1,0],[2,0],[3,0],[4,0],[5,0],[6,20.25]], "intervals": [3, 3]})";
 const char* kDeBoor = R"({"name": "d", "type": "deboor_spline", "degree": 3, "end": "clamped",
     "points": [[0,0],[1,3],[4,4],[6,1],[8,0]], "intervals": [1, 2]})";
-
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
-}
 
 } // namespace
 

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "support/cli.h"
+#include "support/cli_errors.h"
 
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
@@ -21,21 +22,12 @@ freeform::test::ProcessResult cli(const std::string& arguments)
 } // namespace
 using freeform::test::writeText;
 using Json = nlohmann::json;
+using freeform::test::requireError;
 
 namespace {
 
 std::string tmp(const std::string& name) { return std::string(FREEFORM_TEST_TMP) + "/" + name; }
 std::string cage(const std::string& name) { return std::string(FREEFORM_SOURCE_DIR) + "/data/cages/" + name; }
-
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
-}
 
 Json info(const std::string& mesh)
 {

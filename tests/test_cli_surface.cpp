@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "support/cli.h"
+#include "support/cli_errors.h"
 
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
@@ -21,6 +22,7 @@ freeform::test::ProcessResult cli(const std::string& arguments)
 using freeform::test::slurp;
 using freeform::test::writeText;
 using Json = nlohmann::json;
+using freeform::test::requireError;
 
 namespace {
 std::string tmp(const std::string& name)
@@ -55,16 +57,6 @@ std::string surfaceDoc()
         {"name": "g", "type": "deboor_surface", "degree": [3, 3], "end": ["open", "open"], "points": )" + grid + R"(},
         {"name": "c", "type": "bezier_curve", "points": [[0,0],[1,1]]}]})");
     return path;
-}
-
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
 }
 
 std::vector<std::string> linesStarting(const std::string& text, const std::string& prefix)

@@ -18,8 +18,11 @@
 #include "freeform/io/mesh_io.h"
 #include "support/bytes.h"
 #include "support/process.h"
+#include "support/text_lines.h"
 
 using freeform::MeshFile;
+using freeform::test::lines;
+using freeform::test::words;
 using freeform::PolygonMesh;
 using freeform::test::getBytes;
 using freeform::test::putBytes;
@@ -31,22 +34,6 @@ namespace {
 std::string tmp(const std::string& name) { return std::string(FREEFORM_TEST_TMP) + "/meshio_" + name; }
 
 const Eigen::Vector3d kShift(0.25, -1.5, 1.0 / 3.0);
-
-std::vector<std::string> lines(const std::string& text)
-{
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string l; std::getline(in, l);) out.push_back(l);
-    return out;
-}
-
-std::vector<std::string> words(const std::string& line)
-{
-    std::vector<std::string> out;
-    std::istringstream in(line);
-    for (std::string w; in >> w;) out.push_back(w);
-    return out;
-}
 
 // Four vertices of a quad (float-exact values that are not round in decimal).
 const float kQuad[4][3] = {{0.1f, 0.2f, 0.3f}, {1.7f, 0.0f, -0.25f}, {1.5f, 1.1f, 0.0f}, {-0.3f, 1.0f, 1e-3f}};

@@ -11,8 +11,11 @@
 
 #include "freeform/io/mesh_io.h"
 #include "support/process.h"
+#include "support/text_lines.h"
 
 using freeform::MeshFile;
+using freeform::test::lines;
+using freeform::test::words;
 using freeform::PolygonMesh;
 using freeform::test::slurp;
 using freeform::test::writeText;
@@ -20,22 +23,6 @@ using freeform::test::writeText;
 namespace {
 
 std::string tmp(const std::string& name) { return std::string(FREEFORM_TEST_TMP) + "/meshio_obj_" + name; }
-
-std::vector<std::string> lines(const std::string& text)
-{
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string l; std::getline(in, l);) out.push_back(l);
-    return out;
-}
-
-std::vector<std::string> words(const std::string& line)
-{
-    std::vector<std::string> out;
-    std::istringstream in(line);
-    for (std::string w; in >> w;) out.push_back(w);
-    return out;
-}
 
 // A cube made of quads with per-corner texture coordinates and six face normals (shared by the
 // four corners of a side), two groups, two materials, vertex colours, a comment and CRLF line ends

@@ -10,9 +10,11 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "support/cli_errors.h"
 #include "support/process.h"
 
 using freeform::test::cli;
+using freeform::test::requireError;
 using freeform::test::writeText;
 using Json = nlohmann::json;
 
@@ -21,15 +23,6 @@ std::string tmp(const std::string& name) { return std::string(FREEFORM_TEST_TMP)
 
 const std::string kTeapot = std::string(FREEFORM_SOURCE_DIR) + "/data/teapot.bpt";
 
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(fragment) != std::string::npos);
-}
 } // namespace
 
 TEST_CASE("tessellate reports the measured deviations beside the certified bound", "[cli][tessellate][local]")

@@ -35,10 +35,12 @@
 #include "freeform/document/operations.h"
 #include "freeform/io/geometry_data.h"
 #include "support/process.h"
+#include "support/tool_bench.h"
 #include "tools/tools.h"
 
 using namespace freeform;
 using namespace freeform::editor;
+using namespace freeform::editor::tool_test;
 using JsonV = nlohmann::json; // key order ignored (the editor's Json keeps it)
 
 namespace {
@@ -46,49 +48,6 @@ namespace {
 const std::string kTmp = FREEFORM_TEST_TMP;
 const std::string kSource = FREEFORM_SOURCE_DIR;
 constexpr double kPi = 3.14159265358979323846;
-
-template <typename... Parts>
-std::string cat(const Parts&... parts)
-{
-    std::ostringstream out;
-    (out << ... << parts);
-    return out.str();
-}
-
-/// An orthographic view of x in [-4, 4], y in [-2.5, 2.5] looking down -z, 800 x 500 pixels.
-Eigen::Matrix4d handViewProjection()
-{
-    const Eigen::Matrix4d p = orthographic<double>(-4, 4, -2.5, 2.5, 1, 21);
-    const Eigen::Matrix4d v = lookAt<double>(Eigen::Vector3d(0, 0, 10), Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY());
-    return p * v;
-}
-
-struct Bench {
-    explicit Bench(Scene s) : scene(std::move(s)) {}
-    Scene scene;
-    Selection selection;
-    Tools tools;
-    Overlay overlay;
-    ToolContext context{scene, selection, 800, 500, handViewProjection()};
-    void update()
-    {
-        overlay.clear();
-        tools.update(context, overlay);
-        scene.updateGeometry();
-    }
-    int select(const std::string& name, std::vector<int> points = {})
-    {
-        selection.selectItem(findItem(scene, name));
-        selection.setPoints(std::move(points));
-        return selection.item;
-    }
-    /// The document layer's evaluation of object `name` at `at`.
-    Eigen::VectorXd eval(const std::string& name, std::vector<double> at)
-    {
-        const TypedDocument doc(scene.document(), scene.documentDirectory());
-        return evaluate(doc, doc.object(name), at, 0).point;
-    }
-};
 
 const std::string kExample = kSource + "/examples/data/nurbs.json";
 

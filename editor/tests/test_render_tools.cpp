@@ -40,11 +40,13 @@
 #include "scene/scene.h"
 #include "support/process.h"
 #include "support/replay_session.h"
+#include "support/text_lines.h"
 
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
 using Json = nlohmann::ordered_json;
+using freeform::test::lines;
 
 namespace {
 
@@ -129,14 +131,6 @@ std::vector<std::pair<int, int>> cliContinuity(const std::string& doc, const std
     std::vector<std::pair<int, int>> out;
     const Json report = Json::parse(r.out);
     for (const Json& j : report["joints"]) out.emplace_back(j["C"].get<int>(), j["G"].get<int>());
-    return out;
-}
-
-std::vector<std::string> lines(const std::string& text)
-{
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
     return out;
 }
 

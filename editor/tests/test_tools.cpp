@@ -23,53 +23,17 @@
 #include "freeform/io/geometry_data.h"
 #include "interaction/picking.h"
 #include "support/process.h"
+#include "support/tool_bench.h"
 #include "tools/tools.h"
 
 using namespace freeform;
 using namespace freeform::editor;
+using namespace freeform::editor::tool_test;
 using Catch::Matchers::WithinAbs;
 
 namespace {
 
 const std::string kTmp = FREEFORM_TEST_TMP;
-
-template <typename... Parts>
-std::string cat(const Parts&... parts)
-{
-    std::ostringstream out;
-    (out << ... << parts);
-    return out.str();
-}
-
-/// An orthographic view of x in [-4, 4], y in [-2.5, 2.5] looking down -z, 800 x 500 pixels:
-/// world (x, y, z) is at pixel (100 (x + 4), 100 (2.5 - y)).
-Eigen::Matrix4d handViewProjection()
-{
-    const Eigen::Matrix4d p = orthographic<double>(-4, 4, -2.5, 2.5, 1, 21);
-    const Eigen::Matrix4d v = lookAt<double>(Eigen::Vector3d(0, 0, 10), Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY());
-    return p * v;
-}
-
-/// A scene with selection, tools and the context the application would pass them.
-struct Bench {
-    explicit Bench(Scene s) : scene(std::move(s)) {}
-    Scene scene;
-    Selection selection;
-    Tools tools;
-    Overlay overlay;
-    ToolContext context{scene, selection, 800, 500, handViewProjection()};
-    void update()
-    {
-        overlay.clear();
-        tools.update(context, overlay);
-        scene.updateGeometry();
-    }
-    void select(const std::string& name, std::vector<int> points = {})
-    {
-        selection.selectItem(findItem(scene, name));
-        selection.setPoints(std::move(points));
-    }
-};
 
 /// A 3D cubic "c", a cubic spline "s" of three segments on intervals (1, 2, 0.5) whose joints are
 /// neither C1 nor G1, and a lattice "box".

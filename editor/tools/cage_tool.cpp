@@ -94,26 +94,26 @@ bool CageTool::replaceCage(ToolContext& c, int item, const SubdivisionSurfaceDat
     return true;
 }
 
-bool CageTool::setScheme(ToolContext& c, int item, const std::string& scheme)
+bool CageTool::setText(ToolContext& c, int item, std::string SubdivisionSurfaceData::*field, const std::string& value,
+                       const std::string& name)
 {
     if (!isCage(c.scene, item)) return status() = "select a subdivision surface", false;
     SubdivisionSurfaceData d = std::get<SubdivisionSurfaceData>(c.scene.object(item).data);
-    if (d.scheme == scheme) return true;
-    d.scheme = scheme;
-    if (!replaceCage(c, item, d, "subdivision scheme")) return false;
-    status() = "scheme " + scheme;
+    if (d.*field == value) return true;
+    d.*field = value;
+    if (!replaceCage(c, item, d, "subdivision " + name)) return false;
+    status() = name + " " + value;
     return true;
+}
+
+bool CageTool::setScheme(ToolContext& c, int item, const std::string& scheme)
+{
+    return setText(c, item, &SubdivisionSurfaceData::scheme, scheme, "scheme");
 }
 
 bool CageTool::setBoundary(ToolContext& c, int item, const std::string& boundary)
 {
-    if (!isCage(c.scene, item)) return status() = "select a subdivision surface", false;
-    SubdivisionSurfaceData d = std::get<SubdivisionSurfaceData>(c.scene.object(item).data);
-    if (d.boundary == boundary) return true;
-    d.boundary = boundary;
-    if (!replaceCage(c, item, d, "subdivision boundary")) return false;
-    status() = "boundary " + boundary;
-    return true;
+    return setText(c, item, &SubdivisionSurfaceData::boundary, boundary, "boundary");
 }
 
 bool CageTool::setLevel(ToolContext& c, int item, int level)

@@ -68,6 +68,10 @@ public:
 
 private:
     bool isCage(const Scene& scene, int item) const;
+    /// Sets the cage's scheme or boundary (`field`, called `name` in the undo label and the status
+    /// line) to value: one undo step, nothing when it is already value.
+    bool setText(ToolContext& context, int item, std::string SubdivisionSurfaceData::*field, const std::string& value,
+                 const std::string& name);
     /// Validates the new data through the document layer (the surface is built), then replaces.
     bool replaceCage(ToolContext& context, int item, const SubdivisionSurfaceData& data, const std::string& label);
     /// The item's data with a file cage made inline (file tags as creases / corners).

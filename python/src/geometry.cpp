@@ -228,17 +228,7 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
             py::arg("times") = 1)
         .def(
             "continuity",
-            [](const PySpline& s) {
-                py::list out;
-                std::visit([&](const auto& c) {
-                    const auto report = [&] {
-                        py::gil_scoped_release release;
-                        return freeform::continuityReport(c);
-                    }();
-                    for (const auto& j : report) out.append(continuityDict(j));
-                }, s.s);
-                return out;
-            },
+            [](const PySpline& s) { return continuityList(s.s); },
             "Per joint: {joint, t, C (parametric, -1..n), G (geometric, -1..2), jumps}.")
         .def("__repr__", [](const PySpline& s) {
             return std::visit([&](const auto& c) {

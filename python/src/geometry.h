@@ -10,6 +10,7 @@
 #include <freeform/curve/bezier_curve.h>
 #include <freeform/curve/bezier_spline.h>
 #include <freeform/curve/continuity.h>
+#include <freeform/curve/nurbs_continuity.h>
 #include <freeform/curve/nurbs_curve.h>
 #include <freeform/curve/rational_bezier_curve.h>
 #include <freeform/document/document.h>
@@ -96,6 +97,24 @@ inline py::dict continuityDict(const freeform::JointContinuity<double>& j)
     d["G"] = j.G;
     d["jumps"] = j.jumps;
     return d;
+}
+
+/// The continuity report of the 2D or 3D curve held in `curves` (a spline or a NURBS curve),
+/// computed without the GIL, one continuityDict per joint.
+template <typename Variant>
+py::list continuityList(const Variant& curves)
+{
+    py::list out;
+    std::visit(
+        [&](const auto& c) {
+            const auto report = [&] {
+                py::gil_scoped_release release;
+                return freeform::continuityReport(c);
+            }();
+            for (const auto& j : report) out.append(continuityDict(j));
+        },
+        curves);
+    return out;
 }
 
 inline py::tuple meshArrays(const freeform::PolygonMesh& mesh)

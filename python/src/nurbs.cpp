@@ -15,6 +15,7 @@
 #include <freeform/curve/interpolation.h>
 #include <freeform/curve/nurbs_continuity.h>
 #include <freeform/curve/nurbs_interpolation.h>
+#include <freeform/document/object_data.h>
 #include <freeform/io/geometry_data.h>
 #include <freeform/tessellate/tessellate_rational.h>
 #include <freeform/volume/deform.h>
@@ -224,49 +225,6 @@ py::object closestPoints(const C& c, py::handle points)
 
 // ---------------------------------------------------------------- data <-> geometry
 
-template <int D>
-freeform::NurbsCurveData nurbsCurveData(const freeform::NurbsCurve<double, D>& c)
-{
-    freeform::NurbsCurveData d;
-    d.degree = c.degree();
-    d.knots = c.knots();
-    d.points = c.controlPoints();
-    if (c.isRational()) {
-        const auto w = c.weights();
-        d.weights.assign(w.data(), w.data() + w.size());
-    }
-    return d;
-}
-
-freeform::NurbsSurfaceData nurbsSurfaceData(const NSurface& s)
-{
-    freeform::NurbsSurfaceData d;
-    d.degree = {s.degreeU(), s.degreeV()};
-    d.knots = {s.knotsU().knots(), s.knotsV().knots()};
-    d.rows = s.countU();
-    d.cols = s.countV();
-    d.points = s.controlPoints();
-    if (s.isRational()) {
-        const auto w = s.weights();
-        d.weights.assign(w.data(), w.data() + w.size());
-    }
-    return d;
-}
-
-freeform::RationalBezierSurfaceData rationalSurfaceData(const RSurface& s)
-{
-    freeform::RationalBezierSurfaceData d;
-    d.degree = {s.degreeU(), s.degreeV()};
-    const int m = s.degreeU(), n = s.degreeV();
-    d.points.resize(3, (m + 1) * (n + 1));
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            d.points.col(i * (n + 1) + j) = s.controlPoint(i, j);
-            d.weights.push_back(s.weight(i, j));
-        }
-    return d;
-}
-
 py::object fromGeometry(const freeform::Geometry& g)
 {
     return std::visit(
@@ -424,19 +382,12 @@ freeform::ObjectData objectData(py::handle h)
     }
     if (py::isinstance<PyLattice>(h)) return freeform::latticeToData(h.cast<PyLattice&>().snapshot());
     if (py::isinstance<PyRationalCurve>(h))
-        return std::visit(
-            [](const auto& c) {
-                freeform::RationalBezierCurveData d;
-                d.points = c.controlPoints();
-                const auto w = c.weights();
-                d.weights.assign(w.data(), w.data() + w.size());
-                return d;
-            },
-            h.cast<const PyRationalCurve&>().c);
+        return std::visit([](const auto& c) { return freeform::ObjectData(freeform::rationalCurveData(c)); },
+                          h.cast<const PyRationalCurve&>().c);
     if (py::isinstance<PyNurbsCurve>(h))
-        return std::visit([](const auto& c) { return freeform::ObjectData(nurbsCurveData(c)); }, h.cast<const PyNurbsCurve&>().c);
-    if (py::isinstance<PyRationalSurface>(h)) return rationalSurfaceData(h.cast<const PyRationalSurface&>().s);
-    if (py::isinstance<PyNurbsSurface>(h)) return nurbsSurfaceData(h.cast<const PyNurbsSurface&>().s);
+        return std::visit([](const auto& c) { return freeform::ObjectData(freeform::nurbsCurveData(c)); }, h.cast<const PyNurbsCurve&>().c);
+    if (py::isinstance<PyRationalSurface>(h)) return freeform::rationalSurfaceData(h.cast<const PyRationalSurface&>().s);
+    if (py::isinstance<PyNurbsSurface>(h)) return freeform::nurbsSurfaceData(h.cast<const PyNurbsSurface&>().s);
     throw py::type_error("expected a freeform geometry object (BezierCurve, Spline, Patch, Lattice, RationalBezierCurve, "
                          "NurbsCurve, RationalBezierSurface, NurbsSurface), got " +
                          std::string(py::str(py::type::handle_of(h).attr("__name__"))));
@@ -819,17 +770,7 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
             "Arc length over the domain or [start, end] (adaptive Gauss-Kronrod per knot span).")
         .def(
             "continuity",
-            [](const PyNurbsCurve& s) {
-                py::list out;
-                std::visit([&](const auto& c) {
-                    const auto report = [&] {
-                        py::gil_scoped_release release;
-                        return freeform::continuityReport(c);
-                    }();
-                    for (const auto& j : report) out.append(continuityDict(j));
-                }, s.c);
-                return out;
-            },
+            [](const PyNurbsCurve& s) { return continuityList(s.c); },
             "Per interior knot, measured from the geometry: {joint, t (the knot), C, G, jumps}.")
         .def("__repr__", [](const PyNurbsCurve& s) {
             return std::visit([&](const auto& c) {
@@ -852,11 +793,11 @@ A rational Bézier patch in 3D on [0, 1]^2 (docs/nurbs.md): control points (m+1,
              py::arg("points"), py::arg("weights"))
         .def_property_readonly("degree", [](const PyRationalSurface& s) { return py::make_tuple(s.s.degreeU(), s.s.degreeV()); })
         .def_property_readonly("control_points", [](const PyRationalSurface& s) {
-            const auto d = rationalSurfaceData(s.s);
+            const auto d = freeform::rationalSurfaceData(s.s);
             return grid(d.points, s.s.degreeU() + 1, s.s.degreeV() + 1);
         }, "(m+1, n+1, 3) float64 (a copy).")
         .def_property_readonly("weights", [](const PyRationalSurface& s) {
-            const auto d = rationalSurfaceData(s.s);
+            const auto d = freeform::rationalSurfaceData(s.s);
             return py::array_t<double>({static_cast<py::ssize_t>(s.s.degreeU() + 1), static_cast<py::ssize_t>(s.s.degreeV() + 1)}, d.weights.data());
         }, "(m+1, n+1) float64 (a copy).")
         .def("evaluate", [](const PyRationalSurface& s, py::handle uv) {

@@ -1,8 +1,11 @@
 # Shared helpers of the Python tests: the repository root, the command-line tool (FREEFORM_CLI,
-# set by ctest; the test that needs it is skipped without it) and an independent NumPy FFD.
+# set by ctest; the test that needs it is skipped without it), a tick counter for the GIL tests and
+# an independent NumPy FFD.
 import os
 import pathlib
 import subprocess
+import threading
+import time
 from math import comb
 
 import numpy as np
@@ -22,6 +25,28 @@ def run_cli(*args):
     r = subprocess.run([cli(), *map(str, args)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     return r.stdout
+
+
+def ticks_during(work):
+    """Runs work() while another thread ticks every 0.5 ms; the number of ticks inside the call (a
+    call that holds the GIL throughout lets the other thread tick not at all)."""
+    ticks = []
+    stop = threading.Event()
+
+    def counter():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.0005)
+
+    t = threading.Thread(target=counter)
+    t.start()
+    time.sleep(0.01)
+    start = time.perf_counter()
+    work()
+    end = time.perf_counter()
+    stop.set()
+    t.join()
+    return len([x for x in ticks if start < x < end])
 
 
 def bernstein(d, x):

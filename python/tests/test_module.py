@@ -3,12 +3,11 @@
 # calls (a Python thread keeps running while deform works).
 import ast
 import pathlib
-import threading
-import time
 
 import numpy as np
 
 import freeform as ff
+from conftest import ticks_during
 
 STUB = pathlib.Path(__file__).resolve().parents[1] / "freeform.pyi"
 
@@ -53,23 +52,10 @@ def test_gil_is_released_during_deform():
     points = np.random.default_rng(0).uniform(-1, 1, (2_000_000, 3))
     lat = ff.Lattice.fit(points)
     lat.control_points += 0.01
-    ticks = []
-    stop = threading.Event()
 
-    def counter():
-        while not stop.is_set():
-            ticks.append(time.perf_counter())
-            time.sleep(0.0005)
+    def work():
+        for _ in range(3):
+            lat.deform(points, threads=1)
 
-    t = threading.Thread(target=counter)
-    t.start()
-    time.sleep(0.01)
-    start = time.perf_counter()
-    for _ in range(3):
-        lat.deform(points, threads=1)
-    end = time.perf_counter()
-    stop.set()
-    t.join()
-    during = [x for x in ticks if start < x < end]
     # with the GIL held for the whole call the other thread could not tick at all
-    assert len(during) >= 3
+    assert ticks_during(work) >= 3

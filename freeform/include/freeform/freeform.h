@@ -48,4 +48,5 @@
 #include "freeform/io/up_axis.h"
 #include "freeform/document/document.h"
 #include "freeform/document/model.h"
+#include "freeform/document/object_data.h"
 #include "freeform/document/operations.h"

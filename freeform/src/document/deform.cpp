@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "freeform/core/error.h"
+#include "freeform/document/object_data.h"
 #include "freeform/document/operations.h"
 #include "freeform/volume/deform_rational.h"
 
@@ -155,26 +156,14 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 // Exact composition through the lattice (volume/deform_rational.h).
                 r.inside = controlPointsInside(lattice, rc->controlPoints());
                 const RationalBezierCurve<double, 3> moved = deformCurve(RationalLattice(lattice), *rc, w);
-                RationalBezierCurveData d;
-                d.points = moved.controlPoints();
-                const Eigen::VectorXd weights = moved.weights();
-                d.weights.assign(weights.data(), weights.data() + weights.size());
                 r.degree = {moved.degree()};
-                result = std::move(d);
+                result = rationalCurveData(moved);
             } else if (const auto* nc = std::get_if<NurbsCurve<double, 3>>(&g)) {
                 // Span by span through the Bézier extraction; the result keeps the breakpoints.
                 r.inside = controlPointsInside(lattice, nc->controlPoints());
                 const NurbsCurve<double, 3> moved = deformCurve(RationalLattice(lattice), *nc, w);
-                NurbsCurveData d;
-                d.degree = moved.degree();
-                d.knots = moved.knots();
-                d.points = moved.controlPoints();
-                if (moved.isRational()) {
-                    const Eigen::VectorXd weights = moved.weights();
-                    d.weights.assign(weights.data(), weights.data() + weights.size());
-                }
                 r.degree = {moved.degree()};
-                result = std::move(d);
+                result = nurbsCurveData(moved);
             } else if (const auto* rs = std::get_if<RationalBezierSurface<double, 3>>(&g)) {
                 // Exact composition (volume/deform_rational.h): degrees (m (l+m+n), n (l+m+n)).
                 const auto& h = rs->homogeneous().controlPoints();
@@ -182,32 +171,14 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 for (Eigen::Index i = 0; i < h.cols(); ++i) points.col(i) = h.col(i).head<3>() / h(3, i);
                 r.inside = controlPointsInside(lattice, points);
                 const RationalBezierSurface<double, 3> moved = deformSurface(RationalLattice(lattice), *rs, w);
-                const auto& mh = moved.homogeneous().controlPoints();
-                RationalBezierSurfaceData d;
-                d.degree = {moved.degreeU(), moved.degreeV()};
-                d.points.resize(3, mh.cols());
-                for (Eigen::Index i = 0; i < mh.cols(); ++i) {
-                    d.points.col(i) = mh.col(i).head<3>() / mh(3, i);
-                    d.weights.push_back(mh(3, i));
-                }
                 r.degree = {moved.degreeU(), moved.degreeV()};
-                result = std::move(d);
+                result = rationalSurfaceData(moved);
             } else if (const auto* ns = std::get_if<NurbsSurface<double, 3>>(&g)) {
                 // Patch by patch through the Bézier extraction; the result keeps the breakpoints.
                 r.inside = controlPointsInside(lattice, ns->controlPoints());
                 const NurbsSurface<double, 3> moved = deformSurface(RationalLattice(lattice), *ns, w);
-                NurbsSurfaceData d;
-                d.degree = {moved.degreeU(), moved.degreeV()};
-                d.knots = {moved.knotsU().knots(), moved.knotsV().knots()};
-                d.rows = moved.countU();
-                d.cols = moved.countV();
-                d.points = moved.controlPoints();
-                if (moved.isRational()) {
-                    const Eigen::VectorXd weights = moved.weights();
-                    d.weights.assign(weights.data(), weights.data() + weights.size());
-                }
                 r.degree = {moved.degreeU(), moved.degreeV()};
-                result = std::move(d);
+                result = nurbsSurfaceData(moved);
             } else if (const auto* sub = std::get_if<SubdivisionObject>(&g)) {
                 const SubdivisionCage& cage = sub->cage();
                 const auto& data = std::get<SubdivisionSurfaceData>(o.data());

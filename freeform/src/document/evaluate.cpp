@@ -7,12 +7,12 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
+#include "evaluation.h"
 #include "rational.h"
 
 namespace freeform {
-namespace {
+namespace detail {
 
-/// Shortest text that reads back to the same double ("3", "0.1").
 std::string shortest(double v)
 {
     char buf[32];
@@ -27,27 +27,51 @@ void expectCount(const std::string& what, const std::vector<double>& at, std::si
                     std::to_string(at.size()));
 }
 
-/// "u"*a + "v"*b: the key of d^(a+b) f / du^a dv^b.
-std::string derivativeKey(int a, int b)
+void inDomain(const std::string& what, const char* name, double t, double a, double b, const char* kind)
 {
-    return std::string(static_cast<std::size_t>(a), 'u') + std::string(static_cast<std::size_t>(b), 'v');
+    if (!(t >= a && t <= b))
+        throw Error(what + ": " + name + " = " + shortest(t) + " is outside the " + kind + "'s domain [" + shortest(a) + ", " +
+                    shortest(b) + "]");
 }
+
+Evaluation curveEvaluation(const Eigen::Ref<const Eigen::MatrixXd>& derivatives, int order)
+{
+    Evaluation e;
+    e.point = derivatives.col(0);
+    for (int k = 1; k <= order; ++k) e.derivatives.push_back(derivatives.col(k));
+    return e;
+}
+
+Evaluation surfaceEvaluation(const Eigen::Ref<const Eigen::MatrixXd>& jet, const Eigen::Vector3d& normal, int order)
+{
+    Evaluation e;
+    e.point = jet.col(0);
+    e.normal = normal;
+    for (int k = 1; k <= order; ++k)
+        for (int a = k; a >= 0; --a) {
+            // "u"*a + "v"*b: the key of d^(a+b) f / du^a dv^b.
+            e.keys.push_back(std::string(static_cast<std::size_t>(a), 'u') + std::string(static_cast<std::size_t>(k - a), 'v'));
+            e.derivatives.push_back(jet.col(Patch::jetIndex(a, k - a)));
+        }
+    return e;
+}
+
+} // namespace detail
+namespace {
+
+using detail::expectCount;
+using detail::inDomain;
+using detail::shortest;
 
 Evaluation evaluateCurve(const std::string& what, const AnyCurve& curve, const std::vector<double>& at, int order)
 {
     expectCount(what, at, 1, "T");
     const double t = at[0];
-    if (!curve.isSpline()) {
-        if (!(t >= 0 && t <= 1))
-            throw Error(what + ": t = " + shortest(t) + " is outside the curve's domain [0, 1]");
-    } else if (!(t >= 0 && t <= curve.domainEnd())) {
-        throw Error(what + ": T = " + shortest(t) + " is outside the spline's domain [0, " + shortest(curve.domainEnd()) + "]");
-    }
-    const Eigen::MatrixXd d = curve.derivatives(t, order);
-    Evaluation e;
-    e.point = d.col(0);
-    for (int k = 1; k <= order; ++k) e.derivatives.push_back(d.col(k));
-    return e;
+    if (!curve.isSpline())
+        inDomain(what, "t", t, 0, 1, "curve");
+    else
+        inDomain(what, "T", t, 0, curve.domainEnd(), "spline");
+    return detail::curveEvaluation(curve.derivatives(t, order), order);
 }
 
 Evaluation evaluateSurface(const std::string& what, const AnySurface& surface, const std::vector<double>& uv, int order)
@@ -58,23 +82,12 @@ Evaluation evaluateSurface(const std::string& what, const AnySurface& surface, c
     double local[2] = {0, 0};
     for (int d = 0; d < 2; ++d) {
         const double t = uv[static_cast<std::size_t>(d)];
-        if (!(t >= 0 && t <= segments[d]))
-            throw Error(what + ": " + (d == 0 ? "u" : "v") + " = " + shortest(t) + " is outside the surface's domain [0, " +
-                        std::to_string(segments[d]) + "]");
+        inDomain(what, d == 0 ? "u" : "v", t, 0, segments[d], "surface");
         index[d] = std::min(static_cast<int>(std::floor(t)), segments[d] - 1);
         local[d] = t - index[d];
     }
     const Patch& patch = surface.patches.patches[static_cast<std::size_t>(index[0] * segments[1] + index[1])];
-    const auto jet = patch.jet(local[0], local[1], order);
-    Evaluation e;
-    e.point = jet.col(0);
-    e.normal = patch.normal(local[0], local[1]);
-    for (int k = 1; k <= order; ++k)
-        for (int a = k; a >= 0; --a) {
-            e.keys.push_back(derivativeKey(a, k - a));
-            e.derivatives.push_back(jet.col(Patch::jetIndex(a, k - a)));
-        }
-    return e;
+    return detail::surfaceEvaluation(patch.jet(local[0], local[1], order), patch.normal(local[0], local[1]), order);
 }
 
 Evaluation evaluateLattice(const std::string& what, const Lattice& lattice, const std::vector<double>& stu, int order)

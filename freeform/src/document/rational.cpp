@@ -5,36 +5,16 @@
 
 #include "rational.h"
 
-#include <charconv>
 #include <cmath>
 
 #include "freeform/core/error.h"
+#include "freeform/document/object_data.h"
 #include "freeform/tessellate/tessellate_rational.h"
+#include "evaluation.h"
 
 namespace freeform {
 namespace detail {
 namespace {
-
-std::string shortest(double v)
-{
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
-
-void expectCount(const std::string& what, const std::vector<double>& at, std::size_t count, const char* form)
-{
-    if (at.size() != count)
-        throw Error(what + ": the parameter is " + form + " (" + std::to_string(count) + " numbers), got " +
-                    std::to_string(at.size()));
-}
-
-void inDomain(const std::string& what, const char* name, double t, double a, double b, const char* kind)
-{
-    if (!(t >= a && t <= b))
-        throw Error(what + ": " + name + " = " + shortest(t) + " is outside the " + kind + "'s domain [" + shortest(a) + ", " +
-                    shortest(b) + "]");
-}
 
 template <class Curve>
 Evaluation curveEval(const std::string& what, const Curve& c, const std::vector<double>& at, int order, double a, double b,
@@ -42,11 +22,7 @@ Evaluation curveEval(const std::string& what, const Curve& c, const std::vector<
 {
     expectCount(what, at, 1, "T");
     inDomain(what, name, at[0], a, b, "curve");
-    const auto d = c.derivatives(at[0], order);
-    Evaluation e;
-    e.point = d.col(0);
-    for (int k = 1; k <= order; ++k) e.derivatives.push_back(d.col(k));
-    return e;
+    return curveEvaluation(c.derivatives(at[0], order), order);
 }
 
 template <class Surface>
@@ -56,16 +32,7 @@ Evaluation surfaceEval(const std::string& what, const Surface& s, const std::vec
     expectCount(what, uv, 2, "U,V");
     inDomain(what, "u", uv[0], domain[0], domain[1], "surface");
     inDomain(what, "v", uv[1], domain[2], domain[3], "surface");
-    const auto jet = s.jet(uv[0], uv[1], order);
-    Evaluation e;
-    e.point = jet.col(0);
-    e.normal = s.normal(uv[0], uv[1]);
-    for (int k = 1; k <= order; ++k)
-        for (int a = k; a >= 0; --a) {
-            e.keys.push_back(std::string(static_cast<std::size_t>(a), 'u') + std::string(static_cast<std::size_t>(k - a), 'v'));
-            e.derivatives.push_back(jet.col((k * (k + 1)) / 2 + (k - a)));
-        }
-    return e;
+    return surfaceEvaluation(s.jet(uv[0], uv[1], order), s.normal(uv[0], uv[1]), order);
 }
 
 /// Certified flattening of a rational Bézier piece (positive weights: the curve lies in the
@@ -213,35 +180,6 @@ bool rationalControlNet(const TypedObject& object, ControlNet& net)
 namespace {
 
 template <int Dim>
-NurbsCurveData curveData(const NurbsCurve<double, Dim>& c)
-{
-    NurbsCurveData d;
-    d.degree = c.degree();
-    d.knots = c.knots();
-    d.points = c.controlPoints();
-    if (c.isRational()) {
-        const auto w = c.weights();
-        d.weights.assign(w.data(), w.data() + w.size());
-    }
-    return d;
-}
-
-NurbsSurfaceData surfaceData(const NurbsSurface<double, 3>& s)
-{
-    NurbsSurfaceData d;
-    d.degree = {s.degreeU(), s.degreeV()};
-    d.knots = {s.knotsU().knots(), s.knotsV().knots()};
-    d.rows = s.countU();
-    d.cols = s.countV();
-    d.points = s.controlPoints();
-    if (s.isRational()) {
-        const auto w = s.weights();
-        d.weights.assign(w.data(), w.data() + w.size());
-    }
-    return d;
-}
-
-template <int Dim>
 NurbsCurveData splineData(const BezierSpline<double, Dim>& s)
 {
     const int d = s.degree(), L = s.segmentCount();
@@ -271,11 +209,7 @@ ObjectData piecesData(const std::string& what, const NurbsCurve<double, Dim>& c)
         if (pieces.size() != 1)
             throw Error(what + ": a rational nurbs_curve of " + std::to_string(pieces.size()) +
                         " pieces has no single-object Bézier form (rational_bezier_curve holds one piece)");
-        RationalBezierCurveData d;
-        d.points = pieces.front().controlPoints();
-        const auto w = pieces.front().weights();
-        d.weights.assign(w.data(), w.data() + w.size());
-        return d;
+        return rationalCurveData(pieces.front());
     }
     const int p = c.degree();
     BezierSplineData d;
@@ -299,17 +233,17 @@ ObjectData toNurbsData(const TypedDocument& doc, const TypedObject& object)
 {
     const std::string what = doc.what(object);
     const Geometry& g = object.geometry();
-    if (const auto* c = std::get_if<BezierCurve<double, 2>>(&g)) return curveData(NurbsCurve<double, 2>::fromBezier(*c));
-    if (const auto* c = std::get_if<BezierCurve<double, 3>>(&g)) return curveData(NurbsCurve<double, 3>::fromBezier(*c));
-    if (const auto* c = std::get_if<RationalBezierCurve<double, 2>>(&g)) return curveData(NurbsCurve<double, 2>::fromRationalBezier(*c));
-    if (const auto* c = std::get_if<RationalBezierCurve<double, 3>>(&g)) return curveData(NurbsCurve<double, 3>::fromRationalBezier(*c));
+    if (const auto* c = std::get_if<BezierCurve<double, 2>>(&g)) return nurbsCurveData(NurbsCurve<double, 2>::fromBezier(*c));
+    if (const auto* c = std::get_if<BezierCurve<double, 3>>(&g)) return nurbsCurveData(NurbsCurve<double, 3>::fromBezier(*c));
+    if (const auto* c = std::get_if<RationalBezierCurve<double, 2>>(&g)) return nurbsCurveData(NurbsCurve<double, 2>::fromRationalBezier(*c));
+    if (const auto* c = std::get_if<RationalBezierCurve<double, 3>>(&g)) return nurbsCurveData(NurbsCurve<double, 3>::fromRationalBezier(*c));
     if (const auto* s = std::get_if<BezierSpline<double, 2>>(&g)) return splineData(*s);
     if (const auto* s = std::get_if<BezierSpline<double, 3>>(&g)) return splineData(*s);
     if (const auto* s = std::get_if<DeBoorSpline<2>>(&g)) return splineData(s->bezier);
     if (const auto* s = std::get_if<DeBoorSpline<3>>(&g)) return splineData(s->bezier);
     if (const auto* s = std::get_if<BezierSurface<double, 3>>(&g))
-        return surfaceData(NurbsSurface<double, 3>::fromBezier(RationalBezierSurface<double, 3>(*s)));
-    if (const auto* s = std::get_if<RationalBezierSurface<double, 3>>(&g)) return surfaceData(NurbsSurface<double, 3>::fromBezier(*s));
+        return nurbsSurfaceData(NurbsSurface<double, 3>::fromBezier(RationalBezierSurface<double, 3>(*s)));
+    if (const auto* s = std::get_if<RationalBezierSurface<double, 3>>(&g)) return nurbsSurfaceData(NurbsSurface<double, 3>::fromBezier(*s));
     if (std::holds_alternative<NurbsCurve<double, 2>>(g) || std::holds_alternative<NurbsCurve<double, 3>>(g) ||
         std::holds_alternative<NurbsSurface<double, 3>>(g))
         throw Error(what + " is already a " + object.type());
@@ -329,24 +263,8 @@ ObjectData fromNurbsData(const TypedDocument& doc, const TypedObject& object)
         if (patches.size() != 1)
             throw Error(what + ": a nurbs_surface of " + std::to_string(patches.size()) +
                         " Bézier patches has no single-object Bézier form (one patch per object)");
-        const auto& p = patches.front();
-        Eigen::Matrix<double, 3, Eigen::Dynamic> pts(3, (p.degreeU() + 1) * (p.degreeV() + 1));
-        std::vector<double> w;
-        for (int i = 0; i <= p.degreeU(); ++i)
-            for (int j = 0; j <= p.degreeV(); ++j) {
-                pts.col(i * (p.degreeV() + 1) + j) = p.controlPoint(i, j);
-                w.push_back(p.weight(i, j));
-            }
-        if (!s->isRational()) {
-            BezierSurfaceData d;
-            d.degree = {p.degreeU(), p.degreeV()};
-            d.points = pts;
-            return d;
-        }
-        RationalBezierSurfaceData d;
-        d.degree = {p.degreeU(), p.degreeV()};
-        d.points = pts;
-        d.weights = std::move(w);
+        RationalBezierSurfaceData d = rationalSurfaceData(patches.front());
+        if (!s->isRational()) return BezierSurfaceData{d.degree, std::move(d.points)};
         return d;
     }
     throw Error(what + " is a " + object.type() + ", not a nurbs_curve or nurbs_surface");

@@ -235,34 +235,54 @@ std::vector<double> knotList(const Json& j, const std::string& field, int p, lon
     return out;
 }
 
+/// The "degree" of a Bézier spline or NURBS curve: an integer in 1..67.
+int curveDegree(const Json& obj, const Where& w)
+{
+    const int degree = integer(member(obj, "degree", w), "degree", w);
+    if (degree < 1 || degree > 67) w.fail("degree", "must be in 1..67");
+    return degree;
+}
+
+/// The "points" of a Bézier curve, rational or not (degree + 1 of them, degree at most 67).
+PointColumns bezierPoints(const Json& obj, const Where& w)
+{
+    PointColumns points = pointList(member(obj, "points", w), "points", 0, w);
+    if (points.cols() - 1 > 67) w.fail("points", "degree above the maximum 67");
+    return points;
+}
+
+/// The "degree" [m, n] and "points" of a Bézier patch, rational or not: an (m+1) x (n+1) grid.
+void patchGrid(const Json& obj, std::array<int, 2>& degree, PointColumns& points, const Where& w)
+{
+    degree = degreeArray<2>(member(obj, "degree", w), w);
+    int rows = 0, cols = 0;
+    points = pointGrid(member(obj, "points", w), rows, cols, w);
+    if (rows != degree[0] + 1 || cols != degree[1] + 1)
+        w.fail("points", "grid is " + std::to_string(rows) + " x " + std::to_string(cols) + ", degree [" +
+                             std::to_string(degree[0]) + ", " + std::to_string(degree[1]) + "] needs " +
+                             std::to_string(degree[0] + 1) + " x " + std::to_string(degree[1] + 1));
+}
+
 ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
 {
     if (type == "rational_bezier_curve") {
         onlyKnown(obj, {"name", "type", "points", "weights", "editor"}, w);
         RationalBezierCurveData d;
-        d.points = pointList(member(obj, "points", w), "points", 0, w);
-        if (d.points.cols() - 1 > 67) w.fail("points", "degree above the maximum 67");
+        d.points = bezierPoints(obj, w);
         d.weights = weightsOf(obj, 0, static_cast<int>(d.points.cols()), true, w);
         return d;
     }
     if (type == "rational_bezier_surface") {
         onlyKnown(obj, {"name", "type", "degree", "points", "weights", "editor"}, w);
         RationalBezierSurfaceData d;
-        d.degree = degreeArray<2>(member(obj, "degree", w), w);
-        int rows = 0, cols = 0;
-        d.points = pointGrid(member(obj, "points", w), rows, cols, w);
-        if (rows != d.degree[0] + 1 || cols != d.degree[1] + 1)
-            w.fail("points", "grid is " + std::to_string(rows) + " x " + std::to_string(cols) + ", degree [" +
-                                 std::to_string(d.degree[0]) + ", " + std::to_string(d.degree[1]) + "] needs " +
-                                 std::to_string(d.degree[0] + 1) + " x " + std::to_string(d.degree[1] + 1));
-        d.weights = weightsOf(obj, rows, cols, true, w);
+        patchGrid(obj, d.degree, d.points, w);
+        d.weights = weightsOf(obj, d.degree[0] + 1, d.degree[1] + 1, true, w);
         return d;
     }
     if (type == "nurbs_curve") {
         onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
         NurbsCurveData d;
-        d.degree = integer(member(obj, "degree", w), "degree", w);
-        if (d.degree < 1 || d.degree > 67) w.fail("degree", "must be in 1..67");
+        d.degree = curveDegree(obj, w);
         d.points = pointList(member(obj, "points", w), "points", 0, w);
         const long count = static_cast<long>(d.points.cols());
         if (count < d.degree + 1)
@@ -293,15 +313,13 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
     if (type == "bezier_curve") {
         onlyKnown(obj, {"name", "type", "points", "editor"}, w);
         BezierCurveData d;
-        d.points = pointList(member(obj, "points", w), "points", 0, w);
-        if (d.points.cols() - 1 > 67) w.fail("points", "degree above the maximum 67");
+        d.points = bezierPoints(obj, w);
         return d;
     }
     if (type == "bezier_spline") {
         onlyKnown(obj, {"name", "type", "degree", "closed", "points", "intervals", "editor"}, w);
         BezierSplineData d;
-        d.degree = integer(member(obj, "degree", w), "degree", w);
-        if (d.degree < 1 || d.degree > 67) w.fail("degree", "must be in 1..67");
+        d.degree = curveDegree(obj, w);
         if (obj.contains("closed")) {
             if (!obj["closed"].is_boolean()) w.fail("closed", "expected true or false");
             d.closed = obj["closed"].get<bool>();
@@ -351,13 +369,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
     if (type == "bezier_surface") {
         onlyKnown(obj, {"name", "type", "degree", "points", "editor"}, w);
         BezierSurfaceData d;
-        d.degree = degreeArray<2>(member(obj, "degree", w), w);
-        int rows = 0, cols = 0;
-        d.points = pointGrid(member(obj, "points", w), rows, cols, w);
-        if (rows != d.degree[0] + 1 || cols != d.degree[1] + 1)
-            w.fail("points", "grid is " + std::to_string(rows) + " x " + std::to_string(cols) + ", degree [" +
-                                 std::to_string(d.degree[0]) + ", " + std::to_string(d.degree[1]) + "] needs " +
-                                 std::to_string(d.degree[0] + 1) + " x " + std::to_string(d.degree[1] + 1));
+        patchGrid(obj, d.degree, d.points, w);
         return d;
     }
     if (type == "deboor_surface") {
@@ -484,25 +496,34 @@ Json weightsGridJson(const std::vector<double>& w, int rows, int cols)
 
 struct ObjectWriter {
     Json& j;
+    /// A spline's points and its interval lengths (written only when not all 1).
+    void splinePoints(const PointColumns& points, const std::vector<double>& intervals) const
+    {
+        j["points"] = pointsJson(points);
+        if (!intervals.empty()) j["intervals"] = intervals;
+    }
+    /// A Bézier patch's degrees and its (m+1) x (n+1) grid of points, rational or not.
+    void patch(const std::array<int, 2>& degree, const PointColumns& points) const
+    {
+        j["degree"] = degree;
+        j["points"] = gridJson(points, degree[0] + 1, degree[1] + 1);
+    }
     void operator()(const BezierCurveData& d) const { j["points"] = pointsJson(d.points); }
     void operator()(const BezierSplineData& d) const
     {
         j["degree"] = d.degree;
         j["closed"] = d.closed;
-        j["points"] = pointsJson(d.points);
-        if (!d.intervals.empty()) j["intervals"] = d.intervals;
+        splinePoints(d.points, d.intervals);
     }
     void operator()(const DeBoorSplineData& d) const
     {
         j["degree"] = d.degree;
         j["end"] = d.end;
-        j["points"] = pointsJson(d.points);
-        if (!d.intervals.empty()) j["intervals"] = d.intervals;
+        splinePoints(d.points, d.intervals);
     }
     void operator()(const BezierSurfaceData& d) const
     {
-        j["degree"] = d.degree;
-        j["points"] = gridJson(d.points, d.degree[0] + 1, d.degree[1] + 1);
+        patch(d.degree, d.points);
     }
     void operator()(const DeBoorSurfaceData& d) const
     {
@@ -547,8 +568,7 @@ struct ObjectWriter {
     }
     void operator()(const RationalBezierSurfaceData& d) const
     {
-        j["degree"] = d.degree;
-        j["points"] = gridJson(d.points, d.degree[0] + 1, d.degree[1] + 1);
+        patch(d.degree, d.points);
         j["weights"] = weightsGridJson(d.weights, d.degree[0] + 1, d.degree[1] + 1);
     }
     void operator()(const NurbsCurveData& d) const

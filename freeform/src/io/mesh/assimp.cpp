@@ -30,15 +30,7 @@ public:
     std::string extension;
     std::string exportFormat; // Assimp's exporter id for the extension, or empty
 
-    PolygonMesh polygonMesh(const Values& now) const override
-    {
-        PolygonMesh mesh;
-        mesh.positions = now.positions;
-        if (now.normals.cols() == now.positions.cols()) mesh.normals = now.normals;
-        mesh.faceStart = faceStart;
-        mesh.faceVertices = faceVertices;
-        return mesh;
-    }
+    PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices); }
 
     bool writesSame(const std::string& target) const override { return target == extension && !exportFormat.empty(); }
 

@@ -13,27 +13,10 @@ namespace freeform::meshio {
 
 namespace {
 
-class OffSource final : public Source {
+class OffSource final : public IndexedSource {
 public:
     std::string text;
     std::vector<TextSlot> slots;
-    std::vector<int> faceStart{0};
-    std::vector<int> faceVertices;
-    Matrix2X texcoords;
-    Eigen::MatrixXd colors;
-
-    PolygonMesh polygonMesh(const Values& now) const override
-    {
-        PolygonMesh mesh;
-        mesh.positions = now.positions;
-        if (now.normals.cols() == now.positions.cols()) mesh.normals = now.normals;
-        mesh.texcoords = texcoords;
-        mesh.faceVertices = faceVertices;
-        mesh.faceStart = faceStart;
-        return mesh;
-    }
-
-    Eigen::MatrixXd vertexColors() const override { return colors; }
 
     void writeSame(const std::string& target, const std::string&, const Values& now) const override
     {

@@ -79,29 +79,12 @@ const char* typeName(BinaryType t)
     return "?";
 }
 
-class PlySource final : public Source {
+class PlySource final : public IndexedSource {
 public:
     std::string bytes; // the whole file
     Encoding encoding = Encoding::Ascii;
     std::vector<TextSlot> textSlots;
     std::vector<BinarySlot> binarySlots;
-    std::vector<int> faceStart{0};
-    std::vector<int> faceVertices;
-    Matrix2X texcoords;
-    Eigen::MatrixXd colors;
-
-    PolygonMesh polygonMesh(const Values& now) const override
-    {
-        PolygonMesh mesh;
-        mesh.positions = now.positions;
-        if (now.normals.cols() == now.positions.cols()) mesh.normals = now.normals;
-        mesh.texcoords = texcoords;
-        mesh.faceVertices = faceVertices;
-        mesh.faceStart = faceStart;
-        return mesh;
-    }
-
-    Eigen::MatrixXd vertexColors() const override { return colors; }
 
     void writeSame(const std::string& target, const std::string&, const Values& now) const override
     {

@@ -111,6 +111,20 @@ void requireText(const std::string& path, const std::string& text, const char* f
 /// The lower-case extension without the dot ("obj"), or empty.
 std::string extensionOf(const std::string& path);
 
+/// The mesh of an indexed face list (OFF, PLY, Assimp): the positions as they are now, their
+/// normals when there is one per position, the faces and texture coordinates as read.
+inline PolygonMesh indexedMesh(const Values& now, const std::vector<int>& faceStart, const std::vector<int>& faceVertices,
+                               const Matrix2X& texcoords = Matrix2X())
+{
+    PolygonMesh mesh;
+    mesh.positions = now.positions;
+    if (now.normals.cols() == now.positions.cols()) mesh.normals = now.normals;
+    mesh.texcoords = texcoords;
+    mesh.faceVertices = faceVertices;
+    mesh.faceStart = faceStart;
+    return mesh;
+}
+
 /// The file as read, with the editable numbers as they were in it.
 class Source {
 public:
@@ -137,6 +151,19 @@ public:
     virtual bool writesSame(const std::string& targetFormat) const { return targetFormat == format; }
     /// Writes the file back with the current values (atomically).
     virtual void writeSame(const std::string& path, const std::string& targetFormat, const Values& now) const = 0;
+};
+
+/// A file of positions and an indexed face list, with texture coordinates and vertex colours when
+/// it has them (OFF, PLY).
+class IndexedSource : public Source {
+public:
+    std::vector<int> faceStart{0};
+    std::vector<int> faceVertices;
+    Matrix2X texcoords;
+    Eigen::MatrixXd colors;
+
+    PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices, texcoords); }
+    Eigen::MatrixXd vertexColors() const override { return colors; }
 };
 
 // ---- readers (the text or bytes of the whole file; path for messages)
