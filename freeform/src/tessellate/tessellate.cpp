@@ -161,6 +161,12 @@ std::array<int, 2> adaptiveSegments(const Patch& patch, double tolerance, int ma
 
 namespace {
 
+/// The tolerance of patch p: its own (patchTolerance) or the one of every patch.
+double toleranceOf(const TessellationOptions& options, int p)
+{
+    return options.patchTolerance.empty() ? options.tolerance : options.patchTolerance[static_cast<std::size_t>(p)];
+}
+
 /// The mesh from the collected arrays (normals normalised, flipped on request); the report out.
 PolygonMesh finishMesh(std::vector<Eigen::Vector3d>&& positions, std::vector<Eigen::Vector3d>&& normals,
                        std::vector<Eigen::Vector2d>&& texcoords, std::vector<int>&& faces, const TessellationOptions& options,
@@ -913,14 +919,18 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     std::string budgetMessage;
     if (leafBudget > 0) {
         double grid = 0; // what one grid per patch would need (an estimate from above)
-        for (const Patch& p : complex.patches) {
+        for (int q = 0; q < count; ++q) {
+            const Patch& p = complex.patches[q];
+            const double tol = toleranceOf(options, q);
             const auto t = netTerms(netOf(p).data(), p.degreeU(), p.degreeV());
-            const double nu = std::max(1.0, std::ceil(std::sqrt((t[0] + t[1] / 2) / 8 / (options.tolerance / 2))));
-            const double nv = std::max(1.0, std::ceil(std::sqrt((t[2] + t[1] / 2) / 8 / (options.tolerance / 2))));
+            const double nu = std::max(1.0, std::ceil(std::sqrt((t[0] + t[1] / 2) / 8 / (tol / 2))));
+            const double nv = std::max(1.0, std::ceil(std::sqrt((t[2] + t[1] / 2) / 8 / (tol / 2))));
             grid += 2 * std::min(nu, double(options.maxSegments)) * std::min(nv, double(options.maxSegments));
         }
         char buffer[160];
-        std::snprintf(buffer, sizeof buffer, "tolerance %g needs more than maxTriangles = %lld triangles (estimate: ", options.tolerance,
+        double smallest = options.tolerance;
+        for (double t : options.patchTolerance) smallest = smallest > 0 ? std::min(smallest, t) : t;
+        std::snprintf(buffer, sizeof buffer, "tolerance %g needs more than maxTriangles = %lld triangles (estimate: ", smallest,
                       options.maxTriangles);
         budgetMessage = std::string("tessellate: ") + buffer;
         std::snprintf(buffer, sizeof buffer, "more than %lld counted before stopping, about %.3g with one grid per patch", 2 * leafBudget,
@@ -928,9 +938,12 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
     }
     for (int p = 0; p < count; ++p) {
-        const double b = buildTree(complex.patches[p], options.tolerance, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p], leafCount, leafBudget,
-                                   budgetMessage);
+        const double tol = toleranceOf(options, p);
+        const double b = buildTree(complex.patches[p], tol, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p],
+                                   leafCount, leafBudget, budgetMessage);
         rep.errorBound = std::max(rep.errorBound, b);
+        rep.patchBound.push_back(b);
+        rep.worstRatio = std::max(rep.worstRatio, b / tol);
         std::int32_t finestU = S, finestV = S;
         for (const Leaf& l : trees[p]) {
             finestU = std::min(finestU, l.u1 - l.u0);
@@ -1214,9 +1227,9 @@ PolygonMesh tessellateGrid(const PatchComplex& complex, const TessellationOption
     std::vector<int> counts(static_cast<std::size_t>(2 * count));
     TessellationReport rep;
     for (int p = 0; p < count; ++p) {
-        const std::array<int, 2> want = options.tolerance > 0
-                                            ? adaptiveSegments(complex.patches[p], options.tolerance, options.maxSegments)
-                                            : std::array<int, 2>{options.segmentsU, options.segmentsV};
+        const bool adaptive = options.tolerance > 0 || !options.patchTolerance.empty();
+        const std::array<int, 2> want = adaptive ? adaptiveSegments(complex.patches[p], toleranceOf(options, p), options.maxSegments)
+                                                 : std::array<int, 2>{options.segmentsU, options.segmentsV};
         rep.required.push_back(want);
         counts[2 * p] = want[0];
         counts[2 * p + 1] = want[1];
@@ -1241,7 +1254,12 @@ PolygonMesh tessellateGrid(const PatchComplex& complex, const TessellationOption
         const Patch& patch = complex.patches[p];
         const int nu = counts[2 * p], nv = counts[2 * p + 1];
         rep.segments.push_back({nu, nv});
-        rep.errorBound = std::max(rep.errorBound, tessellationErrorBound(patch, nu, nv));
+        const double patchBound = tessellationErrorBound(patch, nu, nv);
+        rep.errorBound = std::max(rep.errorBound, patchBound);
+        if (options.tolerance > 0 || !options.patchTolerance.empty()) {
+            rep.patchBound.push_back(patchBound);
+            rep.worstRatio = std::max(rep.worstRatio, patchBound / toleranceOf(options, p));
+        }
         std::vector<double> us(static_cast<std::size_t>(nu + 1)), vs(static_cast<std::size_t>(nv + 1));
         for (int i = 0; i <= nu; ++i) us[i] = static_cast<double>(i) / nu;
         for (int j = 0; j <= nv; ++j) vs[j] = static_cast<double>(j) / nv;
@@ -1335,11 +1353,20 @@ PolygonMesh tessellate(const PatchComplex& complex, const TessellationOptions& o
 {
     if (options.tolerance < 0 || !std::isfinite(options.tolerance))
         throw Error("tessellate: tolerance must be positive and finite");
-    if (options.tolerance == 0 && (options.segmentsU < 1 || options.segmentsV < 1))
+    if (options.tolerance == 0 && options.patchTolerance.empty() && (options.segmentsU < 1 || options.segmentsV < 1))
         throw Error("tessellate: segment counts must be at least 1");
     if (options.maxSegments < 1) throw Error("tessellate: maxSegments must be at least 1");
     if (options.maxTriangles < 0) throw Error("tessellate: maxTriangles must be 0 (no limit) or positive");
-    if (options.tolerance > 0 && options.refinement == TessellationRefinement::Local)
+    if (!options.patchTolerance.empty()) {
+        if (options.patchTolerance.size() != complex.patches.size())
+            throw Error("tessellate: patchTolerance has " + std::to_string(options.patchTolerance.size()) + " entries for " +
+                        std::to_string(complex.patches.size()) + " patches");
+        for (std::size_t p = 0; p < options.patchTolerance.size(); ++p)
+            if (!(options.patchTolerance[p] > 0) || !std::isfinite(options.patchTolerance[p]))
+                throw Error("tessellate: patchTolerance[" + std::to_string(p) + "] must be positive and finite");
+    }
+    const bool adaptive = options.tolerance > 0 || !options.patchTolerance.empty();
+    if (adaptive && options.refinement == TessellationRefinement::Local)
         return tessellateLocal(complex, options, report);
     return tessellateGrid(complex, options, report);
 }
