@@ -646,12 +646,13 @@ constexpr double kGeometricRange = 16;
 struct StepBounds {
     const Second &M, &R1, &R2;
     double sigmaC;
-    std::array<double, 2> operator()(double a0, double a1, double b0, double b1) const
+    std::array<double, 2> operator()(double a0, double a1, double b0, double b1) const { return at(PointFactors(a0, b0), a1, b1); }
+    /// The same with the factors of (a0, b0) given (the cell bound needs them too).
+    std::array<double, 2> at(const PointFactors& f, double a1, double b1) const
     {
         const double rho = norm2(M.ss * a1 + M.st * b1, M.st * a1 + M.tt * b1);
         const double sig = sigmaC - rho;
         if (!(sig > 0)) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-        const PointFactors f(a0, b0);
         const double e = f.error(M), whole = e / sig, extra = rho * whole / sigmaC;
         return {std::min(whole, f.error(R1) + extra), std::min(whole, f.error(R2) + extra)};
     }
@@ -705,12 +706,13 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     // The remainder of g(x + delta) over the segment, inside the leaf grown by Delta.
     const Second G = grownBounds(net, m, n, Delta[0], Delta[1], diff);
     auto cell = [&](double a0, double a1, double b0, double b1) {
-        const auto d = steps(a0, a1, b0, b1);
+        const PointFactors f(a0, b0);
+        const auto d = steps.at(f, a1, b1);
         if (!std::isfinite(d[0]) || !std::isfinite(d[1])) return inf;
         // |n0 . g_s(x)| <= N_ss a + N_st b, |n0 . g_t(x)| <= N_st a + N_tt b (zero at the centre).
         const double tiltS = N.ss * a1 + N.st * b1, tiltT = N.st * a1 + N.tt * b1;
         const double remainder = 0.5 * (G.ss * d[0] * d[0] + 2 * G.st * d[0] * d[1] + G.tt * d[1] * d[1]);
-        return PointFactors(a0, b0).error(N) + tiltS * d[0] + tiltT * d[1] + remainder;
+        return f.error(N) + tiltS * d[0] + tiltT * d[1] + remainder;
     };
     return refineCells(cell, tolerance, kCellDepth);
 }
@@ -737,11 +739,12 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const Bicub
     // |a . E(x)| from the net projected on a; a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| -
     // (M_st a + M_tt b) (s: M_ss a + M_st b).
     const Second A = projectedBounds(net, m, n, a, diff);
-    auto step = [&](double a0, double a1, double b0, double b1) {
+    auto stepAt = [&](const PointFactors& f, double a1, double b1) {
         const double sig = along == 1 ? gLen - (M.st * a1 + M.tt * b1) : gLen - (M.ss * a1 + M.st * b1);
         if (!(sig > 0)) return std::numeric_limits<double>::infinity();
-        return PointFactors(a0, b0).error(A) / sig;
+        return f.error(A) / sig;
     };
+    auto step = [&](double a0, double a1, double b0, double b1) { return stepAt(PointFactors(a0, b0), a1, b1); };
     double Delta = 0;
     for (int ia = 0; ia < 4; ++ia)
         for (int ib = 0; ib < 4; ++ib) Delta = std::max(Delta, step(ia * 0.125, (ia + 1) * 0.125, ib * 0.125, (ib + 1) * 0.125));
@@ -752,9 +755,9 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const Bicub
     const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0, diff);
     const double quad = 0.5 * (along == 1 ? G.tt : G.ss);
     auto cell = [&](double a0, double a1, double b0, double b1) {
-        const double d = step(a0, a1, b0, b1);
-        if (!std::isfinite(d)) return d;
         const PointFactors f(a0, b0);
+        const double d = stepAt(f, a1, b1);
+        if (!std::isfinite(d)) return d;
         // |d . g_t(x)| <= D_st a + D_tt b for d orthogonal to g_t(c) (s: D_ss a + D_st b).
         const double slopeN = along == 1 ? N.st * a1 + N.tt * b1 : N.ss * a1 + N.st * b1;
         const double slopeC = along == 1 ? C.st * a1 + C.tt * b1 : C.ss * a1 + C.st * b1;
