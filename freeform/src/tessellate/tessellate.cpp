@@ -660,13 +660,14 @@ struct StepBounds {
 
 /// The largest bounds of the step's components over the leaf, on a grid of cells.
 template <class Steps>
-std::array<double, 2> largestStep(const Steps& steps)
+std::array<double, 2> largestStep(const Steps& steps, std::array<std::array<double, 2>, kStepGrid * kStepGrid>& cells)
 {
     std::array<double, 2> worst{0, 0};
     for (int ia = 0; ia < kStepGrid; ++ia)
         for (int ib = 0; ib < kStepGrid; ++ib) {
             const double w = 0.5 / kStepGrid;
             const auto d = steps(ia * w, (ia + 1) * w, ib * w, (ib + 1) * w);
+            cells[static_cast<std::size_t>(ia + kStepGrid * ib)] = d;
             worst = {std::max(worst[0], d[0]), std::max(worst[1], d[1])};
         }
     return worst;
@@ -697,7 +698,8 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     const Eigen::Vector3d r1 = (a22 * gs - a12 * gt) / det, r2 = (a11 * gt - a12 * gs) / det;
     const Second R1 = projectedBounds(net, m, n, r1, diff), R2 = projectedBounds(net, m, n, r2, diff);
     const StepBounds steps{M, R1, R2, sigmaC};
-    const auto Delta = largestStep(steps);
+    std::array<std::array<double, 2>, kStepGrid * kStepGrid> firstCells; // refineCells starts on these cells
+    const auto Delta = largestStep(steps, firstCells);
     if (!std::isfinite(Delta[0]) || !std::isfinite(Delta[1])) return inf;
     const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
     if (static_cast<double>(box.u0) / S - Delta[0] * hu < 0 || static_cast<double>(box.u1) / S + Delta[0] * hu > 1 ||
@@ -707,7 +709,9 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     const Second G = grownBounds(net, m, n, Delta[0], Delta[1], diff);
     auto cell = [&](double a0, double a1, double b0, double b1) {
         const PointFactors f(a0, b0);
-        const auto d = steps.at(f, a1, b1);
+        // The first 2 x 2 cells are largestStep's (the same numbers): their steps are known.
+        const bool first = kStepGrid == 2 && a1 - a0 == 0.25;
+        const auto d = first ? firstCells[static_cast<std::size_t>((a0 == 0 ? 0 : 1) + 2 * (b0 == 0 ? 0 : 1))] : steps.at(f, a1, b1);
         if (!std::isfinite(d[0]) || !std::isfinite(d[1])) return inf;
         // |n0 . g_s(x)| <= N_ss a + N_st b, |n0 . g_t(x)| <= N_st a + N_tt b (zero at the centre).
         const double tiltS = N.ss * a1 + N.st * b1, tiltT = N.st * a1 + N.tt * b1;
