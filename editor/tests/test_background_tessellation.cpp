@@ -337,3 +337,39 @@ TEST_CASE("per-patch screen tolerance: a close-up of the teapot's nearest patch 
     CHECK(scene.item(near).revision != revision);
     CHECK(scene.item(near).geometry.patchTolerance[0] > 2 * old);
 }
+
+TEST_CASE("per-patch screen tolerance: a patch is rebuilt when its own tolerance moves past 2x, even where the view's "
+          "one tolerance stays",
+          "[editor][per-patch]")
+{
+    Scene scene = teapot();
+    int near = 0;
+    for (int i = 1; i < scene.itemCount(); ++i)
+        if (scene.item(i).geometry.bounds.max().x() > scene.item(near).geometry.bounds.max().x()) near = i;
+    const double front = scene.item(near).geometry.bounds.max().x();
+    // Looking along -x with the target 0.5 in front of the teapot and the eye 1 behind it: every
+    // depth is beyond the target, so the one view tolerance is that of depth = distance = 1.
+    scene.camera.projection = Projection::Perspective;
+    scene.camera.orientation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX());
+    scene.camera.target = Eigen::Vector3d(front + 0.5, 0, 0);
+    scene.camera.distance = 1;
+    scene.pixelTolerance = 0.5;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    const double view = scene.tessellationTolerance();
+    const double built = scene.item(near).geometry.patchTolerance.at(0);
+    const int revision = scene.item(near).revision;
+    // Backing off by 0.3: the near patch's depth grows from about 1.5 to 1.8 (< 2x): nothing rebuilt.
+    scene.camera.target.x() += 0.3;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    CHECK(scene.tessellationTolerance() == view);
+    CHECK(scene.item(near).revision == revision);
+    // Backing off by 5 more: its depth grows past 2x (to about 6.8), the view's tolerance stays.
+    scene.camera.target.x() += 5;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    CHECK(scene.tessellationTolerance() == view);
+    CHECK(scene.item(near).revision != revision);
+    CHECK(scene.item(near).geometry.patchTolerance.at(0) > 2 * built);
+}
