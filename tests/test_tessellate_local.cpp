@@ -362,3 +362,87 @@ TEST_CASE("maxTriangles: a huge patch is refused with the estimate, before the m
     o.maxTriangles = -1;
     CHECK_THROWS_WITH(tessellate(PatchComplex{{huge}}, o), Catch::Contains("maxTriangles"));
 }
+
+TEST_CASE("per-patch tolerances: each patch within its own tolerance, the mesh still conforming", "[tessellate][local][per-patch]")
+{
+    const PatchComplex teapot = readBpt(kTeapot);
+    const int count = static_cast<int>(teapot.patches.size());
+    // 1e-3, 2e-3, 3e-3, 4e-3, 1e-3, ... (neighbours differ).
+    std::vector<double> tolerances;
+    for (int p = 0; p < count; ++p) tolerances.push_back(1e-3 * (1 + p % 4));
+    for (const TessellationMeasure measure : {TessellationMeasure::Parametric, TessellationMeasure::Geometric}) {
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        o.measure = measure;
+        o.patchTolerance = tolerances;
+        TessellationReport report;
+        const PolygonMesh mesh = tessellate(teapot, o, &report);
+        mesh.validate("teapot, per-patch tolerances");
+        REQUIRE(report.patchBound.size() == tolerances.size());
+        for (int p = 0; p < count; ++p) CHECK(report.patchBound[p] <= tolerances[p]);
+        CHECK(report.worstRatio <= 1);
+        const Topology t = topology(mesh);
+        CHECK(t.nonManifoldEdges == 0);
+        // Between the uniform meshes at the smallest and the largest tolerance.
+        TessellationOptions fine = o, coarse = o;
+        fine.patchTolerance.clear();
+        coarse.patchTolerance.clear();
+        coarse.tolerance = 4e-3;
+        const int nFine = tessellate(teapot, fine).faceCount(), nCoarse = tessellate(teapot, coarse).faceCount();
+        INFO("mixed " << mesh.faceCount() << ", all 1e-3 " << nFine << ", all 4e-3 " << nCoarse);
+        CHECK(mesh.faceCount() < nFine);
+        CHECK(mesh.faceCount() > nCoarse);
+        if (measure == TessellationMeasure::Parametric) {
+            // The parametric bound holds both ways: every surface point of patch p is within
+            // tolerances[p] of the mesh (the nearest triangle may be a neighbour's: nearer still).
+            for (int p = 0; p < count; ++p) {
+                const double d = surfaceToMesh(teapot.patches[p], mesh, 24, 2 * tolerances[p]);
+                INFO("patch " << p << " tolerance " << tolerances[p] << " surface to mesh " << d);
+                CHECK(d <= tolerances[p]);
+            }
+        }
+    }
+    SECTION("the same tolerance for every patch is the one tolerance")
+    {
+        TessellationOptions one;
+        one.tolerance = 2e-3;
+        TessellationOptions each = one;
+        each.tolerance = 0; // adaptive all the same: patchTolerance is given
+        each.patchTolerance.assign(teapot.patches.size(), 2e-3);
+        const PolygonMesh a = tessellate(teapot, one), b = tessellate(teapot, each);
+        CHECK(a.faceVertices == b.faceVertices);
+        CHECK(a.positions == b.positions);
+    }
+    SECTION("bad per-patch tolerances are refused, naming the field")
+    {
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        o.patchTolerance.assign(3, 1e-3);
+        CHECK_THROWS_WITH(tessellate(teapot, o), Catch::Contains("patchTolerance has 3 entries for 32 patches"));
+        o.patchTolerance.assign(teapot.patches.size(), 1e-3);
+        o.patchTolerance[5] = 0;
+        CHECK_THROWS_WITH(tessellate(teapot, o), Catch::Contains("patchTolerance[5]"));
+    }
+}
+
+TEST_CASE("per-patch tolerances: a de Boor torus stays closed and of genus 1", "[tessellate][local][per-patch][closed]")
+{
+    const PatchComplex t = torus(6, 5);
+    std::vector<double> tolerances;
+    for (std::size_t p = 0; p < t.patches.size(); ++p) tolerances.push_back(p % 3 == 0 ? 1e-3 : 1e-2);
+    for (const TessellationMeasure measure : {TessellationMeasure::Parametric, TessellationMeasure::Geometric}) {
+        TessellationOptions o;
+        o.tolerance = 1e-3;
+        o.measure = measure;
+        o.patchTolerance = tolerances;
+        TessellationReport report;
+        const PolygonMesh mesh = tessellate(t, o, &report);
+        for (std::size_t p = 0; p < t.patches.size(); ++p) CHECK(report.patchBound[p] <= tolerances[p]);
+        const Topology top = topology(mesh);
+        CHECK(top.boundaryEdges == 0); // a crack or T-junction would leave edges with one face
+        CHECK(top.nonManifoldEdges == 0);
+        CHECK(top.euler() == 0);
+        if (measure == TessellationMeasure::Parametric)
+            for (std::size_t p = 0; p < t.patches.size(); ++p) CHECK(surfaceToMesh(t.patches[p], mesh, 16, 2 * tolerances[p], 0.25) <= tolerances[p]);
+    }
+}

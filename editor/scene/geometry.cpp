@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "freeform/document/document.h"
@@ -80,8 +81,27 @@ void finishBounds(ItemGeometry& g)
 
 } // namespace
 
+double PixelScale::tolerance(const Eigen::AlignedBox3d& box) const
+{
+    double z = distance;
+    if (perspective) {
+        z = std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 8; ++c) z = std::min(z, (box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) - eye).dot(forward));
+        z = std::max(z, distance / 20);
+    }
+    return span * (z / distance) / height;
+}
+
+bool withinTwice(const std::vector<double>& built, const std::vector<double>& wanted)
+{
+    if (built.size() != wanted.size()) return false;
+    for (std::size_t p = 0; p < built.size(); ++p)
+        if (wanted[p] > 2 * built[p] || wanted[p] < built[p] / 2) return false;
+    return true;
+}
+
 ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
-                           const std::string& documentDirectory)
+                           const std::string& documentDirectory, const PixelScale& view)
 {
     // Every object -> geometry mapping is the document layer's (document/operations.h): the control
     // net, the polyline of a curve or spline, the tessellation of a surface or subdivision surface.
@@ -109,10 +129,25 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
         options.tolerance = t.mode == Tessellation::Mode::Uniform ? 0 : tol;
         options.segments = t.segments;
         options.flip = t.flip;
+        if (view.on() && t.mode == Tessellation::Mode::Adaptive && !(t.tolerance > 0)) {
+            // Per patch to the view: each patch's tolerance from its own control-point box.
+            if (const auto surface = AnySurface::of(object)) {
+                for (const Patch& p : surface->patches.patches) {
+                    Eigen::AlignedBox3d box;
+                    box.setEmpty();
+                    for (Eigen::Index k = 0; k < p.controlPoints().cols(); ++k) box.extend(Eigen::Vector3d(p.controlPoints().col(k)));
+                    g.patchBoxes.push_back(box);
+                    g.patchTolerance.push_back(view.tolerance(box));
+                }
+                options.patchTolerance = g.patchTolerance;
+            }
+        }
         if (auto mesh = tessellateObject(object, options)) g.surface = withNormals(std::move(*mesh));
     } catch (const Error& e) {
         g.netEdges.clear();
         g.surface.reset();
+        g.patchBoxes.clear();
+        g.patchTolerance.clear();
         g.curve.resize(3, 0);
         const std::string message = e.what();
         g.error = message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;

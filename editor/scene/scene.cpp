@@ -404,7 +404,7 @@ void Scene::exportMesh(const std::string& path)
         const SceneItem& item = items_[i];
         if (!item.settings.visible) continue;
         const ItemGeometry* g = &item.geometry;
-        if (followsViewTolerance(item) && item.builtTolerance != display.tolerance) {
+        if (followsViewTolerance(item) && (item.builtTolerance != display.tolerance || !item.geometry.patchTolerance.empty())) {
             world.push_back(buildGeometry(document_.objects[i].data, item.settings, display.tolerance, documentDirectory()));
             g = &world.back();
         }
@@ -684,7 +684,7 @@ void Scene::buildItem(std::size_t i)
     SceneItem& item = items_[i];
     if (item.kind == SceneItem::Kind::DocumentObject) {
         item.builtTolerance = tessellationTolerance();
-        item.geometry = buildGeometry(document_.objects[i].data, item.settings, item.builtTolerance, documentDirectory());
+        item.geometry = buildGeometry(document_.objects[i].data, item.settings, item.builtTolerance, documentDirectory(), pixelScale_);
     } else {
         try {
             item.geometry = buildMeshGeometry(resolve(item.meshPath), item.up);
@@ -725,11 +725,34 @@ void Scene::updateViewTolerance(int height)
         }
         t = pixelTolerance * 2 * camera.halfHeight() * (z / camera.distance) / height;
     }
+    // Per patch (bezier and de Boor surfaces): the same pixel size at each patch's own nearest depth.
+    PixelScale scale;
+    if (t > 0) {
+        scale.perspective = camera.projection == Projection::Perspective;
+        scale.eye = camera.eye();
+        scale.forward = -camera.back();
+        scale.span = pixelTolerance * 2 * camera.halfHeight();
+        scale.distance = camera.distance;
+        scale.height = height;
+    }
+    pixelScale_ = scale;
     if ((t == 0) != (viewTolerance_ == 0) || t > 2 * viewTolerance_ || t < viewTolerance_ / 2) {
         viewTolerance_ = t;
         // In the background, updateGeometry finds the items built for another tolerance itself.
         if (!backgroundOn_) invalidateGeometry();
     }
+    if (!backgroundOn_)
+        for (SceneItem& item : items_)
+            if (followsViewTolerance(item) && patchesStale(item)) item.geometryDirty = true;
+}
+
+bool Scene::patchesStale(const SceneItem& item) const
+{
+    if (!pixelScale_.on() || item.geometry.patchBoxes.empty()) return false;
+    std::vector<double> wanted;
+    wanted.reserve(item.geometry.patchBoxes.size());
+    for (const Eigen::AlignedBox3d& box : item.geometry.patchBoxes) wanted.push_back(pixelScale_.tolerance(box));
+    return !withinTwice(item.geometry.patchTolerance, wanted);
 }
 
 // ------------------------------------------------------------------------------------ background
@@ -773,7 +796,8 @@ bool Scene::followsViewTolerance(const SceneItem& item) const
 
 bool Scene::stale(const SceneItem& item) const
 {
-    return !item.geometryDirty && followsViewTolerance(item) && item.builtTolerance != tessellationTolerance();
+    return !item.geometryDirty && followsViewTolerance(item) &&
+           (item.builtTolerance != tessellationTolerance() || patchesStale(item));
 }
 
 bool Scene::tessellationPending() const
@@ -803,7 +827,12 @@ void Scene::takeBackgroundResult()
             continue;
         }
         SceneItem& item = items_[static_cast<std::size_t>(i)];
-        item.geometry = std::move(r.geometry);
+        std::swap(item.geometry, r.geometry);
+        if (patchesStale(item)) { // per-patch tolerances for a view that has since moved past 2x
+            std::swap(item.geometry, r.geometry);
+            ++backgroundStats_.dropped;
+            continue;
+        }
         item.builtTolerance = result->tolerance;
         if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
             item.scalars.clear();
@@ -818,6 +847,7 @@ void Scene::submitStale()
     if (background_.generation != 0 && background_.tolerance == t) return; // on its way
     TessellationJob job;
     job.tolerance = t;
+    job.view = pixelScale_;
     for (std::size_t i = 0; i < items_.size(); ++i)
         if (stale(items_[i]))
             job.items.push_back({items_[i].id, items_[i].key, document_.objects[i].data, items_[i].settings});

@@ -34,8 +34,32 @@
 namespace freeform::editor {
 
 /// What the renderer draws for one item, derived from the document.
+/// The world size of the view's pixel tolerance at a box's nearest depth (docs/editor.md,
+/// "Tessellation to the view"): span * (z / distance) / height, span = pixels * 2 * halfHeight
+/// (the world size of `pixels` pixels times the view's height at the target's depth), z the depth
+/// of the box's nearest corner along the view direction from the eye, at least distance / 20
+/// (perspective), or z = distance (orthographic: the same everywhere). The formula of the one
+/// tolerance per view (Scene::tessellationTolerance), at each patch's own depth. Off (the
+/// default): no per-patch tolerances.
+struct PixelScale {
+    bool perspective = true;
+    Eigen::Vector3d eye = Eigen::Vector3d::Zero(), forward = -Eigen::Vector3d::UnitZ();
+    double span = 0, distance = 1, height = 0;
+    bool on() const { return span > 0 && height > 0; }
+    double tolerance(const Eigen::AlignedBox3d& box) const;
+    bool operator==(const PixelScale&) const = default;
+};
+
+/// Whether tolerances `built` are still good for `wanted`: none differs by more than 2x.
+bool withinTwice(const std::vector<double>& built, const std::vector<double>& wanted);
+
 struct ItemGeometry {
     std::optional<PolygonMesh> surface;   // triangles with per-vertex normals
+    /// Surfaces tessellated per patch to the view (a bezier/deboor surface in adaptive mode with
+    /// a PixelScale on): the control-point box of each patch and the tolerance it was built for;
+    /// empty otherwise.
+    std::vector<Eigen::AlignedBox3d> patchBoxes;
+    std::vector<double> patchTolerance;
     Eigen::Matrix<double, 3, Eigen::Dynamic> curve;  // polyline points (3 x P), may be empty
     bool curveClosed = false;
     std::vector<std::pair<int, int>> netEdges;       // control net / polygon edges into netPoints
@@ -214,7 +238,12 @@ public:
     /// dirty when it differs from the one in use by more than 2x (or pixelTolerance was switched).
     void updateViewTolerance(int height);
     /// The world tolerance the geometry is built with (display.tolerance when pixelTolerance is 0).
+    /// Bezier and de Boor surfaces take it per patch instead, from pixelScale(): each patch gets
+    /// the world size of pixelTolerance pixels at its own nearest depth (far patches coarser), and
+    /// is built again when that differs from the one it was built for by more than 2x.
     double tessellationTolerance() const { return viewTolerance_ > 0 ? viewTolerance_ : display.tolerance; }
+    /// The view's pixel scale from the last updateViewTolerance (off when pixelTolerance is 0).
+    const PixelScale& pixelScale() const { return pixelScale_; }
     /// Marks the settings (camera, display) as changed, i.e. the file as unsaved.
     void touch() { modified_ = true; }
     /// Marks all geometry dirty (e.g. after the tessellation tolerance changed).
@@ -248,6 +277,9 @@ public:
 
 private:
     double viewTolerance_ = 0;
+    PixelScale pixelScale_;
+    /// Whether item's per-patch tolerances are more than 2x off those of pixelScale_.
+    bool patchesStale(const SceneItem& item) const;
     /// Whether item's geometry depends on tessellationTolerance() (curves, surfaces and cages
     /// tessellated adaptively without a tolerance of their own).
     bool followsViewTolerance(const SceneItem& item) const;
@@ -280,9 +312,11 @@ private:
 };
 
 /// Builds the geometry of a document object (tolerance: adaptive sampling in world units).
-/// documentDirectory resolves a subdivision_surface's relative mesh path.
+/// documentDirectory resolves a subdivision_surface's relative mesh path. With `view` on, a
+/// bezier/deboor surface in adaptive mode without a tolerance of its own is tessellated per patch
+/// to view.tolerance(control-point box of the patch) (geometry.patchBoxes / patchTolerance).
 ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
-                           const std::string& documentDirectory = {});
+                           const std::string& documentDirectory = {}, const PixelScale& view = {});
 /// A subdivision_surface whose cage is in a mesh file as inline vertices and faces, with the file's
 /// crease tags (and the object's own creases and corners) as creases / corners; an inline one as it
 /// is. Error prefixed with `what` when the file cannot be read. Edits and deformations of a file

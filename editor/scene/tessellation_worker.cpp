@@ -73,7 +73,7 @@ void TessellationWorker::run(std::stop_token stop)
             if (superseded || stop.stop_requested()) break;
             ItemGeometry g;
             try {
-                g = buildGeometry(item.data, item.settings, job.tolerance, job.directory);
+                g = buildGeometry(item.data, item.settings, job.tolerance, job.directory, job.view);
             } catch (const std::exception& e) { // buildGeometry reports Error in g.error itself
                 g = ItemGeometry{};
                 g.error = e.what();

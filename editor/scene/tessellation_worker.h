@@ -38,6 +38,7 @@ struct TessellationJob {
     };
     long generation = 0;      // > 0, increasing with every job a scene submits
     double tolerance = 0;     // the world tolerance (buildGeometry's argument)
+    PixelScale view;          // the view's pixel scale, for per-patch tolerances (buildGeometry's)
     std::string directory;    // Scene::documentDirectory()
     std::vector<Item> items;
 };

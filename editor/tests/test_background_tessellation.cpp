@@ -46,10 +46,11 @@ bool sameMesh(const PolygonMesh& a, const PolygonMesh& b)
     return true;
 }
 
-/// What the synchronous path builds for item i's object at tolerance t.
-ItemGeometry synchronous(const Scene& scene, int i, double t)
+/// What the synchronous path builds for item i's object at tolerance t (per patch with `view` on:
+/// the scene's pixelScale() for the meshes drawn, off for the world tolerance of exports).
+ItemGeometry synchronous(const Scene& scene, int i, double t, const PixelScale& view = {})
 {
-    return buildGeometry(scene.object(i).data, scene.item(i).settings, t, scene.documentDirectory());
+    return buildGeometry(scene.object(i).data, scene.item(i).settings, t, scene.documentDirectory(), view);
 }
 
 long triangles(const Scene& scene)
@@ -104,7 +105,7 @@ TEST_CASE("background: the old meshes are drawn until the job is done; the meshe
     CHECK(scene.backgroundStats().dropped == 0);
     for (int i = 0; i < scene.itemCount(); ++i) {
         INFO("patch " << i);
-        const ItemGeometry expected = synchronous(scene, i, view);
+        const ItemGeometry expected = synchronous(scene, i, view, scene.pixelScale());
         REQUIRE(expected.surface);
         REQUIRE(scene.item(i).geometry.surface);
         CHECK(sameMesh(*scene.item(i).geometry.surface, *expected.surface));
@@ -154,8 +155,8 @@ TEST_CASE("background: an edit or a removal made while the job runs is not overw
 
     // The edited patch shows the edit, at the view's tolerance; the stale result (the old patch at
     // the same tolerance) differs from it, so showing it would have failed this check.
-    const ItemGeometry edited = synchronous(scene, 5, view);
-    const ItemGeometry stale = buildGeometry(old.data, scene.item(5).settings, view, scene.documentDirectory());
+    const ItemGeometry edited = synchronous(scene, 5, view, scene.pixelScale());
+    const ItemGeometry stale = buildGeometry(old.data, scene.item(5).settings, view, scene.documentDirectory(), scene.pixelScale());
     REQUIRE(edited.surface);
     REQUIRE(stale.surface);
     REQUIRE_FALSE(sameMesh(*edited.surface, *stale.surface));
@@ -163,7 +164,7 @@ TEST_CASE("background: an edit or a removal made while the job runs is not overw
     CHECK(scene.item(5).builtTolerance == view);
     for (int i = 0; i < scene.itemCount(); ++i) {
         INFO("patch " << i);
-        CHECK(sameMesh(*scene.item(i).geometry.surface, *synchronous(scene, i, view).surface));
+        CHECK(sameMesh(*scene.item(i).geometry.surface, *synchronous(scene, i, view, scene.pixelScale()).surface));
     }
 
     // Undo puts the old patch back (its old content key): still the synchronous result for it.
@@ -173,7 +174,7 @@ TEST_CASE("background: an edit or a removal made while the job runs is not overw
     REQUIRE(scene.itemCount() == 32);
     for (int i = 0; i < scene.itemCount(); ++i) {
         INFO("patch " << i << " after undo");
-        CHECK(sameMesh(*scene.item(i).geometry.surface, *synchronous(scene, i, view).surface));
+        CHECK(sameMesh(*scene.item(i).geometry.surface, *synchronous(scene, i, view, scene.pixelScale()).surface));
     }
 }
 
@@ -200,7 +201,7 @@ TEST_CASE("background: a new zoom supersedes the job in flight, whose result is 
     for (int i = 0; i < scene.itemCount(); ++i) {
         INFO("patch " << i);
         CHECK(scene.item(i).builtTolerance == second);
-        CHECK(sameMesh(*scene.item(i).geometry.surface, *synchronous(scene, i, second).surface));
+        CHECK(sameMesh(*scene.item(i).geometry.surface, *synchronous(scene, i, second, scene.pixelScale()).surface));
     }
 }
 
@@ -265,9 +266,110 @@ TEST_CASE("background: a subdivision surface follows the view's tolerance too, w
     scene.finishTessellation();
     CHECK(scene.backgroundStats().applied == 1);
     CHECK(scene.item(0).builtTolerance == view);
-    const ItemGeometry expected = synchronous(scene, 0, view);
+    const ItemGeometry expected = synchronous(scene, 0, view, scene.pixelScale());
     REQUIRE(expected.surface);
     CHECK(sameMesh(*scene.item(0).geometry.surface, *expected.surface));
     INFO("faces at the world tolerance " << worldFaces << ", at the view's " << expected.surface->faceCount());
     CHECK(expected.surface->faceCount() != worldFaces); // the tolerance reaches the subdivision tessellation
+}
+
+TEST_CASE("per-patch screen tolerance: a close-up of the teapot's nearest patch keeps it as fine as before and makes the "
+          "far ones coarser",
+          "[editor][per-patch]")
+{
+    Scene scene = teapot(); // 32 bezier_surface items of one patch each
+    // Look along -x at the patch that reaches farthest in +x, from close by: the scene box's nearest
+    // corner is then on that patch's box, so its tolerance is the old one-per-view tolerance.
+    int near = 0;
+    for (int i = 1; i < scene.itemCount(); ++i)
+        if (scene.item(i).geometry.bounds.max().x() > scene.item(near).geometry.bounds.max().x()) near = i;
+    scene.camera.projection = Projection::Perspective;
+    scene.camera.orientation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX());
+    scene.camera.target = scene.item(near).geometry.bounds.center();
+    scene.camera.distance = 1.5;
+    scene.camera.fovyDegrees = 35;
+    scene.pixelTolerance = 0.5;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    const double old = scene.tessellationTolerance(); // the rule before: one tolerance for the view
+    REQUIRE(scene.pixelScale().on());
+
+    // Each patch: 0.5 px at its own nearest depth, by hand: the depth of the nearest corner of its
+    // control-point box along -x, one pixel there 2 depth tan(17.5 deg) / 800.
+    const double eyeX = scene.camera.target.x() + 1.5;
+    long perPatch = 0, perView = 0;
+    for (int i = 0; i < scene.itemCount(); ++i) {
+        const ItemGeometry& g = scene.item(i).geometry;
+        REQUIRE(g.patchTolerance.size() == 1);
+        const double depth = std::max(eyeX - g.netPoints.row(0).maxCoeff(), 1.5 / 20);
+        const double expected = 0.5 * 2 * depth * std::tan(17.5 * 3.14159265358979323846 / 180) / 800;
+        CHECK(g.patchTolerance[0] == Approx(expected).epsilon(1e-12));
+        CHECK(g.patchTolerance[0] >= old * (1 - 1e-12));
+        perPatch += g.surface->faceCount();
+        perView += synchronous(scene, i, old).surface->faceCount();
+    }
+    // The near patch: the same tolerance as before, so the same mesh.
+    CHECK(scene.item(near).geometry.patchTolerance[0] == Approx(old).epsilon(1e-12));
+    CHECK(scene.item(near).geometry.surface->faceCount() == synchronous(scene, near, old).surface->faceCount());
+    // The teapot as a whole: fewer triangles (the far patches are coarser).
+    INFO("per patch " << perPatch << " triangles, one tolerance per view " << perView);
+    CHECK(perPatch < perView);
+
+    // A box twice as far gets twice the tolerance (perspective); orthographic: the same everywhere.
+    const PixelScale& s = scene.pixelScale();
+    const Eigen::Vector3d e = s.eye;
+    const Eigen::AlignedBox3d a(e + Eigen::Vector3d(-2, -0.1, -0.1), e + Eigen::Vector3d(-1, 0.1, 0.1));
+    const Eigen::AlignedBox3d b(e + Eigen::Vector3d(-4, -0.1, -0.1), e + Eigen::Vector3d(-2, 0.1, 0.1));
+    CHECK(s.tolerance(b) == Approx(2 * s.tolerance(a)).epsilon(1e-12));
+    PixelScale ortho = s;
+    ortho.perspective = false;
+    CHECK(ortho.tolerance(a) == ortho.tolerance(b));
+
+    // Re-tessellation only past 2x: the same view rebuilds nothing; a view 3x farther (every depth
+    // grows more than 2x) rebuilds the patches.
+    const int revision = scene.item(near).revision;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    CHECK(scene.item(near).revision == revision);
+    scene.camera.distance = 1.5 * 8;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    CHECK(scene.item(near).revision != revision);
+    CHECK(scene.item(near).geometry.patchTolerance[0] > 2 * old);
+}
+
+TEST_CASE("per-patch screen tolerance: a patch is rebuilt when its own tolerance moves past 2x, even where the view's "
+          "one tolerance stays",
+          "[editor][per-patch]")
+{
+    Scene scene = teapot();
+    int near = 0;
+    for (int i = 1; i < scene.itemCount(); ++i)
+        if (scene.item(i).geometry.bounds.max().x() > scene.item(near).geometry.bounds.max().x()) near = i;
+    const double front = scene.item(near).geometry.bounds.max().x();
+    // Looking along -x with the target 0.5 in front of the teapot and the eye 1 behind it: every
+    // depth is beyond the target, so the one view tolerance is that of depth = distance = 1.
+    scene.camera.projection = Projection::Perspective;
+    scene.camera.orientation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX());
+    scene.camera.target = Eigen::Vector3d(front + 0.5, 0, 0);
+    scene.camera.distance = 1;
+    scene.pixelTolerance = 0.5;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    const double view = scene.tessellationTolerance();
+    const double built = scene.item(near).geometry.patchTolerance.at(0);
+    const int revision = scene.item(near).revision;
+    // Backing off by 0.3: the near patch's depth grows from about 1.5 to 1.8 (< 2x): nothing rebuilt.
+    scene.camera.target.x() += 0.3;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    CHECK(scene.tessellationTolerance() == view);
+    CHECK(scene.item(near).revision == revision);
+    // Backing off by 5 more: its depth grows past 2x (to about 6.8), the view's tolerance stays.
+    scene.camera.target.x() += 5;
+    scene.updateViewTolerance(800);
+    scene.updateGeometry();
+    CHECK(scene.tessellationTolerance() == view);
+    CHECK(scene.item(near).revision != revision);
+    CHECK(scene.item(near).geometry.patchTolerance.at(0) > 2 * built);
 }

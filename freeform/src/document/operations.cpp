@@ -96,6 +96,7 @@ std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const Obj
         TessellationOptions o;
         if (options.tolerance > 0) {
             o.tolerance = options.tolerance;
+            o.patchTolerance = options.patchTolerance;
         } else {
             o.tolerance = 0;
             o.segmentsU = o.segmentsV = options.segments;

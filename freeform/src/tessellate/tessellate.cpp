@@ -161,6 +161,12 @@ std::array<int, 2> adaptiveSegments(const Patch& patch, double tolerance, int ma
 
 namespace {
 
+/// The tolerance of patch p: its own (patchTolerance) or the one of every patch.
+double toleranceOf(const TessellationOptions& options, int p)
+{
+    return options.patchTolerance.empty() ? options.tolerance : options.patchTolerance[static_cast<std::size_t>(p)];
+}
+
 /// The mesh from the collected arrays (normals normalised, flipped on request); the report out.
 PolygonMesh finishMesh(std::vector<Eigen::Vector3d>&& positions, std::vector<Eigen::Vector3d>&& normals,
                        std::vector<Eigen::Vector2d>&& texcoords, std::vector<int>&& faces, const TessellationOptions& options,
@@ -316,6 +322,33 @@ std::array<double, 3> netTerms(const Eigen::Vector3d* net, int m, int n)
     return {m * (m - 1.0) * std::sqrt(d[0]), 2.0 * m * n * std::sqrt(d[1]), n * (n - 1.0) * std::sqrt(d[2])};
 }
 
+/// The 25 second differences of a bicubic net: D_uu (i = 0..1, j = 0..3), D_uv (3 x 3), D_vv
+/// (i = 0..3, j = 0..1), in the order of maxSecondDifferencesOf.
+struct BicubicDifferences {
+    Eigen::Vector3d uu[8], uv[9], vv[8];
+};
+
+void bicubicDifferences(const Eigen::Vector3d* net, BicubicDifferences& d)
+{
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 4; ++j) d.uu[4 * i + j] = net[(i + 2) * 4 + j] - 2 * net[(i + 1) * 4 + j] + net[i * 4 + j];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            d.uv[3 * i + j] = net[(i + 1) * 4 + j + 1] - net[(i + 1) * 4 + j] - net[i * 4 + j + 1] + net[i * 4 + j];
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 2; ++j) d.vv[2 * i + j] = net[i * 4 + j + 2] - 2 * net[i * 4 + j + 1] + net[i * 4 + j];
+}
+
+/// netTerms of a bicubic net from its differences (the same values).
+std::array<double, 3> bicubicTerms(const BicubicDifferences& d)
+{
+    double uu = 0, uv = 0, vv = 0;
+    for (const auto& x : d.uu) uu = std::max(uu, x.squaredNorm());
+    for (const auto& x : d.uv) uv = std::max(uv, x.squaredNorm());
+    for (const auto& x : d.vv) vv = std::max(vv, x.squaredNorm());
+    return {3 * (3 - 1.0) * std::sqrt(uu), 2.0 * 3 * 3 * std::sqrt(uv), 3 * (3 - 1.0) * std::sqrt(vv)};
+}
+
 std::vector<Eigen::Vector3d> netOf(const Patch& p)
 {
     std::vector<Eigen::Vector3d> net(static_cast<std::size_t>(p.controlPoints().cols()));
@@ -350,8 +383,51 @@ void splitLines(Eigen::Vector3d* net, Eigen::Vector3d* lower, int deg, int outer
     }
 }
 
+/// The bicubic split in u: the four lines' points k are one row of 12 contiguous numbers, so the
+/// rows are combined whole (the same operations on each number as splitLines, so the same results,
+/// in vector registers).
+void splitBicubicU(Eigen::Vector3d* net, Eigen::Vector3d* lower, double t)
+{
+    using Row = Eigen::Matrix<double, 12, 1>;
+    auto row = [](Eigen::Vector3d* p, int k) { return Eigen::Map<Row>(p[4 * k].data()); };
+    const double s = 1 - t;
+    const Row w0 = row(net, 0), w1 = row(net, 1), w2 = row(net, 2), w3 = row(net, 3);
+    const Row a0 = s * w0 + t * w1, a1 = s * w1 + t * w2, a2 = s * w2 + t * w3;
+    const Row b0 = s * a0 + t * a1, b1 = s * a1 + t * a2;
+    const Row c0 = s * b0 + t * b1;
+    row(lower, 0) = w0;
+    row(lower, 1) = a0;
+    row(lower, 2) = b0;
+    row(lower, 3) = c0;
+    row(net, 0) = c0;
+    row(net, 1) = b1;
+    row(net, 2) = a2;
+}
+
+/// The bicubic split in v: each line is a row of the net (points 4 o .. 4 o + 3).
+void splitBicubicV(Eigen::Vector3d* net, Eigen::Vector3d* lower, double t)
+{
+    const double s = 1 - t;
+    for (int o = 0; o < 4; ++o) {
+        Eigen::Vector3d* line = net + 4 * o;
+        Eigen::Vector3d* low = lower + 4 * o;
+        const Eigen::Vector3d w0 = line[0], w1 = line[1], w2 = line[2], w3 = line[3];
+        const Eigen::Vector3d a0 = s * w0 + t * w1, a1 = s * w1 + t * w2, a2 = s * w2 + t * w3;
+        const Eigen::Vector3d b0 = s * a0 + t * a1, b1 = s * a1 + t * a2;
+        const Eigen::Vector3d c0 = s * b0 + t * b1;
+        low[0] = w0;
+        low[1] = a0;
+        low[2] = b0;
+        low[3] = c0;
+        line[0] = c0;
+        line[1] = b1;
+        line[2] = a2;
+    }
+}
+
 void splitNet(Eigen::Vector3d* net, Eigen::Vector3d* lower, int m, int n, bool inU, double t)
 {
+    if (m == 3 && n == 3) return inU ? splitBicubicU(net, lower, t) : splitBicubicV(net, lower, t);
     const int deg = inU ? m : n, outer = inU ? n : m;
     const int stride = inU ? n + 1 : 1, step = inU ? 1 : n + 1; // along the split direction, across it
     if (deg == 3) splitLines<3>(net, lower, deg, outer, stride, step, t);
@@ -375,8 +451,16 @@ Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1]
 /// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
 /// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
 /// of that net's differences.
-Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Vector3d& d)
+Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Vector3d& d, const BicubicDifferences* diff)
 {
+    if (diff) {
+        // d . D for the net's differences D (the differences of the projected net, up to rounding).
+        double uu = 0, uv = 0, vv = 0;
+        for (const auto& x : diff->uu) uu = std::max(uu, std::abs(d.dot(x)));
+        for (const auto& x : diff->uv) uv = std::max(uv, std::abs(d.dot(x)));
+        for (const auto& x : diff->vv) vv = std::max(vv, std::abs(d.dot(x)));
+        return {6 * uu, 9 * uv, 6 * vv};
+    }
     // The net projected first: scalar differences.
     thread_local std::vector<double> projected;
     const int size = (m + 1) * (n + 1);
@@ -426,8 +510,63 @@ void centreDerivatives(const Eigen::Vector3d* net, int m, int n, Eigen::Vector3d
 /// Bounds of |g_ss|, |g_st|, |g_tt| (in the leaf's s, t) over the leaf grown by deltaS on both
 /// sides in s and deltaT in t: the net of that rectangle by de Casteljau at 1 + delta and then
 /// -delta / (1 + delta) (the same polynomial, parametrised over the larger interval).
-Second grownBounds(const Eigen::Vector3d* net, int m, int n, double deltaS, double deltaT)
+/// The matrices E_k (k = 1, 2, 3) with sum_j E_k(i, j) c_j the Bernstein coefficients over
+/// [-delta, 1 + delta] of the degree-k polynomial with coefficients c_j over [0, 1]: its blossom at
+/// k - i arguments -delta and i arguments 1 + delta, with A = 1 + delta, B = -delta (each row sums
+/// to (A + B)^k = 1; delta = 0 gives the identity).
+struct Extensions {
+    double e1[2][2], e2[3][3], e3[4][4];
+    explicit Extensions(double delta)
+    {
+        const double A = 1 + delta, B = -delta, A2 = A * A, B2 = B * B, AB = A * B;
+        const double r1[2][2] = {{A, B}, {B, A}};
+        const double r2[3][3] = {{A2, 2 * AB, B2}, {AB, A2 + B2, AB}, {B2, 2 * AB, A2}};
+        const double r3[4][4] = {{A2 * A, 3 * A2 * B, 3 * A * B2, B2 * B},
+                                 {A2 * B, A2 * A + 2 * A * B2, 2 * A2 * B + B2 * B, A * B2},
+                                 {A * B2, 2 * A2 * B + B2 * B, A2 * A + 2 * A * B2, A2 * B},
+                                 {B2 * B, 3 * A * B2, 3 * A2 * B, A2 * A}};
+        std::memcpy(e1, r1, sizeof e1);
+        std::memcpy(e2, r2, sizeof e2);
+        std::memcpy(e3, r3, sizeof e3);
+    }
+};
+
+/// max |x| over the net (Rows x Cols, x(i, j) at d[i * Cols + j]) extended by Es (along i) and Et
+/// (along j).
+template <int Rows, int Cols>
+double largestExtended(const Eigen::Vector3d* d, const double (&Es)[Rows][Rows], const double (&Et)[Cols][Cols])
 {
+    Eigen::Vector3d along[Rows * Cols]; // extended along j first
+    for (int i = 0; i < Rows; ++i)
+        for (int j = 0; j < Cols; ++j) {
+            Eigen::Vector3d x = Et[j][0] * d[i * Cols];
+            for (int l = 1; l < Cols; ++l) x += Et[j][l] * d[i * Cols + l];
+            along[i * Cols + j] = x;
+        }
+    double largest = 0;
+    for (int i = 0; i < Rows; ++i)
+        for (int j = 0; j < Cols; ++j) {
+            Eigen::Vector3d x = Es[i][0] * along[j];
+            for (int l = 1; l < Rows; ++l) x += Es[i][l] * along[l * Cols + j];
+            largest = std::max(largest, x.squaredNorm());
+        }
+    return std::sqrt(largest);
+}
+
+/// grownBounds of a bicubic net from its second differences: the second-difference nets of the
+/// grown net are those of the leaf extended to the grown rectangle (de Casteljau commutes with
+/// differencing; the factors (1 + 2 delta)^2 of the longer interval cancel against fs, ft), so
+/// only 25 differences are extended instead of the net being split four times.
+Second grownBicubicBounds(const BicubicDifferences& d, double deltaS, double deltaT)
+{
+    const Extensions s(deltaS), t(deltaT);
+    return {6 * largestExtended<2, 4>(d.uu, s.e1, t.e3), 9 * largestExtended<3, 3>(d.uv, s.e2, t.e2),
+            6 * largestExtended<4, 2>(d.vv, s.e3, t.e1)};
+}
+
+Second grownBounds(const Eigen::Vector3d* net, int m, int n, double deltaS, double deltaT, const BicubicDifferences* diff)
+{
+    if (diff) return grownBicubicBounds(*diff, std::max(deltaS, 0.0), std::max(deltaT, 0.0));
     const int size = (m + 1) * (n + 1);
     thread_local std::vector<Eigen::Vector3d> buffer;
     if (buffer.size() < static_cast<std::size_t>(2 * size)) buffer.resize(static_cast<std::size_t>(2 * size));
@@ -507,12 +646,13 @@ constexpr double kGeometricRange = 16;
 struct StepBounds {
     const Second &M, &R1, &R2;
     double sigmaC;
-    std::array<double, 2> operator()(double a0, double a1, double b0, double b1) const
+    std::array<double, 2> operator()(double a0, double a1, double b0, double b1) const { return at(PointFactors(a0, b0), a1, b1); }
+    /// The same with the factors of (a0, b0) given (the cell bound needs them too).
+    std::array<double, 2> at(const PointFactors& f, double a1, double b1) const
     {
         const double rho = norm2(M.ss * a1 + M.st * b1, M.st * a1 + M.tt * b1);
         const double sig = sigmaC - rho;
         if (!(sig > 0)) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-        const PointFactors f(a0, b0);
         const double e = f.error(M), whole = e / sig, extra = rho * whole / sigmaC;
         return {std::min(whole, f.error(R1) + extra), std::min(whole, f.error(R2) + extra)};
     }
@@ -520,13 +660,14 @@ struct StepBounds {
 
 /// The largest bounds of the step's components over the leaf, on a grid of cells.
 template <class Steps>
-std::array<double, 2> largestStep(const Steps& steps)
+std::array<double, 2> largestStep(const Steps& steps, std::array<std::array<double, 2>, kStepGrid * kStepGrid>& cells)
 {
     std::array<double, 2> worst{0, 0};
     for (int ia = 0; ia < kStepGrid; ++ia)
         for (int ib = 0; ib < kStepGrid; ++ib) {
             const double w = 0.5 / kStepGrid;
             const auto d = steps(ia * w, (ia + 1) * w, ib * w, (ib + 1) * w);
+            cells[static_cast<std::size_t>(ia + kStepGrid * ib)] = d;
             worst = {std::max(worst[0], d[0]), std::max(worst[1], d[1])};
         }
     return worst;
@@ -538,7 +679,7 @@ std::array<double, 2> largestStep(const Steps& steps)
 /// centre up to second-order terms. Infinity where the argument does not apply (a near-singular
 /// leaf, delta could leave the patch's domain, or the bound cannot reach the tolerance). net: the
 /// leaf's sub-net; terms: its netTerms; box: the leaf in units of 1/S.
-double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
+double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDifferences* diff, const std::array<double, 3>& terms, const Leaf& box,
                       std::int32_t S, double tolerance)
 {
     constexpr double inf = std::numeric_limits<double>::infinity();
@@ -548,30 +689,34 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array
     const double len = cross.norm();
     if (!(len > 0)) return inf;
     const Eigen::Vector3d n0 = cross / len;
-    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0);
+    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0, diff);
     if (pointError(N, 0, 0) > tolerance) return inf; // |n0 . E(c)| alone
     const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm(), det = a11 * a22 - a12 * a12;
     if (!(det > 0)) return inf;
     const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
     // Rows of A_c^+ = (A_c^T A_c)^-1 A_c^T, A_c = [g_s(c), g_t(c)].
     const Eigen::Vector3d r1 = (a22 * gs - a12 * gt) / det, r2 = (a11 * gt - a12 * gs) / det;
-    const Second R1 = projectedBounds(net, m, n, r1), R2 = projectedBounds(net, m, n, r2);
+    const Second R1 = projectedBounds(net, m, n, r1, diff), R2 = projectedBounds(net, m, n, r2, diff);
     const StepBounds steps{M, R1, R2, sigmaC};
-    const auto Delta = largestStep(steps);
+    std::array<std::array<double, 2>, kStepGrid * kStepGrid> firstCells; // refineCells starts on these cells
+    const auto Delta = largestStep(steps, firstCells);
     if (!std::isfinite(Delta[0]) || !std::isfinite(Delta[1])) return inf;
     const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
     if (static_cast<double>(box.u0) / S - Delta[0] * hu < 0 || static_cast<double>(box.u1) / S + Delta[0] * hu > 1 ||
         static_cast<double>(box.v0) / S - Delta[1] * hv < 0 || static_cast<double>(box.v1) / S + Delta[1] * hv > 1)
         return inf;
     // The remainder of g(x + delta) over the segment, inside the leaf grown by Delta.
-    const Second G = grownBounds(net, m, n, Delta[0], Delta[1]);
+    const Second G = grownBounds(net, m, n, Delta[0], Delta[1], diff);
     auto cell = [&](double a0, double a1, double b0, double b1) {
-        const auto d = steps(a0, a1, b0, b1);
+        const PointFactors f(a0, b0);
+        // The first 2 x 2 cells are largestStep's (the same numbers): their steps are known.
+        const bool first = kStepGrid == 2 && a1 - a0 == 0.25;
+        const auto d = first ? firstCells[static_cast<std::size_t>((a0 == 0 ? 0 : 1) + 2 * (b0 == 0 ? 0 : 1))] : steps.at(f, a1, b1);
         if (!std::isfinite(d[0]) || !std::isfinite(d[1])) return inf;
         // |n0 . g_s(x)| <= N_ss a + N_st b, |n0 . g_t(x)| <= N_st a + N_tt b (zero at the centre).
         const double tiltS = N.ss * a1 + N.st * b1, tiltT = N.st * a1 + N.tt * b1;
         const double remainder = 0.5 * (G.ss * d[0] * d[0] + 2 * G.st * d[0] * d[1] + G.tt * d[1] * d[1]);
-        return PointFactors(a0, b0).error(N) + tiltS * d[0] + tiltT * d[1] + remainder;
+        return f.error(N) + tiltS * d[0] + tiltT * d[1] + remainder;
     };
     return refineCells(cell, tolerance, kCellDepth);
 }
@@ -581,7 +726,7 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const std::array
 /// so the leaf only needs room in that direction. With the unit tangent a = g_t(c)/|g_t(c)| (g_s for
 /// along = 0) and c1 = n0 x a, delta cancels a . E, and the rest of E - g_t(x) delta lies along n0
 /// and c1, each bounded from the projected sub-nets.
-double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::array<double, 3>& terms, const Leaf& box,
+double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const BicubicDifferences* diff, const std::array<double, 3>& terms, const Leaf& box,
                            std::int32_t S, int along, double tolerance)
 {
     Eigen::Vector3d gs, gt;
@@ -592,17 +737,18 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::
     const double gLen = g.norm();
     if (!(len > 0) || !(gLen > 0)) return std::numeric_limits<double>::infinity();
     const Eigen::Vector3d n0 = cross / len, a = g / gLen, c1 = n0.cross(a);
-    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0), C = projectedBounds(net, m, n, c1);
+    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0, diff), C = projectedBounds(net, m, n, c1, diff);
     if (norm2(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
     // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st a + M_tt b) (s: M_ss a + M_st b).
     // |a . E(x)| from the net projected on a; a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| -
     // (M_st a + M_tt b) (s: M_ss a + M_st b).
-    const Second A = projectedBounds(net, m, n, a);
-    auto step = [&](double a0, double a1, double b0, double b1) {
+    const Second A = projectedBounds(net, m, n, a, diff);
+    auto stepAt = [&](const PointFactors& f, double a1, double b1) {
         const double sig = along == 1 ? gLen - (M.st * a1 + M.tt * b1) : gLen - (M.ss * a1 + M.st * b1);
         if (!(sig > 0)) return std::numeric_limits<double>::infinity();
-        return PointFactors(a0, b0).error(A) / sig;
+        return f.error(A) / sig;
     };
+    auto step = [&](double a0, double a1, double b0, double b1) { return stepAt(PointFactors(a0, b0), a1, b1); };
     double Delta = 0;
     for (int ia = 0; ia < 4; ++ia)
         for (int ib = 0; ib < 4; ++ib) Delta = std::max(Delta, step(ia * 0.125, (ia + 1) * 0.125, ib * 0.125, (ib + 1) * 0.125));
@@ -610,12 +756,12 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const std::
     const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
     const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
     if (lo - Delta * h < 0 || hi + Delta * h > 1) return std::numeric_limits<double>::infinity();
-    const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0);
+    const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0, diff);
     const double quad = 0.5 * (along == 1 ? G.tt : G.ss);
     auto cell = [&](double a0, double a1, double b0, double b1) {
-        const double d = step(a0, a1, b0, b1);
-        if (!std::isfinite(d)) return d;
         const PointFactors f(a0, b0);
+        const double d = stepAt(f, a1, b1);
+        if (!std::isfinite(d)) return d;
         // |d . g_t(x)| <= D_st a + D_tt b for d orthogonal to g_t(c) (s: D_ss a + D_st b).
         const double slopeN = along == 1 ? N.st * a1 + N.tt * b1 : N.ss * a1 + N.st * b1;
         const double slopeC = along == 1 ? C.st * a1 + C.tt * b1 : C.ss * a1 + C.st * b1;
@@ -645,16 +791,25 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         const Leaf box = stack.back();
         if (pool.size() < static_cast<std::size_t>((k + 2) * size)) pool.resize(static_cast<std::size_t>(2 * (k + 2) * size));
         Eigen::Vector3d* net = pool.data() + static_cast<std::size_t>(k) * size;
-        const auto t = netTerms(net, m, n);
+        BicubicDifferences differences;
+        const BicubicDifferences* diff = nullptr;
+        std::array<double, 3> t;
+        if (m == 3 && n == 3) {
+            bicubicDifferences(net, differences);
+            diff = &differences;
+            t = bicubicTerms(differences);
+        } else {
+            t = netTerms(net, m, n);
+        }
         double b = (t[0] + t[1] + t[2]) / 8;
         // (Far above the tolerance the geometric bound cannot help either: its offset term grows with b.)
         if (geometric && b > tolerance && b < kGeometricRange * tolerance) {
-            const double full = geometricBound(net, m, n, t, box, S, tolerance);
+            const double full = geometricBound(net, m, n, diff, t, box, S, tolerance);
             b = std::min(b, full);
             if (!std::isfinite(full)) { // at a patch's side: the foot point along the side only
                 const bool sideU = box.u0 == 0 || box.u1 == S, sideV = box.v0 == 0 || box.v1 == S;
-                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, t, box, S, 1, tolerance));
-                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, t, box, S, 0, tolerance));
+                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, diff, t, box, S, 1, tolerance));
+                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, diff, t, box, S, 0, tolerance));
             }
         }
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
@@ -771,14 +926,18 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     std::string budgetMessage;
     if (leafBudget > 0) {
         double grid = 0; // what one grid per patch would need (an estimate from above)
-        for (const Patch& p : complex.patches) {
+        for (int q = 0; q < count; ++q) {
+            const Patch& p = complex.patches[q];
+            const double tol = toleranceOf(options, q);
             const auto t = netTerms(netOf(p).data(), p.degreeU(), p.degreeV());
-            const double nu = std::max(1.0, std::ceil(std::sqrt((t[0] + t[1] / 2) / 8 / (options.tolerance / 2))));
-            const double nv = std::max(1.0, std::ceil(std::sqrt((t[2] + t[1] / 2) / 8 / (options.tolerance / 2))));
+            const double nu = std::max(1.0, std::ceil(std::sqrt((t[0] + t[1] / 2) / 8 / (tol / 2))));
+            const double nv = std::max(1.0, std::ceil(std::sqrt((t[2] + t[1] / 2) / 8 / (tol / 2))));
             grid += 2 * std::min(nu, double(options.maxSegments)) * std::min(nv, double(options.maxSegments));
         }
         char buffer[160];
-        std::snprintf(buffer, sizeof buffer, "tolerance %g needs more than maxTriangles = %lld triangles (estimate: ", options.tolerance,
+        double smallest = options.tolerance;
+        for (double t : options.patchTolerance) smallest = smallest > 0 ? std::min(smallest, t) : t;
+        std::snprintf(buffer, sizeof buffer, "tolerance %g needs more than maxTriangles = %lld triangles (estimate: ", smallest,
                       options.maxTriangles);
         budgetMessage = std::string("tessellate: ") + buffer;
         std::snprintf(buffer, sizeof buffer, "more than %lld counted before stopping, about %.3g with one grid per patch", 2 * leafBudget,
@@ -786,9 +945,12 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
     }
     for (int p = 0; p < count; ++p) {
-        const double b = buildTree(complex.patches[p], options.tolerance, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p], leafCount, leafBudget,
-                                   budgetMessage);
+        const double tol = toleranceOf(options, p);
+        const double b = buildTree(complex.patches[p], tol, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p],
+                                   leafCount, leafBudget, budgetMessage);
         rep.errorBound = std::max(rep.errorBound, b);
+        rep.patchBound.push_back(b);
+        rep.worstRatio = std::max(rep.worstRatio, b / tol);
         std::int32_t finestU = S, finestV = S;
         for (const Leaf& l : trees[p]) {
             finestU = std::min(finestU, l.u1 - l.u0);
@@ -1072,9 +1234,9 @@ PolygonMesh tessellateGrid(const PatchComplex& complex, const TessellationOption
     std::vector<int> counts(static_cast<std::size_t>(2 * count));
     TessellationReport rep;
     for (int p = 0; p < count; ++p) {
-        const std::array<int, 2> want = options.tolerance > 0
-                                            ? adaptiveSegments(complex.patches[p], options.tolerance, options.maxSegments)
-                                            : std::array<int, 2>{options.segmentsU, options.segmentsV};
+        const bool adaptive = options.tolerance > 0 || !options.patchTolerance.empty();
+        const std::array<int, 2> want = adaptive ? adaptiveSegments(complex.patches[p], toleranceOf(options, p), options.maxSegments)
+                                                 : std::array<int, 2>{options.segmentsU, options.segmentsV};
         rep.required.push_back(want);
         counts[2 * p] = want[0];
         counts[2 * p + 1] = want[1];
@@ -1099,7 +1261,12 @@ PolygonMesh tessellateGrid(const PatchComplex& complex, const TessellationOption
         const Patch& patch = complex.patches[p];
         const int nu = counts[2 * p], nv = counts[2 * p + 1];
         rep.segments.push_back({nu, nv});
-        rep.errorBound = std::max(rep.errorBound, tessellationErrorBound(patch, nu, nv));
+        const double patchBound = tessellationErrorBound(patch, nu, nv);
+        rep.errorBound = std::max(rep.errorBound, patchBound);
+        if (options.tolerance > 0 || !options.patchTolerance.empty()) {
+            rep.patchBound.push_back(patchBound);
+            rep.worstRatio = std::max(rep.worstRatio, patchBound / toleranceOf(options, p));
+        }
         std::vector<double> us(static_cast<std::size_t>(nu + 1)), vs(static_cast<std::size_t>(nv + 1));
         for (int i = 0; i <= nu; ++i) us[i] = static_cast<double>(i) / nu;
         for (int j = 0; j <= nv; ++j) vs[j] = static_cast<double>(j) / nv;
@@ -1193,11 +1360,20 @@ PolygonMesh tessellate(const PatchComplex& complex, const TessellationOptions& o
 {
     if (options.tolerance < 0 || !std::isfinite(options.tolerance))
         throw Error("tessellate: tolerance must be positive and finite");
-    if (options.tolerance == 0 && (options.segmentsU < 1 || options.segmentsV < 1))
+    if (options.tolerance == 0 && options.patchTolerance.empty() && (options.segmentsU < 1 || options.segmentsV < 1))
         throw Error("tessellate: segment counts must be at least 1");
     if (options.maxSegments < 1) throw Error("tessellate: maxSegments must be at least 1");
     if (options.maxTriangles < 0) throw Error("tessellate: maxTriangles must be 0 (no limit) or positive");
-    if (options.tolerance > 0 && options.refinement == TessellationRefinement::Local)
+    if (!options.patchTolerance.empty()) {
+        if (options.patchTolerance.size() != complex.patches.size())
+            throw Error("tessellate: patchTolerance has " + std::to_string(options.patchTolerance.size()) + " entries for " +
+                        std::to_string(complex.patches.size()) + " patches");
+        for (std::size_t p = 0; p < options.patchTolerance.size(); ++p)
+            if (!(options.patchTolerance[p] > 0) || !std::isfinite(options.patchTolerance[p]))
+                throw Error("tessellate: patchTolerance[" + std::to_string(p) + "] must be positive and finite");
+    }
+    const bool adaptive = options.tolerance > 0 || !options.patchTolerance.empty();
+    if (adaptive && options.refinement == TessellationRefinement::Local)
         return tessellateLocal(complex, options, report);
     return tessellateGrid(complex, options, report);
 }

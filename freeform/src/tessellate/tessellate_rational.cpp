@@ -34,6 +34,7 @@ double polynomialBound(int m, int n, const Value& value, int nu, int nv)
 void checkOptions(const TessellationOptions& o)
 {
     if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance)) throw Error("tessellate: the tolerance must be finite and >= 0");
+    if (!o.patchTolerance.empty()) throw Error("tessellate: patchTolerance is for patch complexes only (tessellate())");
     if (o.tolerance == 0 && (o.segmentsU < 1 || o.segmentsV < 1))
         throw Error("tessellate: the segment counts must be at least 1");
     if (o.maxSegments < 1) throw Error("tessellate: maxSegments must be at least 1");

@@ -69,6 +69,10 @@ struct ObjectTessellation {
     double tolerance = 0; ///< > 0: adaptive to this distance; 0: uniform `segments`
     int segments = 8;     ///< per patch and direction; the subdivision level (clamped to 1..maxLevel)
     bool flip = false;    ///< reverse the triangles and negate the normals
+    /// bezier_surface / deboor_surface in adaptive mode: one tolerance per patch of AnySurface::of's
+    /// patch complex (TessellationOptions::patchTolerance; empty: `tolerance` everywhere); other
+    /// types use `tolerance`.
+    std::vector<double> patchTolerance;
 };
 
 /// The triangle mesh of a bezier_surface, deboor_surface (tessellate()) or subdivision_surface

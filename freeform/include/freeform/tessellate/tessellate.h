@@ -51,6 +51,14 @@ enum class TessellationMeasure { Parametric, Geometric };
 struct TessellationOptions {
     /// > 0: adaptive to this distance (certified, see above); 0: the fixed counts below.
     double tolerance = 0;
+    /// Empty (the default): `tolerance` for every patch. Otherwise one tolerance per patch of the
+    /// complex (each positive and finite; adaptive mode even where `tolerance` is 0): patch p is
+    /// refined to patchTolerance[p], and the certificate is per patch (report.patchBound[p] <=
+    /// patchTolerance[p] unless maxSegments binds; report.worstRatio is the largest bound/tolerance).
+    /// Shared sides take the union of the samples of both patches, so the mesh stays conforming.
+    /// (The editor's per-patch screen tolerance, docs/editor.md.) Patch complexes only: the
+    /// rational and NURBS tessellators refuse it.
+    std::vector<double> patchTolerance;
     TessellationRefinement refinement = TessellationRefinement::Local;
     /// Segments per patch in u and v (uniform mode), at least 1.
     int segmentsU = 8, segmentsV = 8;
@@ -78,6 +86,10 @@ struct TessellationReport {
     std::vector<std::array<int, 2>> required;
     std::vector<std::array<int, 2>> segments;
     double errorBound = 0;                    // the largest certified bound over the patches
+    /// Adaptive modes: the certified bound of each patch, and the largest ratio of a patch's bound
+    /// to its own tolerance (patchTolerance[p], or tolerance): at most 1 unless maxSegments binds.
+    std::vector<double> patchBound;
+    double worstRatio = 0;
     long long leaves = 0;                     // Local: sub-rectangles (leaves of the trees)
     /// With options.sampleDeviation: the largest distances found at 12 points per triangle, from
     /// the triangle point at (u, v) to f(u, v) (parametric) and to its foot point on the patch
