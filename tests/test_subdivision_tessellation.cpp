@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <unordered_map>
 #include <memory>
@@ -77,7 +78,8 @@ Reference reference(const SubdivisionCage& cage, int level)
     desc.cornerVertexIndices = corners.data();
     desc.cornerWeights = cornerW.data();
     osd::Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetVtxBoundaryInterpolation(cage.boundary == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                                                                          : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
     using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
     std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
     REQUIRE(refiner);
@@ -122,7 +124,11 @@ Deviation deviation(const PolygonMesh& mesh, const Reference& ref, double radius
     const test::TriangleGrid meshGrid(mesh, 0.05);
     for (const V3& p : ref.points) d.surfaceToMesh = std::max(d.surfaceToMesh, meshGrid.distance(p, radius));
     const test::TriangleGrid refGrid(ref.mesh, 0.05);
-    for (int v = 0; v < mesh.vertexCount(); ++v) d.vertexOff = std::max(d.vertexOff, refGrid.distance(mesh.positions.col(v), radius));
+    for (int v = 0; v < mesh.vertexCount(); ++v) {
+        const double off = refGrid.distance(mesh.positions.col(v), radius);
+        if (off > 1e-4 && std::getenv("DEBUG_OFF")) std::printf("off %g at %g %g %g\n", off, mesh.positions(0, v), mesh.positions(1, v), mesh.positions(2, v));
+        d.vertexOff = std::max(d.vertexOff, off);
+    }
     for (int f = 0; f < mesh.faceCount(); ++f) {
         const int* t = mesh.face(f);
         const V3 a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
@@ -245,18 +251,26 @@ void checkClosed(const PolygonMesh& mesh)
     CHECK(t.vertices == mesh.vertexCount()); // no unused vertex
 }
 
-void checkNormals(const PolygonMesh& mesh)
+void checkNormals(const PolygonMesh& mesh, bool creased)
 {
-    // Unit, and on the side of the triangles' own normals (counter-clockwise from outside).
-    int against = 0;
+    // Unit, and on the side of the triangles' own normals (counter-clockwise from outside): every
+    // triangle's for a smooth surface; on a sharp crease a vertex has one normal, the limit normal of
+    // one side, so there it must agree with at least one of its triangles.
+    std::vector<double> best(static_cast<std::size_t>(mesh.vertexCount()), -2.0), worst(best.size(), 2.0);
     for (int v = 0; v < mesh.normals.cols(); ++v) CHECK(std::abs(mesh.normals.col(v).norm() - 1) < 1e-9);
     for (int f = 0; f < mesh.faceCount(); ++f) {
         const int* t = mesh.face(f);
         const V3 a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
-        const V3 n = (b - a).cross(c - a);
-        for (int k = 0; k < 3; ++k)
-            if (n.dot(V3(mesh.normals.col(t[k]))) < 0) ++against;
+        const V3 n = (b - a).cross(c - a).normalized();
+        for (int k = 0; k < 3; ++k) {
+            const double d = n.dot(V3(mesh.normals.col(t[k])));
+            best[static_cast<std::size_t>(t[k])] = std::max(best[static_cast<std::size_t>(t[k])], d);
+            worst[static_cast<std::size_t>(t[k])] = std::min(worst[static_cast<std::size_t>(t[k])], d);
+        }
     }
+    int against = 0;
+    for (std::size_t v = 0; v < best.size(); ++v)
+        if ((creased ? best[v] : worst[v]) <= 0) ++against;
     CHECK(against == 0);
 }
 
@@ -275,21 +289,27 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
     struct Case {
         std::string name;
         SubdivisionCage cage;
-        bool closed;
-        int maxTriangles[2]; // regression guard at 1e-2, 1e-3
+        bool closed, creased;
+        int maxTriangles[2]; // regression guard at 1e-2, 1e-3: about 1.1 x the counts measured when written
     };
     SubdivisionCage semiSharp = readCage(kCages + "cube.obj");
     semiSharp.creases.push_back({0, 1, 2.5});
     semiSharp.creases.push_back({1, 3, 2.5});
+    SubdivisionCage cornered = openGrid();
+    cornered.boundary = BoundaryInterpolation::EdgeAndCorner;
     const std::vector<Case> cases = {
-        {"cube (8 valence-3 EVs)", readCage(kCages + "cube.obj"), true, {4000, 40000}},
-        {"pentagonal prism (valence-5 EVs, pentagons)", pentagonalPrism(), true, {4000, 40000}},
-        {"creased cube (infinitely sharp creases and corners)", readCage(kCages + "creased_cube.obj"), true, {4000, 40000}},
-        {"cube with two semi-sharp creases (2.5)", semiSharp, true, {4000, 40000}},
-        {"open grid (boundary)", openGrid(), false, {4000, 40000}},
+        {"cube (8 valence-3 EVs)", readCage(kCages + "cube.obj"), true, false, {3700, 19700}},
+        {"pentagonal prism (valence-5 EVs, pentagons)", pentagonalPrism(), true, false, {4400, 22500}},
+        {"creased cube (infinitely sharp creases and corners)", readCage(kCages + "creased_cube.obj"), true, true, {4000, 19000}},
+        {"cube with two semi-sharp creases (2.5)", semiSharp, true, true, {4200, 21000}},
+        {"open grid (boundary, sharp corners)", cornered, false, true, {1250, 9900}},
     };
     for (const Case& c : cases) {
         const Reference ref = reference(c.cage, 7);
+        // The reference triangles' own distance to the limit surface is at most the level-6
+        // triangles' distance to the level-7 ones (chords shrink with the level): the slack of the
+        // mesh-to-surface check and of the vertex check.
+        const double slack = referenceError(reference(c.cage, 6), ref);
         for (int t = 0; t < 2; ++t) {
             const double tol = t == 0 ? 1e-2 : 1e-3;
             DYNAMIC_SECTION(c.name << " at " << tol)
@@ -297,17 +317,17 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
                 const Run r = run(c.cage, tol);
                 const Deviation d = deviation(r.mesh, ref, 0.05);
                 std::printf("%-55s tol %.0e: %7d triangles, %6lld leaves, %5lld cells (%lld irregular, depth %d), bound %.3g, "
-                            "measured surface->mesh %.3g, mesh->surface %.3g, vertices off %.2g\n",
+                            "measured surface->mesh %.3g, mesh->surface %.3g, vertices off %.2g (reference slack %.2g)\n",
                             c.name.c_str(), tol, r.mesh.faceCount(), r.report.leaves, r.report.cells, r.report.irregularCells,
-                            r.report.depth, r.report.errorBound, d.surfaceToMesh, d.meshToSurface, d.vertexOff);
+                            r.report.depth, r.report.errorBound, d.surfaceToMesh, d.meshToSurface, d.vertexOff, slack);
                 CHECK(r.report.certifiedPath);
                 CHECK(d.surfaceToMesh <= tol);
-                CHECK(d.meshToSurface <= tol);
-                CHECK(d.vertexOff < 1e-4);
+                CHECK(d.meshToSurface <= tol + slack);
+                CHECK(d.vertexOff <= slack);
                 // The measured deviation never exceeds the certified bound (reference slack 1e-4).
-                CHECK(std::max(d.surfaceToMesh, d.meshToSurface) <= r.report.errorBound + 1e-4);
+                CHECK(std::max(d.surfaceToMesh, d.meshToSurface) <= r.report.errorBound + slack);
                 if (c.closed) checkClosed(r.mesh);
-                checkNormals(r.mesh);
+                checkNormals(r.mesh, c.creased);
                 if (t == 0) CHECK(tJunctions(r.mesh) == 0);
                 CHECK(r.mesh.faceCount() <= c.maxTriangles[t]);
                 int certified = 0;
@@ -341,4 +361,14 @@ TEST_CASE("certified tessellation: Loop stays an estimate and says so", "[subdiv
     CHECK_FALSE(report.certifiedPath);
     CHECK(report.faceCertified.empty());
     CHECK(m.faceCount() > 0);
+}
+
+TEST_CASE("certified tessellation: a smooth boundary corner (edge_only) keeps the estimate", "[subdivision][tessellation]")
+{
+    // A 6 x 6 grid under edge_only: its four corner vertices have one face each. OpenSubdiv's patch
+    // table gives these faces a regular corner patch that misses the limit surface (0.024 measured
+    // against uniform refinement), so the certified path is not taken there.
+    const Run r = run(openGrid(), 1e-2);
+    CHECK_FALSE(r.report.certifiedPath);
+    CHECK(r.mesh.faceCount() > 0);
 }

@@ -654,8 +654,12 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         for (int k = 0; k < 4; ++k) {
             const auto uv = cornerUV(l, k);
             Eigen::Vector3d& n = normals[static_cast<std::size_t>(vertexOf.at(builder.key(l.face, uv[0], uv[1])))];
-            if (n.isZero(0.0)) n = poly.normalized();
-            else if (n.dot(poly) < 0) n = -n;
+            // On a crease the limit normal is one side's: where OpenSubdiv's tangents give a normal
+            // more than 60 degrees from the cell's own plane (the other side of the crease), or none,
+            // the cell's normal (of its corner quad) is used instead.
+            const Eigen::Vector3d cellNormal = poly.normalized();
+            if (n.isZero(0.0) || std::abs(n.dot(cellNormal)) < 0.5) n = cellNormal;
+            else if (n.dot(cellNormal) < 0) n = -n;
         }
     }
 
