@@ -71,6 +71,13 @@ TEST_CASE("subdivide: cube cage -> closed genus 0, torus cage -> genus 1", "[cli
     const Json ti = info(torus);
     CHECK(ti["closed"] == true);
     CHECK(ti["genus"] == 1);
+    // The certified path (docs/subdivision.md): every face of the torus cage is certified.
+    const Json tj = Json::parse(r.out);
+    CHECK(tj["certified"] == true);
+    CHECK(tj["faces_certified"] == 32);
+    CHECK(tj["error_bound"].get<double>() <= 1e-3);
+    CHECK(tj["error_bound"].get<double>() > 0);
+    CHECK(tj["leaves"].get<long long>() >= tj["cells"].get<long long>());
 
     // Triangles default to Loop.
     const std::string octa = tmp("sub_octa.off");

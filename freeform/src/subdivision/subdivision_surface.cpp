@@ -499,7 +499,7 @@ PolygonMesh SubdivisionSurface::tessellate(const SubdivisionTessellationOptions&
     bool smoothCorner = false;
     if (t.boundary == BoundaryInterpolation::EdgeOnly)
         for (std::size_t v = 0; v < t.valence.size(); ++v) smoothCorner = smoothCorner || (t.boundaryVertex[v] && t.valence[v] == 1);
-    if (options.tolerance > 0 && t.scheme == SubdivisionScheme::Catmark && t.boundary != BoundaryInterpolation::None &&
+    if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Catmark && t.boundary != BoundaryInterpolation::None &&
         cage_.holes.empty() && !cage_.smoothTriangles && !smoothCorner)
         return tessellateCertified(options, report);
     const PolygonMesh& cageMesh = cage_.mesh;

@@ -108,6 +108,9 @@ struct SubdivisionTessellationOptions {
     /// second derivatives, not certified); a shared edge gets the larger count of its two faces.
     double tolerance = 0;
     int maxLevel = 256;
+    /// false: the estimate path (per-face segment counts, rates in the report) even where the
+    /// certified path applies.
+    bool certified = true;
     /// Certified path: how deep irregular cells are refined, 1..10 (OpenSubdiv's patch table holds
     /// no deeper level); where it binds, the report's errorBound exceeds the tolerance.
     int maxDepth = 10;
