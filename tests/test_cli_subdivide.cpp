@@ -78,6 +78,16 @@ TEST_CASE("subdivide: cube cage -> closed genus 0, torus cage -> genus 1", "[cli
     CHECK(tj["error_bound"].get<double>() <= 1e-3);
     CHECK(tj["error_bound"].get<double>() > 0);
     CHECK(tj["leaves"].get<long long>() >= tj["cells"].get<long long>());
+    // freeform tessellate on a subdivision_surface object takes the same certified path.
+    const std::string tessellated = tmp("tess_torus.obj");
+    r = cli("tessellate '" + cage("torus.json") + "' --object torus -o '" + tessellated + "' --tolerance 1e-3");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const Json tt = Json::parse(r.out);
+    CHECK(tt["certified"] == true);
+    CHECK(tt["error_bound"].get<double>() <= 1e-3);
+    CHECK(tt["triangles"] == tj["triangles"]);
+    CHECK(info(tessellated)["genus"] == 1);
 
     // Triangles default to Loop.
     const std::string octa = tmp("sub_octa.off");
