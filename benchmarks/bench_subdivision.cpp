@@ -5,12 +5,14 @@
 // tessellation, tessellate/tessellate.h). The cage is a 100 x 100 torus-shaped quad grid with a
 // bumpy radius: every vertex has valence 4, so every face is regular and both routes cover the
 // same surface. Also the set-up cost (cage validation, OpenSubdiv topology, one Bfr::Surface per
-// face). Figures: docs/performance.md.
+// face). Figures: docs/performance.md. BM_CertifiedCube: the certified tessellation of the cube cage
+// at 1e-3 (docs/subdivision.md).
 //
 //   build/bin/bench_subdivision --benchmark_min_time=1
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 
 #include "freeform/subdivision/subdivision_surface.h"
@@ -91,6 +93,30 @@ void BM_BezierRouteConversionOnly(benchmark::State& state)
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * kMajor * kMinor);
 }
 BENCHMARK(BM_BezierRouteConversionOnly)->Unit(benchmark::kMillisecond);
+
+// The certified tessellation (docs/subdivision.md, "Certified tessellation") of the cube cage (8
+// valence-3 extraordinary vertices, side 2) at 1e-3: triangles, the bound reached, and time.
+void BM_CertifiedCube(benchmark::State& state)
+{
+    freeform::SubdivisionCage cage;
+    cage.mesh.positions.resize(3, 8);
+    for (int i = 0; i < 8; ++i) cage.mesh.positions.col(i) = Eigen::Vector3d(i & 4 ? 1 : -1, i & 2 ? 1 : -1, i & 1 ? 1 : -1);
+    for (auto f : {std::array{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}})
+        cage.mesh.addFace(f.begin(), f.end());
+    const freeform::SubdivisionSurface s(cage, freeform::SubdivisionScheme::Catmark);
+    freeform::SubdivisionTessellationOptions o;
+    o.tolerance = 1e-3;
+    freeform::SubdivisionTessellationReport report;
+    freeform::PolygonMesh mesh;
+    for (auto _ : state) {
+        mesh = s.tessellate(o, &report);
+        benchmark::DoNotOptimize(mesh.positions.data());
+    }
+    state.counters["triangles"] = static_cast<double>(mesh.faceCount());
+    state.counters["bound"] = report.errorBound;
+    state.counters["leaves"] = static_cast<double>(report.leaves);
+}
+BENCHMARK(BM_CertifiedCube)->Unit(benchmark::kMillisecond);
 
 void BM_OpenSubdivSetUp(benchmark::State& state)
 {

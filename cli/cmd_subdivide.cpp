@@ -83,6 +83,20 @@ Json subdivide(const SubdivideOptions& o)
     out["segments"] = Json::array({minRate, maxRate});
     out["vertices"] = mesh.vertexCount();
     out["triangles"] = mesh.faceCount();
+    if (options.tolerance > 0) {
+        // docs/subdivision.md, "Certified tessellation": the bound holds both ways on every face
+        // counted in faces_certified; the other faces (or the whole cage, off the certified path)
+        // have only an estimate.
+        int certifiedFaces = 0;
+        for (char c : report.faceCertified) certifiedFaces += c ? 1 : 0;
+        out["certified"] = report.certifiedPath && certifiedFaces == surface.faceCount();
+        out["faces_certified"] = certifiedFaces;
+        if (report.certifiedPath) {
+            out["error_bound"] = report.errorBound;
+            out["cells"] = report.cells;
+            out["leaves"] = report.leaves;
+        }
+    }
     return out;
 }
 
@@ -98,7 +112,9 @@ Action defineSubdivide(CLI::App& app)
                "closed mesh. docs/subdivision.md explains the schemes and the options.\n"
                "\n"
                "Output: {\"input\", \"output\", \"scheme\", \"boundary\", [\"lattice\"], \"cage_vertices\",\n"
-               "\"cage_faces\", \"creases\", \"corners\", \"segments\": [min, max], \"vertices\", \"triangles\"}.\n"
+               "\"cage_faces\", \"creases\", \"corners\", \"segments\": [min, max], \"vertices\", \"triangles\"}, and with\n"
+               "--tolerance \"certified\", \"faces_certified\" (and on the certified path \"error_bound\", \"cells\",\n"
+               "\"leaves\").\n"
                "Exit status: 0 ok, 1 bad input (an unusable cage: one error line naming the face, edge or\n"
                "vertex; no output file), 2 bad usage.");
     addPositionals(app, "CAGE", o->positional, "the control cage (a mesh file)");
@@ -114,8 +130,9 @@ Action defineSubdivide(CLI::App& app)
                         ->type_name("N")
                         ->capture_default_str();
     o->toleranceGiven = addNumber(app, "--tolerance", o->tolerance,
-                                  "adaptive segments per face: certified (Bezier bound) on regular faces, estimated "
-                                  "from sampled second derivatives elsewhere (not with --level)")
+                                  "adaptive to distance E: certified on Catmull-Clark cages (Bezier cells and 1-ring "
+                                  "hulls, docs/subdivision.md), an estimate for Loop, holes, boundary none and "
+                                  "edge_only cages with a one-face corner (not with --level)")
                             ->type_name("E");
     app.add_option("--boundary", o->boundary, "boundary interpolation: edge_only, edge_and_corner, or none (boundary faces dropped)")
         ->type_name("B")

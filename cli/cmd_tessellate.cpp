@@ -1,5 +1,6 @@
 // freeform tessellate: surfaces of a document (or a .bpt patch file) to a triangle mesh in OBJ.
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -8,6 +9,7 @@
 #include "freeform/document/operations.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/mesh_io.h"
+#include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/tessellate/tessellate.h"
 
 namespace freeform::cli {
@@ -32,6 +34,39 @@ struct TessellateOptions {
     const CLI::Option* segmentsGiven = nullptr;
     const CLI::Option* objectGiven = nullptr;
 };
+
+/// A subdivision_surface named by --object: the library's tessellation (certified with a tolerance
+/// on a Catmull-Clark cage, docs/subdivision.md), reported with the patch fields where they apply.
+Json subdivisionCommand(const SubdivisionSurface& surface, const TessellateOptions& o, const std::string& output)
+{
+    SubdivisionTessellationOptions options;
+    if (given(o.toleranceGiven)) options.tolerance = o.tolerance;
+    else options.level = std::clamp(o.segments, 1, options.maxLevel);
+    SubdivisionTessellationReport report;
+    PolygonMesh mesh = surface.tessellate(options, &report);
+    if (o.outward) {
+        for (int f = 0; f < mesh.faceCount(); ++f) std::swap(mesh.faceVertices[3 * static_cast<std::size_t>(f) + 1], mesh.faceVertices[3 * static_cast<std::size_t>(f) + 2]);
+        mesh.normals = -mesh.normals;
+    }
+    if (o.maxTriangles > 0 && mesh.faceCount() > o.maxTriangles)
+        throw Error("tessellation: " + std::to_string(mesh.faceCount()) + " triangles exceed --max-triangles " + std::to_string(o.maxTriangles));
+    writePolygonMesh(mesh, output);
+    int certifiedFaces = 0;
+    for (char c : report.faceCertified) certifiedFaces += c ? 1 : 0;
+    Json out;
+    out["output"] = output;
+    out["patches"] = report.cells;
+    out["vertices"] = mesh.vertexCount();
+    out["triangles"] = mesh.faceCount();
+    if (report.certifiedPath) out["error_bound"] = report.errorBound;
+    out["certified"] = report.certifiedPath && certifiedFaces == surface.faceCount();
+    out["faces_certified"] = certifiedFaces;
+    if (report.certifiedPath) {
+        out["cells"] = report.cells;
+        out["leaves"] = report.leaves;
+    }
+    return out;
+}
 
 Json tessellateCommand(const TessellateOptions& o)
 {
@@ -66,6 +101,8 @@ Json tessellateCommand(const TessellateOptions& o)
         const TypedDocument& doc = document.emplace(TypedDocument::read(input));
         if (given(o.objectGiven)) {
             const TypedObject& object = doc.object(o.object);
+            if (const auto* sub = std::get_if<SubdivisionObject>(&object.geometry()))
+                return subdivisionCommand(sub->surface, o, output);
             if (isRationalSurface(object)) rational.push_back(&object);
             else complex = surfacePatches(doc, object);
         } else {

@@ -63,6 +63,23 @@ TEST_CASE("subdivide: cube cage -> closed genus 0, torus cage -> genus 1", "[cli
     const Json ti = info(torus);
     CHECK(ti["closed"] == true);
     CHECK(ti["genus"] == 1);
+    // The certified path (docs/subdivision.md): every face of the torus cage is certified.
+    const Json tj = Json::parse(r.out);
+    CHECK(tj["certified"] == true);
+    CHECK(tj["faces_certified"] == 32);
+    CHECK(tj["error_bound"].get<double>() <= 1e-3);
+    CHECK(tj["error_bound"].get<double>() > 0);
+    CHECK(tj["leaves"].get<long long>() >= tj["cells"].get<long long>());
+    // freeform tessellate on a subdivision_surface object takes the same certified path.
+    const std::string tessellated = tmp("tess_torus.obj");
+    r = cli("tessellate '" + cage("torus.json") + "' --object torus -o '" + tessellated + "' --tolerance 1e-3");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const Json tt = Json::parse(r.out);
+    CHECK(tt["certified"] == true);
+    CHECK(tt["error_bound"].get<double>() <= 1e-3);
+    CHECK(tt["triangles"] == tj["triangles"]);
+    CHECK(info(tessellated)["genus"] == 1);
 
     // Triangles default to Loop.
     const std::string octa = tmp("sub_octa.off");

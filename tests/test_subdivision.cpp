@@ -191,6 +191,7 @@ TEST_CASE("tessellation: closed cages give closed meshes of the right genus", "[
             SubdivisionTessellationOptions o;
             o.level = 3;
             o.tolerance = tolerance;
+            o.certified = false; // the per-face rates (the certified path: test_subdivision_tessellation)
             SubdivisionTessellationReport report;
             const MeshReport r = meshReport(s.tessellate(o, &report));
             CAPTURE(tolerance);

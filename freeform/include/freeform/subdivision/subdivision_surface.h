@@ -96,17 +96,40 @@ struct LimitPoint {
 struct SubdivisionTessellationOptions {
     /// Segments per face edge in uniform mode (tolerance 0), at least 1.
     int level = 8;
-    /// > 0: adaptive; each face gets the fewest segments whose error estimate is at most this
-    /// (regular faces: the certified bound of their Bézier patch; other faces: the same formula with
-    /// second derivatives sampled inside the face on the limit surface, an estimate); a shared edge
-    /// gets the larger count of its two faces.
+    /// > 0: adaptive. Catmark cages (without holes, boundary none or smooth triangles) take the
+    /// certified path (docs/subdivision.md, "Certified tessellation"): every base face is cut into
+    /// cells (OpenSubdiv's adaptive refinement and patch table), a regular cell is a bicubic Bézier
+    /// patch split by de Casteljau until netErrorBound is at most this, an irregular cell (at an
+    /// extraordinary vertex, a sharp corner, an irregular crease or boundary vertex) is bounded by
+    /// the convex hull of its 1-ring; the bound holds both ways (mesh to surface, surface to mesh)
+    /// and the mesh is conforming and watertight. Other cages (Loop, holes, boundary none, smooth
+    /// triangles) keep the estimate: each face gets the fewest segments whose error estimate is at
+    /// most this (regular faces: the certified bound of their Bézier patch; other faces: sampled
+    /// second derivatives, not certified); a shared edge gets the larger count of its two faces.
     double tolerance = 0;
     int maxLevel = 256;
+    /// false: the estimate path (per-face segment counts, rates in the report) even where the
+    /// certified path applies.
+    bool certified = true;
+    /// Certified path: how deep irregular cells are refined, 1..10 (OpenSubdiv's patch table holds
+    /// no deeper level); where it binds, the report's errorBound exceeds the tolerance.
+    int maxDepth = 10;
+    /// Certified path: how often a regular cell may be halved by de Casteljau (per direction).
+    int maxSplits = 16;
 };
 
 struct SubdivisionTessellationReport {
-    std::vector<int> rates; ///< per face: segments chosen for the face (0: no limit surface)
-    int regularFaces = 0;   ///< faces whose rate came from the certified Bézier bound (adaptive)
+    std::vector<int> rates; ///< per face: segments chosen for the face (0: no limit surface); estimate path only
+    int regularFaces = 0;   ///< faces whose rate came from the certified Bézier bound (adaptive, estimate path)
+    // Certified path (tolerance > 0 on a Catmark cage, see the options):
+    bool certifiedPath = false;      ///< the certified path ran
+    double errorBound = 0;           ///< the largest certified bound over all leaves (both ways)
+    long long cells = 0;             ///< cells from the patch table (regular patches + irregular cells)
+    long long irregularCells = 0;    ///< of them, irregular (bounded by their 1-ring hull)
+    long long leaves = 0;            ///< leaves after de Casteljau splitting
+    int depth = 0;                   ///< refinement level of the irregular cells
+    std::vector<double> faceBounds;  ///< per cage face: its largest leaf bound (0: no limit surface)
+    std::vector<char> faceCertified; ///< per cage face: 1 when its bound is certified and within the tolerance
 };
 
 class SubdivisionSurface {
@@ -160,6 +183,8 @@ public:
     SubdivisionSurface withPositions(const Eigen::Matrix<double, 3, Eigen::Dynamic>& positions) const;
 
 private:
+    PolygonMesh tessellateCertified(const SubdivisionTessellationOptions& options,
+                                    SubdivisionTessellationReport* report) const;
     struct Topology;
     std::shared_ptr<const Topology> topology_;
     SubdivisionCage cage_;

@@ -1,0 +1,725 @@
+// Certified tessellation of a Catmull-Clark limit surface (docs/subdivision.md, "Certified
+// tessellation"): cells from OpenSubdiv's adaptive refinement and patch table; a regular cell is a
+// bicubic Bézier patch split by de Casteljau until netErrorBound(patch) <= tolerance, an irregular
+// cell (innermost level, next to an extraordinary vertex or an irregular sharp feature) is bounded
+// by the convex hull of its 1-ring. Every mesh vertex is an exact limit point, computed once under a
+// canonical key (cage vertex, cage edge + dyadic parameter, or face + dyadic (u, v)), so the mesh is
+// conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
+// corners of the leaves touching its sides (ear clipping in (u, v)), so its bound holds.
+
+#include "freeform/subdivision/subdivision_surface.h"
+
+#include <opensubdiv/far/error.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <unordered_map>
+
+#include "freeform/tessellate/tessellate.h"
+#include "osd_errors.h"
+
+namespace freeform {
+
+namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+
+namespace {
+
+using Index = osd::Far::Index;
+using Int = std::int64_t;
+constexpr int kResolutionBits = 40;           // dyadic parameters are integers over 2^40
+constexpr Int kR = Int(1) << kResolutionBits; // the face's side
+
+/// A point of a primvar buffer for OpenSubdiv's refiners.
+struct Point3 {
+    double p[3] = {0, 0, 0};
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const Point3& s, double w)
+    {
+        p[0] += w * s.p[0];
+        p[1] += w * s.p[1];
+        p[2] += w * s.p[2];
+    }
+    Eigen::Vector3d vec() const { return {p[0], p[1], p[2]}; }
+};
+
+/// The all-quad base mesh the cells live on: the cage itself when every face is a quad, else the
+/// cage refined once (every Catmark face then has quads; each base face records its cage face).
+struct QuadBase {
+    int vertices = 0;
+    std::vector<int> faceVerts; // 4 per face
+    std::vector<int> cageFace;  // per base face
+    std::vector<Point3> positions;
+    std::vector<int> creasePairs, cornerIdx;
+    std::vector<float> creaseW, cornerW;
+    int faces() const { return static_cast<int>(faceVerts.size() / 4); }
+};
+
+osd::Sdc::Options sdcOptions(const SubdivisionCage& cage, BoundaryInterpolation boundary)
+{
+    osd::Sdc::Options sdc;
+    sdc.SetCreasingMethod(cage.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
+    sdc.SetTriangleSubdivision(osd::Sdc::Options::TRI_SUB_CATMARK);
+    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
+                                    : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                                                                   : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    return sdc;
+}
+
+std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::vector<int>& counts, const std::vector<int>& indices,
+                                                       const std::vector<int>& creasePairs, const std::vector<float>& creaseW,
+                                                       const std::vector<int>& cornerIdx, const std::vector<float>& cornerW,
+                                                       const osd::Sdc::Options& sdc)
+{
+    osd::Far::TopologyDescriptor desc;
+    desc.numVertices = vertices;
+    desc.numFaces = static_cast<int>(counts.size());
+    desc.numVertsPerFace = counts.data();
+    desc.vertIndicesPerFace = indices.data();
+    desc.numCreases = static_cast<int>(creaseW.size());
+    desc.creaseVertexIndexPairs = creasePairs.data();
+    desc.creaseWeights = creaseW.data();
+    desc.numCorners = static_cast<int>(cornerW.size());
+    desc.cornerVertexIndices = cornerIdx.data();
+    desc.cornerWeights = cornerW.data();
+    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+    clearOsdError();
+    std::unique_ptr<osd::Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
+    takeOsdError();
+    if (!r) throw Error("subdivision tessellation: OpenSubdiv could not build the topology");
+    return r;
+}
+
+QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
+{
+    const PolygonMesh& mesh = cage.mesh;
+    QuadBase b;
+    std::vector<int> creasePairs, cornerIdx;
+    std::vector<float> creaseW, cornerW;
+    for (const EdgeCrease& c : cage.creases) {
+        creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
+        creaseW.push_back(static_cast<float>(c.sharpness));
+    }
+    for (const VertexCorner& c : cage.corners) {
+        cornerIdx.push_back(c.vertex);
+        cornerW.push_back(static_cast<float>(c.sharpness));
+    }
+    bool quads = true;
+    for (int f = 0; f < mesh.faceCount(); ++f) quads = quads && mesh.faceSize(f) == 4;
+    b.positions.resize(static_cast<std::size_t>(mesh.vertexCount()));
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        for (int k = 0; k < 3; ++k) b.positions[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
+    if (quads) {
+        b.vertices = mesh.vertexCount();
+        b.faceVerts = mesh.faceVertices;
+        b.cageFace.resize(static_cast<std::size_t>(mesh.faceCount()));
+        for (int f = 0; f < mesh.faceCount(); ++f) b.cageFace[static_cast<std::size_t>(f)] = f;
+        b.creasePairs = std::move(creasePairs);
+        b.creaseW = std::move(creaseW);
+        b.cornerIdx = std::move(cornerIdx);
+        b.cornerW = std::move(cornerW);
+        return b;
+    }
+    // One uniform level: every face becomes quads; sharpness as OpenSubdiv carries it to level 1.
+    std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()));
+    for (int f = 0; f < mesh.faceCount(); ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
+    auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, sdc);
+    osd::Far::TopologyRefiner::UniformOptions uniform(1);
+    uniform.fullTopologyInLastLevel = true;
+    refiner->RefineUniform(uniform);
+    const osd::Far::TopologyLevel& level = refiner->GetLevel(1);
+    std::vector<Point3> fine(static_cast<std::size_t>(level.GetNumVertices()));
+    const Point3* src = b.positions.data();
+    Point3* dst = fine.data();
+    osd::Far::PrimvarRefinerReal<double>(*refiner).Interpolate(1, src, dst);
+    b.positions = std::move(fine);
+    b.vertices = level.GetNumVertices();
+    for (int f = 0; f < level.GetNumFaces(); ++f) {
+        const auto fv = level.GetFaceVertices(f);
+        for (int k = 0; k < fv.size(); ++k) b.faceVerts.push_back(fv[k]);
+        b.cageFace.push_back(level.GetFaceParentFace(f));
+    }
+    for (int e = 0; e < level.GetNumEdges(); ++e) {
+        const float s = level.GetEdgeSharpness(e);
+        if (s > 0 && level.GetEdgeFaces(e).size() == 2) {
+            const auto ev = level.GetEdgeVertices(e);
+            b.creasePairs.insert(b.creasePairs.end(), {ev[0], ev[1]});
+            b.creaseW.push_back(s);
+        }
+    }
+    for (int v = 0; v < level.GetNumVertices(); ++v) {
+        const float s = level.GetVertexSharpness(v);
+        if (s > 0) {
+            b.cornerIdx.push_back(v);
+            b.cornerW.push_back(s);
+        }
+    }
+    return b;
+}
+
+/// A canonical point: kind 0 a base vertex (a), 1 a point inside a base edge (a < b, x from a),
+/// 2 a point inside a base face (a, x = u, y = v).
+struct Key {
+    int kind = 0, a = 0, b = 0;
+    Int x = 0, y = 0;
+    bool operator==(const Key& o) const { return kind == o.kind && a == o.a && b == o.b && x == o.x && y == o.y; }
+};
+struct KeyHash {
+    std::size_t operator()(const Key& k) const
+    {
+        std::uint64_t h = static_cast<std::uint64_t>(k.kind) * 0x9E3779B97F4A7C15ull;
+        for (std::uint64_t v : {static_cast<std::uint64_t>(k.a), static_cast<std::uint64_t>(k.b), static_cast<std::uint64_t>(k.x),
+                                static_cast<std::uint64_t>(k.y)})
+            h = (h ^ v) * 0x100000001B3ull + (h >> 29);
+        return static_cast<std::size_t>(h);
+    }
+};
+
+/// A line that leaf sides lie on: kind 0 a base edge (a < b), 1 the line v = c of face a, 2 the
+/// line u = c of face a.
+using LineKey = std::array<Int, 3>;
+
+struct Leaf {
+    int face = 0;
+    Int u0 = 0, v0 = 0, u1 = 0, v1 = 0;
+    int patch = -1; // index into the regular leaf patches; -1: irregular
+    double bound = 0;
+};
+
+class Builder {
+public:
+    explicit Builder(const QuadBase& base) : base_(base) {}
+
+    /// The canonical key of face f's dyadic point (iu, iv), and (for a point inside an edge) the
+    /// edge's line with the canonical coordinate.
+    Key key(int f, Int iu, Int iv) const
+    {
+        const int* fv = &base_.faceVerts[static_cast<std::size_t>(4 * f)];
+        if (iu > 0 && iu < kR && iv > 0 && iv < kR) return {2, f, 0, iu, iv};
+        int k;
+        Int t;
+        if (iv == 0 && iu < kR) k = 0, t = iu;
+        else if (iu == kR && iv < kR) k = 1, t = iv;
+        else if (iv == kR && iu > 0) k = 2, t = kR - iu;
+        else k = 3, t = kR - iv;
+        if (t == 0) return {0, fv[k], 0, 0, 0};
+        const int a = fv[k], b = fv[(k + 1) % 4];
+        return a < b ? Key{1, a, b, t, 0} : Key{1, b, a, kR - t, 0};
+    }
+
+    void registerCorner(int f, Int iu, Int iv)
+    {
+        const Key k = key(f, iu, iv);
+        if (k.kind == 2) {
+            lines_[{1, f, iv}].push_back(iu);
+            lines_[{2, f, iu}].push_back(iv);
+        } else if (k.kind == 1) {
+            lines_[{0, k.a * Int(1 << 30) + k.b, 0}].push_back(k.x);
+        }
+    }
+
+    void sortLines()
+    {
+        for (auto& [line, xs] : lines_) {
+            std::sort(xs.begin(), xs.end());
+            xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+        }
+    }
+
+    /// The registered points strictly inside the side from (pu, pv) to (qu, qv) of face f (an
+    /// axis-parallel segment), in order from p to q, as face coordinates.
+    void sidePoints(int f, Int pu, Int pv, Int qu, Int qv, std::vector<std::array<Int, 2>>& out) const
+    {
+        out.clear();
+        const bool horizontal = pv == qv;
+        const Int c = horizontal ? pv : pu;
+        if (c == 0 || c == kR) {
+            const Key kp = key(f, pu, pv), kq = key(f, qu, qv);
+            // The edge of face f the side lies on.
+            int k = horizontal ? (c == 0 ? 0 : 2) : (c == 0 ? 3 : 1);
+            const int* fv = &base_.faceVerts[static_cast<std::size_t>(4 * f)];
+            const int a = fv[k], b = fv[(k + 1) % 4];
+            const int lo = std::min(a, b), hi = std::max(a, b);
+            auto canonical = [&](const Key& kk) -> Int {
+                if (kk.kind == 1) return kk.x;
+                return kk.a == lo ? 0 : kR; // a vertex: the edge's end
+            };
+            const Int tp = canonical(kp), tq = canonical(kq);
+            const auto it = lines_.find({0, lo * Int(1 << 30) + hi, 0});
+            if (it == lines_.end()) return;
+            const Int tmin = std::min(tp, tq), tmax = std::max(tp, tq);
+            auto first = std::upper_bound(it->second.begin(), it->second.end(), tmin);
+            auto last = std::lower_bound(it->second.begin(), it->second.end(), tmax);
+            for (auto i = first; i != last; ++i) {
+                const Int tLocal = a < b ? *i : kR - *i; // from a along edge k
+                std::array<Int, 2> uv{};
+                switch (k) {
+                case 0: uv = {tLocal, 0}; break;
+                case 1: uv = {kR, tLocal}; break;
+                case 2: uv = {kR - tLocal, kR}; break;
+                default: uv = {0, kR - tLocal}; break;
+                }
+                out.push_back(uv);
+            }
+        } else {
+            const auto it = lines_.find({horizontal ? 1 : 2, f, c});
+            if (it == lines_.end()) return;
+            const Int p = horizontal ? pu : pv, q = horizontal ? qu : qv;
+            auto first = std::upper_bound(it->second.begin(), it->second.end(), std::min(p, q));
+            auto last = std::lower_bound(it->second.begin(), it->second.end(), std::max(p, q));
+            for (auto i = first; i != last; ++i) out.push_back(horizontal ? std::array<Int, 2>{*i, c} : std::array<Int, 2>{c, *i});
+        }
+        const Int p = horizontal ? pu : pv, q = horizontal ? qu : qv;
+        const bool forward = q > p;
+        auto coord = [&](const std::array<Int, 2>& x) { return horizontal ? x[0] : x[1]; };
+        std::sort(out.begin(), out.end(), [&](const auto& x, const auto& y) { return forward ? coord(x) < coord(y) : coord(x) > coord(y); });
+    }
+
+private:
+    const QuadBase& base_;
+    std::map<LineKey, std::vector<Int>> lines_;
+};
+
+/// max |second differences| terms of a bicubic net: (u, uv, v) parts of netErrorBound.
+std::array<double, 3> boundTerms(const Patch& p)
+{
+    const int m = p.degreeU(), n = p.degreeV();
+    const auto& b = p.controlPoints();
+    auto at = [&](int i, int j) { return Eigen::Vector3d(b.col(i * (n + 1) + j)); };
+    double uu = 0, uv = 0, vv = 0;
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            if (i + 2 <= m) uu = std::max(uu, (at(i + 2, j) - 2 * at(i + 1, j) + at(i, j)).norm());
+            if (j + 2 <= n) vv = std::max(vv, (at(i, j + 2) - 2 * at(i, j + 1) + at(i, j)).norm());
+            if (i + 1 <= m && j + 1 <= n) uv = std::max(uv, (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)).norm());
+        }
+    return {m * (m - 1) * uu / 8, 2.0 * m * n * uv / 8, n * (n - 1) * vv / 8};
+}
+
+/// Twice the signed area of (a, b, c) in (u, v) (integers as long double: exact enough at 2^40).
+long double cross2(const std::array<Int, 2>& a, const std::array<Int, 2>& b, const std::array<Int, 2>& c)
+{
+    return static_cast<long double>(b[0] - a[0]) * static_cast<long double>(c[1] - a[1]) -
+           static_cast<long double>(b[1] - a[1]) * static_cast<long double>(c[0] - a[0]);
+}
+
+/// Whether x lies in the closed triangle abc (counter-clockwise).
+bool inTriangle(const std::array<Int, 2>& x, const std::array<Int, 2>& a, const std::array<Int, 2>& b, const std::array<Int, 2>& c)
+{
+    return cross2(a, b, x) >= 0 && cross2(b, c, x) >= 0 && cross2(c, a, x) >= 0;
+}
+
+/// Ear clipping of a convex polygon (counter-clockwise, collinear points allowed) in (u, v): every
+/// ear has positive area and no other polygon point in it; appends triangles of polygon indices.
+void earClip(const std::vector<std::array<Int, 2>>& poly, std::vector<std::array<int, 3>>& out)
+{
+    std::vector<int> ring(poly.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = static_cast<int>(i);
+    std::size_t guard = 0;
+    std::size_t start = 0;
+    while (ring.size() > 3 && guard < 4 * poly.size() * poly.size() + 16) {
+        ++guard;
+        bool clipped = false;
+        for (std::size_t s = 0; s < ring.size() && !clipped; ++s) {
+            const std::size_t i = (start + s) % ring.size();
+            const int a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], c = ring[(i + 1) % ring.size()];
+            const auto& pa = poly[static_cast<std::size_t>(a)];
+            const auto& pb = poly[static_cast<std::size_t>(b)];
+            const auto& pc = poly[static_cast<std::size_t>(c)];
+            if (!(cross2(pa, pb, pc) > 0)) continue;
+            bool empty = true;
+            for (int o : ring)
+                if (o != a && o != b && o != c && inTriangle(poly[static_cast<std::size_t>(o)], pa, pb, pc)) {
+                    empty = false;
+                    break;
+                }
+            if (!empty) continue;
+            out.push_back({a, b, c});
+            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+            start = i % ring.size();
+            clipped = true;
+        }
+        if (!clipped) break;
+    }
+    if (ring.size() == 3 && cross2(poly[static_cast<std::size_t>(ring[0])], poly[static_cast<std::size_t>(ring[1])],
+                                   poly[static_cast<std::size_t>(ring[2])]) > 0)
+        out.push_back({ring[0], ring[1], ring[2]});
+    else if (ring.size() > 3)
+        throw Error("subdivision tessellation: a leaf polygon could not be triangulated (internal)");
+}
+
+/// The Bézier patch of a regular B-spline patch of the patch table (16 points, OpenSubdiv's order:
+/// index 4 i + j, j along u, i along v; boundary bits extrapolate the missing row or column).
+Patch bezierOfRegular(const std::vector<Point3>& all, osd::Far::ConstIndexArray cvs, unsigned boundary)
+{
+    Eigen::Vector3d P[4][4]; // [i along v][j along u]
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) P[i][j] = all[static_cast<std::size_t>(cvs[4 * i + j])].vec();
+    if (boundary & 8u)
+        for (int i = 0; i < 4; ++i) P[i][0] = 2 * P[i][1] - P[i][2];
+    if (boundary & 2u)
+        for (int i = 0; i < 4; ++i) P[i][3] = 2 * P[i][2] - P[i][1];
+    if (boundary & 1u)
+        for (int j = 0; j < 4; ++j) P[0][j] = 2 * P[1][j] - P[2][j];
+    if (boundary & 4u)
+        for (int j = 0; j < 4; ++j) P[3][j] = 2 * P[2][j] - P[1][j];
+    PointMatrix<double, 3> deBoor(3, 16);
+    for (int r = 0; r < 4; ++r)     // along u
+        for (int c = 0; c < 4; ++c) // along v
+            deBoor.col(r * 4 + c) = P[c][r];
+    return deboorSurfacePatches(deBoor, 4, 4, EndCondition::Open, EndCondition::Open).patches.front();
+}
+
+Eigen::Vector3d unitNormal(const Patch& p, double u, double v)
+{
+    auto at = [&](double a, double b) {
+        const auto jet = p.jet(a, b, 1);
+        return Eigen::Vector3d(Eigen::Vector3d(jet.col(1)).cross(Eigen::Vector3d(jet.col(2))));
+    };
+    Eigen::Vector3d n = at(u, v);
+    if (!(n.norm() > 1e-300)) {
+        // f_u x f_v vanishes here (a collapsed corner): the normal approached from the leaf's centre.
+        const double w = 1e-7;
+        n = at((1 - w) * u + w * 0.5, (1 - w) * v + w * 0.5);
+    }
+    const double len = n.norm();
+    return len > 0 && std::isfinite(len) ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+} // namespace
+
+PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellationOptions& options,
+                                                    SubdivisionTessellationReport* report) const
+{
+    if (options.maxDepth < 1 || options.maxDepth > 10)
+        throw Error("subdivision tessellation: maxDepth " + std::to_string(options.maxDepth) + " is outside 1..10");
+    if (options.maxSplits < 0 || options.maxSplits > 28)
+        throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
+    const double tol = options.tolerance;
+    const osd::Sdc::Options sdc = sdcOptions(cage_, boundary());
+    const QuadBase base = quadBase(cage_, sdc);
+    std::vector<int> counts(static_cast<std::size_t>(base.faces()), 4);
+
+    // Semi-sharp features must be refined past their sharpness before their cells are regular
+    // patches or their limit masks are exact.
+    double semiSharp = 0;
+    for (float s : base.creaseW)
+        if (s < kInfiniteSharpness) semiSharp = std::max(semiSharp, static_cast<double>(s));
+    for (float s : base.cornerW)
+        if (s < kInfiniteSharpness) semiSharp = std::max(semiSharp, static_cast<double>(s));
+    const int firstDepth = std::clamp(static_cast<int>(std::ceil(semiSharp)) + 1, 1, options.maxDepth);
+
+    struct Irregular {
+        int face = 0, depth = 0;
+        Int u0 = 0, v0 = 0, size = 0;
+        std::array<Eigen::Vector3d, 4> corner, normal; // at (u0, v0), (u1, v0), (u1, v1), (u0, v1)
+        double bound = 0;
+    };
+    struct Regular {
+        int face = 0;
+        Int u0 = 0, v0 = 0, size = 0;
+        Patch patch;
+    };
+    std::vector<Irregular> irregular;
+    std::vector<Regular> regular;
+    int depth = firstDepth;
+    for (;; ++depth) {
+        irregular.clear();
+        regular.clear();
+        auto refiner = makeRefiner(base.vertices, counts, base.faceVerts, base.creasePairs, base.creaseW, base.cornerIdx, base.cornerW, sdc);
+        osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
+        adaptive.SetSecondaryLevel(depth);
+        adaptive.useInfSharpPatch = true;
+        refiner->RefineAdaptive(adaptive);
+        osd::Far::PatchTableFactory::Options po(static_cast<unsigned>(depth));
+        po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
+        po.useInfSharpPatch = true;
+        clearOsdError();
+        std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
+        takeOsdError();
+        if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the patch table");
+
+        // Positions on every level.
+        std::vector<Point3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+        std::copy(base.positions.begin(), base.positions.end(), all.begin());
+        std::vector<std::size_t> offset(static_cast<std::size_t>(refiner->GetMaxLevel()) + 2, 0);
+        const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+        for (int l = 0; l <= refiner->GetMaxLevel(); ++l)
+            offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] +
+                                                      static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices());
+        for (int l = 1; l <= refiner->GetMaxLevel(); ++l) {
+            const Point3* src = all.data() + offset[static_cast<std::size_t>(l) - 1];
+            Point3* dst = all.data() + offset[static_cast<std::size_t>(l)];
+            primvar.Interpolate(l, src, dst);
+        }
+        // Limit positions and tangents of the finest level.
+        const int finest = refiner->GetMaxLevel();
+        const std::size_t nFine = static_cast<std::size_t>(refiner->GetLevel(finest).GetNumVertices());
+        std::vector<Point3> limit(nFine), tan1(nFine), tan2(nFine);
+        const Point3* fineSrc = all.data() + offset[static_cast<std::size_t>(finest)];
+        clearOsdError();
+        primvar.Limit(fineSrc, limit, tan1, tan2);
+        takeOsdError();
+
+        double worst = 0;
+        for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
+            const auto type = table->GetPatchArrayDescriptor(array).GetType();
+            for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
+                const osd::Far::PatchParam param = table->GetPatchParam(array, patch);
+                const int face = param.GetFaceId();
+                const int d = param.GetDepth();
+                const Int size = kR >> d;
+                const Int u0 = static_cast<Int>(param.GetU()) * size, v0 = static_cast<Int>(param.GetV()) * size;
+                if (type == osd::Far::PatchDescriptor::REGULAR) {
+                    regular.push_back({face, u0, v0, size,
+                                       bezierOfRegular(all, table->GetPatchVertices(array, patch), param.GetBoundary())});
+                    continue;
+                }
+                // An irregular cell: find its face on level d by descending from the base face,
+                // keeping which vertex sits at each corner.
+                Irregular cell;
+                cell.face = face;
+                cell.depth = d;
+                cell.u0 = u0;
+                cell.v0 = v0;
+                cell.size = size;
+                const int* fv = &base.faceVerts[static_cast<std::size_t>(4 * face)];
+                std::array<Index, 4> corner{fv[0], fv[1], fv[3], fv[2]}; // slot 2 * b + a at corner (a, b)
+                Index current = face;
+                for (int l = 0; l < d; ++l) {
+                    const osd::Far::TopologyLevel& level = refiner->GetLevel(l);
+                    const int shift = d - 1 - l;
+                    const int qa = static_cast<int>((param.GetU() >> shift) & 1), qb = static_cast<int>((param.GetV() >> shift) & 1);
+                    const auto faceVerts = level.GetFaceVertices(current);
+                    const auto faceEdges = level.GetFaceEdges(current);
+                    auto edgeBetween = [&](Index x, Index y) {
+                        for (int k = 0; k < 4; ++k)
+                            if ((faceVerts[k] == x && faceVerts[(k + 1) % 4] == y) || (faceVerts[k] == y && faceVerts[(k + 1) % 4] == x))
+                                return level.GetEdgeChildVertex(faceEdges[k]);
+                        throw Error("subdivision tessellation: a cell's corners are not an edge (internal)");
+                    };
+                    std::array<Index, 4> next{};
+                    next[static_cast<std::size_t>(2 * qb + qa)] = level.GetVertexChildVertex(corner[static_cast<std::size_t>(2 * qb + qa)]);
+                    next[static_cast<std::size_t>(2 * qb + (1 - qa))] =
+                        edgeBetween(corner[static_cast<std::size_t>(2 * qb + qa)], corner[static_cast<std::size_t>(2 * qb + (1 - qa))]);
+                    next[static_cast<std::size_t>(2 * (1 - qb) + qa)] =
+                        edgeBetween(corner[static_cast<std::size_t>(2 * qb + qa)], corner[static_cast<std::size_t>(2 * (1 - qb) + qa)]);
+                    next[static_cast<std::size_t>(2 * (1 - qb) + (1 - qa))] = level.GetFaceChildVertex(current);
+                    Index child = -1;
+                    for (Index c : level.GetFaceChildFaces(current)) {
+                        if (c < 0) continue;
+                        const auto cv = refiner->GetLevel(l + 1).GetFaceVertices(c);
+                        int found = 0;
+                        for (int k = 0; k < cv.size(); ++k) found += std::count(next.begin(), next.end(), cv[k]) > 0 ? 1 : 0;
+                        if (found == 4) child = c;
+                    }
+                    if (child < 0) throw Error("subdivision tessellation: a cell's face was not refined (internal)");
+                    current = child;
+                    corner = next;
+                }
+                if (d != finest) throw Error("subdivision tessellation: an irregular cell above the finest level (internal)");
+                // The 1-ring of the cell: every vertex of every face at one of its corners.
+                const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
+                std::vector<Index> ring;
+                for (Index v : corner)
+                    for (Index f : level.GetVertexFaces(v))
+                        for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
+                std::sort(ring.begin(), ring.end());
+                ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+                const std::array<int, 4> order{0, 1, 3, 2}; // slots at (0,0), (1,0), (1,1), (0,1)
+                double bound = std::numeric_limits<double>::infinity();
+                for (int k = 0; k < 4; ++k) {
+                    const Index v = corner[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
+                    const Eigen::Vector3d c = limit[static_cast<std::size_t>(v)].vec();
+                    const Eigen::Vector3d n = tan1[static_cast<std::size_t>(v)].vec().cross(tan2[static_cast<std::size_t>(v)].vec());
+                    cell.corner[static_cast<std::size_t>(k)] = c;
+                    cell.normal[static_cast<std::size_t>(k)] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+                    double far = 0;
+                    for (Index w : ring) far = std::max(far, (all[offset[static_cast<std::size_t>(d)] + static_cast<std::size_t>(w)].vec() - c).norm());
+                    bound = std::min(bound, far);
+                }
+                cell.bound = bound;
+                worst = std::max(worst, bound);
+                irregular.push_back(cell);
+            }
+        }
+        if (worst <= tol || depth >= options.maxDepth) break;
+    }
+
+    // Leaves: irregular cells as they are, regular cells split by de Casteljau.
+    std::vector<Leaf> leaves;
+    std::vector<Patch> leafPatch;
+    for (std::size_t i = 0; i < irregular.size(); ++i) {
+        const auto& c = irregular[i];
+        leaves.push_back({c.face, c.u0, c.v0, c.u0 + c.size, c.v0 + c.size, -1 - static_cast<int>(i), c.bound});
+    }
+    struct Task {
+        Patch patch;
+        int face;
+        Int u0, v0, su, sv;
+        int su_splits, sv_splits;
+    };
+    std::vector<Task> stack;
+    for (const auto& r : regular) stack.push_back({r.patch, r.face, r.u0, r.v0, r.size, r.size, 0, 0});
+    while (!stack.empty()) {
+        Task t = std::move(stack.back());
+        stack.pop_back();
+        const double bound = netErrorBound(t.patch);
+        const bool canU = t.su_splits < options.maxSplits && t.su > 1, canV = t.sv_splits < options.maxSplits && t.sv > 1;
+        if (bound <= tol || (!canU && !canV)) {
+            leaves.push_back({t.face, t.u0, t.v0, t.u0 + t.su, t.v0 + t.sv, static_cast<int>(leafPatch.size()), bound});
+            leafPatch.push_back(std::move(t.patch));
+            continue;
+        }
+        const auto terms = boundTerms(t.patch);
+        bool splitU = canU, splitV = canV;
+        if (canU && canV) {
+            if (terms[0] > 2 * terms[2]) splitV = false;
+            else if (terms[2] > 2 * terms[0]) splitU = false;
+        }
+        std::vector<Task> parts{t};
+        if (splitU) {
+            std::vector<Task> next;
+            for (const Task& p : parts) {
+                auto [a, b] = p.patch.splitU(0.5);
+                const Int h = p.su / 2;
+                next.push_back({std::move(a), p.face, p.u0, p.v0, h, p.sv, p.su_splits + 1, p.sv_splits});
+                next.push_back({std::move(b), p.face, p.u0 + h, p.v0, h, p.sv, p.su_splits + 1, p.sv_splits});
+            }
+            parts = std::move(next);
+        }
+        if (splitV) {
+            std::vector<Task> next;
+            for (const Task& p : parts) {
+                auto [a, b] = p.patch.splitV(0.5);
+                const Int h = p.sv / 2;
+                next.push_back({std::move(a), p.face, p.u0, p.v0, p.su, h, p.su_splits, p.sv_splits + 1});
+                next.push_back({std::move(b), p.face, p.u0, p.v0 + h, p.su, h, p.su_splits, p.sv_splits + 1});
+            }
+            parts = std::move(next);
+        }
+        for (Task& p : parts) stack.push_back(std::move(p));
+    }
+
+    // Every leaf corner once: irregular cells first (OpenSubdiv's limit masks), then regular
+    // leaves (their own Bézier patch; the corner point is a control point).
+    Builder builder(base);
+    std::unordered_map<Key, int, KeyHash> vertexOf;
+    std::vector<Eigen::Vector3d> positions, normals;
+    auto cornerUV = [](const Leaf& l, int k) -> std::array<Int, 2> {
+        switch (k) {
+        case 0: return {l.u0, l.v0};
+        case 1: return {l.u1, l.v0};
+        case 2: return {l.u1, l.v1};
+        default: return {l.u0, l.v1};
+        }
+    };
+    for (int pass = 0; pass < 2; ++pass)
+        for (const Leaf& l : leaves) {
+            if ((l.patch < 0) != (pass == 0)) continue;
+            for (int k = 0; k < 4; ++k) {
+                const auto uv = cornerUV(l, k);
+                const Key key = builder.key(l.face, uv[0], uv[1]);
+                if (vertexOf.count(key)) continue;
+                builder.registerCorner(l.face, uv[0], uv[1]);
+                vertexOf.emplace(key, static_cast<int>(positions.size()));
+                if (l.patch < 0) {
+                    const Irregular& c = irregular[static_cast<std::size_t>(-1 - l.patch)];
+                    positions.push_back(c.corner[static_cast<std::size_t>(k)]);
+                    normals.push_back(c.normal[static_cast<std::size_t>(k)]);
+                } else {
+                    const Patch& p = leafPatch[static_cast<std::size_t>(l.patch)];
+                    const double a = (k == 1 || k == 2) ? 1.0 : 0.0, b = (k >= 2) ? 1.0 : 0.0;
+                    positions.push_back(p.evaluate(a, b));
+                    normals.push_back(unitNormal(p, a, b));
+                }
+            }
+        }
+    builder.sortLines();
+
+    // Irregular cells' normals from OpenSubdiv's tangents have the vertex's own orientation: turn
+    // them to the side of the cell's corners' normal (counter-clockwise in (u, v)).
+    for (const Leaf& l : leaves) {
+        if (l.patch >= 0) continue;
+        const Irregular& c = irregular[static_cast<std::size_t>(-1 - l.patch)];
+        const Eigen::Vector3d poly = (c.corner[2] - c.corner[0]).cross(c.corner[3] - c.corner[1]);
+        for (int k = 0; k < 4; ++k) {
+            const auto uv = cornerUV(l, k);
+            Eigen::Vector3d& n = normals[static_cast<std::size_t>(vertexOf.at(builder.key(l.face, uv[0], uv[1])))];
+            // On a crease the limit normal is one side's: where OpenSubdiv's tangents give a normal
+            // more than 60 degrees from the cell's own plane (the other side of the crease), or none,
+            // the cell's normal (of its corner quad) is used instead.
+            const Eigen::Vector3d cellNormal = poly.normalized();
+            if (n.isZero(0.0) || std::abs(n.dot(cellNormal)) < 0.5) n = cellNormal;
+            else if (n.dot(cellNormal) < 0) n = -n;
+        }
+    }
+
+    // Triangulate every leaf as the polygon of its corners and side points.
+    std::vector<int> triangles;
+    std::vector<std::array<Int, 2>> poly, side;
+    std::vector<std::array<int, 3>> tris;
+    const int baseFaces = base.faces();
+    std::vector<double> faceBound(static_cast<std::size_t>(faceCount()), 0.0);
+    std::vector<int> faceRate(static_cast<std::size_t>(faceCount()), 0);
+    double worst = 0;
+    for (const Leaf& l : leaves) {
+        poly.clear();
+        for (int k = 0; k < 4; ++k) {
+            const auto p = cornerUV(l, k), q = cornerUV(l, (k + 1) % 4);
+            poly.push_back(p);
+            builder.sidePoints(l.face, p[0], p[1], q[0], q[1], side);
+            poly.insert(poly.end(), side.begin(), side.end());
+        }
+        tris.clear();
+        earClip(poly, tris);
+        for (const auto& t : tris)
+            for (int k : t) {
+                const auto& uv = poly[static_cast<std::size_t>(k)];
+                triangles.push_back(vertexOf.at(builder.key(l.face, uv[0], uv[1])));
+            }
+        const int cageFace = base.cageFace[static_cast<std::size_t>(l.face)];
+        faceBound[static_cast<std::size_t>(cageFace)] = std::max(faceBound[static_cast<std::size_t>(cageFace)], l.bound);
+        const Int narrowest = std::min(l.u1 - l.u0, l.v1 - l.v0);
+        int& rate = faceRate[static_cast<std::size_t>(cageFace)];
+        rate = std::max(rate, static_cast<int>(std::min<Int>(kR / narrowest, Int(1) << 30)));
+        worst = std::max(worst, l.bound);
+    }
+    (void)baseFaces;
+
+    PolygonMesh out;
+    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
+    out.normals.resize(3, static_cast<Eigen::Index>(normals.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
+        out.normals.col(static_cast<Eigen::Index>(i)) = normals[i];
+    }
+    out.faceVertices = std::move(triangles);
+    out.faceStart.resize(out.faceVertices.size() / 3 + 1);
+    for (std::size_t i = 0; i < out.faceStart.size(); ++i) out.faceStart[i] = static_cast<int>(3 * i);
+    if (report) {
+        report->certifiedPath = true;
+        report->rates = faceRate;
+        report->regularFaces = 0;
+        report->errorBound = worst;
+        report->cells = static_cast<long long>(regular.size() + irregular.size());
+        report->irregularCells = static_cast<long long>(irregular.size());
+        report->leaves = static_cast<long long>(leaves.size());
+        report->depth = depth;
+        report->faceBounds = faceBound;
+        report->faceCertified.assign(static_cast<std::size_t>(faceCount()), 0);
+        for (int f = 0; f < faceCount(); ++f)
+            report->faceCertified[static_cast<std::size_t>(f)] = hasLimitSurface(f) && faceBound[static_cast<std::size_t>(f)] <= tol;
+    }
+    return out;
+}
+
+} // namespace freeform
