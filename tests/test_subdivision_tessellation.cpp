@@ -126,7 +126,6 @@ Deviation deviation(const PolygonMesh& mesh, const Reference& ref, double radius
     const test::TriangleGrid refGrid(ref.mesh, 0.02);
     for (int v = 0; v < mesh.vertexCount(); ++v) {
         const double off = refGrid.distance(mesh.positions.col(v), radius);
-        if (off > 1e-4 && std::getenv("DEBUG_OFF")) std::printf("off %g at %g %g %g\n", off, mesh.positions(0, v), mesh.positions(1, v), mesh.positions(2, v));
         d.vertexOff = std::max(d.vertexOff, off);
     }
     for (int f = 0; f < mesh.faceCount(); ++f) {
