@@ -673,6 +673,15 @@ std::array<double, 2> largestStep(const Steps& steps, std::array<std::array<doub
     return worst;
 }
 
+/// What geometricBound finds at the leaf's centre, reused by geometricBoundAlong on the same leaf
+/// (the same numbers it would compute again): g_s(c), g_t(c), |g_s x g_t|, the unit normal n0 and
+/// N = projectedBounds on n0 (set only where len > 0).
+struct Centre {
+    Eigen::Vector3d gs, gt, n0;
+    double len = 0;
+    Second N;
+};
+
 /// The geometric bound of a leaf (docs/surfaces.md, "The geometric measure"): every triangle point
 /// T(x) of the leaf lies within the returned distance of a surface point g(y), y = x + delta(x) in
 /// the patch's domain, chosen so that T(x) - g(x + delta) runs along the normal n0 at the leaf's
@@ -680,16 +689,18 @@ std::array<double, 2> largestStep(const Steps& steps, std::array<std::array<doub
 /// leaf, delta could leave the patch's domain, or the bound cannot reach the tolerance). net: the
 /// leaf's sub-net; terms: its netTerms; box: the leaf in units of 1/S.
 double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDifferences* diff, const std::array<double, 3>& terms, const Leaf& box,
-                      std::int32_t S, double tolerance)
+                      std::int32_t S, double tolerance, Centre& centre)
 {
     constexpr double inf = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d gs, gt;
+    Eigen::Vector3d& gs = centre.gs;
+    Eigen::Vector3d& gt = centre.gt;
     centreDerivatives(net, m, n, gs, gt);
     const Eigen::Vector3d cross = gs.cross(gt);
-    const double len = cross.norm();
+    const double len = centre.len = cross.norm();
     if (!(len > 0)) return inf;
-    const Eigen::Vector3d n0 = cross / len;
-    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0, diff);
+    const Eigen::Vector3d n0 = centre.n0 = cross / len;
+    centre.N = projectedBounds(net, m, n, n0, diff);
+    const Second M = secondOf(terms), N = centre.N;
     if (pointError(N, 0, 0) > tolerance) return inf; // |n0 . E(c)| alone
     const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm(), det = a11 * a22 - a12 * a12;
     if (!(det > 0)) return inf;
@@ -726,19 +737,24 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
 /// so the leaf only needs room in that direction. With the unit tangent a = g_t(c)/|g_t(c)| (g_s for
 /// along = 0) and c1 = n0 x a, delta cancels a . E, and the rest of E - g_t(x) delta lies along n0
 /// and c1, each bounded from the projected sub-nets.
+/// centre: what geometricBound found on the same leaf.
 double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const BicubicDifferences* diff, const std::array<double, 3>& terms, const Leaf& box,
-                           std::int32_t S, int along, double tolerance)
+                           std::int32_t S, int along, double tolerance, const Centre& centre)
 {
-    Eigen::Vector3d gs, gt;
-    centreDerivatives(net, m, n, gs, gt);
-    const Eigen::Vector3d cross = gs.cross(gt);
-    const double len = cross.norm();
+    const Eigen::Vector3d &gs = centre.gs, &gt = centre.gt;
+    const double len = centre.len;
     const Eigen::Vector3d& g = along == 1 ? gt : gs;
     const double gLen = g.norm();
     if (!(len > 0) || !(gLen > 0)) return std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d n0 = cross / len, a = g / gLen, c1 = n0.cross(a);
-    const Second M = secondOf(terms), N = projectedBounds(net, m, n, n0, diff), C = projectedBounds(net, m, n, c1, diff);
-    if (norm2(pointError(N, 0, 0), pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
+    const Second& N = centre.N;
+    // The test below fails whenever |n0 . E(c)| alone exceeds the tolerance (geometricBound's
+    // centre test): sqrt(x * x + y * y) >= sqrt(fl(x * x)) = x in round-to-nearest binary
+    // arithmetic while x * x neither overflows nor underflows; then C need not be projected.
+    const double centreN = pointError(N, 0, 0);
+    if (centreN > tolerance && centreN > 1e-150 && centreN < 1e150) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d &n0 = centre.n0, a = g / gLen, c1 = n0.cross(a);
+    const Second M = secondOf(terms), C = projectedBounds(net, m, n, c1, diff);
+    if (norm2(centreN, pointError(C, 0, 0)) > tolerance) return std::numeric_limits<double>::infinity();
     // a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| - (M_st a + M_tt b) (s: M_ss a + M_st b).
     // |a . E(x)| from the net projected on a; a . g_t(x) >= |g_t(c)| - |g_t(x) - g_t(c)| >= |g_t(c)| -
     // (M_st a + M_tt b) (s: M_ss a + M_st b).
@@ -804,12 +820,13 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         double b = (t[0] + t[1] + t[2]) / 8;
         // (Far above the tolerance the geometric bound cannot help either: its offset term grows with b.)
         if (geometric && b > tolerance && b < kGeometricRange * tolerance) {
-            const double full = geometricBound(net, m, n, diff, t, box, S, tolerance);
+            Centre centre;
+            const double full = geometricBound(net, m, n, diff, t, box, S, tolerance, centre);
             b = std::min(b, full);
             if (!std::isfinite(full)) { // at a patch's side: the foot point along the side only
                 const bool sideU = box.u0 == 0 || box.u1 == S, sideV = box.v0 == 0 || box.v1 == S;
-                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, diff, t, box, S, 1, tolerance));
-                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, diff, t, box, S, 0, tolerance));
+                if (sideU && !sideV) b = std::min(b, geometricBoundAlong(net, m, n, diff, t, box, S, 1, tolerance, centre));
+                if (sideV && !sideU) b = std::min(b, geometricBoundAlong(net, m, n, diff, t, box, S, 0, tolerance, centre));
             }
         }
         const std::int32_t wu = box.u1 - box.u0, wv = box.v1 - box.v0;
