@@ -194,9 +194,12 @@ PolygonMesh finishMesh(std::vector<Eigen::Vector3d>&& positions, std::vector<Eig
 
 // ------------------------------------------------------------------ local (tree) refinement
 
-/// Bernstein values b[0..n] and their derivatives db[0..n] at t.
-void basisWithDerivative(int n, double t, double* b, double* db)
+/// Bernstein values b[0..n] and their derivatives db[0..n] at t. N > 0 fixes n = N at compile
+/// time (the cubic case, unrolled by the compiler; the same operations, so the same numbers).
+template <int N = 0>
+void basisWithDerivativeOf(int n, double t, double* b, double* db)
 {
+    if constexpr (N > 0) n = N;
     if (n == 0) {
         b[0] = 1;
         db[0] = 0;
@@ -219,6 +222,12 @@ void basisWithDerivative(int n, double t, double* b, double* db)
         b[i] = t * a + s * c;
         db[i] = n * (a - c);
     }
+}
+
+void basisWithDerivative(int n, double t, double* b, double* db)
+{
+    if (n == 3) basisWithDerivativeOf<3>(n, t, b, db);
+    else basisWithDerivativeOf(n, t, b, db);
 }
 
 struct Jet1 {
