@@ -456,11 +456,13 @@ Json dragWith(const char* button, const Eigen::Vector2d& from, const Eigen::Vect
 
 TEST_CASE("the camera table: axis-view keys, isometric, perspective/orthographic, pan by three inputs, the 3-pixel orbit threshold", "[render][replay][camera]")
 {
-    // An empty scene (every press lands on empty space), a perspective camera from the front right
-    // above at distance 10, target (1, 2, 3).
+    // A perspective camera from the front right above at distance 10, target (1, 2, 3); one short
+    // line from (5, 5, 5) to (7, 9, 5), above and aside of the target, so that every press at the
+    // window's centre lands on empty space.
     Json camera = frontRightCamera(Eigen::Vector3d(1, 2, 3), 10);
     const std::string doc = cat(kTmp, "/promises_more_camera.json");
-    test::writeText(doc, Json{{"format", "freeform"}, {"version", 1}, {"objects", Json::array()},
+    const Json line = {{"name", "l"}, {"type", "bezier_curve"}, {"points", {{5, 5, 5}, {7, 9, 5}}}};
+    test::writeText(doc, Json{{"format", "freeform"}, {"version", 1}, {"objects", Json::array({line})},
                               {"editor", {{"camera", camera}, {"display", {{"grid", false}, {"axes", false}}}}}}
                              .dump(1));
     const Axes start = savedCamera(replayRun(doc, "camera_start", Json::array({frames(1)})).saved);
@@ -519,6 +521,24 @@ TEST_CASE("the camera table: axis-view keys, isometric, perspective/orthographic
             CHECK((a.up - start.up).norm() < 1e-12);
             CHECK(a.distance == Approx(start.distance));
         }
+    }
+    SECTION("Home fits everything: the target is the centre of the line's box (6, 7, 5), both ends in the picture")
+    {
+        const Run r = replayRun(doc, "camera_home", Json::array({key("Home"), frames(2)}));
+        const Axes a = savedCamera(r.saved);
+        CHECK((a.target - Eigen::Vector3d(6, 7, 5)).norm() < 1e-9);
+        CHECK((a.right - start.right).norm() < 1e-12);
+        const std::string fitted = cat(kTmp, "/promises_more_camera_home.out.json");
+        const Scene scene = Scene::load(fitted);
+        for (const Eigen::Vector3d& p : {Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(7, 9, 5)}) {
+            const Eigen::Vector2d q = worldToPixel(scene, kW, kH, p);
+            CHECK(q.x() > 0);
+            CHECK(q.x() < kW);
+            CHECK(q.y() > 0);
+            CHECK(q.y() < kH);
+        }
+        // Before Home the line's far end is out of the picture or the target elsewhere: Home did it.
+        CHECK((start.target - Eigen::Vector3d(6, 7, 5)).norm() > 1);
     }
     SECTION("left drag on empty space orbits (turntable: the horizon stays level) only past 3 pixels of motion")
     {
