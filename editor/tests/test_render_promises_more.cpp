@@ -456,13 +456,14 @@ Json dragWith(const char* button, const Eigen::Vector2d& from, const Eigen::Vect
 
 TEST_CASE("the camera table: axis-view keys, isometric, perspective/orthographic, pan by three inputs, the 3-pixel orbit threshold", "[render][replay][camera]")
 {
-    // A perspective camera from the front right above at distance 10, target (1, 2, 3); one short
-    // line from (5, 5, 5) to (7, 9, 5), above and aside of the target, so that every press at the
-    // window's centre lands on empty space.
+    // A perspective camera from the front right above at distance 10, target (1, 2, 3); two short
+    // lines, (5, 5, 5) to (7, 9, 5) and (-5, -3, 0) to (-3, -3, 0), aside of the target, so that
+    // every press at the window's centre lands on empty space.
     Json camera = frontRightCamera(Eigen::Vector3d(1, 2, 3), 10);
     const std::string doc = cat(kTmp, "/promises_more_camera.json");
     const Json line = {{"name", "l"}, {"type", "bezier_curve"}, {"points", {{5, 5, 5}, {7, 9, 5}}}};
-    test::writeText(doc, Json{{"format", "freeform"}, {"version", 1}, {"objects", Json::array({line})},
+    const Json other = {{"name", "m"}, {"type", "bezier_curve"}, {"points", {{-5, -3, 0}, {-3, -3, 0}}}};
+    test::writeText(doc, Json{{"format", "freeform"}, {"version", 1}, {"objects", Json::array({line, other})},
                               {"editor", {{"camera", camera}, {"display", {{"grid", false}, {"axes", false}}}}}}
                              .dump(1));
     const Axes start = savedCamera(replayRun(doc, "camera_start", Json::array({frames(1)})).saved);
@@ -522,23 +523,32 @@ TEST_CASE("the camera table: axis-view keys, isometric, perspective/orthographic
             CHECK(a.distance == Approx(start.distance));
         }
     }
-    SECTION("Home fits everything: the target is the centre of the line's box (6, 7, 5), both ends in the picture")
+    SECTION("Home fits everything: the target is the centre of both lines' box (1, 3, 2.5); F with line l selected: its centre (6, 7, 5)")
     {
-        const Run r = replayRun(doc, "camera_home", Json::array({key("Home"), frames(2)}));
-        const Axes a = savedCamera(r.saved);
-        CHECK((a.target - Eigen::Vector3d(6, 7, 5)).norm() < 1e-9);
+        const std::vector<Eigen::Vector3d> ends{{5, 5, 5}, {7, 9, 5}, {-5, -3, 0}, {-3, -3, 0}};
+        const Axes a = savedCamera(replayRun(doc, "camera_home", Json::array({key("Home"), frames(2)})).saved);
+        CHECK((a.target - Eigen::Vector3d(1, 3, 2.5)).norm() < 1e-9);
         CHECK((a.right - start.right).norm() < 1e-12);
-        const std::string fitted = cat(kTmp, "/promises_more_camera_home.out.json");
-        const Scene scene = Scene::load(fitted);
-        for (const Eigen::Vector3d& p : {Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(7, 9, 5)}) {
-            const Eigen::Vector2d q = worldToPixel(scene, kW, kH, p);
+        const Scene home = Scene::load(cat(kTmp, "/promises_more_camera_home.out.json"));
+        for (const Eigen::Vector3d& p : ends) {
+            const Eigen::Vector2d q = worldToPixel(home, kW, kH, p);
             CHECK(q.x() > 0);
             CHECK(q.x() < kW);
             CHECK(q.y() > 0);
             CHECK(q.y() < kH);
         }
-        // Before Home the line's far end is out of the picture or the target elsewhere: Home did it.
-        CHECK((start.target - Eigen::Vector3d(6, 7, 5)).norm() > 1);
+        // F: a click on line l's middle selects it (as the table's "left click on a curve"), F
+        // fits it.
+        Json events = Json::array();
+        clickAt(events, worldToPixel(Scene::load(doc), kW, kH, Eigen::Vector3d(6, 7, 5)));
+        events.push_back(key("F"));
+        events.push_back(frames(2));
+        const Run f = replayRun(doc, "camera_f", events);
+        REQUIRE(f.state["selection"].is_object());
+        CHECK(f.state["selection"]["item"] == "l");
+        const Axes fa = savedCamera(f.saved);
+        CHECK((fa.target - Eigen::Vector3d(6, 7, 5)).norm() < 1e-9);
+        CHECK(fa.distance < a.distance); // one line is smaller than both
     }
     SECTION("left drag on empty space orbits (turntable: the horizon stays level) only past 3 pixels of motion")
     {
