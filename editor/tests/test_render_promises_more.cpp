@@ -15,7 +15,12 @@
 //     only) and slanted on the right (slope -3k N^2 at the edge, derived by hand), and they meet at
 //     the edge: every pixel dark or light as the stripe formula says, and the stripe edges measured
 //     in the image have slope about 0 on the left, clearly negative on the right, and the same y at
-//     x = 0 from both sides.
+//     x = 0 from both sides;
+//   - the camera table, through the saved camera: 1 3 7 and Ctrl+1 3 7 give the eye axes written
+//     by hand, 9 the isometric axes, 5 switches the projection, middle / right / Shift+left drags
+//     pan by the hand-computed pixel size, a left drag orbits only past 3 pixels (turntable: the
+//     eye's x stays horizontal), Home and F fit everything and the selected line;
+//   - the keyboard table's Z, W, R, Ctrl+N and Ctrl+S, through the saved document.
 
 #include <catch2/catch.hpp>
 
