@@ -307,13 +307,17 @@ void LatticeTool::drawPanel(ToolContext& c)
             meshes.push_back(c.scene.item(i).name);
         }
     const bool meshOpen = ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str());
+    recordWidget("mesh");
     tooltip("The imported mesh this lattice deforms");
     if (meshOpen) {
-        for (std::size_t k = 0; k < meshes.size(); ++k)
-            if (ImGui::Selectable(meshes[k].c_str(), static_cast<int>(k) == current)) {
+        for (std::size_t k = 0; k < meshes.size(); ++k) {
+            const bool chosen = ImGui::Selectable(meshes[k].c_str(), static_cast<int>(k) == current);
+            recordWidget(("mesh: " + meshes[k]).c_str()); // the open list's entries, for tests that click one
+            if (chosen) {
                 settings.ffd.mesh = k == 0 ? std::string() : meshes[k];
                 c.scene.setSettings(item, settings, "lattice mesh");
             }
+        }
         ImGui::EndCombo();
     }
     float w = static_cast<float>(settings.ffd.strength);
@@ -328,8 +332,21 @@ void LatticeTool::drawPanel(ToolContext& c)
     auto& data = std::get<LatticeData>(o.data);
     static const char* policies[] = {"keep", "clamp", "extrapolate"};
     int policy = data.outside == "keep" ? 0 : data.outside == "clamp" ? 1 : 2;
-    const bool policyChanged = ImGui::Combo("outside", &policy, policies, 3);
+    // BeginCombo rather than Combo (the same control) so that the open list's entries are recorded.
+    bool policyChanged = false;
+    const bool policyOpen = ImGui::BeginCombo("outside", policies[policy]);
+    recordWidget("outside");
     tooltip("Vertices outside the lattice box: keep them, clamp them to the box, or extrapolate the polynomial");
+    if (policyOpen) {
+        for (int k = 0; k < 3; ++k) {
+            if (ImGui::Selectable(policies[k], k == policy) && k != policy) {
+                policy = k;
+                policyChanged = true;
+            }
+            recordWidget((std::string("outside: ") + policies[k]).c_str());
+        }
+        ImGui::EndCombo();
+    }
     if (policyChanged) {
         data.outside = policies[policy];
         try {
@@ -345,6 +362,7 @@ void LatticeTool::drawPanel(ToolContext& c)
     tooltip("Press on the deformed mesh and drag: the lattice changes least so that the grabbed point follows the pointer");
     if (const FfdLink* link = c.scene.ffdLink(item)) {
         ImGui::TextWrapped("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
+        recordWidget("read-out");
         ImGui::Text("det J in [%.4g, %.4g]", link->report.minDetJ, link->report.maxDetJ);
         if (link->report.foldCount > 0) {
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));

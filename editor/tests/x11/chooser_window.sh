@@ -1,0 +1,117 @@
+#!/bin/sh
+# The desktop's file chooser in an interactive run (docs/editor.md, "Files"): the editor's real
+# window under Xvfb, driven by xdotool, with a fake `zenity` first in PATH (a script that records
+# its arguments and prints a path, as the real one does when a file is chosen):
+#   1. Ctrl+O calls it (--file-selection and the editor's title in its arguments) and opens the
+#      document it printed: three objects, no typed-path dialog;
+#   2. a chooser that fails (exit 5: not a choice, not a cancel) falls back to the dialog where the
+#      path is typed;
+#   3. FREEFORM_NO_ZENITY=1 never calls it (the typed-path dialog at once).
+# Usage: chooser_window.sh EDITOR WORKDIR. Exit 77 (skipped) without Xvfb, xdotool or python3.
+set -u
+EDITOR=$1
+WORK=$2
+command -v Xvfb >/dev/null 2>&1 || { echo "skip: no Xvfb"; exit 77; }
+command -v xdotool >/dev/null 2>&1 || { echo "skip: no xdotool"; exit 77; }
+command -v python3 >/dev/null 2>&1 || { echo "skip: no python3 to read the state"; exit 77; }
+mkdir -p "$WORK/bin"
+rm -f "$WORK"/state.json "$WORK"/zenity.log "$WORK/display"
+Xvfb -displayfd 3 -screen 0 1600x1000x24 -nolisten tcp 3>"$WORK/display" >"$WORK/xvfb.log" 2>&1 &
+XVFB=$!
+EDITOR_PID=
+cleanup() {
+    [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null
+    kill "$XVFB" 2>/dev/null
+    wait 2>/dev/null
+}
+trap cleanup EXIT
+i=0
+until [ -s "$WORK/display" ] && grep -q '^[0-9][0-9]*$' "$WORK/display"; do
+    i=$((i + 1)); [ $i -gt 200 ] && { echo "FAIL: Xvfb did not start"; cat "$WORK/xvfb.log"; exit 1; }
+    kill -0 "$XVFB" 2>/dev/null || { echo "FAIL: Xvfb exited"; cat "$WORK/xvfb.log"; exit 1; }
+    sleep 0.1
+done
+export DISPLAY=:$(cat "$WORK/display")
+
+cat >"$WORK/doc.json" <<'DOC'
+{"format": "freeform", "version": 1, "objects": [
+ {"name": "c", "type": "bezier_curve", "points": [[-2, 0, 0], [-1, 0, 1.5], [1, 0, 1.5], [2, 0, 0]]}]}
+DOC
+cat >"$WORK/chosen.json" <<'DOC'
+{"format": "freeform", "version": 1, "objects": [
+ {"name": "a", "type": "bezier_curve", "points": [[0, 0, 0], [1, 0, 0]]},
+ {"name": "b", "type": "bezier_curve", "points": [[0, 1, 0], [1, 1, 0]]},
+ {"name": "d", "type": "bezier_curve", "points": [[0, 2, 0], [1, 2, 0]]}]}
+DOC
+# The fake: exit status from $WORK/zenity.status (0: chosen), the chosen path on stdout.
+cat >"$WORK/bin/zenity" <<FAKE
+#!/bin/sh
+echo "\$@" >> "$WORK/zenity.log"
+status=\$(cat "$WORK/zenity.status" 2>/dev/null || echo 0)
+[ "\$status" = 0 ] && echo "$WORK/chosen.json"
+exit \$status
+FAKE
+chmod +x "$WORK/bin/zenity"
+PATH="$WORK/bin:$PATH"
+export PATH
+[ "$(command -v zenity)" = "$WORK/bin/zenity" ] || { echo "FAIL: the fake zenity is not first in PATH"; exit 1; }
+
+wait_for() {
+    python3 - "$WORK/state.json" "$2" <<'WAIT' && return 0
+import json, sys, time
+deadline = time.monotonic() + 20
+while time.monotonic() < deadline:
+    try:
+        s = json.load(open(sys.argv[1]))
+        if eval(sys.argv[2]):
+            sys.exit(0)
+    except (OSError, ValueError, KeyError, TypeError, IndexError):
+        pass
+    time.sleep(0.03)
+sys.exit(1)
+WAIT
+    echo "FAIL: $1"; cat "$WORK/state.json" 2>/dev/null; cat "$WORK/editor.err"; cat "$WORK/zenity.log" 2>/dev/null; exit 1
+}
+# start ENV...: the editor on doc.json with --state, its window focused.
+start() {
+    rm -f "$WORK/state.json"
+    env "$@" FREEFORM_AUTOSAVE_DIR="$WORK/autosave" ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" \
+        "$EDITOR" "$WORK/doc.json" --size 1280x800 --state "$WORK/state.json" >"$WORK/editor.out" 2>"$WORK/editor.err" &
+    EDITOR_PID=$!
+    WID=$(timeout 20 xdotool search --sync --onlyvisible --name "freeform editor" | head -1)
+    [ -n "$WID" ] || { echo "FAIL: no editor window"; cat "$WORK/editor.err"; exit 1; }
+    xdotool windowfocus --sync "$WID" 2>/dev/null || xdotool windowfocus "$WID"
+    wait_for "the first frame" "len(s['panels']) == 3 and s['objects'] == 1"
+}
+stop() {
+    kill "$EDITOR_PID"; wait "$EDITOR_PID" 2>/dev/null
+    EDITOR_PID=
+}
+
+# 1. The chooser answers with a file: it is opened.
+echo 0 >"$WORK/zenity.status"
+start FREEFORM_NO_ZENITY=0
+xdotool key --clearmodifiers ctrl+o
+wait_for "Ctrl+O opens the file the chooser printed" "s['objects'] == 3 and not s['path_dialog'] and s['error'] == ''"
+grep -q -- "--file-selection" "$WORK/zenity.log" || { echo "FAIL: zenity was not asked for a file: $(cat "$WORK/zenity.log")"; exit 1; }
+grep -q "freeform editor" "$WORK/zenity.log" || { echo "FAIL: no editor title in zenity's arguments: $(cat "$WORK/zenity.log")"; exit 1; }
+stop
+
+# 2. A chooser that fails: the typed path instead.
+rm -f "$WORK/zenity.log"
+echo 5 >"$WORK/zenity.status"
+start FREEFORM_NO_ZENITY=0
+xdotool key --clearmodifiers ctrl+o
+wait_for "a failed chooser falls back to the typed path" "s['path_dialog'] and s['objects'] == 1"
+[ -s "$WORK/zenity.log" ] || { echo "FAIL: the chooser was not tried"; exit 1; }
+stop
+
+# 3. FREEFORM_NO_ZENITY=1: never called.
+rm -f "$WORK/zenity.log"
+echo 0 >"$WORK/zenity.status"
+start FREEFORM_NO_ZENITY=1
+xdotool key --clearmodifiers ctrl+o
+wait_for "FREEFORM_NO_ZENITY=1: the typed path" "s['path_dialog'] and s['objects'] == 1"
+[ -e "$WORK/zenity.log" ] && { echo "FAIL: zenity was called with FREEFORM_NO_ZENITY=1"; exit 1; }
+stop
+echo "ok: the chooser's file opened, a failed chooser falls back to the typed path, FREEFORM_NO_ZENITY=1 never calls it"
