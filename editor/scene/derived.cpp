@@ -92,7 +92,8 @@ void Scene::updateDerived()
             link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             mesh.geometry.bounds.setEmpty();
             const auto& p = mesh.geometry.surface->positions;
-            if (p.cols() > 0) mesh.geometry.bounds = Eigen::AlignedBox3d(p.rowwise().minCoeff(), p.rowwise().maxCoeff());
+            // One pass over the columns (Eigen's rowwise min and max walk the 3 x N matrix twice, by rows).
+            for (Eigen::Index k = 0; k < p.cols(); ++k) mesh.geometry.bounds.extend(Eigen::Vector3d(p.col(k)));
             setScalars(m, std::move(scalars)); // also a new revision: the drawer uploads the vertices
             link.appliedRevision = mesh.revision;
             link.appliedPoints = data.points;
