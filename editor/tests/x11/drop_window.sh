@@ -19,23 +19,7 @@ command -v python3 >/dev/null 2>&1 || { echo "skip: no python3 to read the state
 mkdir -p "$WORK"
 rm -f "$WORK"/state.json
 
-n=121
-while [ -e /tmp/.X$n-lock ] || [ -e /tmp/.X11-unix/X$n ]; do n=$((n + 1)); done
-Xvfb :$n -screen 0 1600x1000x24 -nolisten tcp >"$WORK/xvfb.log" 2>&1 &
-XVFB=$!
-EDITOR_PID=
-cleanup() {
-    [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null
-    kill "$XVFB" 2>/dev/null
-    wait 2>/dev/null
-}
-trap cleanup EXIT
-export DISPLAY=:$n
-i=0
-until xdotool getdisplaygeometry >/dev/null 2>&1; do
-    i=$((i + 1)); [ $i -gt 100 ] && { echo "FAIL: Xvfb did not start"; cat "$WORK/xvfb.log"; exit 1; }
-    sleep 0.1
-done
+. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap
 
 cat >"$WORK/doc.json" <<'DOC'
 {"format": "freeform", "version": 1, "objects": [

@@ -24,26 +24,7 @@ command -v python3 >/dev/null 2>&1 || { echo "skip: no python3 to read the state
 mkdir -p "$WORK"
 rm -f "$WORK"/state.json "$WORK"/state.json.part
 
-# Xvfb picks a free display itself and writes its number when it is ready (-displayfd): no race
-# with other X servers started at the same time (a display number chosen here could be taken by
-# another before this Xvfb gets it, and the test would then drive that other server).
-rm -f "$WORK/display"
-Xvfb -displayfd 3 -screen 0 1600x1000x24 -nolisten tcp 3>"$WORK/display" >"$WORK/xvfb.log" 2>&1 &
-XVFB=$!
-EDITOR_PID=
-cleanup() {
-    [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null
-    kill "$XVFB" 2>/dev/null
-    wait 2>/dev/null
-}
-trap cleanup EXIT
-i=0
-until [ -s "$WORK/display" ] && grep -q '^[0-9][0-9]*$' "$WORK/display"; do
-    i=$((i + 1)); [ $i -gt 200 ] && { echo "FAIL: Xvfb did not start"; cat "$WORK/xvfb.log"; exit 1; }
-    kill -0 "$XVFB" 2>/dev/null || { echo "FAIL: Xvfb exited"; cat "$WORK/xvfb.log"; exit 1; }
-    sleep 0.1
-done
-export DISPLAY=:$(cat "$WORK/display")
+. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap
 xdotool getdisplaygeometry >/dev/null 2>&1 || { echo "FAIL: no X display $DISPLAY"; exit 1; }
 
 cat >"$WORK/doc.json" <<'DOC'
