@@ -7,16 +7,27 @@
 #      the tests once more (all but the render tests);
 #   4. builds the libFuzzer targets of fuzz/ with clang and runs each for a short fixed time
 #      (scripts/fuzz.sh; FREEFORM_SKIP_FUZZ=1 skips it).
-# Render tests need an X display: when there is none, the whole run goes under xvfb-run.
+# Render tests need an X display: when there is none, the script starts Xvfb itself. It lets Xvfb
+# pick a free display (-displayfd) instead of `xvfb-run -a`, whose pick (the first display without a
+# lock file, then a separate start) races other X servers started on the same machine at the same
+# time; a CI run once lost an editor's connection to its display that way.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if [ -z "${FREEFORM_UNDER_XVFB:-}" ]; then
-  scripts/install-deps.sh
-fi
-if [ -z "${DISPLAY:-}" ] && [ -z "${FREEFORM_UNDER_XVFB:-}" ] && command -v xvfb-run >/dev/null; then
-  export FREEFORM_UNDER_XVFB=1
-  exec xvfb-run -a -s "-screen 0 1280x800x24" "$0" "$@"
+scripts/install-deps.sh
+if [ -z "${DISPLAY:-}" ] && command -v Xvfb >/dev/null; then
+  xvfb_dir=$(mktemp -d)
+  Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$xvfb_dir/display" >"$xvfb_dir/log" 2>&1 &
+  xvfb_pid=$!
+  trap 'kill "$xvfb_pid" 2>/dev/null; rm -rf "$xvfb_dir"' EXIT
+  for _ in $(seq 100); do
+    grep -q '^[0-9][0-9]*$' "$xvfb_dir/display" 2>/dev/null && break
+    kill -0 "$xvfb_pid" 2>/dev/null || { cat "$xvfb_dir/log" >&2; echo "error: Xvfb did not start" >&2; exit 1; }
+    sleep 0.1
+  done
+  grep -q '^[0-9][0-9]*$' "$xvfb_dir/display" || { echo "error: Xvfb gave no display in 10 s" >&2; exit 1; }
+  export DISPLAY=":$(cat "$xvfb_dir/display")"
+  echo "== Xvfb on display $DISPLAY"
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)

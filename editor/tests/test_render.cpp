@@ -23,6 +23,7 @@
 
 #include "freeform/io/bpt.h"
 #include "image_compare.h"
+#include "support/editor_process.h"
 #include "support/process.h"
 
 using namespace freeform;
@@ -46,14 +47,9 @@ std::string cat(const Parts&... parts)
     return s.str();
 }
 
-/// Runs the editor. Under the sanitizer build, leak detection is off for the child process only:
-/// Mesa's llvmpipe keeps allocations of its JIT-compiled code until exit, which LeakSanitizer reports
-/// (from "<unknown module>"); every other AddressSanitizer check stays on, and the editor's own
-/// code is leak-checked without a GL driver by test_scene.
-test::ProcessResult editor(const std::string& arguments)
-{
-    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' ", arguments));
-}
+/// Runs the editor (support/editor_process.h: LeakSanitizer off for the child, a refused X
+/// connection retried).
+test::ProcessResult editor(const std::string& arguments) { return test::runEditorBinary(arguments); }
 
 /// The teapot document of the shading tests: teapot.bpt imported, a fixed camera from the front
 /// right above (the iso direction, closer than a fit) so that the teapot fills the picture.

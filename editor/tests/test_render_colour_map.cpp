@@ -29,6 +29,7 @@
 #include "image_compare.h"
 #include "interaction/replay.h"
 #include "scene/scene.h"
+#include "support/editor_process.h"
 #include "support/process.h"
 
 using namespace freeform;
@@ -121,7 +122,7 @@ Run run(const std::string& doc, const std::string& name, const Json& events)
                       state = cat(kTmp, "/colour_map_", name, ".state.json"), out = cat(kTmp, "/colour_map_", name, ".out.json");
     test::writeText(file, Json{{"events", events}}.dump(1));
     fs::remove(png);
-    const auto r = test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' '", doc, "' --replay '", file,
+    const auto r = test::runEditorBinary(cat("'", doc, "' --replay '", file,
                                  "' --screenshot '", png, "' --state '", state, "' --save '", out, "' --size ", kW, "x", kH));
     INFO(r.err);
     REQUIRE(r.status == 0);

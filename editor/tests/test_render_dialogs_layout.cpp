@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "support/editor_process.h"
 #include "support/process.h"
 
 using Json = nlohmann::ordered_json;
@@ -56,7 +57,7 @@ Json replayState(const std::string& name, const Json& events, const std::string&
     freeform::test::writeText(file, Json{{"events", events}}.dump(1));
     fs::remove(state);
     if (doc.empty()) doc = document();
-    const auto r = freeform::test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' '", doc,
+    const auto r = freeform::test::runEditorBinary(cat("'", doc,
                                            "' --replay '", file, "' --state '", state, "' --save '", out, "' --size ", size));
     INFO(r.err);
     REQUIRE(r.status == 0);

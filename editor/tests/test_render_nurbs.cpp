@@ -26,6 +26,7 @@
 #include "interaction/picking.h"
 #include "interaction/replay.h"
 #include "scene/scene.h"
+#include "support/editor_process.h"
 #include "support/process.h"
 
 using namespace freeform;
@@ -47,10 +48,7 @@ std::string cat(const Parts&... parts)
     return s.str();
 }
 
-test::ProcessResult runEditor(const std::string& arguments)
-{
-    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" '", FREEFORM_EDITOR, "' ", arguments));
-}
+test::ProcessResult runEditor(const std::string& arguments) { return test::runEditorBinary(arguments); }
 
 /// A camera looking from the front right above.
 JsonR camera(const Eigen::Vector3d& target, double distance)

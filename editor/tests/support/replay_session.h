@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "editor_process.h" // editor/tests/support
 #include "support/process.h"
 
 namespace freeform::editor::replay_test {
@@ -32,11 +33,11 @@ std::string cat(const Parts&... parts)
     return s.str();
 }
 
-/// Runs the editor binary with `arguments` (LeakSanitizer off: GLFW and the GL driver keep
-/// allocations to exit, see test_render.cpp); `environment` is prepended (VAR=value ...).
+/// Runs the editor binary with `arguments` (support/editor_process.h); `environment` is prepended
+/// (VAR=value ...).
 inline test::ProcessResult runEditor(const std::string& arguments, const std::string& environment = "")
 {
-    return test::run(cat("ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" ", environment, " '", FREEFORM_EDITOR, "' ", arguments));
+    return test::runEditorBinary(arguments, environment);
 }
 
 inline nlohmann::ordered_json move(const Eigen::Vector2d& p) { return {{"type", "move"}, {"x", p.x()}, {"y", p.y()}}; }
