@@ -346,6 +346,19 @@ std::string App::stateText() const
         }
         j["tooltip_audits"] = audits;
     }
+    // The lattice panel's read-out row as drawn in the last frame (null when not drawn).
+    if (ui_.latticeReadout.shown) {
+        const UiState::LatticeReadout& r = ui_.latticeReadout;
+        j["lattice_readout"] = {{"vertices", r.vertices}, {"outside", r.outside}, {"update_ms", r.updateMs}, {"det_j_min", r.minDetJ},
+                                {"det_j_max", r.maxDetJ},  {"fold_overs", r.folds},  {"lines", r.lines}};
+    } else {
+        j["lattice_readout"] = nullptr;
+    }
+    // Proportional editing (O) and the radius it uses now (+ / - scale it).
+    j["proportional"] = {{"on", ui_.edit.soft}, {"radius", interaction_.softRadius(scene_)}};
+    // A quit was confirmed (Ctrl+Q or File > Quit without unsaved changes, or the dialog's Save or
+    // Discard): the editor stops (a replay handles no later event).
+    j["quit"] = quitting_;
     if (ui_.legendRect[2] > 0)
         j["legend"] = {{"rect", {ui_.legendRect[0], ui_.legendRect[1], ui_.legendRect[2], ui_.legendRect[3]}},
                        {"min", ui_.legendMin},

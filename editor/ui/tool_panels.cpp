@@ -361,14 +361,33 @@ void LatticeTool::drawPanel(ToolContext& c)
     ImGui::Checkbox("direct manipulation (D)", &direct);
     tooltip("Press on the deformed mesh and drag: the lattice changes least so that the grabbed point follows the pointer");
     if (const FfdLink* link = c.scene.ffdLink(item)) {
-        ImGui::TextWrapped("%zu vertices (%zu outside), update %.2f ms", link->report.vertices, link->report.outside, link->deformMs);
+        // The text is formatted once: drawn, and recorded as drawn with its numbers (--state,
+        // "lattice_readout").
+        UiState::LatticeReadout readout;
+        readout.shown = true;
+        readout.vertices = link->report.vertices;
+        readout.outside = link->report.outside;
+        readout.folds = link->report.foldCount;
+        readout.updateMs = link->deformMs;
+        readout.minDetJ = link->report.minDetJ;
+        readout.maxDetJ = link->report.maxDetJ;
+        char line[160];
+        std::snprintf(line, sizeof line, "%zu vertices (%zu outside), update %.2f ms", readout.vertices, readout.outside, readout.updateMs);
+        readout.lines.emplace_back(line);
+        ImGui::TextWrapped("%s", line);
         recordWidget("read-out");
-        ImGui::Text("det J in [%.4g, %.4g]", link->report.minDetJ, link->report.maxDetJ);
-        if (link->report.foldCount > 0) {
+        std::snprintf(line, sizeof line, "det J in [%.4g, %.4g]", readout.minDetJ, readout.maxDetJ);
+        readout.lines.emplace_back(line);
+        ImGui::TextUnformatted(line);
+        if (readout.folds > 0) {
+            std::snprintf(line, sizeof line, "fold-over: det J <= 0 at %zu vertices", readout.folds);
+            readout.lines.emplace_back(line);
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
-            ImGui::TextWrapped("fold-over: det J <= 0 at %zu vertices", link->report.foldCount);
+            ImGui::TextWrapped("%s", line);
             ImGui::PopStyleColor();
+            recordWidget("fold-over");
         }
+        recordLatticeReadout(readout);
         if (ImGui::Button("certify (det J > 0 on the box?)")) certifyLattice(c, item);
         tooltip("Bernstein bound on det J over the whole box: certified injective, folds, or undecided");
         if (link->certificate) {

@@ -218,6 +218,11 @@ void recordWidget(const char* name)
     currentState->widgets.push_back({name, lo.x, lo.y, hi.x - lo.x, hi.y - lo.y});
 }
 
+void recordLatticeReadout(const UiState::LatticeReadout& readout)
+{
+    if (currentState) currentState->latticeReadout = readout;
+}
+
 bool scalarRangeControls(DisplaySettings& d)
 {
     bool changed = ImGui::Checkbox("auto range", &d.scalarAuto);
@@ -1163,6 +1168,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     statusBarHeight = statusHeightFor(statusLines(state));
     state.tooltip.clear();
     state.widgets.clear();
+    state.latticeReadout = {};
     mainMenu(scene, state, actions);
     statusBar(state);
     colourLegend(scene, state);

@@ -4,6 +4,7 @@
 // changes, errors, help). The panels edit the Scene directly through its methods and ask the app
 // for everything that touches files or the window through UiActions.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -101,6 +102,15 @@ struct UiState {
     /// Every text the panels drew without the room it needs, over the whole session (ui/fit.h;
     /// for --state, "overflows").
     std::vector<Overflow> overflows;
+    /// The lattice panel's read-out row as drawn in the last frame (for --state,
+    /// "lattice_readout"): the numbers it formats, from the same variables, and its lines of text
+    /// as drawn (the last one, drawn in red, the fold-over count when `folds` > 0).
+    struct LatticeReadout {
+        bool shown = false; // false: no read-out drawn (no lattice with a linked mesh selected)
+        std::size_t vertices = 0, outside = 0, folds = 0;
+        double updateMs = 0, minDetJ = 0, maxDetJ = 0;
+        std::vector<std::string> lines;
+    } latticeReadout;
 };
 
 /// The tooltip of the last widget (ImGui 1.86 has no SetItemTooltip): shown while it is hovered.
@@ -111,6 +121,9 @@ void tooltip(const char* text);
 /// Records the last widget's rectangle under `name` in the state drawUi was last called with
 /// (UiState::widgets, --state's `widgets`) when it is visible (not clipped or scrolled away).
 void recordWidget(const char* name);
+/// Records the lattice panel's read-out row as drawn this frame (UiState::latticeReadout) in the
+/// state drawUi was last called with.
+void recordLatticeReadout(const UiState::LatticeReadout& readout);
 
 /// The scalar colour map's range controls: "auto" or fixed min/max (DisplaySettings). True when
 /// something changed.
