@@ -374,13 +374,22 @@ void LatticeTool::drawPanel(ToolContext& c)
         char line[160];
         std::snprintf(line, sizeof line, "%zu vertices (%zu outside), update %.2f ms", readout.vertices, readout.outside, readout.updateMs);
         readout.lines.emplace_back(line);
-        ImGui::TextWrapped("%s", line);
+        // Drawn in two pieces, so that a narrow panel breaks the line between them, never inside a
+        // number (TextWrapped may break after the decimal point).
+        const std::string& first = readout.lines.back();
+        const std::size_t cut = first.find(" update ");
+        const std::string counts = first.substr(0, cut), update = first.substr(cut + 1);
+        fitText(counts.c_str());
+        ImGui::TextUnformatted(counts.c_str());
         recordWidget("read-out");
+        sameLineIfFits(update.c_str());
+        fitText(update.c_str());
+        ImGui::TextUnformatted(update.c_str());
         std::snprintf(line, sizeof line, "det J in [%.4g, %.4g]", readout.minDetJ, readout.maxDetJ);
         readout.lines.emplace_back(line);
         ImGui::TextUnformatted(line);
         if (readout.folds > 0) {
-            std::snprintf(line, sizeof line, "fold-over: det J <= 0 at %zu vertices", readout.folds);
+            std::snprintf(line, sizeof line, "fold-over: det J <= 0 at %zu %s", readout.folds, readout.folds == 1 ? "vertex" : "vertices");
             readout.lines.emplace_back(line);
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
             ImGui::TextWrapped("%s", line);
