@@ -37,6 +37,9 @@ using Index = osd::Far::Index;
 using Int = std::int64_t;
 constexpr int kResolutionBits = 40;           // dyadic parameters are integers over 2^40
 constexpr Int kR = Int(1) << kResolutionBits; // the face's side
+constexpr int kOsdMaxDepth = 10;              // PatchParam holds no deeper level
+constexpr int kMaxExtraLevels = 6;            // uniform levels added to the base past that
+constexpr int kMaxBaseFaces = 1 << 20;        // ... while the base stays at most this large
 
 /// A point of a primvar buffer for OpenSubdiv's refiners.
 struct Point3 {
@@ -52,7 +55,9 @@ struct Point3 {
 };
 
 /// The all-quad base mesh the cells live on: the cage itself when every face is a quad, else the
-/// cage refined once (every Catmark face then has quads; each base face records its cage face).
+/// cage refined once (every Catmark face then has quads; each base face records its cage face);
+/// `extraLevels` more uniform levels on top of that where irregular cells must go deeper than
+/// OpenSubdiv's patch table can (docs/subdivision.md, "Deeper than level 10").
 struct QuadBase {
     int vertices = 0;
     std::vector<int> faceVerts; // 4 per face
@@ -98,7 +103,7 @@ std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::
     return r;
 }
 
-QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
+QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc, int extraLevels = 0)
 {
     const PolygonMesh& mesh = cage.mesh;
     QuadBase b;
@@ -117,7 +122,7 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
     b.positions.resize(static_cast<std::size_t>(mesh.vertexCount()));
     for (int v = 0; v < mesh.vertexCount(); ++v)
         for (int k = 0; k < 3; ++k) b.positions[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
-    if (quads) {
+    if (quads && extraLevels == 0) {
         b.vertices = mesh.vertexCount();
         b.faceVerts = mesh.faceVertices;
         b.cageFace.resize(static_cast<std::size_t>(mesh.faceCount()));
@@ -128,24 +133,31 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
         b.cornerW = std::move(cornerW);
         return b;
     }
-    // One uniform level: every face becomes quads; sharpness as OpenSubdiv carries it to level 1.
+    // Uniform levels (one makes every face quads, the others add depth); sharpness as OpenSubdiv
+    // carries it to the last level, so the limit surface is the cage's.
+    const int levels = (quads ? 0 : 1) + extraLevels;
     std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()));
     for (int f = 0; f < mesh.faceCount(); ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
     auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, sdc);
-    osd::Far::TopologyRefiner::UniformOptions uniform(1);
+    osd::Far::TopologyRefiner::UniformOptions uniform(levels);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
-    const osd::Far::TopologyLevel& level = refiner->GetLevel(1);
-    std::vector<Point3> fine(static_cast<std::size_t>(level.GetNumVertices()));
-    const Point3* src = b.positions.data();
-    Point3* dst = fine.data();
-    osd::Far::PrimvarRefinerReal<double>(*refiner).Interpolate(1, src, dst);
-    b.positions = std::move(fine);
+    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+    for (int l = 1; l <= levels; ++l) {
+        std::vector<Point3> fine(static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices()));
+        const Point3* src = b.positions.data();
+        Point3* dst = fine.data();
+        primvar.Interpolate(l, src, dst);
+        b.positions = std::move(fine);
+    }
+    const osd::Far::TopologyLevel& level = refiner->GetLevel(levels);
     b.vertices = level.GetNumVertices();
     for (int f = 0; f < level.GetNumFaces(); ++f) {
         const auto fv = level.GetFaceVertices(f);
         for (int k = 0; k < fv.size(); ++k) b.faceVerts.push_back(fv[k]);
-        b.cageFace.push_back(level.GetFaceParentFace(f));
+        Index parent = f;
+        for (int l = levels; l >= 1; --l) parent = refiner->GetLevel(l).GetFaceParentFace(parent);
+        b.cageFace.push_back(parent);
     }
     for (int e = 0; e < level.GetNumEdges(); ++e) {
         const float s = level.GetEdgeSharpness(e);
@@ -405,8 +417,8 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
     const double tol = options.tolerance;
     const osd::Sdc::Options sdc = sdcOptions(cage_, boundary());
-    const QuadBase base = quadBase(cage_, sdc);
-    std::vector<int> counts(static_cast<std::size_t>(base.faces()), 4);
+    QuadBase base = quadBase(cage_, sdc);
+    int extraLevels = 0; // uniform levels added to the base past OpenSubdiv's depth 10
 
     // Semi-sharp features must be refined past their sharpness before their cells are regular
     // patches or their limit masks are exact.
@@ -431,9 +443,10 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
     std::vector<Irregular> irregular;
     std::vector<Regular> regular;
     int depth = firstDepth;
-    for (;; ++depth) {
+    for (;;) {
         irregular.clear();
         regular.clear();
+        const std::vector<int> counts(static_cast<std::size_t>(base.faces()), 4);
         auto refiner = makeRefiner(base.vertices, counts, base.faceVerts, base.creasePairs, base.creaseW, base.cornerIdx, base.cornerW, sdc);
         osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
         adaptive.SetSecondaryLevel(depth);
@@ -551,7 +564,18 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
                 irregular.push_back(cell);
             }
         }
-        if (worst <= tol || depth >= options.maxDepth) break;
+        if (worst <= tol) break;
+        if (depth < options.maxDepth) {
+            ++depth;
+            continue;
+        }
+        // OpenSubdiv's deepest level is reached and some irregular cell is still above the
+        // tolerance: with maxDepth at that maximum, the base is refined uniformly once more (its
+        // limit surface is the cage's), so the irregular cells go one level deeper; the base's
+        // size bounds how far (docs/subdivision.md, "Deeper than level 10").
+        if (options.maxDepth < kOsdMaxDepth || extraLevels >= kMaxExtraLevels || base.faces() > kMaxBaseFaces / 4) break;
+        ++extraLevels;
+        base = quadBase(cage_, sdc, extraLevels);
     }
 
     // Leaves: irregular cells as they are, regular cells split by de Casteljau.
@@ -690,7 +714,8 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         faceBound[static_cast<std::size_t>(cageFace)] = std::max(faceBound[static_cast<std::size_t>(cageFace)], l.bound);
         const Int narrowest = std::min(l.u1 - l.u0, l.v1 - l.v0);
         int& rate = faceRate[static_cast<std::size_t>(cageFace)];
-        rate = std::max(rate, static_cast<int>(std::min<Int>(kR / narrowest, Int(1) << 30)));
+        // In widths of the unrefined quad base's faces (the base is 2^extraLevels finer).
+        rate = std::max(rate, static_cast<int>(std::min<Int>((kR / narrowest) << extraLevels, Int(1) << 30)));
         worst = std::max(worst, l.bound);
     }
     (void)baseFaces;
@@ -713,7 +738,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         report->cells = static_cast<long long>(regular.size() + irregular.size());
         report->irregularCells = static_cast<long long>(irregular.size());
         report->leaves = static_cast<long long>(leaves.size());
-        report->depth = depth;
+        report->depth = depth + extraLevels; // on the unrefined quad base
         report->faceBounds = faceBound;
         report->faceCertified.assign(static_cast<std::size_t>(faceCount()), 0);
         for (int f = 0; f < faceCount(); ++f)
