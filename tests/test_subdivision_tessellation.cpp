@@ -343,8 +343,53 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
                 for (char f : r.report.faceCertified) certified += f;
                 std::printf("    faces certified: %d of %zu\n", certified, r.report.faceCertified.size());
                 if (t == 0) CHECK(certified == static_cast<int>(r.report.faceCertified.size()));
+                // Since irregular cells go past OpenSubdiv's depth 10 (local cages), every case is
+                // certified at 1e-3 too, valence-5 vertices and sharp corners included.
+                CHECK(r.report.errorBound <= tol);
+                CHECK(certified == static_cast<int>(r.report.faceCertified.size()));
+                // The reference's points are exact limit points: surface to mesh needs no slack.
+                CHECK(d.surfaceToMesh <= r.report.errorBound);
             }
         }
+    }
+}
+
+TEST_CASE("certified tessellation: past depth 10 by local cages, conforming, and maxDepth below 10 stops there",
+          "[subdivision][tessellation]")
+{
+    // The cells next to valence-5 vertices (the prism) and to sharp corners on a crease (the creased
+    // cube) need more than OpenSubdiv's 10 levels at 1e-3: their 1-ring hulls shrink by about 0.55
+    // per level (3.4e-3 and 5.9e-3 at level 10).
+    const std::vector<std::pair<std::string, SubdivisionCage>> cages = {{"prism", pentagonalPrism()},
+                                                                         {"creased cube", readCage(kCages + "creased_cube.obj")}};
+    for (const auto& [name, cage] : cages) {
+        INFO(name);
+        const Run r = run(cage, 1e-3);
+        CHECK(r.report.depth > 10);
+        CHECK(r.report.errorBound <= 1e-3);
+        for (char f : r.report.faceCertified) CHECK(f == 1);
+        checkClosed(r.mesh);
+        CHECK(tJunctions(r.mesh) == 0);
+        // Each vertex once: no two at the same place (a local cage's corner is the same key, so the
+        // same vertex, as its neighbours' corners).
+        std::map<std::array<double, 3>, int> at;
+        for (int v = 0; v < r.mesh.vertexCount(); ++v) at[{r.mesh.positions(0, v), r.mesh.positions(1, v), r.mesh.positions(2, v)}]++;
+        CHECK(at.size() == static_cast<std::size_t>(r.mesh.vertexCount()));
+
+        // maxDepth below OpenSubdiv's maximum is a cap: no local cages, the bound reached is
+        // reported above the tolerance and not every face is certified.
+        const SubdivisionSurface s(cage, SubdivisionScheme::Catmark);
+        SubdivisionTessellationOptions o;
+        o.tolerance = 1e-3;
+        o.maxDepth = 9;
+        SubdivisionTessellationReport capped;
+        const PolygonMesh m = s.tessellate(o, &capped);
+        CHECK(capped.depth == 9);
+        CHECK(capped.errorBound > 1e-3);
+        int certified = 0;
+        for (char f : capped.faceCertified) certified += f;
+        CHECK(certified < static_cast<int>(capped.faceCertified.size()));
+        checkClosed(m);
     }
 }
 

@@ -436,7 +436,6 @@ struct CellSearch {
     bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
     std::vector<Irregular> irregular;
     std::vector<Regular> regular;
-    long long tables = 0; // patch tables built (all tries, local cages included)
 };
 
 /// The cells of the faces of m that have a frame: OpenSubdiv's adaptive refinement and patch table
@@ -467,7 +466,6 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
         std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
         takeOsdError();
         if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the patch table");
-        ++s.tables;
 
         // Positions on every level.
         std::vector<Point3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
