@@ -2,9 +2,10 @@
 // tessellation"): cells from OpenSubdiv's adaptive refinement and patch table; a regular cell is a
 // bicubic Bézier patch split by de Casteljau until netErrorBound(patch) <= tolerance, an irregular
 // cell (innermost level, next to an extraordinary vertex or an irregular sharp feature) is bounded
-// by the convex hull of its 1-ring. Every mesh vertex is an exact limit point, computed once under a
-// canonical key (cage vertex, cage edge + dyadic parameter, or face + dyadic (u, v)), so the mesh is
-// conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
+// by the convex hull of its 1-ring; one still above the tolerance at OpenSubdiv's deepest level 10
+// gets a local cage (its level-10 1-ring) that is cut into cells the same way. Every mesh vertex is
+// an exact limit point, computed once under a canonical key (cage vertex, cage edge + dyadic
+// parameter, or face + dyadic (u, v)), so the mesh is conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
 // corners of the leaves touching its sides (ear clipping in (u, v)), so its bound holds.
 
 #include "freeform/subdivision/subdivision_surface.h"
