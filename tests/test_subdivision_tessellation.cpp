@@ -226,6 +226,23 @@ SubdivisionCage openGrid()
     return cage;
 }
 
+/// Six quads around a valence-6 vertex, an open cage under edge_and_corner: an extraordinary vertex
+/// with a boundary ring (its cells go past depth 10 at both tolerances).
+SubdivisionCage star()
+{
+    SubdivisionCage cage;
+    cage.mesh.positions.resize(3, 13);
+    cage.mesh.positions.col(0) = V3(0, 0, 0.3);
+    for (int k = 0; k < 6; ++k) {
+        const double a = 2 * M_PI * k / 6, b = a + M_PI / 6;
+        cage.mesh.positions.col(1 + k) = V3(std::cos(a), std::sin(a), 0.1 * k);
+        cage.mesh.positions.col(7 + k) = V3(1.6 * std::cos(b), 1.6 * std::sin(b), -0.2);
+    }
+    for (int k = 0; k < 6; ++k) cage.mesh.addFace({0, 1 + k, 7 + k, 1 + (k + 1) % 6});
+    cage.boundary = BoundaryInterpolation::EdgeAndCorner;
+    return cage;
+}
+
 struct Run {
     PolygonMesh mesh;
     SubdivisionTessellationReport report;
@@ -294,6 +311,8 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
     SubdivisionCage semiSharp = readCage(kCages + "cube.obj");
     semiSharp.creases.push_back({0, 1, 2.5});
     semiSharp.creases.push_back({1, 3, 2.5});
+    SubdivisionCage sharpCorner = readCage(kCages + "cube.obj");
+    sharpCorner.corners.push_back({0, kInfiniteSharpness});
     SubdivisionCage cornered = openGrid();
     cornered.boundary = BoundaryInterpolation::EdgeAndCorner;
     const std::vector<Case> cases = {
@@ -302,6 +321,9 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
         {"creased cube (infinitely sharp creases and corners)", readCage(kCages + "creased_cube.obj"), true, true, {4000, 19000}},
         {"cube with two semi-sharp creases (2.5)", semiSharp, true, true, {4200, 21000}},
         {"open grid (boundary, sharp corners)", cornered, false, true, {1250, 9900}},
+        // Past depth 10 at both tolerances (local cages; depth 12 / 18 and 11 / 15 when written).
+        {"cube with one sharp corner (three faces around it)", sharpCorner, true, true, {4900, 24500}},
+        {"valence-6 star, open (edge_and_corner)", star(), false, true, {1400, 9600}},
     };
     // Catch runs this body once per section; the references are built once per cage (the first
     // section that needs them), not on every run.
