@@ -6,7 +6,8 @@
 // bumpy radius: every vertex has valence 4, so every face is regular and both routes cover the
 // same surface. Also the set-up cost (cage validation, OpenSubdiv topology, one Bfr::Surface per
 // face). Figures: docs/performance.md. BM_CertifiedCube: the certified tessellation of the cube cage
-// at 1e-3 (docs/subdivision.md).
+// at 1e-3 (docs/subdivision.md); BM_CertifiedPrism and BM_CertifiedCreasedCube the same for the
+// cages whose irregular cells go past OpenSubdiv's depth 10 (valence-5 vertices, sharp corners).
 //
 //   build/bin/bench_subdivision --benchmark_min_time=1
 
@@ -96,13 +97,18 @@ BENCHMARK(BM_BezierRouteConversionOnly)->Unit(benchmark::kMillisecond);
 
 // The certified tessellation (docs/subdivision.md, "Certified tessellation") of the cube cage (8
 // valence-3 extraordinary vertices, side 2) at 1e-3: triangles, the bound reached, and time.
-void BM_CertifiedCube(benchmark::State& state)
+freeform::SubdivisionCage cubeCage()
 {
     freeform::SubdivisionCage cage;
     cage.mesh.positions.resize(3, 8);
     for (int i = 0; i < 8; ++i) cage.mesh.positions.col(i) = Eigen::Vector3d(i & 4 ? 1 : -1, i & 2 ? 1 : -1, i & 1 ? 1 : -1);
     for (auto f : {std::array{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}})
         cage.mesh.addFace(f.begin(), f.end());
+    return cage;
+}
+
+void certified(benchmark::State& state, const freeform::SubdivisionCage& cage)
+{
     const freeform::SubdivisionSurface s(cage, freeform::SubdivisionScheme::Catmark);
     freeform::SubdivisionTessellationOptions o;
     o.tolerance = 1e-3;
@@ -115,8 +121,41 @@ void BM_CertifiedCube(benchmark::State& state)
     state.counters["triangles"] = static_cast<double>(mesh.faceCount());
     state.counters["bound"] = report.errorBound;
     state.counters["leaves"] = static_cast<double>(report.leaves);
+    state.counters["depth"] = report.depth;
 }
+
+void BM_CertifiedCube(benchmark::State& state) { certified(state, cubeCage()); }
 BENCHMARK(BM_CertifiedCube)->Unit(benchmark::kMillisecond);
+
+// The pentagonal prism of tests/test_subdivision_tessellation.cpp (radius 1, height 1.2): refined
+// once to quads, ten valence-5 extraordinary vertices.
+void BM_CertifiedPrism(benchmark::State& state)
+{
+    freeform::SubdivisionCage cage;
+    cage.mesh.positions.resize(3, 10);
+    const double pi = 3.14159265358979323846;
+    for (int k = 0; k < 5; ++k) {
+        const double a = 2 * pi * k / 5;
+        cage.mesh.positions.col(k) = Eigen::Vector3d(std::cos(a), std::sin(a), -0.6);
+        cage.mesh.positions.col(k + 5) = Eigen::Vector3d(std::cos(a), std::sin(a), 0.6);
+    }
+    cage.mesh.addFace({4, 3, 2, 1, 0});
+    cage.mesh.addFace({5, 6, 7, 8, 9});
+    for (int k = 0; k < 5; ++k) cage.mesh.addFace({k, (k + 1) % 5, (k + 1) % 5 + 5, k + 5});
+    certified(state, cage);
+}
+BENCHMARK(BM_CertifiedPrism)->Unit(benchmark::kMillisecond);
+
+// data/cages/creased_cube.obj: the cube with the four edges of its +z face infinitely sharp and two
+// of their corners sharp.
+void BM_CertifiedCreasedCube(benchmark::State& state)
+{
+    freeform::SubdivisionCage cage = cubeCage();
+    for (auto [a, b] : {std::array{1, 3}, {3, 7}, {7, 5}, {5, 1}}) cage.creases.push_back({a, b, freeform::kInfiniteSharpness});
+    for (int v : {1, 7}) cage.corners.push_back({v, freeform::kInfiniteSharpness});
+    certified(state, cage);
+}
+BENCHMARK(BM_CertifiedCreasedCube)->Unit(benchmark::kMillisecond);
 
 void BM_OpenSubdivSetUp(benchmark::State& state)
 {

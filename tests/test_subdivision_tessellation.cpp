@@ -226,6 +226,23 @@ SubdivisionCage openGrid()
     return cage;
 }
 
+/// Six quads around a valence-6 vertex, an open cage under edge_and_corner: an extraordinary vertex
+/// with a boundary ring (its cells go past depth 10 at both tolerances).
+SubdivisionCage star()
+{
+    SubdivisionCage cage;
+    cage.mesh.positions.resize(3, 13);
+    cage.mesh.positions.col(0) = V3(0, 0, 0.3);
+    for (int k = 0; k < 6; ++k) {
+        const double a = 2 * M_PI * k / 6, b = a + M_PI / 6;
+        cage.mesh.positions.col(1 + k) = V3(std::cos(a), std::sin(a), 0.1 * k);
+        cage.mesh.positions.col(7 + k) = V3(1.6 * std::cos(b), 1.6 * std::sin(b), -0.2);
+    }
+    for (int k = 0; k < 6; ++k) cage.mesh.addFace({0, 1 + k, 7 + k, 1 + (k + 1) % 6});
+    cage.boundary = BoundaryInterpolation::EdgeAndCorner;
+    return cage;
+}
+
 struct Run {
     PolygonMesh mesh;
     SubdivisionTessellationReport report;
@@ -294,6 +311,8 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
     SubdivisionCage semiSharp = readCage(kCages + "cube.obj");
     semiSharp.creases.push_back({0, 1, 2.5});
     semiSharp.creases.push_back({1, 3, 2.5});
+    SubdivisionCage sharpCorner = readCage(kCages + "cube.obj");
+    sharpCorner.corners.push_back({0, kInfiniteSharpness});
     SubdivisionCage cornered = openGrid();
     cornered.boundary = BoundaryInterpolation::EdgeAndCorner;
     const std::vector<Case> cases = {
@@ -302,6 +321,9 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
         {"creased cube (infinitely sharp creases and corners)", readCage(kCages + "creased_cube.obj"), true, true, {4000, 19000}},
         {"cube with two semi-sharp creases (2.5)", semiSharp, true, true, {4200, 21000}},
         {"open grid (boundary, sharp corners)", cornered, false, true, {1250, 9900}},
+        // Past depth 10 at both tolerances (local cages; depth 12 / 18 and 11 / 15 when written).
+        {"cube with one sharp corner (three faces around it)", sharpCorner, true, true, {4900, 24500}},
+        {"valence-6 star, open (edge_and_corner)", star(), false, true, {1400, 9600}},
     };
     // Catch runs this body once per section; the references are built once per cage (the first
     // section that needs them), not on every run.
@@ -343,8 +365,53 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
                 for (char f : r.report.faceCertified) certified += f;
                 std::printf("    faces certified: %d of %zu\n", certified, r.report.faceCertified.size());
                 if (t == 0) CHECK(certified == static_cast<int>(r.report.faceCertified.size()));
+                // Since irregular cells go past OpenSubdiv's depth 10 (local cages), every case is
+                // certified at 1e-3 too, valence-5 vertices and sharp corners included.
+                CHECK(r.report.errorBound <= tol);
+                CHECK(certified == static_cast<int>(r.report.faceCertified.size()));
+                // The reference's points are exact limit points: surface to mesh needs no slack.
+                CHECK(d.surfaceToMesh <= r.report.errorBound);
             }
         }
+    }
+}
+
+TEST_CASE("certified tessellation: past depth 10 by local cages, conforming, and maxDepth below 10 stops there",
+          "[subdivision][tessellation]")
+{
+    // The cells next to valence-5 vertices (the prism) and to sharp corners on a crease (the creased
+    // cube) need more than OpenSubdiv's 10 levels at 1e-3: their 1-ring hulls shrink by about 0.55
+    // per level (3.4e-3 and 5.9e-3 at level 10).
+    const std::vector<std::pair<std::string, SubdivisionCage>> cages = {{"prism", pentagonalPrism()},
+                                                                         {"creased cube", readCage(kCages + "creased_cube.obj")}};
+    for (const auto& [name, cage] : cages) {
+        INFO(name);
+        const Run r = run(cage, 1e-3);
+        CHECK(r.report.depth > 10);
+        CHECK(r.report.errorBound <= 1e-3);
+        for (char f : r.report.faceCertified) CHECK(f == 1);
+        checkClosed(r.mesh);
+        CHECK(tJunctions(r.mesh) == 0);
+        // Each vertex once: no two at the same place (a local cage's corner is the same key, so the
+        // same vertex, as its neighbours' corners).
+        std::map<std::array<double, 3>, int> at;
+        for (int v = 0; v < r.mesh.vertexCount(); ++v) at[{r.mesh.positions(0, v), r.mesh.positions(1, v), r.mesh.positions(2, v)}]++;
+        CHECK(at.size() == static_cast<std::size_t>(r.mesh.vertexCount()));
+
+        // maxDepth below OpenSubdiv's maximum is a cap: no local cages, the bound reached is
+        // reported above the tolerance and not every face is certified.
+        const SubdivisionSurface s(cage, SubdivisionScheme::Catmark);
+        SubdivisionTessellationOptions o;
+        o.tolerance = 1e-3;
+        o.maxDepth = 9;
+        SubdivisionTessellationReport capped;
+        const PolygonMesh m = s.tessellate(o, &capped);
+        CHECK(capped.depth == 9);
+        CHECK(capped.errorBound > 1e-3);
+        int certified = 0;
+        for (char f : capped.faceCertified) certified += f;
+        CHECK(certified < static_cast<int>(capped.faceCertified.size()));
+        checkClosed(m);
     }
 }
 

@@ -2,9 +2,10 @@
 // tessellation"): cells from OpenSubdiv's adaptive refinement and patch table; a regular cell is a
 // bicubic Bézier patch split by de Casteljau until netErrorBound(patch) <= tolerance, an irregular
 // cell (innermost level, next to an extraordinary vertex or an irregular sharp feature) is bounded
-// by the convex hull of its 1-ring. Every mesh vertex is an exact limit point, computed once under a
-// canonical key (cage vertex, cage edge + dyadic parameter, or face + dyadic (u, v)), so the mesh is
-// conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
+// by the convex hull of its 1-ring; one still above the tolerance at OpenSubdiv's deepest level 10
+// gets a local cage (its level-10 1-ring) that is cut into cells the same way. Every mesh vertex is
+// an exact limit point, computed once under a canonical key (cage vertex, cage edge + dyadic
+// parameter, or face + dyadic (u, v)), so the mesh is conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
 // corners of the leaves touching its sides (ear clipping in (u, v)), so its bound holds.
 
 #include "freeform/subdivision/subdivision_surface.h"
@@ -37,6 +38,7 @@ using Index = osd::Far::Index;
 using Int = std::int64_t;
 constexpr int kResolutionBits = 40;           // dyadic parameters are integers over 2^40
 constexpr Int kR = Int(1) << kResolutionBits; // the face's side
+constexpr int kOsdMaxDepth = 10;              // OpenSubdiv's PatchParam holds no deeper level
 
 /// A point of a primvar buffer for OpenSubdiv's refiners.
 struct Point3 {
@@ -394,47 +396,66 @@ Eigen::Vector3d unitNormal(const Patch& p, double u, double v)
     return len > 0 && std::isfinite(len) ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
-} // namespace
 
-PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellationOptions& options,
-                                                    SubdivisionTessellationReport* report) const
+/// An irregular cell (an end cap of the patch table) with its hull bound, in base-face coordinates.
+struct Irregular {
+    int face = 0;
+    Int u0 = 0, v0 = 0, size = 0;
+    std::array<Eigen::Vector3d, 4> corner, normal; // at (u0, v0), (u1, v0), (u1, v1), (u0, v1)
+    double bound = 0;
+};
+/// A regular cell: its exact bicubic Bézier patch, in base-face coordinates.
+struct Regular {
+    int face = 0;
+    Int u0 = 0, v0 = 0, size = 0;
+    Patch patch;
+};
+
+/// Where a face of the quad mesh handed to OpenSubdiv lies on the base: the base face and the dyadic
+/// square of it (face < 0: a face whose cells are not wanted, the ring of a local cage).
+struct Frame {
+    int face = -1;
+    Int u0 = 0, v0 = 0, size = kR;
+};
+
+/// Semi-sharp features must be refined past their sharpness before their cells are regular
+/// patches or their limit masks are exact: the first isolation level.
+int firstDepthOf(const QuadBase& m, int maxDepth)
 {
-    if (options.maxDepth < 1 || options.maxDepth > 10)
-        throw Error("subdivision tessellation: maxDepth " + std::to_string(options.maxDepth) + " is outside 1..10");
-    if (options.maxSplits < 0 || options.maxSplits > 28)
-        throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
-    const double tol = options.tolerance;
-    const osd::Sdc::Options sdc = sdcOptions(cage_, boundary());
-    const QuadBase base = quadBase(cage_, sdc);
-    std::vector<int> counts(static_cast<std::size_t>(base.faces()), 4);
-
-    // Semi-sharp features must be refined past their sharpness before their cells are regular
-    // patches or their limit masks are exact.
     double semiSharp = 0;
-    for (float s : base.creaseW)
+    for (float s : m.creaseW)
         if (s < kInfiniteSharpness) semiSharp = std::max(semiSharp, static_cast<double>(s));
-    for (float s : base.cornerW)
+    for (float s : m.cornerW)
         if (s < kInfiniteSharpness) semiSharp = std::max(semiSharp, static_cast<double>(s));
-    const int firstDepth = std::clamp(static_cast<int>(std::ceil(semiSharp)) + 1, 1, options.maxDepth);
+    return std::clamp(static_cast<int>(std::ceil(semiSharp)) + 1, 1, maxDepth);
+}
 
-    struct Irregular {
-        int face = 0, depth = 0;
-        Int u0 = 0, v0 = 0, size = 0;
-        std::array<Eigen::Vector3d, 4> corner, normal; // at (u0, v0), (u1, v0), (u1, v1), (u0, v1)
-        double bound = 0;
-    };
-    struct Regular {
-        int face = 0;
-        Int u0 = 0, v0 = 0, size = 0;
-        Patch patch;
-    };
+struct CellSearch {
+    osd::Sdc::Options sdc;
+    double tol = 0;
+    int maxDepth = kOsdMaxDepth;
+    bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
     std::vector<Irregular> irregular;
     std::vector<Regular> regular;
-    int depth = firstDepth;
-    for (;; ++depth) {
+};
+
+/// The cells of the faces of m that have a frame: OpenSubdiv's adaptive refinement and patch table
+/// at isolation levels firstDepth, firstDepth + 1, ... until every irregular cell's hull bound is at
+/// most the tolerance or maxDepth is reached. There, with `deeper`, an irregular cell still above
+/// the tolerance is replaced by the cells of its own local cage (the faces around its corners on
+/// that level, docs/subdivision.md "Deeper than level 10"), found the same way. Returns the level
+/// reached on m.
+int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth)
+{
+    const std::vector<int> counts(static_cast<std::size_t>(m.faces()), 4);
+    std::vector<Irregular> irregular;
+    std::vector<std::array<Index, 4>> irregularCorners; // the level-d vertices at each cell's corners
+    std::vector<Regular> regular;
+    for (int depth = firstDepth;; ++depth) {
         irregular.clear();
+        irregularCorners.clear();
         regular.clear();
-        auto refiner = makeRefiner(base.vertices, counts, base.faceVerts, base.creasePairs, base.creaseW, base.cornerIdx, base.cornerW, sdc);
+        auto refiner = makeRefiner(m.vertices, counts, m.faceVerts, m.creasePairs, m.creaseW, m.cornerIdx, m.cornerW, s.sdc);
         osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
         adaptive.SetSecondaryLevel(depth);
         adaptive.useInfSharpPatch = true;
@@ -449,7 +470,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
 
         // Positions on every level.
         std::vector<Point3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-        std::copy(base.positions.begin(), base.positions.end(), all.begin());
+        std::copy(m.positions.begin(), m.positions.end(), all.begin());
         std::vector<std::size_t> offset(static_cast<std::size_t>(refiner->GetMaxLevel()) + 2, 0);
         const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
         for (int l = 0; l <= refiner->GetMaxLevel(); ++l)
@@ -475,23 +496,24 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
             for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
                 const osd::Far::PatchParam param = table->GetPatchParam(array, patch);
                 const int face = param.GetFaceId();
+                const Frame& frame = frames[static_cast<std::size_t>(face)];
+                if (frame.face < 0) continue;
                 const int d = param.GetDepth();
-                const Int size = kR >> d;
-                const Int u0 = static_cast<Int>(param.GetU()) * size, v0 = static_cast<Int>(param.GetV()) * size;
+                const Int size = frame.size >> d;
+                const Int u0 = frame.u0 + static_cast<Int>(param.GetU()) * size, v0 = frame.v0 + static_cast<Int>(param.GetV()) * size;
                 if (type == osd::Far::PatchDescriptor::REGULAR) {
-                    regular.push_back({face, u0, v0, size,
+                    regular.push_back({frame.face, u0, v0, size,
                                        bezierOfRegular(all, table->GetPatchVertices(array, patch), param.GetBoundary())});
                     continue;
                 }
                 // An irregular cell: find its face on level d by descending from the base face,
                 // keeping which vertex sits at each corner.
                 Irregular cell;
-                cell.face = face;
-                cell.depth = d;
+                cell.face = frame.face;
                 cell.u0 = u0;
                 cell.v0 = v0;
                 cell.size = size;
-                const int* fv = &base.faceVerts[static_cast<std::size_t>(4 * face)];
+                const int* fv = &m.faceVerts[static_cast<std::size_t>(4 * face)];
                 std::array<Index, 4> corner{fv[0], fv[1], fv[3], fv[2]}; // slot 2 * b + a at corner (a, b)
                 Index current = face;
                 for (int l = 0; l < d; ++l) {
@@ -549,9 +571,103 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
                 cell.bound = bound;
                 worst = std::max(worst, bound);
                 irregular.push_back(cell);
+                irregularCorners.push_back(corner);
             }
         }
-        if (worst <= tol || depth >= options.maxDepth) break;
+        if (worst > s.tol && depth < s.maxDepth) continue;
+
+        s.regular.insert(s.regular.end(), std::make_move_iterator(regular.begin()), std::make_move_iterator(regular.end()));
+        for (std::size_t i = 0; i < irregular.size(); ++i) {
+            const Irregular& cell = irregular[i];
+            // Past the deepest level: a local cage, while the cell leaves room for 10 more levels and
+            // 10 halvings of its regular cells in the 2^40 resolution of the keys.
+            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > s.tol && (cell.size >> kOsdMaxDepth) >= (Int(1) << 10))) {
+                s.irregular.push_back(cell);
+                continue;
+            }
+            // The local cage: every face of level `depth` at a corner of the cell (its 1-ring),
+            // the cell first with its corners in (u, v) order, sharpness as on that level.
+            const osd::Far::TopologyLevel& level = refiner->GetLevel(depth);
+            const std::array<Index, 4>& corner = irregularCorners[i];
+            std::vector<Index> faces;
+            for (Index v : corner)
+                for (Index f : level.GetVertexFaces(v)) faces.push_back(f);
+            std::sort(faces.begin(), faces.end());
+            faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+            QuadBase local;
+            std::unordered_map<Index, int> localOf;
+            auto localVertex = [&](Index v) {
+                const auto [it, added] = localOf.emplace(v, static_cast<int>(local.positions.size()));
+                if (added) local.positions.push_back(all[offset[static_cast<std::size_t>(depth)] + static_cast<std::size_t>(v)]);
+                return it->second;
+            };
+            for (int k : {0, 1, 3, 2}) local.faceVerts.push_back(localVertex(corner[static_cast<std::size_t>(k)]));
+            std::vector<Index> edges;
+            for (Index f : faces) {
+                const auto fv = level.GetFaceVertices(f);
+                if (fv.size() != 4) throw Error("subdivision tessellation: a refined face is not a quad (internal)");
+                const auto fe = level.GetFaceEdges(f);
+                edges.insert(edges.end(), fe.begin(), fe.end());
+                int shared = 0;
+                for (int k = 0; k < 4; ++k) shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
+                if (shared == 4) continue; // the cell itself, already first
+                for (int k = 0; k < 4; ++k) local.faceVerts.push_back(localVertex(fv[k]));
+            }
+            std::sort(edges.begin(), edges.end());
+            edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+            for (Index e : edges) {
+                const float sharp = level.GetEdgeSharpness(e);
+                if (sharp > 0 && level.GetEdgeFaces(e).size() == 2) {
+                    const auto ev = level.GetEdgeVertices(e);
+                    local.creasePairs.insert(local.creasePairs.end(), {localVertex(ev[0]), localVertex(ev[1])});
+                    local.creaseW.push_back(sharp);
+                }
+            }
+            for (const auto& [v, lv] : localOf) {
+                const float sharp = level.GetVertexSharpness(v);
+                if (sharp > 0) {
+                    local.cornerIdx.push_back(lv);
+                    local.cornerW.push_back(sharp);
+                }
+            }
+            local.vertices = static_cast<int>(local.positions.size());
+            std::vector<Frame> localFrames(static_cast<std::size_t>(local.faces()));
+            localFrames[0] = {cell.face, cell.u0, cell.v0, cell.size};
+            collectCells(s, local, localFrames, firstDepthOf(local, kOsdMaxDepth));
+        }
+        return depth;
+    }
+}
+
+} // namespace
+
+PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellationOptions& options,
+                                                    SubdivisionTessellationReport* report) const
+{
+    if (options.maxDepth < 1 || options.maxDepth > 10)
+        throw Error("subdivision tessellation: maxDepth " + std::to_string(options.maxDepth) + " is outside 1..10");
+    if (options.maxSplits < 0 || options.maxSplits > 28)
+        throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
+    const double tol = options.tolerance;
+    const osd::Sdc::Options sdc = sdcOptions(cage_, boundary());
+    const QuadBase base = quadBase(cage_, sdc);
+
+    // Cells: the base's faces at increasing isolation levels, past OpenSubdiv's deepest by local
+    // cages where maxDepth is at that maximum.
+    CellSearch search;
+    search.sdc = sdc;
+    search.tol = tol;
+    search.maxDepth = options.maxDepth;
+    search.deeper = options.maxDepth == kOsdMaxDepth;
+    std::vector<Frame> frames(static_cast<std::size_t>(base.faces()));
+    for (int f = 0; f < base.faces(); ++f) frames[static_cast<std::size_t>(f)] = {f, 0, 0, kR};
+    int depth = collectCells(search, base, frames, firstDepthOf(base, options.maxDepth));
+    const std::vector<Irregular>& irregular = search.irregular;
+    const std::vector<Regular>& regular = search.regular;
+    for (const Irregular& c : irregular) {
+        int d = 0;
+        while ((kR >> d) > c.size) ++d;
+        depth = std::max(depth, d);
     }
 
     // Leaves: irregular cells as they are, regular cells split by de Casteljau.
