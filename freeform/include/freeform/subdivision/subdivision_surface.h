@@ -111,8 +111,11 @@ struct SubdivisionTessellationOptions {
     /// false: the estimate path (per-face segment counts, rates in the report) even where the
     /// certified path applies.
     bool certified = true;
-    /// Certified path: how deep irregular cells are refined, 1..10 (OpenSubdiv's patch table holds
-    /// no deeper level); where it binds, the report's errorBound exceeds the tolerance.
+    /// Certified path: how deep irregular cells are refined by OpenSubdiv, 1..10 (its patch table
+    /// holds no deeper level). At 10 (the default), a cell still above the tolerance gets its own
+    /// local cage (its level-10 1-ring) and is refined further, down to level 30 in all
+    /// (docs/subdivision.md, "Deeper than level 10"); below 10 it is a hard cap, and where it binds
+    /// the report's errorBound exceeds the tolerance.
     int maxDepth = 10;
     /// Certified path: how often a regular cell may be halved by de Casteljau (per direction).
     int maxSplits = 16;
