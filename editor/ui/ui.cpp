@@ -211,6 +211,32 @@ void tooltip(const char* text)
     else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
 }
 
+bool comboWithTips(const char* label, int& current, const Choice* choices, int count)
+{
+    noteDropdown(label);
+    const int shown = std::clamp(current, 0, count - 1);
+    bool changed = false;
+    if (ImGui::BeginCombo(label, choices[shown].label)) {
+        for (int k = 0; k < count; ++k) {
+            ImGui::PushID(k);
+            if (ImGui::Selectable(choices[k].label, k == shown) && k != current) {
+                current = k;
+                changed = true;
+            }
+            if (k == shown) ImGui::SetItemDefaultFocus();
+            tooltip(choices[k].tip);
+            ImGui::PopID();
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+void noteDropdown(const char* label)
+{
+    if (currentState) currentState->dropdowns.push_back(ImGui::GetID(label));
+}
+
 void recordWidget(const char* name)
 {
     if (!currentState || !ImGui::IsItemVisible()) return;
@@ -654,7 +680,10 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                 }
                 if (tessellationOpen) {
                     int mode = static_cast<int>(settings.tessellation.mode);
-                    changed |= ImGui::Combo("mode", &mode, "adaptive\0uniform\0");
+                    static const Choice modes[] = {
+                        {"adaptive", "Cut each patch until its triangles lie within the tolerance of the surface (world units)"},
+                        {"uniform", "Cut each patch side into a fixed number of segments, however flat or curved it is"}};
+                    changed |= comboWithTips("mode", mode, modes);
                     tooltip(s, "Adaptive: to a distance; uniform: a fixed number of segments per patch side");
                     settings.tessellation.mode = static_cast<Tessellation::Mode>(mode);
                     if (settings.tessellation.mode == Tessellation::Mode::Adaptive) {
@@ -694,7 +723,10 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             } else {
                 ImGui::TextWrapped("file: %s", item.meshPath.c_str());
                 int up = item.up == UpAxis::Y ? 1 : 0;
-                if (ImGui::Combo("up axis", &up, "Z up (as the world)\0Y up (turned to Z up)\0")) {
+                static const Choice ups[] = {
+                    {"Z up (as the world)", "The file's coordinates are used as they are: its z points up"},
+                    {"Y up (turned to Z up)", "The file's y points up: turned a quarter about x, (x, y, z) -> (x, -z, y)"}};
+                if (comboWithTips("up axis", up, ups)) {
                     scene.setUpAxis(selected, up == 1 ? UpAxis::Y : UpAxis::Z);
                 }
                 tooltip(s, "The file's up direction. Y up (every glTF, most OBJ files) is turned a quarter about x,\n"
@@ -722,15 +754,25 @@ void displayPanel(Scene& scene, UiState& s)
         ImGui::PushItemWidth(-(ImGui::CalcTextSize("normal length").x + 2 * ImGui::GetStyle().ItemInnerSpacing.x));
         DisplaySettings d = scene.display;
         int shading = static_cast<int>(d.shading);
-        ImGui::Combo("shading", &shading, "flat\0Gouraud\0Phong\0");
+        static const Choice shadings[] = {{"flat", "One colour per triangle: the facets show"},
+                                          {"Gouraud", "Lit at the vertices, the colours interpolated across each triangle"},
+                                          {"Phong", "The normals interpolated and lit at every pixel: the smoothest highlights"}};
+        comboWithTips("shading", shading, shadings);
         tooltip(s, "Flat: one colour per triangle; Gouraud: lit per vertex; Phong: lit per pixel (key Z cycles)");
         d.shading = static_cast<Shading>(shading);
         int specular = static_cast<int>(d.specular);
-        ImGui::Combo("specular", &specular, "Phong (v.r)\0Blinn (n.h)\0");
+        static const Choice speculars[] = {
+            {"Phong (v.r)", "The highlight max(0, v.r)^s: v towards the eye, r the light's direction mirrored about the normal"},
+            {"Blinn (n.h)", "Blinn-Phong's highlight max(0, n.h)^s: h halfway between the light's and the eye's directions"}};
+        comboWithTips("specular", specular, speculars);
         tooltip(s, "The highlight: Phong's max(0, v.r)^s or Blinn-Phong's max(0, n.h)^s");
         d.specular = static_cast<SpecularModel>(specular);
         int analysis = static_cast<int>(d.analysis);
-        ImGui::Combo("analysis", &analysis, "none\0reflection lines\0scalar map\0");
+        static const Choice analyses[] = {
+            {"none", "No analysis: every surface in its material"},
+            {"reflection lines", "Stripes of a sphere map reflected in the surfaces: they break at a C0 edge and kink at a G1 one (key R)"},
+            {"scalar map", "A lattice's deformed mesh coloured by det J, the local volume change (1: kept), with a legend"}};
+        comboWithTips("analysis", analysis, analyses);
         tooltip(s, "Reflection lines (R) show the smoothness across edges one order down;\nthe scalar map colours a lattice's mesh by det J");
         d.analysis = static_cast<SurfaceAnalysis>(analysis);
         if (d.analysis == SurfaceAnalysis::ReflectionLines) {
@@ -771,7 +813,13 @@ void displayPanel(Scene& scene, UiState& s)
                 for (int k = 0; k < 4; ++k)
                     if (d.samples == counts[k]) choice = k + 1;
             if (d.antialiasing == Antialiasing::Always && choice == 0) choice = 3; // a count not offered: shown as 4x
-            if (ImGui::Combo("anti-alias", &choice, "auto\0off\0002x\0004x\0008x\0") && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
+            static const Choice samples[] = {
+                {"auto", "The document's samples on a GPU and in screenshots, none for the frames of a software renderer (llvmpipe)"},
+                {"off", "No multisampling anywhere: the edges show their steps"},
+                {"2x", "2 samples per pixel everywhere"},
+                {"4x", "4 samples per pixel everywhere"},
+                {"8x", "8 samples per pixel everywhere (the smoothest edges, the slowest)"}};
+            if (comboWithTips("anti-alias", choice, samples) && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
                 d.antialiasing = choice == 0 ? Antialiasing::Auto : Antialiasing::Always;
                 if (choice > 0) d.samples = counts[choice - 1];
                 else if (d.samples == 0) d.samples = 4;
@@ -860,7 +908,9 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
         if (s.pathDialog == UiState::PathDialog::Import) {
             int up = s.importUp == UpAxis::Y ? 1 : 0;
             ImGui::SetNextItemWidth(200);
-            if (ImGui::Combo("up axis of OBJ, PLY, STL, OFF", &up, "Z up\0Y up\0")) s.importUp = up == 1 ? UpAxis::Y : UpAxis::Z;
+            static const Choice ups[] = {{"Z up", "The file's coordinates are used as they are: its z points up"},
+                                         {"Y up", "The file's y points up: turned a quarter about x, (x, y, z) -> (x, -z, y)"}};
+            if (comboWithTips("up axis of OBJ, PLY, STL, OFF", up, ups)) s.importUp = up == 1 ? UpAxis::Y : UpAxis::Z;
             tooltip(s, "These formats do not say which way is up: Y up files are turned to the Z-up world.\n"
                        "glTF and GLB are always read Y up (the glTF specification). Remembered until the editor quits;\n"
                        "Properties > up axis changes it for one mesh.");
@@ -1163,6 +1213,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     statusBarHeight = statusHeightFor(statusLines(state));
     state.tooltip.clear();
     state.widgets.clear();
+    state.dropdowns.clear();
     mainMenu(scene, state, actions);
     statusBar(state);
     colourLegend(scene, state);
