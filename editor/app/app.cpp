@@ -131,7 +131,12 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     autosaveDir_ = autosaveDirectory();
     lastAutosave_ = std::chrono::steady_clock::now();
     if (autosave_) offerRecovery();
-    if (!options_.headless()) {
+    // The recent-files list: FREEFORM_CONFIG_DIR/recent.json when that folder is given, else the
+    // user's (app/recent_files.h). Headless runs read it only from a folder given so (a test's), and
+    // never write it.
+    const char* config = std::getenv("FREEFORM_CONFIG_DIR");
+    if (config && *config) recent_ = RecentFiles(fs::path(config) / "recent.json");
+    if (!options_.headless() || (config && *config)) {
         const std::string message = recent_.load();
         if (!message.empty()) ui_.notice = "recent files ignored: " + message;
     }

@@ -236,12 +236,16 @@ TooltipAudit auditTooltips(const Frame& frame, const std::string& shownTooltip, 
     Sweep sweep{frame, shownTooltip, step, dropdowns, {}, {}, {}, 0, 0, {}, {}};
     sweep.audit.step = step;
     sweep.settle();
-    // The windows shown now, front to back as ImGui draws them. While a popup (a menu, a dialog)
+    // The windows shown now (ImGui keeps them back to front). While a popup (a menu, a dialog)
     // is open only the popups: hovering another menu title would open that menu instead.
     const bool popupOpen = g.OpenPopupStack.Size > 0;
+    // A submenu (a menu inside a menu) is a child window of its menu, swept as a window of its own;
+    // front to back, so that a submenu is swept before hovering its menu's other items closes it.
     std::vector<ImGuiWindow*> roots;
-    for (ImGuiWindow* w : g.Windows) {
-        if (!w->Active || (w->Flags & (ImGuiWindowFlags_ChildWindow | ImGuiWindowFlags_Tooltip))) continue;
+    for (int n = g.Windows.Size - 1; n >= 0; --n) {
+        ImGuiWindow* w = g.Windows[n];
+        const bool childMenu = (w->Flags & ImGuiWindowFlags_ChildMenu) != 0;
+        if (!w->Active || (w->Flags & ImGuiWindowFlags_Tooltip) || ((w->Flags & ImGuiWindowFlags_ChildWindow) && !childMenu)) continue;
         if (popupOpen && !(w->Flags & ImGuiWindowFlags_Popup)) continue;
         if (!windows.empty() && std::find(windows.begin(), windows.end(), std::string(w->Name)) == windows.end()) continue;
         roots.push_back(w);

@@ -278,9 +278,6 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
         tooltip(s, "Open a freeform document (.json), a .bpt patch file or a mesh");
         const bool recentMenu = ImGui::BeginMenu("Open recent", !actions.recentFiles().empty());
-        if (!recentMenu)
-            tooltip(s, actions.recentFiles().empty() ? "The last 8 documents opened or saved (none yet)"
-                                                     : "The last 8 documents opened or saved, most recent first");
         if (recentMenu) {
             // Most recent first; a file that is gone is shown greyed and cannot be chosen.
             for (const std::string& path : actions.recentFiles()) {
@@ -289,8 +286,12 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
                 if (ImGui::MenuItem(path.c_str(), nullptr, false, exists)) actions.open(path);
                 tooltip(s, exists ? "Open this document (asks first when there are unsaved changes)" : "This file no longer exists");
             }
+            fitWindow();
             ImGui::EndMenu();
         }
+        // After EndMenu the last item is "Open recent" again: its tooltip shows while its list is open too.
+        tooltip(s, actions.recentFiles().empty() ? "The last 8 documents opened or saved (none yet)"
+                                                 : "The last 8 documents opened or saved, most recent first");
         if (ImGui::MenuItem("Save", "Ctrl+S")) {
             if (scene.path().empty()) askPath(s, actions, UiState::PathDialog::SaveAs, "scene.json");
             else actions.save();
@@ -307,6 +308,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         tooltip(s, "Close the editor (asks first when there are unsaved changes)");
+        fitWindow();
         ImGui::EndMenu();
     }
     const bool editMenu = ImGui::BeginMenu("Edit");
@@ -337,6 +339,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Unselected points within the radius follow a drag, with a smooth falloff");
         ImGui::MenuItem("Translate gizmo", "Shift+G", &s.edit.gizmo);
         tooltip(s, "Arrows and squares at the selected points' centre: drag along an axis or in a plane");
+        fitWindow();
         ImGui::EndMenu();
     }
     const bool viewMenu = ImGui::BeginMenu("View");
@@ -380,6 +383,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Show or hide the Display panel");
         ImGui::MenuItem("Frame statistics", "F2", &s.showStats);
         tooltip(s, "Frame time, update time and triangle count at the bottom of the view");
+        fitWindow();
         ImGui::EndMenu();
     }
     const bool helpMenu = ImGui::BeginMenu("Help");
@@ -387,6 +391,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
     if (helpMenu) {
         ImGui::MenuItem("Controls", "F1", &s.showHelp);
         tooltip(s, "First steps, the mouse and every key");
+        fitWindow();
         ImGui::EndMenu();
     }
     ImGui::Separator();
@@ -945,6 +950,7 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
             s.pathDialog = UiState::PathDialog::None;
             ImGui::CloseCurrentPopup();
         }
+        fitWindow();
         ImGui::EndPopup();
     }
     (void)scene;
@@ -981,6 +987,7 @@ bool unsavedDialog(Scene& scene, UiState& s, UiActions& actions)
             s.pending = PendingAction::None;
             ImGui::CloseCurrentPopup();
         }
+        fitWindow();
         ImGui::EndPopup();
     }
     return proceed;
@@ -1004,6 +1011,7 @@ void errorDialog(UiState& s)
             s.errorFrame = -1;
             ImGui::CloseCurrentPopup();
         }
+        fitWindow();
         ImGui::EndPopup();
     }
 }
@@ -1019,6 +1027,7 @@ void helpWindow(UiState& s)
         if (open) ImGui::TextUnformatted(firstStepsHelp());
         const std::string controls = controlsHelp();
         ImGui::TextUnformatted(controls.c_str());
+        fitWindow();
     }
     ImGui::End();
 }
@@ -1066,6 +1075,7 @@ void recoveryDialog(UiState& s, UiActions& actions)
             ImGui::CloseCurrentPopup();
             actions.recover(recover);
         }
+        fitWindow();
         ImGui::EndPopup();
     }
 }
