@@ -1020,12 +1020,17 @@ void helpWindow(UiState& s)
 {
     if (!s.showHelp) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowSize(ImVec2(std::min(700.0f, vp->Size.x - 40), std::min(600.0f, vp->Size.y - 60)), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Controls", &s.showHelp)) {
+    // As wide as its widest line where the window allows (else it scrolls sideways), centred.
+    const std::string controls = controlsHelp();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float widest = std::max(ImGui::CalcTextSize(firstStepsHelp()).x, ImGui::CalcTextSize(controls.c_str()).x) +
+                         2 * style.WindowPadding.x + style.ScrollbarSize + 2;
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 0.5f * vp->Size.x, vp->Pos.y + 0.5f * vp->Size.y), ImGuiCond_FirstUseEver, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(std::min(widest, vp->Size.x - 16), std::min(600.0f, vp->Size.y - 60)), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Controls", &s.showHelp, ImGuiWindowFlags_HorizontalScrollbar)) {
         const bool open = ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen);
         tooltip(s, "Three short tasks: draw a C2 spline, smooth a patch pair, deform a mesh (click to fold)");
         if (open) ImGui::TextUnformatted(firstStepsHelp());
-        const std::string controls = controlsHelp();
         ImGui::TextUnformatted(controls.c_str());
         fitWindow();
     }
