@@ -183,15 +183,18 @@ TEST_CASE("issue 12: nothing is clipped in the menus, the dialogs and the help w
     test::writeText(corrupt, "{\"format\": \"freeform\", \"version\": 1, \"objects\": [");
     const std::string environment = cat("FREEFORM_AUTOSAVE_DIR='", autosave, "' FREEFORM_CONFIG_DIR='", config, "'");
 
+    Json file; // the File menu's audit (the menu bar and its menus lie at the top left at every size)
     for (const std::string size : {"900x600", "1280x800", "1600x1000"}) {
         // The clicks' places: the menu titles and px tolerance, then Open recent in the File menu.
         const Json first = runState(cat("where_", size), doc, Json::array({frames(2), {{"type", "tooltip_audit"}, {"windows", {"##MainMenuBar", "Display"}}}}),
                                     size)["tooltip_audits"][0];
-        Json fileMenu = Json::array();
-        click(fileMenu, hovered(first, "\"File\""));
-        fileMenu.push_back(frames(2));
-        fileMenu.push_back({{"type", "tooltip_audit"}});
-        const Json file = runState(cat("where_file_", size), doc, fileMenu, size)["tooltip_audits"][0];
+        if (file.is_null()) {
+            Json fileMenu = Json::array();
+            click(fileMenu, hovered(first, "\"File\""));
+            fileMenu.push_back(frames(2));
+            fileMenu.push_back({{"type", "tooltip_audit"}});
+            file = runState("where_file", doc, fileMenu, size)["tooltip_audits"][0];
+        }
 
         fs::remove_all(autosave);
         fs::create_directories(autosave);
