@@ -131,7 +131,12 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     autosaveDir_ = autosaveDirectory();
     lastAutosave_ = std::chrono::steady_clock::now();
     if (autosave_) offerRecovery();
-    if (!options_.headless()) {
+    // The recent-files list: FREEFORM_CONFIG_DIR/recent.json when that folder is given, else the
+    // user's (app/recent_files.h). Headless runs read it only from a folder given so (a test's), and
+    // never write it.
+    const char* config = std::getenv("FREEFORM_CONFIG_DIR");
+    if (config && *config) recent_ = RecentFiles(fs::path(config) / "recent.json");
+    if (!options_.headless() || (config && *config)) {
         const std::string message = recent_.load();
         if (!message.empty()) ui_.notice = "recent files ignored: " + message;
     }
@@ -339,10 +344,14 @@ std::string App::stateText() const
             nlohmann::ordered_json items = nlohmann::ordered_json::array(), missing = nlohmann::ordered_json::array();
             for (const TooltipAuditItem& item : a.items) {
                 items.push_back({{"window", item.window}, {"path", item.path}, {"x", item.x}, {"y", item.y}, {"scrolled", item.scrolled}, {"hovered", item.hovered},
-                                 {"tooltip", item.tooltip}, {"text", item.text}});
+                                 {"tooltip", item.tooltip}, {"text", item.text}, {"dropdown", item.dropdown}});
                 if (!item.tooltip) missing.push_back(item.window + ": " + item.path);
             }
-            audits.push_back({{"points", a.points}, {"step", a.step}, {"windows", a.windows}, {"items", items}, {"missing", missing}});
+            nlohmann::ordered_json dropdowns = nlohmann::ordered_json::array();
+            for (const TooltipAuditDropdown& d : a.dropdowns)
+                dropdowns.push_back({{"window", d.window}, {"path", d.path}, {"opened", d.opened}, {"choices", d.choices}});
+            audits.push_back(
+                {{"points", a.points}, {"step", a.step}, {"windows", a.windows}, {"items", items}, {"missing", missing}, {"dropdowns", dropdowns}});
         }
         j["tooltip_audits"] = audits;
     }
@@ -1085,7 +1094,7 @@ void App::replay(const std::vector<ReplayEvent>& events)
             // A test hook (docs/editor.md): the pointer swept over every panel, frames of the
             // panels only; the result goes to --state.
             if (withUi)
-                audits_.push_back(auditTooltips([this](const std::function<void()>& hook) { buildUi(hook); }, ui_.tooltip, float(e.step), e.windows));
+                audits_.push_back(auditTooltips([this](const std::function<void()>& hook) { buildUi(hook); }, ui_.tooltip, float(e.step), e.windows, &ui_.dropdowns));
             break;
         case ReplayEvent::Type::Resize:
             // As a window resized by the user: the view and the panels get the new size.

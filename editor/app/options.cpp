@@ -113,7 +113,9 @@ view (override what the document says):
                          for the frames of a software renderer such as llvmpipe)
 
 environment: FREEFORM_AUTOSAVE_DIR (the autosave folder; headless runs autosave only when it is
-set), FREEFORM_AUTOSAVE_INTERVAL (seconds between autosaves, default 60).
+set), FREEFORM_AUTOSAVE_INTERVAL (seconds between autosaves, default 60), FREEFORM_CONFIG_DIR
+(the folder of File > Open recent's recent.json instead of $XDG_CONFIG_HOME/freeform; headless
+runs read the list only from it, and never write it).
 
 exit status: 0 success, 1 a file could not be read or written (or no display), 2 bad command line.
 )";

@@ -90,9 +90,13 @@ struct Sweep {
     const Frame& frame;
     const std::string& shownTooltip;
     float step;
+    const std::vector<unsigned>* dropdowns; // the panels' dropdowns (may be null: none opened)
     TooltipAudit audit;
-    std::map<ImGuiID, std::size_t> index; // item id -> audit.items
-    int scrolled = 0;                     // > 0 while a panel is scrolled by the sweep
+    std::map<std::pair<ImGuiID, ImGuiID>, std::size_t> index; // (open dropdown or 0, item id) -> audit.items
+    std::vector<ImGuiID> ids;                                 // audit.items' ImGui IDs
+    int scrolled = 0;                                         // > 0 while a panel is scrolled by the sweep
+    ImGuiID dropdown = 0;                                     // the dropdown whose list is swept now (0: none)
+    std::string dropdownPath, dropdownWindow;
 
     /// One point: the pointer there, a frame, the hovered item and the tooltip.
     void point(float x, float y, const std::string& window)
@@ -104,7 +108,7 @@ struct Sweep {
         const ImGuiID id = g.HoveredId;
         if (id == 0 || isChrome(id)) return;
         const bool shown = tooltipOpen();
-        auto found = index.find(id);
+        auto found = index.find({dropdown, id});
         if (found == index.end()) {
             TooltipAuditItem item;
             item.window = g.HoveredWindow ? g.HoveredWindow->RootWindow->Name : window; // a window on top may hide the one swept
@@ -114,8 +118,16 @@ struct Sweep {
             item.scrolled = scrolled > 0;
             item.text = shownTooltip;
             item.path = idPath(id, frame); // the pointer stays on it meanwhile
-            found = index.emplace(id, audit.items.size()).first;
+            if (dropdown != 0) {
+                // A choice: named after its dropdown (the list's own window, "##Combo_00", left out).
+                const std::size_t list = item.path.find(" > ");
+                item.path = dropdownPath + " > (open) > " + (list == std::string::npos ? item.path : item.path.substr(list + 3));
+                item.window = dropdownWindow;
+                item.dropdown = dropdownPath;
+            }
+            found = index.emplace(std::make_pair(dropdown, id), audit.items.size()).first;
             audit.items.push_back(std::move(item));
+            ids.push_back(id);
         }
         TooltipAuditItem& item = audit.items[found->second];
         ++item.hovered;
@@ -135,6 +147,51 @@ struct Sweep {
         frame({});
     }
 
+    /// Opens each dropdown among audit.items[from, end) (found at the scroll positions now in
+    /// effect) by a click where it was hovered, sweeps its list, and closes it again.
+    void openDropdowns(std::size_t from)
+    {
+        if (!dropdowns || dropdown != 0) return;
+        ImGuiContext& g = *GImGui;
+        const std::size_t end = audit.items.size();
+        for (std::size_t i = from; i < end; ++i) {
+            const ImGuiID id = ids[i];
+            if (std::find(dropdowns->begin(), dropdowns->end(), id) == dropdowns->end()) continue;
+            const TooltipAuditItem item = audit.items[i];
+            TooltipAuditDropdown d;
+            d.window = item.window;
+            d.path = item.path;
+            const int level = g.OpenPopupStack.Size;
+            const ImGuiID popup = ImHashStr("##ComboPopup", 0, id);
+            g.IO.MousePos = ImVec2(item.x, item.y);
+            frame({});
+            g.IO.MouseDown[0] = true;
+            frame({});
+            g.IO.MouseDown[0] = false;
+            frame({});
+            settle();
+            ImGuiWindow* list = nullptr;
+            if (g.OpenPopupStack.Size > level && g.OpenPopupStack[level].PopupId == popup) list = g.OpenPopupStack[level].Window;
+            d.opened = list != nullptr && list->Active;
+            if (d.opened) {
+                const std::size_t before = audit.items.size();
+                dropdown = id;
+                dropdownPath = item.path;
+                dropdownWindow = item.window;
+                const ImGuiViewport* vp = ImGui::GetMainViewport();
+                window(list, ImRect(vp->Pos, ImVec2(vp->Pos.x + vp->Size.x, vp->Pos.y + vp->Size.y)), true, list->Name);
+                dropdown = 0;
+                for (std::size_t k = before; k < audit.items.size(); ++k) d.choices += audit.items[k].dropdown == item.path;
+            }
+            // Closed without a choice (as Escape does), focus back where it was.
+            frame([&] {
+                if (GImGui->OpenPopupStack.Size > level) ImGui::ClosePopupToLevel(level, true);
+            });
+            settle();
+            audit.dropdowns.push_back(std::move(d));
+        }
+    }
+
     /// Sweeps `w` within `clip` at each of its scroll positions (`whole`: at the first one its
     /// whole rectangle, title bar included; else only what scrolling brings in), and the scrolling
     /// children inside it likewise.
@@ -150,7 +207,9 @@ struct Sweep {
             settle();
             ImRect r = whole && k == 0 ? w->Rect() : w->InnerClipRect;
             r.ClipWithFull(clip);
+            const std::size_t found = audit.items.size();
             if (whole || k > 0) rect(r, name);
+            openDropdowns(found);
             ImRect inner = w->InnerClipRect;
             inner.ClipWithFull(clip);
             std::vector<ImGuiWindow*> children;
@@ -168,20 +227,25 @@ struct Sweep {
 
 } // namespace
 
-TooltipAudit auditTooltips(const Frame& frame, const std::string& shownTooltip, float step, const std::vector<std::string>& windows)
+TooltipAudit auditTooltips(const Frame& frame, const std::string& shownTooltip, float step, const std::vector<std::string>& windows,
+                           const std::vector<unsigned>* dropdowns)
 {
     ImGuiContext& g = *GImGui;
     const ImVec2 mouse = g.IO.MousePos;
     if (!(step > 0)) step = 0.5f * ImGui::GetTextLineHeightWithSpacing();
-    Sweep sweep{frame, shownTooltip, step, {}, {}};
+    Sweep sweep{frame, shownTooltip, step, dropdowns, {}, {}, {}, 0, 0, {}, {}};
     sweep.audit.step = step;
     sweep.settle();
-    // The windows shown now, front to back as ImGui draws them. While a popup (a menu, a dialog)
+    // The windows shown now (ImGui keeps them back to front). While a popup (a menu, a dialog)
     // is open only the popups: hovering another menu title would open that menu instead.
     const bool popupOpen = g.OpenPopupStack.Size > 0;
+    // A submenu (a menu inside a menu) is a child window of its menu, swept as a window of its own;
+    // front to back, so that a submenu is swept before hovering its menu's other items closes it.
     std::vector<ImGuiWindow*> roots;
-    for (ImGuiWindow* w : g.Windows) {
-        if (!w->Active || (w->Flags & (ImGuiWindowFlags_ChildWindow | ImGuiWindowFlags_Tooltip))) continue;
+    for (int n = g.Windows.Size - 1; n >= 0; --n) {
+        ImGuiWindow* w = g.Windows[n];
+        const bool childMenu = (w->Flags & ImGuiWindowFlags_ChildMenu) != 0;
+        if (!w->Active || (w->Flags & ImGuiWindowFlags_Tooltip) || ((w->Flags & ImGuiWindowFlags_ChildWindow) && !childMenu)) continue;
         if (popupOpen && !(w->Flags & ImGuiWindowFlags_Popup)) continue;
         if (!windows.empty() && std::find(windows.begin(), windows.end(), std::string(w->Name)) == windows.end()) continue;
         roots.push_back(w);

@@ -9,7 +9,9 @@
 // window must be open in that frame. The window's own chrome (title bar buttons, scrollbars,
 // resize grips and borders, table column borders) is not a control of the panels and is skipped.
 // Each item hovered is named by its ID path (window, then the labels and IDs pushed, as ImGui's
-// stack tool finds them). Nothing here runs unless a replay asks for it.
+// stack tool finds them). Every dropdown (combo) hovered is opened by a click and its list swept
+// the same way, so that each choice needs its own tooltip. Nothing here runs unless a replay asks
+// for it.
 
 #include <functional>
 #include <string>
@@ -25,6 +27,16 @@ struct TooltipAuditItem {
     int hovered = 0;       // how many points of the grid hovered it
     bool tooltip = false;  // a tooltip was open at every one of them
     std::string text;      // the tooltip text the panels reported at the first point (may be "" if drawn by ImGui itself)
+    std::string dropdown;  // a choice in an open dropdown: that dropdown's ID path ("" for every other item)
+};
+
+/// A dropdown (combo) the sweep opened: clicked where it was hovered, its open list swept like a
+/// window (each choice must have its own tooltip), then closed again.
+struct TooltipAuditDropdown {
+    std::string window; // the top-level window it is in
+    std::string path;   // its ID path
+    bool opened = false; // the click opened its list
+    int choices = 0;     // the choices hovered in the open list
 };
 
 struct TooltipAudit {
@@ -32,6 +44,7 @@ struct TooltipAudit {
     float step = 0;                   // their spacing in pixels
     std::vector<std::string> windows; // the top-level windows swept
     std::vector<TooltipAuditItem> items;
+    std::vector<TooltipAuditDropdown> dropdowns;
 };
 
 /// Runs the sweep. `frame(hook)` must build one ImGui frame of the panels (NewFrame, then
@@ -40,7 +53,10 @@ struct TooltipAudit {
 /// half of ImGui's line height with spacing. The pointer and the scroll positions are put back
 /// afterwards. Needs a current ImGui context that has rendered at least one frame.
 /// `windows`: only the top-level windows of these names (empty: every one shown).
+/// `dropdowns`: the IDs of the dropdowns the panels drew in the last frame (UiState::dropdowns):
+/// each one hovered is opened by a click (a press and a release where it was hovered), its list
+/// swept, and closed (its choice unchanged: nothing in the list is clicked).
 TooltipAudit auditTooltips(const std::function<void(const std::function<void()>&)>& frame, const std::string& shownTooltip, float step,
-                           const std::vector<std::string>& windows = {});
+                           const std::vector<std::string>& windows = {}, const std::vector<unsigned>* dropdowns = nullptr);
 
 } // namespace freeform::editor

@@ -8,8 +8,13 @@
 // --state lists them as "overflows", and each run must list none. Each offender is printed with
 // its panel, label, needed and available pixels.
 //
-// A second case checks that the check itself fails: a status line longer than any window and a
-// panel made narrower than its rows are reported.
+// A second case reaches what the first does not, at the same three sizes: the menus (File with its
+// Open recent list, Edit, View, Help), the dialogs (autosave recovery, Open with the recent files,
+// Save as, Import, Export, error, unsaved changes), the help window and the world-tolerance slider;
+// dialogs, menus and the help window are also checked against the screen (ui/fit.h, fitWindow).
+//
+// A last case checks that the check itself fails: a status line longer than any window, a panel
+// made narrower than its rows and a dialog wider than the window are reported.
 
 #include <catch2/catch.hpp>
 
@@ -73,19 +78,46 @@ std::vector<std::string> splitDocument(const std::string& file, const std::strin
 /// 8 px; its title bar 19 px and padding 8 px; the row's text after the 19-px visibility box).
 const Eigen::Vector2d kFirstRow(8 + 8 + 19 + 4 + 30, 19 + 8 + 19 + 8 + 9);
 
-/// Runs `events` on `doc` at `size` and returns the state's overflows.
-Json overflows(const std::string& name, const std::string& doc, const Json& events, const std::string& size)
+/// Runs `events` on `doc` at `size` (`environment` prepended: VAR=value ...) and returns the state.
+Json runState(const std::string& name, const std::string& doc, const Json& events, const std::string& size, const std::string& environment = "")
 {
     const std::string file = cat(kTmp, "/fit_", name, ".events.json"), state = cat(kTmp, "/fit_", name, ".state.json");
     test::writeText(file, Json{{"events", events}}.dump(1));
     fs::remove(state);
-    const auto r = runEditor(cat("'", doc, "' --replay '", file, "' --state '", state, "' --size ", size));
+    const auto r = runEditor(cat("'", doc, "' --replay '", file, "' --state '", state, "' --size ", size), environment);
     INFO(r.err);
     REQUIRE(r.status == 0);
     REQUIRE(fs::exists(state));
     const Json s = Json::parse(test::slurp(state));
     REQUIRE(s.contains("overflows"));
-    return s["overflows"];
+    return s;
+}
+
+/// Runs `events` on `doc` at `size` and returns the state's overflows.
+Json overflows(const std::string& name, const std::string& doc, const Json& events, const std::string& size)
+{
+    return runState(name, doc, events, size)["overflows"];
+}
+
+/// Where the tooltip audit (the replay event "tooltip_audit", editor/app/tooltip_audit.h) first
+/// hovered the control whose ID path ends with `suffix`, not scrolled: a place to click it.
+Eigen::Vector2d hovered(const Json& audit, const std::string& suffix)
+{
+    for (const Json& item : audit["items"]) {
+        const std::string path = item["path"];
+        if (path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0 && item["scrolled"] == false)
+            return {item["x"].get<double>(), item["y"].get<double>()};
+    }
+    FAIL("no control " << suffix << " in the audit of " << audit["windows"].dump());
+    return {};
+}
+
+/// An audit only to see which windows are shown (a coarse grid: 40 px).
+Json windowsShown(const Json& windows = Json::array())
+{
+    Json e = {{"type", "tooltip_audit"}, {"step", 40}};
+    if (!windows.empty()) e["windows"] = windows;
+    return e;
 }
 
 std::string describe(const Json& list)
@@ -133,6 +165,102 @@ TEST_CASE("issue 12: no text is clipped at 900 x 600, 1280 x 800 and 1600 x 1000
     }
 }
 
+TEST_CASE("issue 12: nothing is clipped in the menus, the dialogs and the help window at 900 x 600, 1280 x 800 and 1600 x 1000",
+          "[render][replay]")
+{
+    // The states the case above does not reach, one run per size: the autosave-recovery dialog at
+    // start (an autosave in FREEFORM_AUTOSAVE_DIR), the world-tolerance slider (px tolerance set to
+    // 0 by Ctrl+click and typing), the File menu with its Open recent list (a recent.json in
+    // FREEFORM_CONFIG_DIR: a document and a file that is gone), the Edit, View and Help menus, the
+    // Open (with the recent files), Save as, Import, Export, error and unsaved-changes dialogs, and
+    // the help window (F1). Where to click (menu titles, Open recent, px tolerance) is taken from a
+    // first audit at the same size. Audits on a coarse grid check that each state came about.
+    const std::string doc = splitDocument("data/ffd_every_type.json", "dialogs").front();
+    const std::string config = kTmp + "/fit_config", autosave = kTmp + "/fit_autosave", corrupt = kTmp + "/fit_corrupt.json";
+    fs::remove_all(config);
+    fs::create_directories(config);
+    test::writeText(config + "/recent.json", Json{{"recent", {doc, kTmp + "/fit_gone.json"}}}.dump(1));
+    test::writeText(corrupt, "{\"format\": \"freeform\", \"version\": 1, \"objects\": [");
+    const std::string environment = cat("FREEFORM_AUTOSAVE_DIR='", autosave, "' FREEFORM_CONFIG_DIR='", config, "'");
+
+    Json file; // the File menu's audit (the menu bar and its menus lie at the top left at every size)
+    for (const std::string size : {"900x600", "1280x800", "1600x1000"}) {
+        // The clicks' places: the menu titles and px tolerance, then Open recent in the File menu.
+        const Json first = runState(cat("where_", size), doc, Json::array({frames(2), {{"type", "tooltip_audit"}, {"windows", {"##MainMenuBar", "Display"}}}}),
+                                    size)["tooltip_audits"][0];
+        if (file.is_null()) {
+            Json fileMenu = Json::array();
+            click(fileMenu, hovered(first, "\"File\""));
+            fileMenu.push_back(frames(2));
+            fileMenu.push_back({{"type", "tooltip_audit"}});
+            file = runState("where_file", doc, fileMenu, size)["tooltip_audits"][0];
+        }
+
+        fs::remove_all(autosave);
+        fs::create_directories(autosave);
+        test::writeText(autosave + "/autosave.json", test::slurp(doc));
+        test::writeText(autosave + "/autosave-path.txt", doc + "\n");
+        std::vector<std::pair<std::string, std::vector<std::string>>> expected; // per audit: the state, the windows it must show
+        Json events = Json::array({frames(2), windowsShown()});
+        expected.push_back({"autosave recovery dialog", {"Recover unsaved changes"}});
+        events.push_back(key("Escape")); // discarded
+        events.push_back(frames(2));
+        const Eigen::Vector2d tolerance = hovered(first, "Display > \"px tolerance\"") + Eigen::Vector2d(30, 0);
+        events.push_back(move(tolerance));
+        events.push_back({{"type", "press"}, {"button", "left"}, {"x", tolerance.x()}, {"y", tolerance.y()}, {"mods", {"ctrl"}}});
+        events.push_back({{"type", "release"}, {"button", "left"}, {"x", tolerance.x()}, {"y", tolerance.y()}, {"mods", {"ctrl"}}});
+        events.push_back({{"type", "text"}, {"text", "0"}});
+        events.push_back(key("Enter"));
+        events.push_back(frames(2));
+        events.push_back({{"type", "tooltip_audit"}, {"windows", {"Display"}}}); // the fine grid: the slider must be found
+        expected.push_back({"px tolerance 0", {"Display"}});
+        click(events, hovered(first, "\"File\""));
+        events.push_back(frames(2));
+        events.push_back(move(hovered(file, "\"Open recent\"")));
+        events.push_back(frames(3));
+        events.push_back(windowsShown());
+        expected.push_back({"File > Open recent", {"##Menu_01", "##Menu_00"}});
+        for (const char* menu : {"Edit", "View", "Help"}) {
+            events.push_back(move(hovered(first, cat("\"", menu, "\""))));
+            events.push_back(frames(2));
+            events.push_back(windowsShown());
+            expected.push_back({cat(menu, " menu"), {"##Menu_00"}});
+        }
+        click(events, hovered(first, "\"Help\"")); // closes the menu
+        events.push_back(frames(2));
+        const std::vector<std::pair<std::string, Json>> dialogs = {{"Open", Json::array({key("O", {"ctrl"})})},
+                                                                  {"Save as", Json::array({key("S", {"ctrl", "shift"})})},
+                                                                  {"Import", Json::array({key("I", {"ctrl"})})},
+                                                                  {"Export OBJ", Json::array({key("E", {"ctrl"})})},
+                                                                  {"Error", Json::array({{{"type", "open"}, {"path", corrupt}}})},
+                                                                  {"Unsaved changes", Json::array({key("W"), key("N", {"ctrl"})})}};
+        for (const auto& [name, opening] : dialogs) {
+            for (const Json& e : opening) events.push_back(e);
+            events.push_back(frames(2));
+            events.push_back(windowsShown());
+            expected.push_back({name + " dialog", {name}});
+            events.push_back(key("Escape"));
+            events.push_back(frames(2));
+        }
+        events.push_back(key("F1"));
+        events.push_back(frames(2));
+        events.push_back(windowsShown(Json::array({"Controls"})));
+        expected.push_back({"help window", {"Controls"}});
+
+        const Json state = runState(cat("dialogs_", size), doc, events, size, environment);
+        REQUIRE(state["tooltip_audits"].size() == expected.size());
+        for (std::size_t k = 0; k < expected.size(); ++k) {
+            INFO("at " << size << ", " << expected[k].first << ": windows " << state["tooltip_audits"][k]["windows"].dump());
+            CHECK(state["tooltip_audits"][k]["windows"] == Json(expected[k].second));
+        }
+        bool worldTolerance = false;
+        for (const Json& item : state["tooltip_audits"][1]["items"]) worldTolerance |= item["path"] == "Display > \"tolerance\"";
+        CHECK(worldTolerance);
+        INFO("at " << size << ", clipped:\n" << describe(state["overflows"]));
+        CHECK(state["overflows"].empty());
+    }
+}
+
 TEST_CASE("issue 12: the clipping check reports a cut status line and a panel narrower than its rows", "[render][replay]")
 {
     // A status line is cut when the window is narrower than it: at 120 x 400 even the shortest hint
@@ -141,14 +269,18 @@ TEST_CASE("issue 12: the clipping check reports a cut status line and a panel na
     Json events = Json::array({frames(2)});
     click(events, kFirstRow); // the circle selected: Properties shows its rows
     events.push_back(frames(3));
+    events.push_back(key("O", {"ctrl"})); // the Open dialog: its path field alone is 480 px wide
+    events.push_back(frames(3));
     const Json list = overflows("check", doc, events, "120x400");
     INFO(describe(list));
-    bool status = false, panel = false;
+    bool status = false, panel = false, dialog = false;
     for (const Json& o : list) {
         status |= o["panel"] == "##status";
         panel |= o["label"].get<std::string>().rfind("(widest row", 0) == 0;
+        dialog |= o["panel"] == "Open";
         CHECK(o["needed"].get<double>() > o["available"].get<double>());
     }
     CHECK(status);
     CHECK(panel);
+    CHECK(dialog);
 }

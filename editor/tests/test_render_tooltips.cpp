@@ -85,12 +85,14 @@ Json audit() { return {{"type", "tooltip_audit"}}; }
 Json auditProperties() { return {{"type", "tooltip_audit"}, {"windows", Json::array({"Properties"})}}; }
 
 /// Runs the replay on `doc` at 1280 x 800 and returns its tooltip audits (--state).
-std::vector<Json> audits(const std::string& name, const std::string& doc, const Json& events, std::size_t expected)
+/// `environment` is prepended to the command (VAR=value ...).
+std::vector<Json> audits(const std::string& name, const std::string& doc, const Json& events, std::size_t expected,
+                         const std::string& environment = "")
 {
     const std::string file = cat(kTmp, "/tooltips_", name, ".events.json"), state = cat(kTmp, "/tooltips_", name, ".state.json");
     freeform::test::writeText(file, Json{{"events", events}}.dump(1));
     fs::remove(state);
-    const auto r = runEditor(cat("'", doc, "' --replay '", file, "' --state '", state, "' --size ", kW, "x", kH));
+    const auto r = runEditor(cat("'", doc, "' --replay '", file, "' --state '", state, "' --size ", kW, "x", kH), environment);
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json s = readJson(state);
@@ -123,8 +125,13 @@ Eigen::Vector2d at(const Json& a, const std::string& suffix)
     return {(*item)["x"].get<double>(), (*item)["y"].get<double>()};
 }
 
+/// The dropdowns opened by every audit checked (their ID paths), over the whole test.
+std::set<std::string> dropdownsOpened;
+
 /// Every hovered control has a tooltip; the audit hovered at least `least` controls, among them
-/// those whose paths end with `expected` (so that a state that did not come about fails).
+/// those whose paths end with `expected` (so that a state that did not come about fails). Every
+/// dropdown hovered was opened by the sweep and at least two of its choices were hovered in its
+/// open list (each with its own tooltip: a choice without one is in "missing").
 void checkComplete(const Json& a, const std::string& state, std::size_t least, const std::vector<std::string>& expected = {})
 {
     INFO("state: " << state << ", " << a["points"] << " points, " << a["items"].size() << " controls hovered, windows " << a["windows"].dump());
@@ -142,6 +149,20 @@ void checkComplete(const Json& a, const std::string& state, std::size_t least, c
             INFO(item["path"]);
             CHECK(item["hovered"].get<int>() >= 1);
         }
+    for (const Json& d : a["dropdowns"]) {
+        INFO("dropdown " << d["path"]);
+        CHECK(d["opened"] == true);
+        CHECK(d["choices"].get<int>() >= 2);
+        dropdownsOpened.insert(d["path"].get<std::string>());
+    }
+}
+
+/// A click at p with Ctrl held (a slider becomes a text field).
+void ctrlClick(Json& events, const Eigen::Vector2d& p)
+{
+    events.push_back(move(p));
+    events.push_back({{"type", "press"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}, {"mods", {"ctrl"}}});
+    events.push_back({{"type", "release"}, {"button", "left"}, {"x", p.x()}, {"y", p.y()}, {"mods", {"ctrl"}}});
 }
 
 /// The Scene panel's row of `name` in an audit of the nothing-selected state.
@@ -303,5 +324,61 @@ TEST_CASE("issue 12: every control of every panel, menu and dialog has a tooltip
         INFO(name << ": windows " << d[k]["windows"].dump());
         CHECK(shown);
         checkComplete(d[k], name + " dialog", items.size(), items);
+    }
+
+    // The states the runs above cannot reach. The autosave-recovery dialog at start (an autosave in
+    // FREEFORM_AUTOSAVE_DIR); File > Open recent's entries and the Open dialog's recent list (a
+    // recent.json in FREEFORM_CONFIG_DIR: this document and a file that is gone, shown greyed); the
+    // world-tolerance slider, shown when the pixel tolerance is 0 (set as a user does: Ctrl+click
+    // on "px tolerance", type 0, Enter).
+    const std::string config = kTmp + "/tooltips_config", autosave = kTmp + "/tooltips_autosave";
+    for (const std::string& folder : {config, autosave}) {
+        fs::remove_all(folder);
+        fs::create_directories(folder);
+    }
+    freeform::test::writeText(config + "/recent.json", Json{{"recent", {doc, kTmp + "/tooltips_gone.json"}}}.dump(1));
+    freeform::test::writeText(autosave + "/autosave.json", freeform::test::slurp(doc));
+    freeform::test::writeText(autosave + "/autosave-path.txt", doc + "\n");
+    Json more = Json::array({frames(2), audit(), key("Escape"), frames(2)}); // the recovery dialog, discarded
+    click(more, at(start, "\"File\""));
+    more.push_back(frames(2));
+    more.push_back(move(at(m[0], "\"Open recent\"")));
+    more.push_back(frames(3));
+    more.push_back(audit());
+    click(more, at(start, "\"File\"")); // closes the menu
+    more.push_back(frames(2));
+    more.push_back(key("O", {"ctrl"}));
+    more.push_back(frames(2));
+    more.push_back(audit());
+    more.push_back(key("Escape"));
+    more.push_back(frames(2));
+    ctrlClick(more, at(start, "Display > \"px tolerance\"") + Eigen::Vector2d(30, 0));
+    more.push_back({{"type", "text"}, {"text", "0"}});
+    more.push_back(key("Enter"));
+    more.push_back(frames(2));
+    more.push_back({{"type", "tooltip_audit"}, {"windows", Json::array({"Display"})}});
+    const std::vector<Json> r =
+        audits("more", doc, more, 4, cat("FREEFORM_AUTOSAVE_DIR='", autosave, "' FREEFORM_CONFIG_DIR='", config, "'"));
+    const std::vector<std::string> states = {"autosave recovery dialog", "File > Open recent", "Open dialog with the recent files",
+                                             "px tolerance 0"};
+    const std::vector<std::vector<std::string>> expectedMore = {{"\"Recover (Enter)\"", "\"Discard (Escape)\""},
+                                                                {"\"Open recent\"", cat("\"", doc, "\"")},
+                                                                {cat("Open > \"", doc, "\""), "\"OK\""},
+                                                                {"Display > \"px tolerance\"", "Display > \"tolerance\""}};
+    for (std::size_t k = 0; k < states.size(); ++k) checkComplete(r[k], states[k], expectedMore[k].size(), expectedMore[k]);
+    CHECK(r[0]["windows"] == Json::array({"Recover unsaved changes"}));
+    CHECK(r[1]["windows"].size() == 2); // the File menu and its Open recent submenu
+
+    // Every dropdown of the panels and dialogs was opened in some state above, and each choice in it
+    // had its own tooltip.
+    std::string opened;
+    for (const std::string& path : dropdownsOpened) opened += "\n  " + path;
+    INFO("dropdowns opened:" << opened);
+    for (const char* dropdown : {"Display > \"shading\"", "Display > \"specular\"", "Display > \"analysis\"", "Display > \"anti-alias\"",
+                                 "Properties > \"mode\"", "Properties > \"up axis\"", "Properties > \"scheme\"", "Properties > \"boundary\"",
+                                 "Properties > \"all joints\"", "Properties > \"joints\" > 1 > \"##mode\"", "Properties > \"mesh\"",
+                                 "Properties > \"outside\"", "Import > \"up axis of OBJ, PLY, STL, OFF\""}) {
+        INFO("dropdown " << dropdown);
+        CHECK(dropdownsOpened.count(dropdown) == 1);
     }
 }

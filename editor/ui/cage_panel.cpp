@@ -28,11 +28,18 @@ void CageTool::drawPanel(ToolContext& c)
 
     static const char* schemes[] = {"catmark", "loop"};
     int scheme = d.scheme == "loop" ? 1 : 0;
-    if (ImGui::Combo("scheme", &scheme, "Catmull-Clark (catmark)\0Loop (triangles only)\0")) setScheme(c, item, schemes[scheme]);
+    static const Choice schemeChoices[] = {
+        {"Catmull-Clark (catmark)", "Catmull-Clark: for cages of any polygons; every face becomes quads at the first step"},
+        {"Loop (triangles only)", "Loop: for cages made of triangles only; each triangle becomes four at every step"}};
+    if (comboWithTips("scheme", scheme, schemeChoices)) setScheme(c, item, schemes[scheme]);
     tooltip("Subdivision scheme (the object's scheme field): Catmull-Clark for any polygons, Loop for triangle cages only");
     static const char* boundaries[] = {"edge_only", "edge_and_corner", "none"};
     int boundary = d.boundary == "edge_and_corner" ? 1 : d.boundary == "none" ? 2 : 0;
-    if (ImGui::Combo("boundary", &boundary, "edge only\0edge and corner\0none\0")) setBoundary(c, item, boundaries[boundary]);
+    static const Choice boundaryChoices[] = {
+        {"edge only", "Boundary edges act as infinitely sharp creases (the default)"},
+        {"edge and corner", "As edge only, and boundary vertices with a single face are sharp corners too"},
+        {"none", "Faces touching the boundary have no limit surface: the outer ring only shapes the inner faces"}};
+    if (comboWithTips("boundary", boundary, boundaryChoices)) setBoundary(c, item, boundaries[boundary]);
     tooltip("Boundary interpolation (the object's boundary field): edge only, edge and corner (corners stay put), or none");
     const Tessellation& t = c.scene.item(item).settings.tessellation;
     int level = t.mode == Tessellation::Mode::Uniform ? t.segments : 0;

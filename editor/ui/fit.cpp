@@ -92,6 +92,21 @@ void fitPanel(const std::string& what)
     record(what.empty() ? std::string("(widest row)") : "(widest row, " + what + ")", right - left, w->InnerClipRect.Max.x - left);
 }
 
+void fitWindow(const std::string& what)
+{
+    if (!records) return;
+    const ImGuiWindow* w = ImGui::GetCurrentWindowRead();
+    if (!w || w->Appearing || w->HiddenFramesCannotSkipItems > 0 || w->HiddenFramesCanSkipItems > 0) return;
+    fitPanel(what);
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    const ImRect screen(vp->Pos, ImVec2(vp->Pos.x + vp->Size.x, vp->Pos.y + vp->Size.y));
+    ImRect shown = w->Rect();
+    shown.ClipWithFull(screen);
+    const std::string suffix = what.empty() ? std::string() : ", " + what;
+    record("(cut by the screen, width" + suffix + ")", w->Size.x, std::max(shown.GetWidth(), 0.0f));
+    record("(cut by the screen, height" + suffix + ")", w->Size.y, std::max(shown.GetHeight(), 0.0f));
+}
+
 void fitFields(const char* const texts[], int n, float reserve, bool centred)
 {
     if (!records || n < 1 || measuring()) return;

@@ -41,6 +41,14 @@ void fitValue(const char* text);
 /// the selected object's type).
 void fitPanel(const std::string& what = "");
 
+/// A dialog, menu or other window that sizes itself to its contents, before its End(): as
+/// fitPanel(what) (the widest row against the visible width; a dialog wider than the screen is made
+/// narrower than its rows by ImGui), and its rectangle against the screen (the main viewport): a
+/// window reaching past an edge of the screen is cut there, recorded as "(cut by the screen, width)"
+/// or "(cut by the screen, height)". Not in the frames where the window appears (its size is not
+/// known yet).
+void fitWindow(const std::string& what = "");
+
 /// A text that needs `needed` pixels and gets `available`.
 void fitWidth(const char* label, float needed, float available);
 

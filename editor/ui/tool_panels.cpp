@@ -113,6 +113,11 @@ void SplineTool::drawPanel(ToolContext& c)
     ImGui::Separator();
     ImGui::TextWrapped("Joints (1 free, 2 aligned G1, 3 mirrored C1, 4 C2)");
     static const char* names[] = {"free", "aligned", "mirrored", "C2"};
+    static const Choice modeChoices[] = {
+        {"free", "Free (C0): the two handles of the joint move independently"},
+        {"aligned", "Aligned (G1): the handles stay on one line through the joint, each keeps its own length"},
+        {"mirrored", "Mirrored (C1): the handles on one line, their lengths in the ratio of the two intervals"},
+        {"C2", "C2: the second derivatives agree too; the handles follow the spline's de Boor points (cubic splines)"}};
     // The combo shows the inner joints' common mode, or "mixed".
     int common = -2;
     const std::vector<JointMode> current = jointModes(c.scene, item);
@@ -122,9 +127,18 @@ void SplineTool::drawPanel(ToolContext& c)
         common = common == -2 ? m : common == m ? m : -1;
     }
     ImGui::SetNextItemWidth(120);
+    static const char* allTips[] = {
+        "Every inner joint free (C0): the handles keep where they are",
+        "Every inner joint aligned (G1): the handles turn onto the bisector of their two directions",
+        "Every inner joint mirrored (C1): the handles change least, no side preferred",
+        "Every inner joint C2: the joints and end tangents stay, the inner handles become the C2 interpolant's"};
+    noteDropdown("all joints");
     if (ImGui::BeginCombo("all joints", common >= 0 ? names[common] : common == -1 ? "mixed" : "-")) {
         for (int m = 0; m < 4; ++m)
+        {
             if (ImGui::Selectable(names[m], m == common)) setAllJointModes(c, static_cast<JointMode>(m));
+            tooltip(allTips[m]);
+        }
         ImGui::EndCombo();
     }
     tooltip("Set every inner joint to one mode (shows the current common mode, or mixed)");
@@ -165,7 +179,7 @@ void SplineTool::drawPanel(ToolContext& c)
             int mode = static_cast<int>(modes[static_cast<std::size_t>(r.joint)]);
             ImGui::PushID(r.joint);
             ImGui::SetNextItemWidth(90);
-            if (ImGui::Combo("##mode", &mode, names, 4)) setJointMode(c, static_cast<JointMode>(mode), r.joint);
+            if (comboWithTips("##mode", mode, modeChoices)) setJointMode(c, static_cast<JointMode>(mode), r.joint);
             fitWidth(names[mode], ImGui::CalcTextSize(names[mode]).x + 2 * ImGui::GetStyle().FramePadding.x + ImGui::GetFrameHeight(),
                      ImGui::GetItemRectSize().x);
             fitItem(names[mode]);
@@ -300,12 +314,15 @@ void LatticeTool::drawPanel(ToolContext& c)
     ObjectSettings settings = c.scene.item(item).settings;
     // The mesh it deforms (the link is the mesh's id; the document names it).
     std::vector<std::string> meshes{"(none)"};
+    std::vector<std::string> tips{"Deform no mesh: the lattice alone (the link is dropped; undo restores it)"};
     int current = 0;
     for (int i = 0; i < c.scene.itemCount(); ++i)
         if (c.scene.item(i).kind == SceneItem::Kind::ImportedMesh) {
             if (c.scene.item(i).id == c.scene.item(item).deforms) current = static_cast<int>(meshes.size());
             meshes.push_back(c.scene.item(i).name);
+            tips.push_back("Deform the imported mesh " + c.scene.item(i).name + ", read from " + c.scene.item(i).meshPath);
         }
+    noteDropdown("mesh");
     const bool meshOpen = ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str());
     recordWidget("mesh");
     tooltip("The imported mesh this lattice deforms");
@@ -313,6 +330,7 @@ void LatticeTool::drawPanel(ToolContext& c)
         for (std::size_t k = 0; k < meshes.size(); ++k) {
             const bool chosen = ImGui::Selectable(meshes[k].c_str(), static_cast<int>(k) == current);
             recordWidget(("mesh: " + meshes[k]).c_str()); // the open list's entries, for tests that click one
+            tooltip(tips[k].c_str());
             if (chosen) {
                 settings.ffd.mesh = k == 0 ? std::string() : meshes[k];
                 c.scene.setSettings(item, settings, "lattice mesh");
@@ -331,9 +349,14 @@ void LatticeTool::drawPanel(ToolContext& c)
     DocumentObject o = c.scene.object(item);
     auto& data = std::get<LatticeData>(o.data);
     static const char* policies[] = {"keep", "clamp", "extrapolate"};
+    static const char* policyTips[] = {
+        "Vertices outside the lattice box do not move (the mesh tears at the box where its boundary points moved)",
+        "Vertices outside move as the nearest point of the box does: continuous everywhere (what Blender does)",
+        "The lattice's polynomial continued outside the box: smooth, but it grows quickly away from it"};
     int policy = data.outside == "keep" ? 0 : data.outside == "clamp" ? 1 : 2;
     // BeginCombo rather than Combo (the same control) so that the open list's entries are recorded.
     bool policyChanged = false;
+    noteDropdown("outside");
     const bool policyOpen = ImGui::BeginCombo("outside", policies[policy]);
     recordWidget("outside");
     tooltip("Vertices outside the lattice box: keep them, clamp them to the box, or extrapolate the polynomial");
@@ -344,6 +367,7 @@ void LatticeTool::drawPanel(ToolContext& c)
                 policyChanged = true;
             }
             recordWidget((std::string("outside: ") + policies[k]).c_str());
+            tooltip(policyTips[k]);
         }
         ImGui::EndCombo();
     }

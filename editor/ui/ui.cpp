@@ -211,6 +211,32 @@ void tooltip(const char* text)
     else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
 }
 
+bool comboWithTips(const char* label, int& current, const Choice* choices, int count)
+{
+    noteDropdown(label);
+    const int shown = std::clamp(current, 0, count - 1);
+    bool changed = false;
+    if (ImGui::BeginCombo(label, choices[shown].label)) {
+        for (int k = 0; k < count; ++k) {
+            ImGui::PushID(k);
+            if (ImGui::Selectable(choices[k].label, k == shown) && k != current) {
+                current = k;
+                changed = true;
+            }
+            if (k == shown) ImGui::SetItemDefaultFocus();
+            tooltip(choices[k].tip);
+            ImGui::PopID();
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+void noteDropdown(const char* label)
+{
+    if (currentState) currentState->dropdowns.push_back(ImGui::GetID(label));
+}
+
 void recordWidget(const char* name)
 {
     if (!currentState || !ImGui::IsItemVisible()) return;
@@ -257,9 +283,6 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
         tooltip(s, "Open a freeform document (.json), a .bpt patch file or a mesh");
         const bool recentMenu = ImGui::BeginMenu("Open recent", !actions.recentFiles().empty());
-        if (!recentMenu)
-            tooltip(s, actions.recentFiles().empty() ? "The last 8 documents opened or saved (none yet)"
-                                                     : "The last 8 documents opened or saved, most recent first");
         if (recentMenu) {
             // Most recent first; a file that is gone is shown greyed and cannot be chosen.
             for (const std::string& path : actions.recentFiles()) {
@@ -268,8 +291,12 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
                 if (ImGui::MenuItem(path.c_str(), nullptr, false, exists)) actions.open(path);
                 tooltip(s, exists ? "Open this document (asks first when there are unsaved changes)" : "This file no longer exists");
             }
+            fitWindow();
             ImGui::EndMenu();
         }
+        // After EndMenu the last item is "Open recent" again: its tooltip shows while its list is open too.
+        tooltip(s, actions.recentFiles().empty() ? "The last 8 documents opened or saved (none yet)"
+                                                 : "The last 8 documents opened or saved, most recent first");
         if (ImGui::MenuItem("Save", "Ctrl+S")) {
             if (scene.path().empty()) askPath(s, actions, UiState::PathDialog::SaveAs, "scene.json");
             else actions.save();
@@ -286,6 +313,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         tooltip(s, "Close the editor (asks first when there are unsaved changes)");
+        fitWindow();
         ImGui::EndMenu();
     }
     const bool editMenu = ImGui::BeginMenu("Edit");
@@ -316,6 +344,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Unselected points within the radius follow a drag, with a smooth falloff");
         ImGui::MenuItem("Translate gizmo", "Shift+G", &s.edit.gizmo);
         tooltip(s, "Arrows and squares at the selected points' centre: drag along an axis or in a plane");
+        fitWindow();
         ImGui::EndMenu();
     }
     const bool viewMenu = ImGui::BeginMenu("View");
@@ -359,6 +388,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         tooltip(s, "Show or hide the Display panel");
         ImGui::MenuItem("Frame statistics", "F2", &s.showStats);
         tooltip(s, "Frame time, update time and triangle count at the bottom of the view");
+        fitWindow();
         ImGui::EndMenu();
     }
     const bool helpMenu = ImGui::BeginMenu("Help");
@@ -366,6 +396,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
     if (helpMenu) {
         ImGui::MenuItem("Controls", "F1", &s.showHelp);
         tooltip(s, "First steps, the mouse and every key");
+        fitWindow();
         ImGui::EndMenu();
     }
     ImGui::Separator();
@@ -659,7 +690,10 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                 }
                 if (tessellationOpen) {
                     int mode = static_cast<int>(settings.tessellation.mode);
-                    changed |= ImGui::Combo("mode", &mode, "adaptive\0uniform\0");
+                    static const Choice modes[] = {
+                        {"adaptive", "Cut each patch until its triangles lie within the tolerance of the surface (world units)"},
+                        {"uniform", "Cut each patch side into a fixed number of segments, however flat or curved it is"}};
+                    changed |= comboWithTips("mode", mode, modes);
                     tooltip(s, "Adaptive: to a distance; uniform: a fixed number of segments per patch side");
                     settings.tessellation.mode = static_cast<Tessellation::Mode>(mode);
                     if (settings.tessellation.mode == Tessellation::Mode::Adaptive) {
@@ -699,7 +733,10 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             } else {
                 ImGui::TextWrapped("file: %s", item.meshPath.c_str());
                 int up = item.up == UpAxis::Y ? 1 : 0;
-                if (ImGui::Combo("up axis", &up, "Z up (as the world)\0Y up (turned to Z up)\0")) {
+                static const Choice ups[] = {
+                    {"Z up (as the world)", "The file's coordinates are used as they are: its z points up"},
+                    {"Y up (turned to Z up)", "The file's y points up: turned a quarter about x, (x, y, z) -> (x, -z, y)"}};
+                if (comboWithTips("up axis", up, ups)) {
                     scene.setUpAxis(selected, up == 1 ? UpAxis::Y : UpAxis::Z);
                 }
                 tooltip(s, "The file's up direction. Y up (every glTF, most OBJ files) is turned a quarter about x,\n"
@@ -727,15 +764,25 @@ void displayPanel(Scene& scene, UiState& s)
         ImGui::PushItemWidth(-(ImGui::CalcTextSize("normal length").x + 2 * ImGui::GetStyle().ItemInnerSpacing.x));
         DisplaySettings d = scene.display;
         int shading = static_cast<int>(d.shading);
-        ImGui::Combo("shading", &shading, "flat\0Gouraud\0Phong\0");
+        static const Choice shadings[] = {{"flat", "One colour per triangle: the facets show"},
+                                          {"Gouraud", "Lit at the vertices, the colours interpolated across each triangle"},
+                                          {"Phong", "The normals interpolated and lit at every pixel: the smoothest highlights"}};
+        comboWithTips("shading", shading, shadings);
         tooltip(s, "Flat: one colour per triangle; Gouraud: lit per vertex; Phong: lit per pixel (key Z cycles)");
         d.shading = static_cast<Shading>(shading);
         int specular = static_cast<int>(d.specular);
-        ImGui::Combo("specular", &specular, "Phong (v.r)\0Blinn (n.h)\0");
+        static const Choice speculars[] = {
+            {"Phong (v.r)", "The highlight max(0, v.r)^s: v towards the eye, r the light's direction mirrored about the normal"},
+            {"Blinn (n.h)", "Blinn-Phong's highlight max(0, n.h)^s: h halfway between the light's and the eye's directions"}};
+        comboWithTips("specular", specular, speculars);
         tooltip(s, "The highlight: Phong's max(0, v.r)^s or Blinn-Phong's max(0, n.h)^s");
         d.specular = static_cast<SpecularModel>(specular);
         int analysis = static_cast<int>(d.analysis);
-        ImGui::Combo("analysis", &analysis, "none\0reflection lines\0scalar map\0");
+        static const Choice analyses[] = {
+            {"none", "No analysis: every surface in its material"},
+            {"reflection lines", "Stripes of a sphere map reflected in the surfaces: they break at a C0 edge and kink at a G1 one (key R)"},
+            {"scalar map", "A lattice's deformed mesh coloured by det J, the local volume change (1: kept), with a legend"}};
+        comboWithTips("analysis", analysis, analyses);
         tooltip(s, "Reflection lines (R) show the smoothness across edges one order down;\nthe scalar map colours a lattice's mesh by det J");
         d.analysis = static_cast<SurfaceAnalysis>(analysis);
         if (d.analysis == SurfaceAnalysis::ReflectionLines) {
@@ -776,7 +823,13 @@ void displayPanel(Scene& scene, UiState& s)
                 for (int k = 0; k < 4; ++k)
                     if (d.samples == counts[k]) choice = k + 1;
             if (d.antialiasing == Antialiasing::Always && choice == 0) choice = 3; // a count not offered: shown as 4x
-            if (ImGui::Combo("anti-alias", &choice, "auto\0off\0002x\0004x\0008x\0") && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
+            static const Choice samples[] = {
+                {"auto", "The document's samples on a GPU and in screenshots, none for the frames of a software renderer (llvmpipe)"},
+                {"off", "No multisampling anywhere: the edges show their steps"},
+                {"2x", "2 samples per pixel everywhere"},
+                {"4x", "4 samples per pixel everywhere"},
+                {"8x", "8 samples per pixel everywhere (the smoothest edges, the slowest)"}};
+            if (comboWithTips("anti-alias", choice, samples) && !(choice == 0 && d.antialiasing == Antialiasing::Auto)) {
                 d.antialiasing = choice == 0 ? Antialiasing::Auto : Antialiasing::Always;
                 if (choice > 0) d.samples = counts[choice - 1];
                 else if (d.samples == 0) d.samples = 4;
@@ -865,7 +918,9 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
         if (s.pathDialog == UiState::PathDialog::Import) {
             int up = s.importUp == UpAxis::Y ? 1 : 0;
             ImGui::SetNextItemWidth(200);
-            if (ImGui::Combo("up axis of OBJ, PLY, STL, OFF", &up, "Z up\0Y up\0")) s.importUp = up == 1 ? UpAxis::Y : UpAxis::Z;
+            static const Choice ups[] = {{"Z up", "The file's coordinates are used as they are: its z points up"},
+                                         {"Y up", "The file's y points up: turned a quarter about x, (x, y, z) -> (x, -z, y)"}};
+            if (comboWithTips("up axis of OBJ, PLY, STL, OFF", up, ups)) s.importUp = up == 1 ? UpAxis::Y : UpAxis::Z;
             tooltip(s, "These formats do not say which way is up: Y up files are turned to the Z-up world.\n"
                        "glTF and GLB are always read Y up (the glTF specification). Remembered until the editor quits;\n"
                        "Properties > up axis changes it for one mesh.");
@@ -900,6 +955,7 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
             s.pathDialog = UiState::PathDialog::None;
             ImGui::CloseCurrentPopup();
         }
+        fitWindow();
         ImGui::EndPopup();
     }
     (void)scene;
@@ -936,6 +992,7 @@ bool unsavedDialog(Scene& scene, UiState& s, UiActions& actions)
             s.pending = PendingAction::None;
             ImGui::CloseCurrentPopup();
         }
+        fitWindow();
         ImGui::EndPopup();
     }
     return proceed;
@@ -959,6 +1016,7 @@ void errorDialog(UiState& s)
             s.errorFrame = -1;
             ImGui::CloseCurrentPopup();
         }
+        fitWindow();
         ImGui::EndPopup();
     }
 }
@@ -967,13 +1025,19 @@ void helpWindow(UiState& s)
 {
     if (!s.showHelp) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowSize(ImVec2(std::min(700.0f, vp->Size.x - 40), std::min(600.0f, vp->Size.y - 60)), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Controls", &s.showHelp)) {
+    // As wide as its widest line where the window allows (else it scrolls sideways), centred.
+    const std::string controls = controlsHelp();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float widest = std::max(ImGui::CalcTextSize(firstStepsHelp()).x, ImGui::CalcTextSize(controls.c_str()).x) +
+                         2 * style.WindowPadding.x + style.ScrollbarSize + 2;
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 0.5f * vp->Size.x, vp->Pos.y + 0.5f * vp->Size.y), ImGuiCond_FirstUseEver, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(std::min(widest, vp->Size.x - 16), std::min(600.0f, vp->Size.y - 60)), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Controls", &s.showHelp, ImGuiWindowFlags_HorizontalScrollbar)) {
         const bool open = ImGui::CollapsingHeader("First steps", ImGuiTreeNodeFlags_DefaultOpen);
         tooltip(s, "Three short tasks: draw a C2 spline, smooth a patch pair, deform a mesh (click to fold)");
         if (open) ImGui::TextUnformatted(firstStepsHelp());
-        const std::string controls = controlsHelp();
         ImGui::TextUnformatted(controls.c_str());
+        fitWindow();
     }
     ImGui::End();
 }
@@ -1021,6 +1085,7 @@ void recoveryDialog(UiState& s, UiActions& actions)
             ImGui::CloseCurrentPopup();
             actions.recover(recover);
         }
+        fitWindow();
         ImGui::EndPopup();
     }
 }
@@ -1169,6 +1234,7 @@ bool drawUi(Scene& scene, UiState& state, UiActions& actions)
     state.tooltip.clear();
     state.widgets.clear();
     state.latticeReadout = {};
+    state.dropdowns.clear();
     mainMenu(scene, state, actions);
     statusBar(state);
     colourLegend(scene, state);

@@ -96,6 +96,9 @@ struct UiState {
     /// Where some controls were drawn in the last frame (name, x, y, width, height in pixels; see
     /// recordWidget), for --state: tests that drive a control find it there.
     std::vector<PanelRect> widgets;
+    /// The ImGui IDs of the dropdowns (combos) drawn in the last frame: the tooltip audit
+    /// (app/tooltip_audit.h) opens each of them to check its choices.
+    std::vector<unsigned> dropdowns;
     /// The up axis File > Import gives OBJ, PLY, STL and OFF files (their formats have no
     /// convention): the last choice in the Import dialog, Z at first. glTF and GLB are always Y.
     UpAxis importUp = UpAxis::Z;
@@ -118,6 +121,23 @@ void tooltip(UiState& state, const char* text);
 /// The same for the panels that have no UiState at hand (the tools' panels); it records into the
 /// state drawUi was last called with.
 void tooltip(const char* text);
+/// One choice of a dropdown: its label and its own tooltip (what choosing it does).
+struct Choice {
+    const char* label;
+    const char* tip;
+};
+/// A dropdown (ImGui's combo: the same ID, look and list) whose every choice has its own tooltip.
+/// `current` is the choice shown. True when the user picked a choice other than the current one;
+/// `current` is then that choice. The closed dropdown's own tooltip is given after it as usual.
+bool comboWithTips(const char* label, int& current, const Choice* choices, int count);
+template <int N>
+bool comboWithTips(const char* label, int& current, const Choice (&choices)[N])
+{
+    return comboWithTips(label, current, choices, N);
+}
+/// Notes that the next widget is a dropdown labelled `label` (UiState::dropdowns); comboWithTips
+/// does it itself.
+void noteDropdown(const char* label);
 /// Records the last widget's rectangle under `name` in the state drawUi was last called with
 /// (UiState::widgets, --state's `widgets`) when it is visible (not clipped or scrolled away).
 void recordWidget(const char* name);
