@@ -192,6 +192,59 @@ PolygonMesh finishMesh(std::vector<Eigen::Vector3d>&& positions, std::vector<Eig
     return mesh;
 }
 
+/// The local mesher's vertices written straight into the mesh's matrices (no second copy of
+/// every vertex, so about half the fresh memory a call touches): columns reserved from an
+/// estimate (uninitialised, so untouched pages cost nothing), grown by doubling if it was short,
+/// cut to the count at the end (realloc of the trailing columns, no copy). The normals are sums of
+/// unit normals until finish() normalises them as finishMesh does.
+struct MeshVertices {
+    PolygonMesh& mesh;
+    int size = 0;
+    MeshVertices(PolygonMesh& m, Eigen::Index estimate) : mesh(m)
+    {
+        mesh.positions.resize(3, estimate);
+        mesh.normals.resize(3, estimate);
+        mesh.texcoords.resize(2, estimate);
+    }
+    int add(const Eigen::Vector3d& q, const Eigen::Vector3d& n, double u, double v)
+    {
+        if (size == mesh.positions.cols()) {
+            const Eigen::Index grown = 2 * mesh.positions.cols() + 64;
+            mesh.positions.conservativeResize(3, grown);
+            mesh.normals.conservativeResize(3, grown);
+            mesh.texcoords.conservativeResize(2, grown);
+        }
+        // Plain stores (Eigen's column assignment of a dynamic matrix is an out-of-line loop).
+        double* P = mesh.positions.data() + 3 * static_cast<std::size_t>(size);
+        double* N = mesh.normals.data() + 3 * static_cast<std::size_t>(size);
+        double* T = mesh.texcoords.data() + 2 * static_cast<std::size_t>(size);
+        P[0] = q.x(), P[1] = q.y(), P[2] = q.z();
+        N[0] = n.x(), N[1] = n.y(), N[2] = n.z();
+        T[0] = u, T[1] = v;
+        return size++;
+    }
+    void addNormal(int k, const Eigen::Vector3d& n)
+    {
+        double* N = mesh.normals.data() + 3 * static_cast<std::size_t>(k);
+        N[0] += n.x(), N[1] += n.y(), N[2] += n.z();
+    }
+    /// The same arithmetic as finishMesh.
+    void finish(bool flip)
+    {
+        mesh.positions.conservativeResize(3, size);
+        mesh.normals.conservativeResize(3, size);
+        mesh.texcoords.conservativeResize(2, size);
+        double* N = mesh.normals.data();
+        for (int k = 0; k < size; ++k, N += 3) {
+            Eigen::Vector3d n(N[0], N[1], N[2]);
+            const double len = n.norm();
+            n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+            if (flip) n = -n;
+            N[0] = n.x(), N[1] = n.y(), N[2] = n.z();
+        }
+    }
+};
+
 // ------------------------------------------------------------------ local (tree) refinement
 
 /// Bernstein values b[0..n] and their derivatives db[0..n] at t. N > 0 fixes n = N at compile
@@ -284,13 +337,16 @@ struct PatchRow {
     {
         double bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
         basisWithDerivative(n, v, bv, dbv);
-        Jet1 r{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-        for (int j = 0; j <= n; ++j) {
-            r.p += bv[j] * c[j];
-            r.fu += bv[j] * d[j];
-            r.fv += dbv[j] * c[j];
-        }
-        return r;
+        // Per coordinate, the same sums in the same order as r.p += bv[j] * c[j] from zero (plain
+        // scalars: GCC left Eigen's fixed-size loops out of line here).
+        double p[3] = {0, 0, 0}, fu[3] = {0, 0, 0}, fv[3] = {0, 0, 0};
+        for (int j = 0; j <= n; ++j)
+            for (int e = 0; e < 3; ++e) {
+                p[e] += bv[j] * c[j][e];
+                fu[e] += bv[j] * d[j][e];
+                fv[e] += dbv[j] * c[j][e];
+            }
+        return {Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Vector3d(fu[0], fu[1], fu[2]), Eigen::Vector3d(fv[0], fv[1], fv[2])};
     }
 };
 
@@ -1035,16 +1091,13 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     }
 
     // 3. Vertices and triangles, patch by patch.
-    std::vector<Eigen::Vector3d> positions, normals;
-    std::vector<Eigen::Vector2d> texcoords;
+    PolygonMesh mesh;
     std::unordered_map<PositionKey, int, PositionHash> welded;
     std::vector<int> faces;
     // About 2.05 triangles and 1.05 vertices per leaf on the teapot: reserved, so that the arrays
     // are written once instead of being copied as they grow (fresh pages cost, docs/performance.md).
     faces.reserve(static_cast<std::size_t>(3 * (2.2 * leafCount + 64)));
-    positions.reserve(static_cast<std::size_t>(1.2 * leafCount + 64));
-    normals.reserve(positions.capacity());
-    texcoords.reserve(positions.capacity());
+    MeshVertices vertices(mesh, static_cast<Eigen::Index>(1.2 * leafCount + 64));
     const double inv = 1.0 / S;
     std::vector<std::uint64_t> keys;                         // (u << 32 | v), sorted: the lines u = const
     std::vector<std::pair<std::uint64_t, int>> byV;          // (v << 32 | u, index into keys)
@@ -1120,18 +1173,14 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             keyPos[k] = q;
             if (side >= 0) {
                 const PositionKey key{q.x() + 0.0, q.y() + 0.0, q.z() + 0.0};
-                const auto [it, inserted] = welded.try_emplace(key, static_cast<int>(positions.size()));
+                const auto [it, inserted] = welded.try_emplace(key, vertices.size);
                 ids[k] = it->second;
                 if (!inserted) {
-                    normals[static_cast<std::size_t>(it->second)] += nrm;
+                    vertices.addNormal(it->second, nrm);
                     continue;
                 }
-            } else {
-                ids[k] = static_cast<int>(positions.size());
             }
-            positions.push_back(q);
-            normals.push_back(nrm);
-            texcoords.emplace_back(u * inv, v * inv);
+            ids[k] = vertices.add(q, nrm, u * inv, v * inv);
         }
         sortPairs(byV, scratch, counts);
         positionV.resize(static_cast<std::size_t>(nk));
@@ -1142,31 +1191,34 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         for (std::size_t li = 0; li < leaves.size(); ++li) {
             const int i00 = cornerIndex[4 * li], i10 = cornerIndex[4 * li + 1], i11 = cornerIndex[4 * li + 2],
                       i01 = cornerIndex[4 * li + 3];
-            ring.clear();
             int corner[4], hanging[4];
             // p00, then v = v0 rising in u, p10, u = u1 rising in v, p11, v = v1 falling, p01, u = u0 falling.
-            corner[0] = 0;
-            ring.push_back(i00);
-            for (int k = positionV[i00] + 1; k < positionV[i10]; ++k) ring.push_back(byV[k].second);
-            hanging[0] = static_cast<int>(ring.size()) - 1;
-            corner[1] = static_cast<int>(ring.size());
-            ring.push_back(i10);
-            for (int k = i10 + 1; k < i11; ++k) ring.push_back(k);
+            // (The ring's size known first, so it is written without push_back's checks.)
+            hanging[0] = std::max(0, positionV[i10] - positionV[i00] - 1);
             hanging[1] = i11 - i10 - 1;
-            corner[2] = static_cast<int>(ring.size());
-            ring.push_back(i11);
-            for (int k = positionV[i11] - 1; k > positionV[i01]; --k) ring.push_back(byV[k].second);
             hanging[2] = positionV[i11] - positionV[i01] - 1;
-            corner[3] = static_cast<int>(ring.size());
-            ring.push_back(i01);
-            for (int k = i01 - 1; k > i00; --k) ring.push_back(k);
             hanging[3] = i01 - i00 - 1;
+            corner[0] = 0;
+            corner[1] = corner[0] + 1 + hanging[0];
+            corner[2] = corner[1] + 1 + std::max(0, hanging[1]);
+            corner[3] = corner[2] + 1 + std::max(0, hanging[2]);
+            ring.resize(static_cast<std::size_t>(corner[3] + 1 + std::max(0, hanging[3])));
+            int* out = ring.data();
+            *out++ = i00;
+            for (int k = positionV[i00] + 1; k < positionV[i10]; ++k) *out++ = byV[k].second;
+            *out++ = i10;
+            for (int k = i10 + 1; k < i11; ++k) *out++ = k;
+            *out++ = i11;
+            for (int k = positionV[i11] - 1; k > positionV[i01]; --k) *out++ = byV[k].second;
+            *out++ = i01;
+            for (int k = i01 - 1; k > i00; --k) *out++ = k;
 
             auto emit = [&](int a, int b, int c) {
                 const int ia = ids[a], ib = ids[b], ic = ids[c];
                 if (ia == ib || ib == ic || ia == ic) return; // at a collapsed side
-                if (options.flipNormals) faces.insert(faces.end(), {ia, ic, ib});
-                else faces.insert(faces.end(), {ia, ib, ic});
+                faces.push_back(ia);
+                faces.push_back(options.flipNormals ? ic : ib);
+                faces.push_back(options.flipNormals ? ib : ic);
                 if (options.sampleDeviation) {
                     const TriangleDeviation d =
                         sampleTriangleDeviation(patch, {uvOf(a), uvOf(b), uvOf(c)}, {keyPos[a], keyPos[b], keyPos[c]});
@@ -1201,7 +1253,12 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             }
         }
     }
-    return finishMesh(std::move(positions), std::move(normals), std::move(texcoords), std::move(faces), options, rep, report);
+    vertices.finish(options.flipNormals);
+    mesh.faceVertices = std::move(faces);
+    mesh.faceStart.resize(mesh.faceVertices.size() / 3 + 1);
+    for (std::size_t f = 0; f < mesh.faceStart.size(); ++f) mesh.faceStart[f] = static_cast<int>(3 * f);
+    if (report) *report = std::move(rep);
+    return mesh;
 }
 
 } // namespace
