@@ -90,6 +90,44 @@ struct PositionHash {
     }
 };
 
+/// PositionKey -> vertex index for a known upper bound of the number of keys: open addressing
+/// with linear probing in one array (no allocation per key, unlike std::unordered_map); the same
+/// keys meet the same entries, so the welding is the same.
+class WeldTable {
+public:
+    explicit WeldTable(std::size_t most)
+    {
+        std::size_t size = 16;
+        while (size < 2 * most) size *= 2;
+        slots_.assign(size, Slot{});
+        mask_ = size - 1;
+    }
+    /// The index stored under key, or (when there is none) id, stored; inserted says which.
+    int find(const PositionKey& key, int id, bool& inserted)
+    {
+        for (std::size_t h = PositionHash{}(key) & mask_;; h = (h + 1) & mask_) {
+            Slot& s = slots_[h];
+            if (s.id < 0) {
+                s = {key, id};
+                inserted = true;
+                return id;
+            }
+            if (s.key == key) {
+                inserted = false;
+                return s.id;
+            }
+        }
+    }
+
+private:
+    struct Slot {
+        PositionKey key{0, 0, 0};
+        int id = -1;
+    };
+    std::vector<Slot> slots_;
+    std::size_t mask_ = 0;
+};
+
 /// The side's curve in canonical orientation (the lexicographically smaller point sequence) and
 /// whether that is the side's own order reversed.
 std::pair<BezierCurve<double, 3>, bool> canonicalEdge(const Patch& p, PatchSide side)
@@ -1092,7 +1130,9 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
 
     // 3. Vertices and triangles, patch by patch.
     PolygonMesh mesh;
-    std::unordered_map<PositionKey, int, PositionHash> welded;
+    std::size_t sideKeys = 0; // at most this many welded vertices
+    for (int k = 0; k < 4 * count; ++k) sideKeys += sidePoints[k].size();
+    WeldTable welded(sideKeys);
     std::vector<int> faces;
     // About 2.05 triangles and 1.05 vertices per leaf on the teapot: reserved, so that the arrays
     // are written once instead of being copied as they grow (fresh pages cost, docs/performance.md).
@@ -1165,18 +1205,22 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 }
             }
             Eigen::Vector3d nrm = j.fu.cross(j.fv);
-            const double len = nrm.norm();
-            if (onCollapsed || !(len > 1e-10 * j.fu.norm() * j.fv.norm()) || len == 0)
+            const double len2 = nrm.squaredNorm(), len = std::sqrt(len2);
+            // len > 1e-10 |f_u| |f_v| without the two square roots where it clearly holds: len^2 >
+            // 1e-19 |f_u|^2 |f_v|^2 (ten times the margin of the few roundings), all in the normal range.
+            const double fu2 = j.fu.squaredNorm(), fv2 = j.fv.squaredNorm(), product = fu2 * fv2;
+            const bool clearlyRegular = product > 1e-250 && product < 1e250 && len2 > 1e-19 * product;
+            if (onCollapsed || (!clearlyRegular && (!(len > 1e-10 * j.fu.norm() * j.fv.norm()) || len == 0)))
                 nrm = patch.normal(u * inv, v * inv);
             else
                 nrm /= len;
             keyPos[k] = q;
             if (side >= 0) {
                 const PositionKey key{q.x() + 0.0, q.y() + 0.0, q.z() + 0.0};
-                const auto [it, inserted] = welded.try_emplace(key, vertices.size);
-                ids[k] = it->second;
+                bool inserted = false;
+                ids[k] = welded.find(key, vertices.size, inserted);
                 if (!inserted) {
-                    vertices.addNormal(it->second, nrm);
+                    vertices.addNormal(ids[k], nrm);
                     continue;
                 }
             }
