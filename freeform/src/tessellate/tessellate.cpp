@@ -14,6 +14,10 @@
 #include <string>
 #include <unordered_map>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
 
@@ -551,6 +555,38 @@ struct Second {
 
 Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1] / 2, terms[2]}; }
 
+/// max over k of |d . x[k]|, from 0, NaNs passed over (as the loop of std::max did; the maximum
+/// does not depend on the order of the k). With SSE2 two vectors at once: their six numbers are three 16-byte loads, multiplied by
+/// (d_x, d_y), (d_z, d_x), (d_y, d_z) and regrouped by coordinate, so each dot product is summed
+/// as Eigen sums a Vector3d's, (d_x x_x + d_y x_y) + d_z x_z: the same values.
+template <int Count>
+double largestProjection(const Eigen::Vector3d* x, const Eigen::Vector3d& d)
+{
+    int k = 0;
+    double m = 0;
+#ifdef __SSE2__
+    const double* p = x[0].data();
+    const __m128d dxy = _mm_set_pd(d.y(), d.x()), dzx = _mm_set_pd(d.x(), d.z()), dyz = _mm_set_pd(d.z(), d.y());
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d best = _mm_setzero_pd();
+    for (; k + 2 <= Count; k += 2, p += 6) {
+        const __m128d m0 = _mm_mul_pd(_mm_loadu_pd(p), dxy);     // (d_x x0, d_y y0)
+        const __m128d m1 = _mm_mul_pd(_mm_loadu_pd(p + 2), dzx); // (d_z z0, d_x x1)
+        const __m128d m2 = _mm_mul_pd(_mm_loadu_pd(p + 4), dyz); // (d_y y1, d_z z1)
+        const __m128d xs = _mm_move_sd(m1, m0);                  // (d_x x0, d_x x1)
+        const __m128d ys = _mm_shuffle_pd(m0, m2, 1);            // (d_y y0, d_y y1)
+        const __m128d zs = _mm_move_sd(m2, m1);                  // (d_z z0, d_z z1)
+        // maxpd gives its second operand where either is NaN: a NaN is passed over, as by std::max.
+        best = _mm_max_pd(_mm_andnot_pd(sign, _mm_add_pd(_mm_add_pd(xs, ys), zs)), best);
+    }
+    double lanes[2];
+    _mm_storeu_pd(lanes, best);
+    m = std::max(lanes[0], lanes[1]);
+#endif
+    for (; k < Count; ++k) m = std::max(m, std::abs(d.dot(x[k])));
+    return m;
+}
+
 /// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
 /// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
 /// of that net's differences.
@@ -558,10 +594,8 @@ Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Ve
 {
     if (diff) {
         // d . D for the net's differences D (the differences of the projected net, up to rounding).
-        double uu = 0, uv = 0, vv = 0;
-        for (const auto& x : diff->uu) uu = std::max(uu, std::abs(d.dot(x)));
-        for (const auto& x : diff->uv) uv = std::max(uv, std::abs(d.dot(x)));
-        for (const auto& x : diff->vv) vv = std::max(vv, std::abs(d.dot(x)));
+        const double uu = largestProjection<8>(diff->uu, d), uv = largestProjection<9>(diff->uv, d),
+                     vv = largestProjection<8>(diff->vv, d);
         return {6 * uu, 9 * uv, 6 * vv};
     }
     // The net projected first: scalar differences.
