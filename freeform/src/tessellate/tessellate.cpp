@@ -94,44 +94,6 @@ struct PositionHash {
     }
 };
 
-/// PositionKey -> vertex index for a known upper bound of the number of keys: open addressing
-/// with linear probing in one array (no allocation per key, unlike std::unordered_map); the same
-/// keys meet the same entries, so the welding is the same.
-class WeldTable {
-public:
-    explicit WeldTable(std::size_t most)
-    {
-        std::size_t size = 16;
-        while (size < 2 * most) size *= 2;
-        slots_.assign(size, Slot{});
-        mask_ = size - 1;
-    }
-    /// The index stored under key, or (when there is none) id, stored; inserted says which.
-    int find(const PositionKey& key, int id, bool& inserted)
-    {
-        for (std::size_t h = PositionHash{}(key) & mask_;; h = (h + 1) & mask_) {
-            Slot& s = slots_[h];
-            if (s.id < 0) {
-                s = {key, id};
-                inserted = true;
-                return id;
-            }
-            if (s.key == key) {
-                inserted = false;
-                return s.id;
-            }
-        }
-    }
-
-private:
-    struct Slot {
-        PositionKey key{0, 0, 0};
-        int id = -1;
-    };
-    std::vector<Slot> slots_;
-    std::size_t mask_ = 0;
-};
-
 /// The side's curve in canonical orientation (the lexicographically smaller point sequence) and
 /// whether that is the side's own order reversed.
 std::pair<BezierCurve<double, 3>, bool> canonicalEdge(const Patch& p, PatchSide side)
@@ -1164,9 +1126,11 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
 
     // 3. Vertices and triangles, patch by patch.
     PolygonMesh mesh;
-    std::size_t sideKeys = 0; // at most this many welded vertices
-    for (int k = 0; k < 4 * count; ++k) sideKeys += sidePoints[k].size();
-    WeldTable welded(sideKeys);
+    // (An open-addressing table in one array instead was no fewer instructions and raised the
+    // page faults per call in a loop of calls from 270 to 656: without the map's small blocks
+    // glibc trims the heap when the mesh is freed, so every call faults its pages in afresh;
+    // docs/performance.md.)
+    std::unordered_map<PositionKey, int, PositionHash> welded;
     std::vector<int> faces;
     // About 2.05 triangles and 1.05 vertices per leaf on the teapot: reserved, so that the arrays
     // are written once instead of being copied as they grow (fresh pages cost, docs/performance.md).
@@ -1251,10 +1215,10 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             keyPos[k] = q;
             if (side >= 0) {
                 const PositionKey key{q.x() + 0.0, q.y() + 0.0, q.z() + 0.0};
-                bool inserted = false;
-                ids[k] = welded.find(key, vertices.size, inserted);
+                const auto [it, inserted] = welded.try_emplace(key, vertices.size);
+                ids[k] = it->second;
                 if (!inserted) {
-                    vertices.addNormal(ids[k], nrm);
+                    vertices.addNormal(it->second, nrm);
                     continue;
                 }
             }
