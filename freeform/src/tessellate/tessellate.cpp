@@ -1036,7 +1036,11 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     TessellationReport rep;
 
     // 1. Trees, with a budget on the number of leaves (two triangles each at least).
-    std::vector<std::vector<Leaf>> trees(static_cast<std::size_t>(count));
+    // Every patch's leaves in one array (patch p's at [treeStart[p], treeStart[p + 1])), reserved
+    // from the one-grid estimate below so that it is written once, not copied as it grows
+    // (untouched reserved pages cost nothing).
+    std::vector<Leaf> allLeaves;
+    std::vector<std::size_t> treeStart(static_cast<std::size_t>(count + 1), 0);
     long long leafCount = 0;
     const long long leafBudget = options.maxTriangles > 0 ? options.maxTriangles / 2 : 0;
     std::string budgetMessage;
@@ -1059,16 +1063,28 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         std::snprintf(buffer, sizeof buffer, "more than %lld counted before stopping, about %.3g with one grid per patch", 2 * leafBudget,
                       grid);
         budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
+        allLeaves.reserve(static_cast<std::size_t>(std::min(grid / 2, static_cast<double>(leafBudget)) + 64));
     }
+    struct Tree {
+        const Leaf *first, *last;
+        const Leaf* begin() const { return first; }
+        const Leaf* end() const { return last; }
+        std::size_t size() const { return static_cast<std::size_t>(last - first); }
+        const Leaf& operator[](std::size_t k) const { return first[k]; }
+    };
+    auto treeOf = [&](int p) {
+        return Tree{allLeaves.data() + treeStart[static_cast<std::size_t>(p)], allLeaves.data() + treeStart[static_cast<std::size_t>(p) + 1]};
+    };
     for (int p = 0; p < count; ++p) {
         const double tol = toleranceOf(options, p);
-        const double b = buildTree(complex.patches[p], tol, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p],
+        const double b = buildTree(complex.patches[p], tol, options.measure == TessellationMeasure::Geometric, minWidth, S, allLeaves,
                                    leafCount, leafBudget, budgetMessage);
+        treeStart[static_cast<std::size_t>(p) + 1] = allLeaves.size();
         rep.errorBound = std::max(rep.errorBound, b);
         rep.patchBound.push_back(b);
         rep.worstRatio = std::max(rep.worstRatio, b / tol);
         std::int32_t finestU = S, finestV = S;
-        for (const Leaf& l : trees[p]) {
+        for (const Leaf& l : treeOf(p)) {
             finestU = std::min(finestU, l.u1 - l.u0);
             finestV = std::min(finestV, l.v1 - l.v0);
         }
@@ -1091,7 +1107,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             auto [curve, reversed] = canonicalEdge(complex.patches[p], static_cast<PatchSide>(s));
             sides.push_back({std::move(curve), reversed, isCollapsedEdge(complex.patches[p], static_cast<PatchSide>(s))});
         }
-        for (const Leaf& l : trees[p]) {
+        for (const Leaf& l : treeOf(p)) {
             if (l.u0 == 0) sidePoints[4 * p + 0].insert(sidePoints[4 * p + 0].end(), {l.v0, l.v1});
             if (l.u1 == S) sidePoints[4 * p + 1].insert(sidePoints[4 * p + 1].end(), {l.v0, l.v1});
             if (l.v0 == 0) sidePoints[4 * p + 2].insert(sidePoints[4 * p + 2].end(), {l.u0, l.u1});
@@ -1148,7 +1164,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     PatchRow row;
     for (int p = 0; p < count; ++p) {
         const Patch& patch = complex.patches[p];
-        const auto& leaves = trees[p];
+        const Tree leaves = treeOf(p);
         // Keys sorted with the leaf corner (slot 4 leaf + corner, -1 for side samples) they came
         // from, so that every corner knows its index without a search.
         items.clear();
