@@ -804,6 +804,22 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm(), det = a11 * a22 - a12 * a12;
     if (!(det > 0)) return inf;
     const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
+    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
+    if (box.u0 == 0 || box.u1 == S || box.v0 == 0 || box.v1 == S) {
+        // A leaf at a patch's side fails the domain test below whenever the step bound across
+        // that side is positive, and it is at least min(whole, extra) of the first cell (the cell
+        // (0, 1/4) x (0, 1/4) as StepBounds::at computes it, whose other term only adds a bound
+        // >= 0). Where that times the leaf's width exceeds 1e-15 (so that 1 + it > 1 too), the
+        // answer is infinity without the projections on the rows of A_c^+.
+        const double rho = norm2(M.ss * 0.25 + M.st * 0.25, M.st * 0.25 + M.tt * 0.25);
+        const double sig = sigmaC - rho;
+        if (sig > 0) {
+            const double whole = PointFactors(0, 0).error(M) / sig, extra = rho * whole / sigmaC, lower = std::min(whole, extra);
+            if (std::isfinite(lower) && (((box.u0 == 0 || box.u1 == S) && lower * hu > 1e-15) ||
+                                         ((box.v0 == 0 || box.v1 == S) && lower * hv > 1e-15)))
+                return inf;
+        }
+    }
     // Rows of A_c^+ = (A_c^T A_c)^-1 A_c^T, A_c = [g_s(c), g_t(c)].
     const Eigen::Vector3d r1 = (a22 * gs - a12 * gt) / det, r2 = (a11 * gt - a12 * gs) / det;
     const Second R1 = projectedBounds(net, m, n, r1, diff), R2 = projectedBounds(net, m, n, r2, diff);
@@ -811,7 +827,6 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     std::array<std::array<double, 2>, kStepGrid * kStepGrid> firstCells; // refineCells starts on these cells
     const auto Delta = largestStep(steps, firstCells);
     if (!std::isfinite(Delta[0]) || !std::isfinite(Delta[1])) return inf;
-    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
     if (static_cast<double>(box.u0) / S - Delta[0] * hu < 0 || static_cast<double>(box.u1) / S + Delta[0] * hu > 1 ||
         static_cast<double>(box.v0) / S - Delta[1] * hv < 0 || static_cast<double>(box.v1) / S + Delta[1] * hv > 1)
         return inf;
