@@ -1078,7 +1078,8 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         std::snprintf(buffer, sizeof buffer, "more than %lld counted before stopping, about %.3g with one grid per patch", 2 * leafBudget,
                       grid);
         budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
-        allLeaves.reserve(static_cast<std::size_t>(std::min(grid / 2, static_cast<double>(leafBudget)) + 64));
+        // (At most 2^20 leaves, 16 MB: a huge estimate or maxTriangles must not make the reserve fail.)
+        allLeaves.reserve(static_cast<std::size_t>(std::min({grid / 2, static_cast<double>(leafBudget), 1048576.0}) + 64));
     }
     struct Tree {
         const Leaf *first, *last;
