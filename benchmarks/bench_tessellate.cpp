@@ -6,7 +6,8 @@
 // (TessellationRefinement::PatchGrid), and, when Open CASCADE's meshing module is installed
 // (scripts/install-bench-peers.sh), BRepMesh_IncrementalMesh on the same 32 patches (one face per
 // Geom_BezierSurface, linear deflection = the tolerance, angular deflection 0.5, not in parallel),
-// sampled the same way through its (u, v) nodes. Figures: docs/performance.md.
+// sampled the same way through its (u, v) nodes. BM_LocalFreshPages: BM_Local at geometric 1e-3
+// with the heap trimmed before every call (see there). Figures: docs/performance.md.
 //
 //   build/bin/bench_tessellate --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
