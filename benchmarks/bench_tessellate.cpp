@@ -6,7 +6,8 @@
 // (TessellationRefinement::PatchGrid), and, when Open CASCADE's meshing module is installed
 // (scripts/install-bench-peers.sh), BRepMesh_IncrementalMesh on the same 32 patches (one face per
 // Geom_BezierSurface, linear deflection = the tolerance, angular deflection 0.5, not in parallel),
-// sampled the same way through its (u, v) nodes. Figures: docs/performance.md.
+// sampled the same way through its (u, v) nodes. BM_LocalFreshPages: BM_Local at geometric 1e-3
+// with the heap trimmed before every call (see there). Figures: docs/performance.md.
 //
 //   build/bin/bench_tessellate --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
@@ -19,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include <malloc.h>
 #include <unistd.h>
 
 #ifdef FREEFORM_BENCH_OCCT_MESH
@@ -72,6 +74,29 @@ void library(benchmark::State& state, freeform::TessellationRefinement refinemen
 
 void BM_Local(benchmark::State& state) { library(state, freeform::TessellationRefinement::Local); }
 BENCHMARK(BM_Local)->ArgsProduct({{2, 3, 4}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+// BM_Local with the heap given back to the kernel before every call (malloc_trim, outside the
+// timing), so that each call faults in every page it writes, as the first call of a process does:
+// in a loop, whether glibc keeps the last call's freed mesh for the next one depends on how the
+// heap's top happens to be laid out, which moved the page faults per call between 270 and 656
+// for the same work (docs/performance.md). Caches stay warm; this bounds the memory side only.
+void BM_LocalFreshPages(benchmark::State& state)
+{
+    freeform::TessellationOptions o;
+    o.tolerance = toleranceOf(state);
+    o.measure = static_cast<freeform::TessellationMeasure>(state.range(1));
+    long triangles = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        ::malloc_trim(0);
+        state.ResumeTiming();
+        const auto mesh = freeform::tessellate(teapot(), o);
+        triangles = mesh.faceCount();
+        benchmark::DoNotOptimize(mesh.positions.data());
+    }
+    state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(BM_LocalFreshPages)->Args({3, 1})->Unit(benchmark::kMillisecond);
 
 void BM_PatchGrid(benchmark::State& state) { library(state, freeform::TessellationRefinement::PatchGrid); }
 BENCHMARK(BM_PatchGrid)->ArgsProduct({{2, 3, 4}, {0}})->Unit(benchmark::kMillisecond);

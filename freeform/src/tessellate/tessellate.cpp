@@ -14,6 +14,10 @@
 #include <string>
 #include <unordered_map>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
 
@@ -192,6 +196,59 @@ PolygonMesh finishMesh(std::vector<Eigen::Vector3d>&& positions, std::vector<Eig
     return mesh;
 }
 
+/// The local mesher's vertices written straight into the mesh's matrices (no second copy of
+/// every vertex, so about half the fresh memory a call touches): columns reserved from an
+/// estimate (uninitialised, so untouched pages cost nothing), grown by doubling if it was short,
+/// cut to the count at the end (realloc of the trailing columns, no copy). The normals are sums of
+/// unit normals until finish() normalises them as finishMesh does.
+struct MeshVertices {
+    PolygonMesh& mesh;
+    int size = 0;
+    MeshVertices(PolygonMesh& m, Eigen::Index estimate) : mesh(m)
+    {
+        mesh.positions.resize(3, estimate);
+        mesh.normals.resize(3, estimate);
+        mesh.texcoords.resize(2, estimate);
+    }
+    int add(const Eigen::Vector3d& q, const Eigen::Vector3d& n, double u, double v)
+    {
+        if (size == mesh.positions.cols()) {
+            const Eigen::Index grown = 2 * mesh.positions.cols() + 64;
+            mesh.positions.conservativeResize(3, grown);
+            mesh.normals.conservativeResize(3, grown);
+            mesh.texcoords.conservativeResize(2, grown);
+        }
+        // Plain stores (Eigen's column assignment of a dynamic matrix is an out-of-line loop).
+        double* P = mesh.positions.data() + 3 * static_cast<std::size_t>(size);
+        double* N = mesh.normals.data() + 3 * static_cast<std::size_t>(size);
+        double* T = mesh.texcoords.data() + 2 * static_cast<std::size_t>(size);
+        P[0] = q.x(), P[1] = q.y(), P[2] = q.z();
+        N[0] = n.x(), N[1] = n.y(), N[2] = n.z();
+        T[0] = u, T[1] = v;
+        return size++;
+    }
+    void addNormal(int k, const Eigen::Vector3d& n)
+    {
+        double* N = mesh.normals.data() + 3 * static_cast<std::size_t>(k);
+        N[0] += n.x(), N[1] += n.y(), N[2] += n.z();
+    }
+    /// The same arithmetic as finishMesh.
+    void finish(bool flip)
+    {
+        mesh.positions.conservativeResize(3, size);
+        mesh.normals.conservativeResize(3, size);
+        mesh.texcoords.conservativeResize(2, size);
+        double* N = mesh.normals.data();
+        for (int k = 0; k < size; ++k, N += 3) {
+            Eigen::Vector3d n(N[0], N[1], N[2]);
+            const double len = n.norm();
+            n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+            if (flip) n = -n;
+            N[0] = n.x(), N[1] = n.y(), N[2] = n.z();
+        }
+    }
+};
+
 // ------------------------------------------------------------------ local (tree) refinement
 
 /// Bernstein values b[0..n] and their derivatives db[0..n] at t. N > 0 fixes n = N at compile
@@ -284,13 +341,16 @@ struct PatchRow {
     {
         double bv[kMaxDegree + 1], dbv[kMaxDegree + 1];
         basisWithDerivative(n, v, bv, dbv);
-        Jet1 r{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-        for (int j = 0; j <= n; ++j) {
-            r.p += bv[j] * c[j];
-            r.fu += bv[j] * d[j];
-            r.fv += dbv[j] * c[j];
-        }
-        return r;
+        // Per coordinate, the same sums in the same order as r.p += bv[j] * c[j] from zero (plain
+        // scalars: GCC left Eigen's fixed-size loops out of line here).
+        double p[3] = {0, 0, 0}, fu[3] = {0, 0, 0}, fv[3] = {0, 0, 0};
+        for (int j = 0; j <= n; ++j)
+            for (int e = 0; e < 3; ++e) {
+                p[e] += bv[j] * c[j][e];
+                fu[e] += bv[j] * d[j][e];
+                fv[e] += dbv[j] * c[j][e];
+            }
+        return {Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Vector3d(fu[0], fu[1], fu[2]), Eigen::Vector3d(fv[0], fv[1], fv[2])};
     }
 };
 
@@ -457,6 +517,38 @@ struct Second {
 
 Second secondOf(const std::array<double, 3>& terms) { return {terms[0], terms[1] / 2, terms[2]}; }
 
+/// max over k of |d . x[k]|, from 0, NaNs passed over (as the loop of std::max did; the maximum
+/// does not depend on the order of the k). With SSE2 two vectors at once: their six numbers are three 16-byte loads, multiplied by
+/// (d_x, d_y), (d_z, d_x), (d_y, d_z) and regrouped by coordinate, so each dot product is summed
+/// as Eigen sums a Vector3d's, (d_x x_x + d_y x_y) + d_z x_z: the same values.
+template <int Count>
+double largestProjection(const Eigen::Vector3d* x, const Eigen::Vector3d& d)
+{
+    int k = 0;
+    double m = 0;
+#ifdef __SSE2__
+    const double* p = x[0].data();
+    const __m128d dxy = _mm_set_pd(d.y(), d.x()), dzx = _mm_set_pd(d.x(), d.z()), dyz = _mm_set_pd(d.z(), d.y());
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d best = _mm_setzero_pd();
+    for (; k + 2 <= Count; k += 2, p += 6) {
+        const __m128d m0 = _mm_mul_pd(_mm_loadu_pd(p), dxy);     // (d_x x0, d_y y0)
+        const __m128d m1 = _mm_mul_pd(_mm_loadu_pd(p + 2), dzx); // (d_z z0, d_x x1)
+        const __m128d m2 = _mm_mul_pd(_mm_loadu_pd(p + 4), dyz); // (d_y y1, d_z z1)
+        const __m128d xs = _mm_move_sd(m1, m0);                  // (d_x x0, d_x x1)
+        const __m128d ys = _mm_shuffle_pd(m0, m2, 1);            // (d_y y0, d_y y1)
+        const __m128d zs = _mm_move_sd(m2, m1);                  // (d_z z0, d_z z1)
+        // maxpd gives its second operand where either is NaN: a NaN is passed over, as by std::max.
+        best = _mm_max_pd(_mm_andnot_pd(sign, _mm_add_pd(_mm_add_pd(xs, ys), zs)), best);
+    }
+    double lanes[2];
+    _mm_storeu_pd(lanes, best);
+    m = std::max(lanes[0], lanes[1]);
+#endif
+    for (; k < Count; ++k) m = std::max(m, std::abs(d.dot(x[k])));
+    return m;
+}
+
 /// The bounds of |d . g_ss|, |d . g_st|, |d . g_tt| over the leaf for a unit vector d: the scalar
 /// patch d . g has the sub-net projected on d, and its second derivatives lie in the convex hulls
 /// of that net's differences.
@@ -464,10 +556,8 @@ Second projectedBounds(const Eigen::Vector3d* net, int m, int n, const Eigen::Ve
 {
     if (diff) {
         // d . D for the net's differences D (the differences of the projected net, up to rounding).
-        double uu = 0, uv = 0, vv = 0;
-        for (const auto& x : diff->uu) uu = std::max(uu, std::abs(d.dot(x)));
-        for (const auto& x : diff->uv) uv = std::max(uv, std::abs(d.dot(x)));
-        for (const auto& x : diff->vv) vv = std::max(vv, std::abs(d.dot(x)));
+        const double uu = largestProjection<8>(diff->uu, d), uv = largestProjection<9>(diff->uv, d),
+                     vv = largestProjection<8>(diff->vv, d);
         return {6 * uu, 9 * uv, 6 * vv};
     }
     // The net projected first: scalar differences.
@@ -714,6 +804,22 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     const double a11 = gs.squaredNorm(), a12 = gs.dot(gt), a22 = gt.squaredNorm(), det = a11 * a22 - a12 * a12;
     if (!(det > 0)) return inf;
     const double sigmaC = std::sqrt(std::max(0.0, 0.5 * (a11 + a22 - std::sqrt((a11 - a22) * (a11 - a22) + 4 * a12 * a12))));
+    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
+    if (box.u0 == 0 || box.u1 == S || box.v0 == 0 || box.v1 == S) {
+        // A leaf at a patch's side fails the domain test below whenever the step bound across
+        // that side is positive, and it is at least min(whole, extra) of the first cell (the cell
+        // (0, 1/4) x (0, 1/4) as StepBounds::at computes it, whose other term only adds a bound
+        // >= 0). Where that times the leaf's width exceeds 1e-15 (so that 1 + it > 1 too), the
+        // answer is infinity without the projections on the rows of A_c^+.
+        const double rho = norm2(M.ss * 0.25 + M.st * 0.25, M.st * 0.25 + M.tt * 0.25);
+        const double sig = sigmaC - rho;
+        if (sig > 0) {
+            const double whole = PointFactors(0, 0).error(M) / sig, extra = rho * whole / sigmaC, lower = std::min(whole, extra);
+            if (std::isfinite(lower) && (((box.u0 == 0 || box.u1 == S) && lower * hu > 1e-15) ||
+                                         ((box.v0 == 0 || box.v1 == S) && lower * hv > 1e-15)))
+                return inf;
+        }
+    }
     // Rows of A_c^+ = (A_c^T A_c)^-1 A_c^T, A_c = [g_s(c), g_t(c)].
     const Eigen::Vector3d r1 = (a22 * gs - a12 * gt) / det, r2 = (a11 * gt - a12 * gs) / det;
     const Second R1 = projectedBounds(net, m, n, r1, diff), R2 = projectedBounds(net, m, n, r2, diff);
@@ -721,7 +827,6 @@ double geometricBound(const Eigen::Vector3d* net, int m, int n, const BicubicDif
     std::array<std::array<double, 2>, kStepGrid * kStepGrid> firstCells; // refineCells starts on these cells
     const auto Delta = largestStep(steps, firstCells);
     if (!std::isfinite(Delta[0]) || !std::isfinite(Delta[1])) return inf;
-    const double hu = static_cast<double>(box.u1 - box.u0) / S, hv = static_cast<double>(box.v1 - box.v0) / S;
     if (static_cast<double>(box.u0) / S - Delta[0] * hu < 0 || static_cast<double>(box.u1) / S + Delta[0] * hu > 1 ||
         static_cast<double>(box.v0) / S - Delta[1] * hv < 0 || static_cast<double>(box.v1) / S + Delta[1] * hv > 1)
         return inf;
@@ -946,7 +1051,11 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     TessellationReport rep;
 
     // 1. Trees, with a budget on the number of leaves (two triangles each at least).
-    std::vector<std::vector<Leaf>> trees(static_cast<std::size_t>(count));
+    // Every patch's leaves in one array (patch p's at [treeStart[p], treeStart[p + 1])), reserved
+    // from the one-grid estimate below so that it is written once, not copied as it grows
+    // (untouched reserved pages cost nothing).
+    std::vector<Leaf> allLeaves;
+    std::vector<std::size_t> treeStart(static_cast<std::size_t>(count + 1), 0);
     long long leafCount = 0;
     const long long leafBudget = options.maxTriangles > 0 ? options.maxTriangles / 2 : 0;
     std::string budgetMessage;
@@ -969,16 +1078,29 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         std::snprintf(buffer, sizeof buffer, "more than %lld counted before stopping, about %.3g with one grid per patch", 2 * leafBudget,
                       grid);
         budgetMessage += std::string(buffer) + "); raise the limit (--max-triangles) or the tolerance";
+        // (At most 2^20 leaves, 16 MB: a huge estimate or maxTriangles must not make the reserve fail.)
+        allLeaves.reserve(static_cast<std::size_t>(std::min({grid / 2, static_cast<double>(leafBudget), 1048576.0}) + 64));
     }
+    struct Tree {
+        const Leaf *first, *last;
+        const Leaf* begin() const { return first; }
+        const Leaf* end() const { return last; }
+        std::size_t size() const { return static_cast<std::size_t>(last - first); }
+        const Leaf& operator[](std::size_t k) const { return first[k]; }
+    };
+    auto treeOf = [&](int p) {
+        return Tree{allLeaves.data() + treeStart[static_cast<std::size_t>(p)], allLeaves.data() + treeStart[static_cast<std::size_t>(p) + 1]};
+    };
     for (int p = 0; p < count; ++p) {
         const double tol = toleranceOf(options, p);
-        const double b = buildTree(complex.patches[p], tol, options.measure == TessellationMeasure::Geometric, minWidth, S, trees[p],
+        const double b = buildTree(complex.patches[p], tol, options.measure == TessellationMeasure::Geometric, minWidth, S, allLeaves,
                                    leafCount, leafBudget, budgetMessage);
+        treeStart[static_cast<std::size_t>(p) + 1] = allLeaves.size();
         rep.errorBound = std::max(rep.errorBound, b);
         rep.patchBound.push_back(b);
         rep.worstRatio = std::max(rep.worstRatio, b / tol);
         std::int32_t finestU = S, finestV = S;
-        for (const Leaf& l : trees[p]) {
+        for (const Leaf& l : treeOf(p)) {
             finestU = std::min(finestU, l.u1 - l.u0);
             finestV = std::min(finestV, l.v1 - l.v0);
         }
@@ -1001,7 +1123,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             auto [curve, reversed] = canonicalEdge(complex.patches[p], static_cast<PatchSide>(s));
             sides.push_back({std::move(curve), reversed, isCollapsedEdge(complex.patches[p], static_cast<PatchSide>(s))});
         }
-        for (const Leaf& l : trees[p]) {
+        for (const Leaf& l : treeOf(p)) {
             if (l.u0 == 0) sidePoints[4 * p + 0].insert(sidePoints[4 * p + 0].end(), {l.v0, l.v1});
             if (l.u1 == S) sidePoints[4 * p + 1].insert(sidePoints[4 * p + 1].end(), {l.v0, l.v1});
             if (l.v0 == 0) sidePoints[4 * p + 2].insert(sidePoints[4 * p + 2].end(), {l.u0, l.u1});
@@ -1035,16 +1157,17 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     }
 
     // 3. Vertices and triangles, patch by patch.
-    std::vector<Eigen::Vector3d> positions, normals;
-    std::vector<Eigen::Vector2d> texcoords;
+    PolygonMesh mesh;
+    // (An open-addressing table in one array instead was no fewer instructions and raised the
+    // page faults per call in a loop of calls from 270 to 656: without the map's small blocks
+    // glibc trims the heap when the mesh is freed, so every call faults its pages in afresh;
+    // docs/performance.md.)
     std::unordered_map<PositionKey, int, PositionHash> welded;
     std::vector<int> faces;
     // About 2.05 triangles and 1.05 vertices per leaf on the teapot: reserved, so that the arrays
     // are written once instead of being copied as they grow (fresh pages cost, docs/performance.md).
     faces.reserve(static_cast<std::size_t>(3 * (2.2 * leafCount + 64)));
-    positions.reserve(static_cast<std::size_t>(1.2 * leafCount + 64));
-    normals.reserve(positions.capacity());
-    texcoords.reserve(positions.capacity());
+    MeshVertices vertices(mesh, static_cast<Eigen::Index>(1.2 * leafCount + 64));
     const double inv = 1.0 / S;
     std::vector<std::uint64_t> keys;                         // (u << 32 | v), sorted: the lines u = const
     std::vector<std::pair<std::uint64_t, int>> byV;          // (v << 32 | u, index into keys)
@@ -1057,7 +1180,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
     PatchRow row;
     for (int p = 0; p < count; ++p) {
         const Patch& patch = complex.patches[p];
-        const auto& leaves = trees[p];
+        const Tree leaves = treeOf(p);
         // Keys sorted with the leaf corner (slot 4 leaf + corner, -1 for side samples) they came
         // from, so that every corner knows its index without a search.
         items.clear();
@@ -1112,26 +1235,26 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 }
             }
             Eigen::Vector3d nrm = j.fu.cross(j.fv);
-            const double len = nrm.norm();
-            if (onCollapsed || !(len > 1e-10 * j.fu.norm() * j.fv.norm()) || len == 0)
+            const double len2 = nrm.squaredNorm(), len = std::sqrt(len2);
+            // len > 1e-10 |f_u| |f_v| without the two square roots where it clearly holds: len^2 >
+            // 1e-19 |f_u|^2 |f_v|^2 (ten times the margin of the few roundings), all in the normal range.
+            const double fu2 = j.fu.squaredNorm(), fv2 = j.fv.squaredNorm(), product = fu2 * fv2;
+            const bool clearlyRegular = product > 1e-250 && product < 1e250 && len2 > 1e-19 * product;
+            if (onCollapsed || (!clearlyRegular && (!(len > 1e-10 * j.fu.norm() * j.fv.norm()) || len == 0)))
                 nrm = patch.normal(u * inv, v * inv);
             else
                 nrm /= len;
             keyPos[k] = q;
             if (side >= 0) {
                 const PositionKey key{q.x() + 0.0, q.y() + 0.0, q.z() + 0.0};
-                const auto [it, inserted] = welded.try_emplace(key, static_cast<int>(positions.size()));
+                const auto [it, inserted] = welded.try_emplace(key, vertices.size);
                 ids[k] = it->second;
                 if (!inserted) {
-                    normals[static_cast<std::size_t>(it->second)] += nrm;
+                    vertices.addNormal(it->second, nrm);
                     continue;
                 }
-            } else {
-                ids[k] = static_cast<int>(positions.size());
             }
-            positions.push_back(q);
-            normals.push_back(nrm);
-            texcoords.emplace_back(u * inv, v * inv);
+            ids[k] = vertices.add(q, nrm, u * inv, v * inv);
         }
         sortPairs(byV, scratch, counts);
         positionV.resize(static_cast<std::size_t>(nk));
@@ -1142,31 +1265,34 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         for (std::size_t li = 0; li < leaves.size(); ++li) {
             const int i00 = cornerIndex[4 * li], i10 = cornerIndex[4 * li + 1], i11 = cornerIndex[4 * li + 2],
                       i01 = cornerIndex[4 * li + 3];
-            ring.clear();
             int corner[4], hanging[4];
             // p00, then v = v0 rising in u, p10, u = u1 rising in v, p11, v = v1 falling, p01, u = u0 falling.
-            corner[0] = 0;
-            ring.push_back(i00);
-            for (int k = positionV[i00] + 1; k < positionV[i10]; ++k) ring.push_back(byV[k].second);
-            hanging[0] = static_cast<int>(ring.size()) - 1;
-            corner[1] = static_cast<int>(ring.size());
-            ring.push_back(i10);
-            for (int k = i10 + 1; k < i11; ++k) ring.push_back(k);
+            // (The ring's size known first, so it is written without push_back's checks.)
+            hanging[0] = std::max(0, positionV[i10] - positionV[i00] - 1);
             hanging[1] = i11 - i10 - 1;
-            corner[2] = static_cast<int>(ring.size());
-            ring.push_back(i11);
-            for (int k = positionV[i11] - 1; k > positionV[i01]; --k) ring.push_back(byV[k].second);
             hanging[2] = positionV[i11] - positionV[i01] - 1;
-            corner[3] = static_cast<int>(ring.size());
-            ring.push_back(i01);
-            for (int k = i01 - 1; k > i00; --k) ring.push_back(k);
             hanging[3] = i01 - i00 - 1;
+            corner[0] = 0;
+            corner[1] = corner[0] + 1 + hanging[0];
+            corner[2] = corner[1] + 1 + std::max(0, hanging[1]);
+            corner[3] = corner[2] + 1 + std::max(0, hanging[2]);
+            ring.resize(static_cast<std::size_t>(corner[3] + 1 + std::max(0, hanging[3])));
+            int* out = ring.data();
+            *out++ = i00;
+            for (int k = positionV[i00] + 1; k < positionV[i10]; ++k) *out++ = byV[k].second;
+            *out++ = i10;
+            for (int k = i10 + 1; k < i11; ++k) *out++ = k;
+            *out++ = i11;
+            for (int k = positionV[i11] - 1; k > positionV[i01]; --k) *out++ = byV[k].second;
+            *out++ = i01;
+            for (int k = i01 - 1; k > i00; --k) *out++ = k;
 
             auto emit = [&](int a, int b, int c) {
                 const int ia = ids[a], ib = ids[b], ic = ids[c];
                 if (ia == ib || ib == ic || ia == ic) return; // at a collapsed side
-                if (options.flipNormals) faces.insert(faces.end(), {ia, ic, ib});
-                else faces.insert(faces.end(), {ia, ib, ic});
+                faces.push_back(ia);
+                faces.push_back(options.flipNormals ? ic : ib);
+                faces.push_back(options.flipNormals ? ib : ic);
                 if (options.sampleDeviation) {
                     const TriangleDeviation d =
                         sampleTriangleDeviation(patch, {uvOf(a), uvOf(b), uvOf(c)}, {keyPos[a], keyPos[b], keyPos[c]});
@@ -1201,7 +1327,12 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             }
         }
     }
-    return finishMesh(std::move(positions), std::move(normals), std::move(texcoords), std::move(faces), options, rep, report);
+    vertices.finish(options.flipNormals);
+    mesh.faceVertices = std::move(faces);
+    mesh.faceStart.resize(mesh.faceVertices.size() / 3 + 1);
+    for (std::size_t f = 0; f < mesh.faceStart.size(); ++f) mesh.faceStart[f] = static_cast<int>(3 * f);
+    if (report) *report = std::move(rep);
+    return mesh;
 }
 
 } // namespace
