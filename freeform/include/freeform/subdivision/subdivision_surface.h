@@ -185,6 +185,8 @@ public:
 private:
     PolygonMesh tessellateCertified(const SubdivisionTessellationOptions& options,
                                     SubdivisionTessellationReport* report) const;
+    PolygonMesh tessellateCertifiedLoop(const SubdivisionTessellationOptions& options,
+                                        SubdivisionTessellationReport* report) const;
     struct Topology;
     std::shared_ptr<const Topology> topology_;
     SubdivisionCage cage_;
