@@ -157,6 +157,30 @@ void BM_CertifiedCreasedCube(benchmark::State& state)
 }
 BENCHMARK(BM_CertifiedCreasedCube)->Unit(benchmark::kMillisecond);
 
+// The certified tessellation of a closed Loop cage (docs/subdivision.md, "Loop cages"): the
+// octahedron (6 valence-4 extraordinary vertices, radius 1) at 1e-3.
+void BM_CertifiedLoopOctahedron(benchmark::State& state)
+{
+    freeform::SubdivisionCage cage;
+    cage.mesh.positions.resize(3, 6);
+    cage.mesh.positions << 1, -1, 0, 0, 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 0, 0, 1, -1;
+    for (auto f : {std::array{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}})
+        cage.mesh.addFace(f.begin(), f.end());
+    const freeform::SubdivisionSurface s(cage, freeform::SubdivisionScheme::Loop);
+    freeform::SubdivisionTessellationOptions o;
+    o.tolerance = 1e-3;
+    freeform::SubdivisionTessellationReport report;
+    freeform::PolygonMesh mesh;
+    for (auto _ : state) {
+        mesh = s.tessellate(o, &report);
+        benchmark::DoNotOptimize(mesh.positions.data());
+    }
+    state.counters["triangles"] = static_cast<double>(mesh.faceCount());
+    state.counters["bound"] = report.errorBound;
+    state.counters["leaves"] = static_cast<double>(report.leaves);
+}
+BENCHMARK(BM_CertifiedLoopOctahedron)->Unit(benchmark::kMillisecond);
+
 void BM_OpenSubdivSetUp(benchmark::State& state)
 {
     const freeform::SubdivisionCage cage = torusCage();

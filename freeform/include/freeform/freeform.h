@@ -34,6 +34,7 @@
 #include "freeform/mesh/polygon_mesh.h"
 #include "freeform/mesh/topology.h"
 #include "freeform/mesh/triangulate.h"
+#include "freeform/subdivision/loop_bezier.h"
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/tessellate/tessellate.h"
 #include "freeform/tessellate/tessellate_rational.h"

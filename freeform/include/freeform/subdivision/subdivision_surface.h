@@ -102,8 +102,10 @@ struct SubdivisionTessellationOptions {
     /// patch split by de Casteljau until netErrorBound is at most this, an irregular cell (at an
     /// extraordinary vertex, a sharp corner, an irregular crease or boundary vertex) is bounded by
     /// the convex hull of its 1-ring; the bound holds both ways (mesh to surface, surface to mesh)
-    /// and the mesh is conforming and watertight. Other cages (Loop, holes, boundary none, smooth
-    /// triangles) keep the estimate: each face gets the fewest segments whose error estimate is at
+    /// and the mesh is conforming and watertight. Closed Loop cages without creases or corners take
+    /// the same kind of path with quartic Bézier triangles (docs/subdivision.md, "Loop cages").
+    /// Other cages (open or creased Loop cages, holes, boundary none, smooth triangles) keep the
+    /// estimate: each face gets the fewest segments whose error estimate is at
     /// most this (regular faces: the certified bound of their Bézier patch; other faces: sampled
     /// second derivatives, not certified); a shared edge gets the larger count of its two faces.
     double tolerance = 0;
@@ -117,14 +119,15 @@ struct SubdivisionTessellationOptions {
     /// (docs/subdivision.md, "Deeper than level 10"); below 10 it is a hard cap, and where it binds
     /// the report's errorBound exceeds the tolerance.
     int maxDepth = 10;
-    /// Certified path: how often a regular cell may be halved by de Casteljau (per direction).
+    /// Certified path: how often a regular cell may be halved by de Casteljau (per direction; Loop:
+    /// how many generations of four-way splits).
     int maxSplits = 16;
 };
 
 struct SubdivisionTessellationReport {
     std::vector<int> rates; ///< per face: segments chosen for the face (0: no limit surface); estimate path only
     int regularFaces = 0;   ///< faces whose rate came from the certified Bézier bound (adaptive, estimate path)
-    // Certified path (tolerance > 0 on a Catmark cage, see the options):
+    // Certified path (tolerance > 0 on a Catmark cage or a closed Loop cage, see the options):
     bool certifiedPath = false;      ///< the certified path ran
     double errorBound = 0;           ///< the largest certified bound over all leaves (both ways)
     long long cells = 0;             ///< cells from the patch table (regular patches + irregular cells)
@@ -188,6 +191,8 @@ public:
 private:
     PolygonMesh tessellateCertified(const SubdivisionTessellationOptions& options,
                                     SubdivisionTessellationReport* report) const;
+    PolygonMesh tessellateCertifiedLoop(const SubdivisionTessellationOptions& options,
+                                        SubdivisionTessellationReport* report) const;
     struct Topology;
     std::shared_ptr<const Topology> topology_;
     SubdivisionCage cage_;

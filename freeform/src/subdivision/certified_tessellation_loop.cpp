@@ -1,0 +1,682 @@
+// Certified tessellation of a Loop limit surface (docs/subdivision.md, "Certified tessellation",
+// "Loop cages"): cells from OpenSubdiv's adaptive refinement and patch table; a regular cell (patch
+// type LOOP, the quartic box spline of 12 points) becomes a quartic triangular Bézier patch (15
+// points, a fixed matrix) split by triangular de Casteljau into four until its second-difference
+// bound is within the tolerance; an irregular cell (a face next to an extraordinary vertex on the
+// finest level) is bounded by the convex hull of its 1-ring. Vertices are exact limit points under
+// canonical keys (cage vertex, cage edge + dyadic parameter, face + dyadic (u, v)); each leaf is cut
+// as the polygon of its corners and of the registered points inside its sides (ear clipping in
+// (u, v)), so the mesh is conforming and closed cages give closed meshes.
+
+#include "freeform/subdivision/subdivision_surface.h"
+
+#include <opensubdiv/far/error.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <unordered_map>
+
+#include "freeform/core/error.h"
+#include "freeform/subdivision/loop_bezier.h"
+#include "osd_errors.h"
+
+namespace freeform {
+
+namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+
+namespace {
+
+using Index = osd::Far::Index;
+using Int = std::int64_t;
+using UV = std::array<Int, 2>;
+constexpr Int kR = Int(1) << 40; // dyadic parameters are integers over 2^40
+
+/// A point of a primvar buffer for OpenSubdiv's refiners.
+struct Vertex3 {
+    double p[3] = {0, 0, 0};
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const Vertex3& s, double w)
+    {
+        p[0] += w * s.p[0];
+        p[1] += w * s.p[1];
+        p[2] += w * s.p[2];
+    }
+    Eigen::Vector3d vec() const { return {p[0], p[1], p[2]}; }
+};
+
+/// A quartic triangular Bézier net: b[j][k] is the point of multi-index (4 - j - k, j, k), i.e.
+/// weight (1-s-t)^i s^j t^k in the local coordinates (s, t) of the cell's corners 0, 1, 2.
+using Net = std::array<std::array<Eigen::Vector3d, 5>, 5>;
+
+/// The quartic box spline of OpenSubdiv's LOOP patch (its 12 points in the patch table's order) in
+/// Bézier form, times 24: row (j, k) in the order j = 0..4, k = 0..4-j. Derived by evaluating
+/// OpenSubdiv's Loop basis at the 15 domain points (j/4, k/4) and solving (docs/subdivision.md,
+/// "Loop cages"); every row is non-negative and sums to 24. tests/test_subdivision_tessellation_loop.cpp
+/// checks it against OpenSubdiv's patch evaluation.
+constexpr int kLoopToBezier[15][12] = {
+    {2, 2, 0, 2, 12, 2, 0, 2, 2, 0, 0, 0},  {0, 1, 0, 1, 12, 3, 0, 3, 4, 0, 0, 0}, {0, 0, 0, 0, 8, 4, 0, 4, 8, 0, 0, 0},
+    {0, 0, 0, 0, 4, 3, 0, 3, 12, 1, 1, 0},  {0, 0, 0, 0, 2, 2, 0, 2, 12, 2, 2, 2}, {1, 3, 0, 0, 12, 4, 0, 1, 3, 0, 0, 0},
+    {0, 1, 0, 0, 10, 6, 0, 1, 6, 0, 0, 0},  {0, 0, 0, 0, 6, 6, 0, 1, 10, 1, 0, 0}, {0, 0, 0, 0, 3, 4, 0, 1, 12, 3, 0, 1},
+    {0, 4, 0, 0, 8, 8, 0, 0, 4, 0, 0, 0},   {0, 1, 0, 0, 6, 10, 0, 0, 6, 1, 0, 0}, {0, 0, 0, 0, 4, 8, 0, 0, 8, 4, 0, 0},
+    {0, 3, 1, 0, 4, 12, 0, 0, 3, 1, 0, 0},  {0, 1, 0, 0, 3, 12, 1, 0, 4, 3, 0, 0}, {0, 2, 2, 0, 2, 12, 2, 0, 2, 2, 0, 0},
+};
+
+Net bezierOfLoop(const std::vector<Vertex3>& all, osd::Far::ConstIndexArray cvs)
+{
+    Net b;
+    int row = 0;
+    for (int j = 0; j <= 4; ++j)
+        for (int k = 0; k <= 4 - j; ++k, ++row) {
+            Eigen::Vector3d x = Eigen::Vector3d::Zero();
+            for (int c = 0; c < 12; ++c)
+                if (kLoopToBezier[row][c] != 0) x += kLoopToBezier[row][c] * all[static_cast<std::size_t>(cvs[c])].vec();
+            b[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = x / 24.0;
+        }
+    return b;
+}
+
+/// The blossom of the net at four points given in barycentric coordinates (weights of corners 0, 1, 2).
+Eigen::Vector3d blossom(const Net& net, const std::array<Eigen::Vector3d, 4>& args)
+{
+    Net p = net;
+    for (int n = 4; n >= 1; --n) {
+        const Eigen::Vector3d& a = args[static_cast<std::size_t>(4 - n)];
+        for (int j = 0; j <= n - 1; ++j)
+            for (int k = 0; k <= n - 1 - j; ++k) {
+                const auto J = static_cast<std::size_t>(j), K = static_cast<std::size_t>(k);
+                p[J][K] = a[0] * p[J][K] + a[1] * p[J + 1][K] + a[2] * p[J][K + 1];
+            }
+    }
+    return p[0][0];
+}
+
+/// The net of the sub-triangle with corners q0, q1, q2 (barycentric in the parent).
+Net subNet(const Net& net, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, const Eigen::Vector3d& q2)
+{
+    Net out;
+    for (int j = 0; j <= 4; ++j)
+        for (int k = 0; k <= 4 - j; ++k) {
+            std::array<Eigen::Vector3d, 4> args;
+            std::size_t m = 0;
+            for (int r = 0; r < 4 - j - k; ++r) args[m++] = q0;
+            for (int r = 0; r < j; ++r) args[m++] = q1;
+            for (int r = 0; r < k; ++r) args[m++] = q2;
+            out[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = blossom(net, args);
+        }
+    return out;
+}
+
+/// The certified bound of the net's triangle (docs/subdivision.md, "Loop cages"): for any triangle
+/// whose vertices are surface points of the cell, every point of it is within this of the surface
+/// point at the same parameter (and back). min over the corner taken as origin a of
+/// n(n-1)/8 (max|D_bb| + 2 max|D_bc| + max|D_cc|), n = 4, the second differences of the net along the
+/// cell's sides from a.
+double netBound(const Net& net)
+{
+    auto at = [&](const std::array<int, 3>& m) -> const Eigen::Vector3d& {
+        return net[static_cast<std::size_t>(m[1])][static_cast<std::size_t>(m[2])];
+    };
+    double best = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        double bb = 0, bc = 0, cc = 0;
+        for (int m1 = 0; m1 <= 2; ++m1)
+            for (int m2 = 0; m2 <= 2 - m1; ++m2) {
+                const std::array<int, 3> m{2 - m1 - m2, m1, m2};
+                auto plus = [&](int x, int y) {
+                    std::array<int, 3> r = m;
+                    ++r[static_cast<std::size_t>(x)];
+                    ++r[static_cast<std::size_t>(y)];
+                    return r;
+                };
+                const Eigen::Vector3d& aa = at(plus(a, a));
+                bb = std::max(bb, (at(plus(b, b)) - 2 * at(plus(a, b)) + aa).norm());
+                cc = std::max(cc, (at(plus(c, c)) - 2 * at(plus(a, c)) + aa).norm());
+                bc = std::max(bc, (at(plus(b, c)) - at(plus(a, c)) - at(plus(a, b)) + aa).norm());
+            }
+        best = std::min(best, 12.0 / 8.0 * (bb + 2 * bc + cc));
+    }
+    return best;
+}
+
+/// The unit normal of the net at corner k (tangents along its two sides, counter-clockwise).
+Eigen::Vector3d cornerNormal(const Net& b, int k)
+{
+    Eigen::Vector3d n;
+    if (k == 0) n = (b[1][0] - b[0][0]).cross(b[0][1] - b[0][0]);
+    else if (k == 1) n = (b[3][1] - b[4][0]).cross(b[3][0] - b[4][0]);
+    else n = (b[0][3] - b[0][4]).cross(b[1][3] - b[0][4]);
+    const double len = n.norm();
+    return len > 1e-300 && std::isfinite(len) ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+/// A canonical point: kind 0 a cage vertex (a), 1 a point inside a cage edge (a < b, x from a),
+/// 2 a point inside a cage face (a, x = u, y = v).
+struct Key {
+    int kind = 0, a = 0, b = 0;
+    Int x = 0, y = 0;
+    bool operator==(const Key& o) const { return kind == o.kind && a == o.a && b == o.b && x == o.x && y == o.y; }
+};
+struct KeyHash {
+    std::size_t operator()(const Key& k) const
+    {
+        std::uint64_t h = static_cast<std::uint64_t>(k.kind) * 0x9E3779B97F4A7C15ull;
+        for (std::uint64_t v : {static_cast<std::uint64_t>(k.a), static_cast<std::uint64_t>(k.b), static_cast<std::uint64_t>(k.x),
+                                static_cast<std::uint64_t>(k.y)})
+            h = (h ^ v) * 0x100000001B3ull + (h >> 29);
+        return static_cast<std::size_t>(h);
+    }
+};
+
+/// Canonical keys and the lines leaf sides lie on, for a triangle cage (face (u, v): corner 0 at
+/// (0, 0), corner 1 at (kR, 0), corner 2 at (0, kR)). Lines: {0, edge, 0} a cage edge (canonical
+/// parameter), {1, f, v} horizontal (u along it), {2, f, u} vertical (v), {3, f, u + v} diagonal (u).
+class TriangleKeys {
+public:
+    explicit TriangleKeys(const std::vector<int>& faceVerts) : fv_(faceVerts) {}
+
+    /// The cage edge k of face f (0: corner 0 -> 1, 1: 1 -> 2, 2: 2 -> 0) and the local parameter
+    /// t from its first corner of (iu, iv) on it.
+    static bool onEdge(Int iu, Int iv, int& k, Int& t)
+    {
+        if (iv == 0) k = 0, t = iu;
+        else if (iu + iv == kR) k = 1, t = iv;
+        else if (iu == 0) k = 2, t = kR - iv;
+        else return false;
+        return true;
+    }
+
+    Key key(int f, Int iu, Int iv) const
+    {
+        int k;
+        Int t;
+        if (!onEdge(iu, iv, k, t)) return {2, f, 0, iu, iv};
+        const int a = vert(f, k), b = vert(f, (k + 1) % 3);
+        if (t == 0) return {0, a, 0, 0, 0};
+        if (t == kR) return {0, b, 0, 0, 0};
+        return a < b ? Key{1, a, b, t, 0} : Key{1, b, a, kR - t, 0};
+    }
+
+    void registerPoint(int f, Int iu, Int iv)
+    {
+        const Key k = key(f, iu, iv);
+        if (k.kind == 2) {
+            lines_[{1, f, iv}].push_back(iu);
+            lines_[{2, f, iu}].push_back(iv);
+            lines_[{3, f, iu + iv}].push_back(iu);
+        } else if (k.kind == 1) {
+            lines_[{0, Int(k.a) * (Int(1) << 31) + k.b, 0}].push_back(k.x);
+        }
+    }
+
+    void sortLines()
+    {
+        for (auto& [line, xs] : lines_) {
+            std::sort(xs.begin(), xs.end());
+            xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+        }
+    }
+
+    /// The registered points strictly inside the side p -> q of face f (a segment along one of the
+    /// three directions), in order from p to q.
+    void sidePoints(int f, const UV& p, const UV& q, std::vector<UV>& out) const
+    {
+        out.clear();
+        // The line of the side: a cage edge k (v = 0, u + v = 1, u = 0) or a line inside the face.
+        int k = -1;
+        std::array<Int, 3> line;
+        Int cp, cq;
+        if (p[1] == q[1]) k = p[1] == 0 ? 0 : -1, line = {1, f, p[1]}, cp = p[0], cq = q[0];
+        else if (p[0] == q[0]) k = p[0] == 0 ? 2 : -1, line = {2, f, p[0]}, cp = p[1], cq = q[1];
+        else k = p[0] + p[1] == kR ? 1 : -1, line = {3, f, p[0] + p[1]}, cp = p[0], cq = q[0];
+        if (k >= 0) {
+            const int a = vert(f, k), b = vert(f, (k + 1) % 3);
+            const int lo = std::min(a, b), hi = std::max(a, b);
+            line = {0, Int(lo) * (Int(1) << 31) + hi, 0};
+            const Int tp = localOnEdge(p, k), tq = localOnEdge(q, k);
+            cp = a == lo ? tp : kR - tp;
+            cq = a == lo ? tq : kR - tq;
+        }
+        const auto it = lines_.find(line);
+        if (it != lines_.end()) {
+            auto first = std::upper_bound(it->second.begin(), it->second.end(), std::min(cp, cq));
+            auto last = std::lower_bound(it->second.begin(), it->second.end(), std::max(cp, cq));
+            for (auto i = first; i != last; ++i) {
+                if (k >= 0) {
+                    const Int t = vert(f, k) == std::min(vert(f, k), vert(f, (k + 1) % 3)) ? *i : kR - *i;
+                    out.push_back(k == 0 ? UV{t, 0} : k == 1 ? UV{kR - t, t} : UV{0, kR - t});
+                } else if (line[0] == 1) out.push_back({*i, line[2]});
+                else if (line[0] == 2) out.push_back({line[2], *i});
+                else out.push_back({*i, line[2] - *i});
+            }
+        }
+        auto dist = [&](const UV& x) { return std::abs(x[0] - p[0]) + std::abs(x[1] - p[1]); };
+        std::sort(out.begin(), out.end(), [&](const UV& x, const UV& y) { return dist(x) < dist(y); });
+    }
+
+private:
+    int vert(int f, int k) const { return fv_[static_cast<std::size_t>(3 * f + k)]; }
+    /// The local parameter of x on edge k (from its first corner).
+    static Int localOnEdge(const UV& x, int k) { return k == 0 ? x[0] : k == 1 ? x[1] : kR - x[1]; }
+
+    const std::vector<int>& fv_;
+    std::map<std::array<Int, 3>, std::vector<Int>> lines_;
+};
+
+/// Twice the signed area of (a, b, c) in (u, v).
+long double cross2(const UV& a, const UV& b, const UV& c)
+{
+    return static_cast<long double>(b[0] - a[0]) * static_cast<long double>(c[1] - a[1]) -
+           static_cast<long double>(b[1] - a[1]) * static_cast<long double>(c[0] - a[0]);
+}
+
+/// Ear clipping of a convex counter-clockwise polygon with collinear points: every ear has positive
+/// area and no other polygon point in it (closed), so no vertex ends inside another triangle's edge.
+void clipEars(const std::vector<UV>& poly, std::vector<std::array<int, 3>>& out)
+{
+    std::vector<int> ring(poly.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = static_cast<int>(i);
+    auto P = [&](int i) -> const UV& { return poly[static_cast<std::size_t>(i)]; };
+    std::size_t start = 0;
+    while (ring.size() > 3) {
+        bool clipped = false;
+        for (std::size_t s = 0; s < ring.size() && !clipped; ++s) {
+            const std::size_t i = (start + s) % ring.size();
+            const int a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], c = ring[(i + 1) % ring.size()];
+            if (!(cross2(P(a), P(b), P(c)) > 0)) continue;
+            bool empty = true;
+            for (int o : ring)
+                if (o != a && o != b && o != c && cross2(P(a), P(b), P(o)) >= 0 && cross2(P(b), P(c), P(o)) >= 0 &&
+                    cross2(P(c), P(a), P(o)) >= 0) {
+                    empty = false;
+                    break;
+                }
+            if (!empty) continue;
+            out.push_back({a, b, c});
+            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+            start = i % ring.size();
+            clipped = true;
+        }
+        if (!clipped) throw Error("subdivision tessellation: a Loop leaf polygon could not be triangulated (internal)");
+    }
+    if (cross2(P(ring[0]), P(ring[1]), P(ring[2])) > 0) out.push_back({ring[0], ring[1], ring[2]});
+    else throw Error("subdivision tessellation: a Loop leaf polygon could not be triangulated (internal)");
+}
+
+struct Leaf {
+    int face = 0;
+    std::array<UV, 3> c; // counter-clockwise in (u, v); the net's corners 0, 1, 2
+    int net = -1;        // index into the leaf nets; -1 - i: irregular cell i
+    double bound = 0;
+};
+
+/// A cell's corners in the face's integer (u, v) from OpenSubdiv's PatchParam (local (0,0), (1,0),
+/// (0,1); a rotated triangle runs backwards from (2^d - U, 2^d - V), osd::Far::PatchParam::NormalizeTriangle).
+std::array<UV, 3> cellCorners(const osd::Far::PatchParam& param)
+{
+    const Int size = kR >> param.GetDepth();
+    const Int U = static_cast<Int>(param.GetU()) * size, V = static_cast<Int>(param.GetV()) * size;
+    if (param.IsTriangleRotated()) return {UV{kR - U, kR - V}, UV{kR - U - size, kR - V}, UV{kR - U, kR - V - size}};
+    return {UV{U, V}, UV{U + size, V}, UV{U, V + size}};
+}
+
+/// The level-d face of the cell with the given corners inside base face f, by descending the
+/// adaptive refinement: at each level the child triangle (the three corner children and the middle
+/// one, as in the four-way split) that holds the cell's centroid, found among the face's children
+/// by its vertices (the corners' and the edges' child vertices). Returns the level-d vertex at each
+/// of the cell's corners.
+std::array<Index, 3> descend(const osd::Far::TopologyRefiner& refiner, const std::vector<int>& faceVerts, int f,
+                             const std::array<UV, 3>& cell, int d)
+{
+    std::array<UV, 3> c{UV{0, 0}, UV{kR, 0}, UV{0, kR}};
+    std::array<Index, 3> v{faceVerts[static_cast<std::size_t>(3 * f)], faceVerts[static_cast<std::size_t>(3 * f + 1)],
+                           faceVerts[static_cast<std::size_t>(3 * f + 2)]};
+    Index face = f;
+    // The cell's centroid, times 3 (exact in integers).
+    const UV centroid{cell[0][0] + cell[1][0] + cell[2][0], cell[0][1] + cell[1][1] + cell[2][1]};
+    auto inside = [&](const std::array<UV, 3>& t) {
+        const std::array<UV, 3> t3{UV{3 * t[0][0], 3 * t[0][1]}, UV{3 * t[1][0], 3 * t[1][1]}, UV{3 * t[2][0], 3 * t[2][1]}};
+        return cross2(t3[0], t3[1], centroid) > 0 && cross2(t3[1], t3[2], centroid) > 0 && cross2(t3[2], t3[0], centroid) > 0;
+    };
+    auto mid = [](const UV& a, const UV& b) { return UV{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2}; };
+    for (int l = 0; l < d; ++l) {
+        const osd::Far::TopologyLevel& level = refiner.GetLevel(l);
+        const auto fv = level.GetFaceVertices(face);
+        const auto fe = level.GetFaceEdges(face);
+        auto edgeChild = [&](Index x, Index y) {
+            for (int k = 0; k < 3; ++k)
+                if ((fv[k] == x && fv[(k + 1) % 3] == y) || (fv[k] == y && fv[(k + 1) % 3] == x)) return level.GetEdgeChildVertex(fe[k]);
+            throw Error("subdivision tessellation: a Loop cell's corners are not an edge (internal)");
+        };
+        const UV m01 = mid(c[0], c[1]), m12 = mid(c[1], c[2]), m20 = mid(c[2], c[0]);
+        const Index w0 = level.GetVertexChildVertex(v[0]), w1 = level.GetVertexChildVertex(v[1]), w2 = level.GetVertexChildVertex(v[2]);
+        const Index e01 = edgeChild(v[0], v[1]), e12 = edgeChild(v[1], v[2]), e20 = edgeChild(v[2], v[0]);
+        const std::array<std::array<UV, 3>, 4> parts{std::array<UV, 3>{c[0], m01, m20}, std::array<UV, 3>{m01, c[1], m12},
+                                                     std::array<UV, 3>{m20, m12, c[2]}, std::array<UV, 3>{m12, m20, m01}};
+        const std::array<std::array<Index, 3>, 4> partVerts{std::array<Index, 3>{w0, e01, e20}, std::array<Index, 3>{e01, w1, e12},
+                                                            std::array<Index, 3>{e20, e12, w2}, std::array<Index, 3>{e12, e20, e01}};
+        int which = -1;
+        for (int k = 0; k < 4 && which < 0; ++k)
+            if (inside(parts[static_cast<std::size_t>(k)])) which = k;
+        if (which < 0) throw Error("subdivision tessellation: a Loop cell outside its face (internal)");
+        const auto& target = partVerts[static_cast<std::size_t>(which)];
+        Index child = -1;
+        for (Index ch : level.GetFaceChildFaces(face)) {
+            if (ch < 0) continue;
+            const auto cv = refiner.GetLevel(l + 1).GetFaceVertices(ch);
+            int found = 0;
+            for (int k = 0; k < cv.size(); ++k) found += std::count(target.begin(), target.end(), cv[k]) > 0 ? 1 : 0;
+            if (found == 3) child = ch;
+        }
+        if (child < 0) throw Error("subdivision tessellation: a Loop cell's face was not refined (internal)");
+        face = child;
+        c = parts[static_cast<std::size_t>(which)];
+        v = target;
+    }
+    // The corners of the level-d face, matched to the cell's corners by (u, v).
+    std::array<Index, 3> out{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        int match = -1;
+        for (int i = 0; i < 3; ++i)
+            if (c[static_cast<std::size_t>(i)] == cell[k]) match = i;
+        if (match < 0) throw Error("subdivision tessellation: a Loop cell's corners do not match its face (internal)");
+        out[k] = v[static_cast<std::size_t>(match)];
+    }
+    return out;
+}
+
+} // namespace
+
+QuarticTriangleNet loopPatchToBezier(const std::array<Eigen::Vector3d, 12>& points)
+{
+    QuarticTriangleNet out;
+    for (int row = 0; row < 15; ++row) {
+        Eigen::Vector3d x = Eigen::Vector3d::Zero();
+        for (int c = 0; c < 12; ++c) x += kLoopToBezier[row][c] * points[static_cast<std::size_t>(c)];
+        out[static_cast<std::size_t>(row)] = x / 24.0;
+    }
+    return out;
+}
+
+namespace {
+Net toNet(const QuarticTriangleNet& flat)
+{
+    Net n;
+    for (int j = 0; j <= 4; ++j)
+        for (int k = 0; k <= 4 - j; ++k) n[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = flat[static_cast<std::size_t>(bezierIndex(j, k))];
+    return n;
+}
+} // namespace
+
+Eigen::Vector3d evaluateTriangleNet(const QuarticTriangleNet& net, double s, double t)
+{
+    const Eigen::Vector3d a(1 - s - t, s, t);
+    return blossom(toNet(net), {a, a, a, a});
+}
+
+double triangleNetErrorBound(const QuarticTriangleNet& net) { return netBound(toNet(net)); }
+
+PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessellationOptions& options,
+                                                        SubdivisionTessellationReport* report) const
+{
+    if (options.maxDepth < 1 || options.maxDepth > 10)
+        throw Error("subdivision tessellation: maxDepth " + std::to_string(options.maxDepth) + " is outside 1..10");
+    if (options.maxSplits < 0 || options.maxSplits > 28)
+        throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
+    const double tol = options.tolerance;
+    const PolygonMesh& mesh = cage_.mesh;
+    const int faces = mesh.faceCount();
+    std::vector<int> counts(static_cast<std::size_t>(faces), 3);
+    std::vector<Vertex3> cagePoints(static_cast<std::size_t>(mesh.vertexCount()));
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        for (int k = 0; k < 3; ++k) cagePoints[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
+
+    osd::Sdc::Options sdc;
+    sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+
+    struct Irregular {
+        int face = 0;
+        std::array<UV, 3> c;
+        std::array<Eigen::Vector3d, 3> corner, normal;
+        double bound = 0;
+    };
+    struct Regular {
+        int face = 0;
+        std::array<UV, 3> c;
+        Net net;
+    };
+    std::vector<Irregular> irregular;
+    std::vector<Regular> regular;
+    int depth = 1;
+    for (;; ++depth) {
+        irregular.clear();
+        regular.clear();
+        osd::Far::TopologyDescriptor desc;
+        desc.numVertices = mesh.vertexCount();
+        desc.numFaces = faces;
+        desc.numVertsPerFace = counts.data();
+        desc.vertIndicesPerFace = mesh.faceVertices.data();
+        clearOsdError();
+        std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, sdc)));
+        takeOsdError();
+        if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop topology");
+        refiner->RefineAdaptive(osd::Far::TopologyRefiner::AdaptiveOptions(depth));
+        osd::Far::PatchTableFactory::Options po(static_cast<unsigned>(depth));
+        po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
+        clearOsdError();
+        std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
+        takeOsdError();
+        if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop patch table");
+
+        // Positions on every level, and the limit points and tangents of every level's vertices.
+        std::vector<Vertex3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+        std::copy(cagePoints.begin(), cagePoints.end(), all.begin());
+        const int maxLevel = refiner->GetMaxLevel();
+        std::vector<std::size_t> offset(static_cast<std::size_t>(maxLevel) + 2, 0);
+        for (int l = 0; l <= maxLevel; ++l)
+            offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] + static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices());
+        const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+        for (int l = 1; l <= maxLevel; ++l) {
+            const Vertex3* src = all.data() + offset[static_cast<std::size_t>(l) - 1];
+            Vertex3* dst = all.data() + offset[static_cast<std::size_t>(l)];
+            primvar.Interpolate(l, src, dst);
+        }
+        std::vector<Vertex3> limit, tan1, tan2; // of the finest level's vertices, computed when needed
+
+        double worst = 0;
+        for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
+            const auto type = table->GetPatchArrayDescriptor(array).GetType();
+            for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
+                const osd::Far::PatchParam param = table->GetPatchParam(array, patch);
+                const auto cvs = table->GetPatchVertices(array, patch);
+                const std::array<UV, 3> corners = cellCorners(param);
+                if (type == osd::Far::PatchDescriptor::LOOP && param.GetBoundary() == 0) {
+                    regular.push_back({param.GetFaceId(), corners, bezierOfLoop(all, cvs)});
+                    continue;
+                }
+                if (type != osd::Far::PatchDescriptor::TRIANGLES)
+                    throw Error("subdivision tessellation: an unexpected Loop patch type (internal)");
+                // An irregular cell (an end cap on the finest level d): find its face on level d by
+                // descending from the base face, keeping which vertex sits at each corner.
+                const int d = param.GetDepth();
+                if (d != maxLevel) throw Error("subdivision tessellation: a Loop end cap above the finest level (internal)");
+                const auto D = static_cast<std::size_t>(d);
+                if (limit.empty()) {
+                    const std::size_t n = static_cast<std::size_t>(refiner->GetLevel(d).GetNumVertices());
+                    limit.resize(n);
+                    tan1.resize(n);
+                    tan2.resize(n);
+                    clearOsdError();
+                    const Vertex3* src = all.data() + offset[D];
+                    primvar.Limit(src, limit, tan1, tan2);
+                    takeOsdError();
+                }
+                const std::array<Index, 3> local = descend(*refiner, mesh.faceVertices, param.GetFaceId(), corners, d);
+                const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
+                // The 1-ring: every vertex of every face at one of the cell's corners.
+                std::vector<Index> ring;
+                for (Index v : local)
+                    for (Index f : level.GetVertexFaces(v))
+                        for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
+                std::sort(ring.begin(), ring.end());
+                ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+                Irregular cell;
+                cell.face = param.GetFaceId();
+                cell.c = corners;
+                double bound = std::numeric_limits<double>::infinity();
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const auto v = static_cast<std::size_t>(local[k]);
+                    cell.corner[k] = limit[v].vec();
+                    const Eigen::Vector3d n = tan1[v].vec().cross(tan2[v].vec());
+                    cell.normal[k] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+                    double far = 0;
+                    for (Index w : ring) far = std::max(far, (all[offset[D] + static_cast<std::size_t>(w)].vec() - cell.corner[k]).norm());
+                    bound = std::min(bound, far);
+                }
+                cell.bound = bound;
+                worst = std::max(worst, bound);
+                irregular.push_back(cell);
+            }
+        }
+        if (worst <= tol || depth >= options.maxDepth) break;
+    }
+
+    // Leaves: irregular cells as they are, regular cells split into four by de Casteljau.
+    std::vector<Leaf> leaves;
+    std::vector<Net> leafNet;
+    for (std::size_t i = 0; i < irregular.size(); ++i)
+        leaves.push_back({irregular[i].face, irregular[i].c, -1 - static_cast<int>(i), irregular[i].bound});
+    struct Task {
+        int face;
+        std::array<UV, 3> c;
+        Net net;
+        int splits;
+    };
+    std::vector<Task> stack;
+    for (const Regular& r : regular) stack.push_back({r.face, r.c, r.net, 0});
+    const Eigen::Vector3d e0(1, 0, 0), e1(0, 1, 0), e2(0, 0, 1), m01(0.5, 0.5, 0), m12(0, 0.5, 0.5), m20(0.5, 0, 0.5);
+    while (!stack.empty()) {
+        Task t = std::move(stack.back());
+        stack.pop_back();
+        const double bound = netBound(t.net);
+        const Int side = std::max(std::abs(t.c[1][0] - t.c[0][0]), std::abs(t.c[1][1] - t.c[0][1]));
+        if (bound <= tol || t.splits >= options.maxSplits || side < 2) {
+            leaves.push_back({t.face, t.c, static_cast<int>(leafNet.size()), bound});
+            leafNet.push_back(t.net);
+            continue;
+        }
+        auto mid = [](const UV& a, const UV& b) { return UV{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2}; };
+        const UV M01 = mid(t.c[0], t.c[1]), M12 = mid(t.c[1], t.c[2]), M20 = mid(t.c[2], t.c[0]);
+        stack.push_back({t.face, {t.c[0], M01, M20}, subNet(t.net, e0, m01, m20), t.splits + 1});
+        stack.push_back({t.face, {M01, t.c[1], M12}, subNet(t.net, m01, e1, m12), t.splits + 1});
+        stack.push_back({t.face, {M20, M12, t.c[2]}, subNet(t.net, m20, m12, e2), t.splits + 1});
+        stack.push_back({t.face, {M12, M20, M01}, subNet(t.net, m12, m20, m01), t.splits + 1});
+    }
+
+    // Every leaf corner once: irregular cells first (limit masks), then regular leaves (a corner of
+    // the Bézier net is its surface point).
+    TriangleKeys keys(mesh.faceVertices);
+    std::unordered_map<Key, int, KeyHash> vertexOf;
+    std::vector<Eigen::Vector3d> positions, normals;
+    for (int pass = 0; pass < 2; ++pass)
+        for (const Leaf& l : leaves) {
+            if ((l.net < 0) != (pass == 0)) continue;
+            for (int k = 0; k < 3; ++k) {
+                const UV& uv = l.c[static_cast<std::size_t>(k)];
+                const Key key = keys.key(l.face, uv[0], uv[1]);
+                if (vertexOf.count(key)) continue;
+                keys.registerPoint(l.face, uv[0], uv[1]);
+                vertexOf.emplace(key, static_cast<int>(positions.size()));
+                if (l.net < 0) {
+                    const Irregular& c = irregular[static_cast<std::size_t>(-1 - l.net)];
+                    positions.push_back(c.corner[static_cast<std::size_t>(k)]);
+                    normals.push_back(c.normal[static_cast<std::size_t>(k)]);
+                } else {
+                    const Net& b = leafNet[static_cast<std::size_t>(l.net)];
+                    positions.push_back(k == 0 ? b[0][0] : k == 1 ? b[4][0] : b[0][4]);
+                    normals.push_back(cornerNormal(b, k));
+                }
+            }
+        }
+    keys.sortLines();
+
+    // OpenSubdiv's limit tangents have the vertex's own orientation: turn irregular corners' normals
+    // to the side of their cell's triangle (counter-clockwise in (u, v), outward for a cage whose
+    // faces run counter-clockwise); a missing normal becomes the cell's.
+    for (const Leaf& l : leaves) {
+        if (l.net >= 0) continue;
+        const Irregular& c = irregular[static_cast<std::size_t>(-1 - l.net)];
+        const Eigen::Vector3d cellNormal = (c.corner[1] - c.corner[0]).cross(c.corner[2] - c.corner[0]).normalized();
+        for (int k = 0; k < 3; ++k) {
+            const UV& uv = l.c[static_cast<std::size_t>(k)];
+            Eigen::Vector3d& n = normals[static_cast<std::size_t>(vertexOf.at(keys.key(l.face, uv[0], uv[1])))];
+            if (n.isZero(0.0)) n = cellNormal;
+            else if (n.dot(cellNormal) < 0) n = -n;
+        }
+    }
+
+    // Triangulate every leaf as the polygon of its corners and side points.
+    std::vector<int> triangles;
+    std::vector<UV> poly, side;
+    std::vector<std::array<int, 3>> tris;
+    std::vector<double> faceBound(static_cast<std::size_t>(faces), 0.0);
+    std::vector<int> faceRate(static_cast<std::size_t>(faces), 0);
+    double worst = 0;
+    for (const Leaf& l : leaves) {
+        poly.clear();
+        for (std::size_t k = 0; k < 3; ++k) {
+            poly.push_back(l.c[k]);
+            keys.sidePoints(l.face, l.c[k], l.c[(k + 1) % 3], side);
+            poly.insert(poly.end(), side.begin(), side.end());
+        }
+        tris.clear();
+        clipEars(poly, tris);
+        for (const auto& t : tris)
+            for (int k : t) {
+                const UV& uv = poly[static_cast<std::size_t>(k)];
+                triangles.push_back(vertexOf.at(keys.key(l.face, uv[0], uv[1])));
+            }
+        const auto f = static_cast<std::size_t>(l.face);
+        faceBound[f] = std::max(faceBound[f], l.bound);
+        const Int size = std::max(std::abs(l.c[1][0] - l.c[0][0]), std::abs(l.c[1][1] - l.c[0][1]));
+        faceRate[f] = std::max(faceRate[f], static_cast<int>(std::min<Int>(kR / std::max<Int>(size, 1), Int(1) << 30)));
+        worst = std::max(worst, l.bound);
+    }
+
+    PolygonMesh out;
+    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
+    out.normals.resize(3, static_cast<Eigen::Index>(normals.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
+        out.normals.col(static_cast<Eigen::Index>(i)) = normals[i];
+    }
+    out.faceVertices = std::move(triangles);
+    out.faceStart.resize(out.faceVertices.size() / 3 + 1);
+    for (std::size_t i = 0; i < out.faceStart.size(); ++i) out.faceStart[i] = static_cast<int>(3 * i);
+    if (report) {
+        report->certifiedPath = true;
+        report->rates = faceRate;
+        report->regularFaces = 0;
+        report->errorBound = worst;
+        report->cells = static_cast<long long>(regular.size() + irregular.size());
+        report->irregularCells = static_cast<long long>(irregular.size());
+        report->leaves = static_cast<long long>(leaves.size());
+        report->depth = depth;
+        report->faceBounds = faceBound;
+        report->faceCertified.assign(static_cast<std::size_t>(faces), 0);
+        for (int f = 0; f < faces; ++f) report->faceCertified[static_cast<std::size_t>(f)] = faceBound[static_cast<std::size_t>(f)] <= tol;
+    }
+    return out;
+}
+
+} // namespace freeform
