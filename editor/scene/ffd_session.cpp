@@ -82,14 +82,13 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
         for (Eigen::Index k = 0; k < previous_.cols(); ++k)
             if (previous_.col(k) != lattice.controlPoints().col(k)) moved.push_back(static_cast<int>(k));
     drag_.reset();
-    std::vector<float> jacobians;
     if (!moved.empty() && normals) {
-        jacobians.resize(9 * static_cast<std::size_t>(count));
-        o.jacobians = jacobians.data();
+        jacobians_.resize(9 * static_cast<std::size_t>(count));
+        o.jacobians = jacobians_.data();
     }
     binding_.deform(lattice, o, options, nullptr);
     finish(o.determinants, normals, out, report, bounds);
-    if (o.jacobians) startDrag(lattice, strength, std::move(moved), jacobians, o.determinants);
+    if (o.jacobians) startDrag(lattice, strength, std::move(moved), jacobians_, o.determinants);
     previous_ = lattice.controlPoints();
     return report;
 }
@@ -124,7 +123,7 @@ void FfdSession::startDrag(const Lattice& lattice, double strength, std::vector<
 {
     // Per vertex, from the evaluation just made (J = A there): with every point of the set moved
     // by the same delta, D changes by w B delta and J by u v^T, u = w delta, v = dual^T grad B,
-    // B the sum of the set's Bernstein products (docs/architecture.md, "lattice drag"). Then
+    // B the sum of the set's Bernstein products (docs/architecture.md, "Lattice drag"). Then
     //   p = p0 + B u,   det J = det A + (cof(A) v) . u,   cof(J) n = cof(A) n + u x (A (n x v)),
     // the last because cof(M) has the columns m1 x m2, m2 x m0, m0 x m1. Normals are stored as
     // n0 = cof(A) n / |cof(A) n| and h = A (n x v) / |cof(A) n|, so n = normalise(n0 + u x h).
@@ -134,41 +133,31 @@ void FfdSession::startDrag(const Lattice& lattice, double strength, std::vector<
     drag->points = lattice.controlPoints();
     drag->strength = strength;
     drag->moved = std::move(moved);
-    drag->data.assign(((count + W - 1) / W) * kFields * W, 0.0f);
-    const int l = lattice.degree(0), m = lattice.degree(1), n = lattice.degree(2);
-    std::vector<std::array<int, 3>> ijk;
-    for (const int k : drag->moved) ijk.push_back({k / ((m + 1) * (n + 1)), (k / (n + 1)) % (m + 1), k % (n + 1)});
-    const OutsidePolicy policy = lattice.outside();
-    const Eigen::Matrix3d dualT = lattice.dual().transpose();
-    const std::vector<int>& outside = binding_.outsideVertices();
+    // (The scratch arrays stay allocated between drags: fresh pages cost more than the work.)
+    dragData_.resize(((count + W - 1) / W) * kFields * W);
+    // B and v of every vertex by the library's own kernel (so with its outside policy): by
+    // linearity, the lattice whose set is displaced by 2^10 e_x (all else at rest), strength 1,
+    // gives p + 2^10 B e_x and J = I + 2^10 e_x v^T (a power of two: the scaling is exact).
+    constexpr float kScale = 1024.0f;
+    Lattice unit = lattice;
+    Lattice::Points points = lattice.restPoints();
+    for (const int k : drag->moved) points(0, k) += double(kScale);
+    unit.setControlPoints(points);
+    unitPositions_.resize(3, static_cast<Eigen::Index>(count));
+    unitJacobians_.resize(9 * count);
+    const auto& unitPositions = unitPositions_;
+    FfdOutputs<float> o;
+    o.positions = unitPositions_.data();
+    o.jacobians = unitJacobians_.data();
+    binding_.deform(unit, o);
+    const Eigen::Matrix<double, 3, Eigen::Dynamic>& restPositions = rest_.positions;
     parallelFor(0, count, 4096, 0, [&](int, std::size_t first, std::size_t last) {
-        double bs[kMaxDegree + 1], bt[kMaxDegree + 1], bu[kMaxDegree + 1];
-        double ds[kMaxDegree + 1], dt[kMaxDegree + 1], du[kMaxDegree + 1], scratch[kMaxDegree + 1];
-        auto o = std::lower_bound(outside.begin(), outside.end(), static_cast<int>(first));
         for (std::size_t v = first; v < last; ++v) {
-            const bool out = o != outside.end() && *o == static_cast<int>(v);
-            if (out) ++o;
-            const Eigen::Vector3d raw = binding_.parameters(v);
-            double b = 0;
-            Eigen::Vector3d g = Eigen::Vector3d::Zero(); // grad of B in (s, t, u)
-            if (!(out && policy == OutsidePolicy::Keep)) {
-                const Eigen::Vector3d q = policy == OutsidePolicy::Extrapolate ? raw : Eigen::Vector3d(raw.cwiseMax(0.0).cwiseMin(1.0));
-                bernsteinAll(l, q[0], bs);
-                bernsteinAll(m, q[1], bt);
-                bernsteinAll(n, q[2], bu);
-                bernsteinDerivativeAll(l, 1, q[0], ds, scratch);
-                bernsteinDerivativeAll(m, 1, q[1], dt, scratch);
-                bernsteinDerivativeAll(n, 1, q[2], du, scratch);
-                for (const auto& [i, j, k] : ijk) {
-                    b += bs[i] * bt[j] * bu[k];
-                    g += Eigen::Vector3d(ds[i] * bt[j] * bu[k], bs[i] * dt[j] * bu[k], bs[i] * bt[j] * du[k]);
-                }
-                // Clamp: no change of the displacement across the box faces an outside vertex lies beyond.
-                if (out && policy == OutsidePolicy::Clamp)
-                    for (int a = 0; a < 3; ++a)
-                        if (!(raw[a] >= 0 && raw[a] <= 1)) g[a] = 0;
-            }
-            const Eigen::Vector3d gv = dualT * g;
+            const auto col = static_cast<Eigen::Index>(v);
+            // The x coordinate as the kernel holds it (float), then the displacement it added.
+            const double b = (double(unitPositions(0, col)) - double(float(restPositions(0, col)))) / kScale;
+            const float* uj = unitJacobians_.data() + 9 * v; // column-major: J(0, c) = uj[3 c]
+            const Eigen::Vector3d gv((double(uj[0]) - 1) / kScale, double(uj[3]) / kScale, double(uj[6]) / kScale);
             const Eigen::Matrix3d a = Eigen::Map<const Eigen::Matrix<float, 3, 3>>(jacobians.data() + 9 * v).cast<double>();
             const Eigen::Vector3d k0 = a.col(1).cross(a.col(2)), k1 = a.col(2).cross(a.col(0)), k2 = a.col(0).cross(a.col(1));
             const Eigen::Vector3d nr = rest_.normals.col(static_cast<Eigen::Index>(v));
@@ -176,7 +165,7 @@ void FfdSession::startDrag(const Lattice& lattice, double strength, std::vector<
             const Eigen::Vector3d e = gv[0] * k0 + gv[1] * k1 + gv[2] * k2;
             Eigen::Vector3d h = a * nr.cross(gv);
             if (const double len = c0.norm(); len > 0) h /= len;
-            float* blk = drag->data.data() + (v / W) * kFields * W + v % W;
+            float* blk = dragData_.data() + (v / W) * kFields * W + v % W;
             const float values[kFields] = {positions_(0, Eigen::Index(v)), positions_(1, Eigen::Index(v)), positions_(2, Eigen::Index(v)),
                                            normals_(0, Eigen::Index(v)),   normals_(1, Eigen::Index(v)),   normals_(2, Eigen::Index(v)),
                                            float(h[0]), float(h[1]), float(h[2]), float(e[0]), float(e[1]), float(e[2]), float(b), det[v]};
@@ -202,7 +191,7 @@ void FfdSession::dragFrame(const Eigen::Vector3d& delta, bool normals, PolygonMe
     double* pos = out.positions.data();
     double* nor = normals ? out.normals.data() : nullptr;
     for (std::size_t base = 0; base < count; base += W) {
-        const float* b = drag_->data.data() + (base / W) * kFields * W;
+        const float* b = dragData_.data() + (base / W) * kFields * W;
         float p[3][W], q[3][W], d[W], len2[W], inv[W];
         for (int w = 0; w < W; ++w) {
             const float bw = b[kB * W + w];

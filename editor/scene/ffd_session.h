@@ -52,14 +52,14 @@ private:
     /// positions_/normals_ (and det J) -> out (double), report, bounds: one pass.
     void finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds) const;
 
-    /// The drag's data, from a full evaluation with Jacobians (startDrag): per vertex, in blocks
+    /// The drag's data (dragData_), from a full evaluation with Jacobians and one of the set's
+    /// unit displacement (startDrag): per vertex, in blocks
     /// of kLanes, the fields p0 (3), n0 (3), h (3), e (3), B, det A (ffd_session.cpp).
     static constexpr int kLanes = 16, kP = 0, kN = 3, kH = 6, kE = 9, kB = 12, kD = 13, kFields = 14;
     struct Drag {
         Eigen::Matrix3Xd points;   // the lattice's control points at that evaluation
         double strength = 0;
         std::vector<int> moved;    // the points that move, ascending
-        std::vector<float> data;
     };
     /// The common translation of the drag's points since its evaluation, when that is all that changed.
     std::optional<Eigen::Vector3d> dragDelta(const Lattice& lattice, double strength) const;
@@ -75,6 +75,9 @@ private:
     Eigen::Matrix<float, 3, Eigen::Dynamic> positions_, normals_; // kept between calls (no fresh pages)
     Eigen::Matrix3Xd previous_;          // the control points of the last deform()
     std::unique_ptr<Drag> drag_;         // the current drag's linear update, if any
+    std::vector<float> dragData_;        // its per-vertex data (kept between drags, as the scratch below)
+    std::vector<float> jacobians_, unitJacobians_;
+    Eigen::Matrix<float, 3, Eigen::Dynamic> unitPositions_;
     bool approximate_ = false;
 };
 
