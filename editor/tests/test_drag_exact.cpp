@@ -18,8 +18,10 @@
 #include "freeform/io/geometry_data.h"
 #include "freeform/volume/deform.h"
 #include "interaction/selection.h"
+#include "render/recording_renderer.h"
 #include "scene/overlay.h"
 #include "scene/scene.h"
+#include "scene/scene_drawer.h"
 #include "tools/tools.h"
 
 using namespace freeform;
@@ -253,4 +255,54 @@ TEST_CASE("Lattice drag: a frame that is not one common translation of the drag'
     d.scene.undo();
     d.update();
     requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+}
+
+TEST_CASE("Lattice drag: the normals overlay is built only while shown, from the frame's mesh", "[ffd][drag][drawer]")
+{
+    // The drawer rebuilt the overlay's lines (one per vertex) on every mesh change even when the
+    // overlay was hidden; now it builds them when shown. Turned on in the middle of a drag, the
+    // lines start at the mesh of that frame.
+    Drag d(ellipsoidFile("drag_drawer.obj", 24), 3);
+    d.scene.display.normals = false;
+    RecordingRenderer r;
+    SceneDrawer drawer(r);
+    drawer.draw(d.scene, 320, 240, -1);
+    const Lattice rest = d.current();
+    const int k = rest.index(1, 2, 1);
+    d.scene.beginMerge();
+    for (int f = 1; f <= 4; ++f) {
+        d.scene.setControlPoint(d.lattice, k, rest.controlPoints().col(k) + 0.1 * f * Eigen::Vector3d(1, 0.5, 0));
+        d.update();
+        drawer.draw(d.scene, 320, 240, -1);
+    }
+    REQUIRE(d.scene.ffdLink(d.lattice)->approximate);
+    const auto off = r.calls(RecordingRenderer::Kind::Lines); // the last frame, overlay hidden
+    d.scene.display.normals = true;
+    drawer.draw(d.scene, 320, 240, -1);
+    const auto on = r.calls(RecordingRenderer::Kind::Lines);
+    // New lines calls: the normals of each item (the lattice's are empty); the mesh's is the longest.
+    REQUIRE(on.size() > off.size());
+    int handle = 0;
+    long most = 0;
+    for (const auto& call : on)
+        if (std::none_of(off.begin(), off.end(), [&](const auto& o) { return o.handle == call.handle; }) && call.vertices > most) {
+            handle = call.handle;
+            most = call.vertices;
+        }
+    REQUIRE(handle != 0);
+    const auto& lines = r.buffer(handle).lines.positions;
+    const PolygonMesh& mesh = d.deformed();
+    REQUIRE(lines.cols() == 2 * mesh.positions.cols());
+    double worst = 0;
+    for (Eigen::Index v = 0; v < mesh.positions.cols(); ++v)
+        worst = std::max(worst, (lines.col(2 * v).cast<double>() - mesh.positions.col(v)).cwiseAbs().maxCoeff());
+    CHECK(worst < 1e-6); // float lines at the double positions
+    // Hidden again: the next frame of the drag leaves the overlay's buffer empty (before, it held
+    // a line per vertex, rebuilt every frame).
+    d.scene.display.normals = false;
+    d.scene.setControlPoint(d.lattice, k, rest.controlPoints().col(k) + Eigen::Vector3d(0.5, 0.25, 0));
+    d.update();
+    drawer.draw(d.scene, 320, 240, -1);
+    CHECK(r.buffer(handle).lines.positions.cols() == 0);
+    d.scene.endMerge();
 }
