@@ -7,7 +7,6 @@
 #include <emmintrin.h>
 #endif
 
-#include "freeform/core/bernstein.h"
 #include "freeform/core/parallel.h"
 
 namespace freeform::editor {
