@@ -8,7 +8,12 @@
 //   - Scene::updateGeometry: the rebuild of what changed (the lattice's net), then the derived
 //     items: the FFD link notices the new control points and deforms positions, normals and det J
 //     of every vertex through the binding made at fit time (no lattice coordinates are computed
-//     again), the det J colour scalars and the bounds.
+//     again), the det J colour scalars and the bounds. While the drag goes on (the scene merges
+//     its changes) the link may update the mesh linearly from the drag's last full evaluation
+//     (FfdSession::deform, live): the first two frames are full evaluations, the others linear.
+// BM_DragFrame's CPU column is the benchmark thread's; BM_DragFrameProcessCpu is the same loop with
+// the CPU time of every thread of the process (the full evaluation runs on all cores).
+// BM_DragRelease times the frame after the release (the full evaluation that the drag owes).
 // Spline and patch drags (issue 12): a handle of a cubic spline of 4, 16 and 64 segments dragged, its joints
 // all C2, all mirrored, or mixed; each frame the spline tool enforces every joint's mode.
 // Uploading to the GPU is not included (the driver's work). A second benchmark times the
@@ -106,6 +111,35 @@ void BM_DragFrame(benchmark::State& state)
     if (!links.empty()) state.counters["deform_ms_last"] = links.begin()->second.deformMs;
 }
 BENCHMARK(BM_DragFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+void BM_DragFrameProcessCpu(benchmark::State& state) { BM_DragFrame(state); }
+BENCHMARK(BM_DragFrameProcessCpu)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
+
+/// The frame after the release of a drag: the full evaluation at the last position (with the
+/// process's CPU time). Each iteration is a short drag (three frames, not timed) and its release.
+void BM_DragRelease(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene; // one more scene: the other benchmarks' is local to them
+    ToolContext context{d.scene, d.selection};
+    const int k = 21;
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    int frame = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        d.scene.beginMerge();
+        for (int f = 0; f < 3; ++f) {
+            const double offset = 0.1 * std::sin(0.05 * ++frame);
+            d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+            d.scene.updateGeometry();
+        }
+        d.scene.endMerge();
+        state.ResumeTiming();
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+    }
+}
+BENCHMARK(BM_DragRelease)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
 
 /// A cubic spline of `segments` segments (a zigzag in the xy plane) whose inner joints are all in
 /// `mode` ("c2", "mirrored", "aligned") or, for "mixed", C2, aligned and mirrored in turn, as a

@@ -82,18 +82,20 @@ void Scene::updateDerived()
                 link.meshKey = mesh.key;
                 link.session = std::make_shared<FfdSession>(lattice, std::move(rest));
             }
+            // While a drag goes on (the history merges its changes), a frame may be the linear
+            // update (FfdSession::deform, live); the first update after it is the full evaluation,
+            // also when nothing else changed: what the drag leaves is exact.
+            const bool live = history_.merging();
             const bool changed = rebind || link.appliedRevision != mesh.revision || link.appliedPoints != data.points ||
-                                 link.appliedStrength != strength;
+                                 link.appliedStrength != strength || (link.approximate && !live);
             if (!changed) continue;
             const auto t0 = std::chrono::steady_clock::now();
             // det J straight into the colour scalars, in the last frame's memory (no fresh pages).
             std::vector<float> scalars = std::move(mesh.scalars);
-            link.report = link.session->deform(lattice, strength, *mesh.geometry.surface, &scalars);
+            // The bounds come from the same pass that writes the double positions.
+            link.report = link.session->deform(lattice, strength, *mesh.geometry.surface, &scalars, &mesh.geometry.bounds, live);
+            link.approximate = link.session->approximate();
             link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-            mesh.geometry.bounds.setEmpty();
-            const auto& p = mesh.geometry.surface->positions;
-            // One pass over the columns (Eigen's rowwise min and max walk the 3 x N matrix twice, by rows).
-            for (Eigen::Index k = 0; k < p.cols(); ++k) mesh.geometry.bounds.extend(Eigen::Vector3d(p.col(k)));
             setScalars(m, std::move(scalars)); // also a new revision: the drawer uploads the vertices
             link.appliedRevision = mesh.revision;
             link.appliedPoints = data.points;

@@ -4,7 +4,8 @@
 // at run time the link is the mesh item's stable id, SceneItem::deforms). Scene::updateGeometry
 // evaluates every link after rebuilding dirty items: the one path by which a deformed mesh is
 // written. Its inputs are the lattice's points, frame and outside policy, the strength and the
-// mesh item's content (key) and revision; when none changed, nothing is computed. A link that
+// mesh item's content (key) and revision; when none changed, nothing is computed (except the full
+// evaluation owed after a drag's linear updates: FfdLink::approximate). A link that
 // goes away (lattice deleted, its mesh changed to another or none) puts the rest mesh back.
 
 #include <memory>
@@ -27,6 +28,7 @@ struct FfdLink {
     int appliedRevision = -1;               // the mesh item's revision after the last update
     DeformReport report;
     double deformMs = 0;                    // CPU time of the last update (positions, normals, det J)
+    bool approximate = false;               // the last update was a drag's linear update (float rounding)
     std::optional<Certificate> certificate; // computed on request for appliedPoints
     std::string error;                      // why the last update failed (empty: it did not)
 };

@@ -1,6 +1,11 @@
 #include "scene/ffd_session.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "freeform/core/parallel.h"
 
@@ -16,8 +21,10 @@ bool FfdSession::matches(const Lattice& lattice) const
     return lattice.sameFrame(frame_) && lattice.outside() == frame_.outside();
 }
 
-DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ)
+DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ,
+                                Eigen::AlignedBox3d* bounds, bool live)
 {
+    approximate_ = false;
     const Eigen::Index count = rest_.positions.cols();
     const bool normals = rest_.normals.cols() == count;
     positions_.resize(3, count);
@@ -42,18 +49,255 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
         out.positions = rest_.positions;
         if (normals) out.normals = rest_.normals;
         if (detJ) std::fill(detJ->begin(), detJ->end(), 1.0f);
+        drag_.reset();
+        previous_ = lattice.controlPoints();
         report.vertices = static_cast<std::size_t>(count);
         report.outside = binding_.outsideVertices().size();
+        if (bounds) {
+            bounds->setEmpty();
+            for (Eigen::Index k = 0; k < count; ++k) bounds->extend(Eigen::Vector3d(out.positions.col(k)));
+        }
         return report;
     }
-    binding_.deform(lattice, o, options, &report);
-    // Into the scene's double mesh, on the same threads as the deformation.
-    parallelFor(0, static_cast<std::size_t>(count), 16384, 0, [&](int, std::size_t first, std::size_t last) {
+    std::vector<float> scratch;
+    if (!detJ) {
+        scratch.resize(static_cast<std::size_t>(count));
+        o.determinants = scratch.data();
+    }
+    if (!live) {
+        drag_.reset();
+    } else if (const auto delta = dragDelta(lattice, strength)) {
+        // A drag frame that only translates the drag's points further: the linear update.
+        dragFrame(*delta, normals, out, o.determinants, report, bounds);
+        approximate_ = true;
+        previous_ = lattice.controlPoints();
+        return report;
+    }
+    // The full evaluation; its report, the double copy and the bounds come from one pass below.
+    // In a drag, when the points that moved since the last evaluation are known, the Jacobians
+    // are kept too: the next frames of the drag are linear updates from this one.
+    std::vector<int> moved;
+    if (live && previous_.cols() == lattice.controlPoints().cols())
+        for (Eigen::Index k = 0; k < previous_.cols(); ++k)
+            if (previous_.col(k) != lattice.controlPoints().col(k)) moved.push_back(static_cast<int>(k));
+    drag_.reset();
+    if (!moved.empty() && normals) {
+        jacobians_.resize(9 * static_cast<std::size_t>(count));
+        o.jacobians = jacobians_.data();
+    }
+    binding_.deform(lattice, o, options, nullptr);
+    finish(o.determinants, normals, out, report, bounds);
+    if (o.jacobians) startDrag(lattice, strength, std::move(moved), jacobians_, o.determinants);
+    previous_ = lattice.controlPoints();
+    return report;
+}
+
+std::optional<Eigen::Vector3d> FfdSession::dragDelta(const Lattice& lattice, double strength) const
+{
+    if (!drag_ || drag_->strength != strength) return std::nullopt;
+    const Lattice::Points& p = lattice.controlPoints();
+    const Eigen::Matrix3Xd& base = drag_->points;
+    if (p.cols() != base.cols()) return std::nullopt;
+    // Every point outside the drag's set unchanged; those inside moved by one common vector
+    // (a grab computes each as its own start + delta, so they agree to a few ulps of the points).
+    std::size_t next = 0;
+    Eigen::Vector3d delta = Eigen::Vector3d::Zero();
+    for (Eigen::Index k = 0; k < p.cols(); ++k) {
+        const bool inSet = next < drag_->moved.size() && drag_->moved[next] == k;
+        if (!inSet) {
+            if (p.col(k) != base.col(k)) return std::nullopt;
+            continue;
+        }
+        const Eigen::Vector3d d = p.col(k) - base.col(k);
+        if (next == 0) delta = d;
+        else if ((d - delta).cwiseAbs().maxCoeff() > 8 * std::numeric_limits<double>::epsilon() * (1 + p.col(k).cwiseAbs().maxCoeff()))
+            return std::nullopt;
+        ++next;
+    }
+    return delta;
+}
+
+void FfdSession::startDrag(const Lattice& lattice, double strength, std::vector<int> moved, const std::vector<float>& jacobians,
+                           const float* det)
+{
+    // Per vertex, from the evaluation just made (J = A there): with every point of the set moved
+    // by the same delta, D changes by w B delta and J by u v^T, u = w delta, v = dual^T grad B,
+    // B the sum of the set's Bernstein products (docs/architecture.md, "Lattice drag"). Then
+    //   p = p0 + B u,   det J = det A + (cof(A) v) . u,   cof(J) n = cof(A) n + u x (A (n x v)),
+    // the last because cof(M) has the columns m1 x m2, m2 x m0, m0 x m1. Normals are stored as
+    // n0 = cof(A) n / |cof(A) n| and h = A (n x v) / |cof(A) n|, so n = normalise(n0 + u x h).
+    constexpr int W = kLanes;
+    const std::size_t count = static_cast<std::size_t>(positions_.cols());
+    auto drag = std::make_unique<Drag>();
+    drag->points = lattice.controlPoints();
+    drag->strength = strength;
+    drag->moved = std::move(moved);
+    // (The scratch arrays stay allocated between drags: fresh pages cost more than the work.)
+    dragData_.resize(((count + W - 1) / W) * kFields * W);
+    // B and v of every vertex by the library's own kernel (so with its outside policy): by
+    // linearity, the lattice whose set is displaced by 2^10 e_x (all else at rest), strength 1,
+    // gives p + 2^10 B e_x and J = I + 2^10 e_x v^T (a power of two: the scaling is exact).
+    constexpr float kScale = 1024.0f;
+    Lattice unit = lattice;
+    Lattice::Points points = lattice.restPoints();
+    for (const int k : drag->moved) points(0, k) += double(kScale);
+    unit.setControlPoints(points);
+    unitPositions_.resize(3, static_cast<Eigen::Index>(count));
+    unitJacobians_.resize(9 * count);
+    const auto& unitPositions = unitPositions_;
+    FfdOutputs<float> o;
+    o.positions = unitPositions_.data();
+    o.jacobians = unitJacobians_.data();
+    binding_.deform(unit, o);
+    const Eigen::Matrix<double, 3, Eigen::Dynamic>& restPositions = rest_.positions;
+    parallelFor(0, count, 4096, 0, [&](int, std::size_t first, std::size_t last) {
+        for (std::size_t v = first; v < last; ++v) {
+            const auto col = static_cast<Eigen::Index>(v);
+            // The x coordinate as the kernel holds it (float), then the displacement it added.
+            const double b = (double(unitPositions(0, col)) - double(float(restPositions(0, col)))) / kScale;
+            const float* uj = unitJacobians_.data() + 9 * v; // column-major: J(0, c) = uj[3 c]
+            const Eigen::Vector3d gv((double(uj[0]) - 1) / kScale, double(uj[3]) / kScale, double(uj[6]) / kScale);
+            const Eigen::Matrix3d a = Eigen::Map<const Eigen::Matrix<float, 3, 3>>(jacobians.data() + 9 * v).cast<double>();
+            const Eigen::Vector3d k0 = a.col(1).cross(a.col(2)), k1 = a.col(2).cross(a.col(0)), k2 = a.col(0).cross(a.col(1));
+            const Eigen::Vector3d nr = rest_.normals.col(static_cast<Eigen::Index>(v));
+            const Eigen::Vector3d c0 = nr[0] * k0 + nr[1] * k1 + nr[2] * k2;
+            const Eigen::Vector3d e = gv[0] * k0 + gv[1] * k1 + gv[2] * k2;
+            Eigen::Vector3d h = a * nr.cross(gv);
+            if (const double len = c0.norm(); len > 0) h /= len;
+            float* blk = dragData_.data() + (v / W) * kFields * W + v % W;
+            const float values[kFields] = {positions_(0, Eigen::Index(v)), positions_(1, Eigen::Index(v)), positions_(2, Eigen::Index(v)),
+                                           normals_(0, Eigen::Index(v)),   normals_(1, Eigen::Index(v)),   normals_(2, Eigen::Index(v)),
+                                           float(h[0]), float(h[1]), float(h[2]), float(e[0]), float(e[1]), float(e[2]), float(b), det[v]};
+            for (int f = 0; f < kFields; ++f) blk[f * W] = values[f];
+        }
+    });
+    drag_ = std::move(drag);
+}
+
+void FfdSession::dragFrame(const Eigen::Vector3d& delta, bool normals, PolygonMesh& out, float* det, DeformReport& report,
+                           Eigen::AlignedBox3d* bounds) const
+{
+    // One thread, one pass: every output (double mesh, det J, report, box) from the drag's data.
+    constexpr int W = kLanes;
+    const std::size_t count = static_cast<std::size_t>(positions_.cols());
+    const Eigen::Vector3f u = (drag_->strength * delta).cast<float>();
+    report = DeformReport{};
+    report.vertices = count;
+    report.outside = binding_.outsideVertices().size();
+    double lo = count ? std::numeric_limits<double>::infinity() : 1, hi = count ? -lo : 1;
+    float mn[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+    float mx[3] = {-mn[0], -mn[1], -mn[2]};
+    double* pos = out.positions.data();
+    double* nor = normals ? out.normals.data() : nullptr;
+    for (std::size_t base = 0; base < count; base += W) {
+        const float* b = dragData_.data() + (base / W) * kFields * W;
+        float p[3][W], q[3][W], d[W], len2[W], inv[W];
+        for (int w = 0; w < W; ++w) {
+            const float bw = b[kB * W + w];
+            for (int x = 0; x < 3; ++x) p[x][w] = b[(kP + x) * W + w] + bw * u[x];
+            const float hx = b[kH * W + w], hy = b[(kH + 1) * W + w], hz = b[(kH + 2) * W + w];
+            q[0][w] = b[kN * W + w] + (u[1] * hz - u[2] * hy);
+            q[1][w] = b[(kN + 1) * W + w] + (u[2] * hx - u[0] * hz);
+            q[2][w] = b[(kN + 2) * W + w] + (u[0] * hy - u[1] * hx);
+            d[w] = b[kD * W + w] + (b[kE * W + w] * u[0] + b[(kE + 1) * W + w] * u[1] + b[(kE + 2) * W + w] * u[2]);
+            len2[w] = q[0][w] * q[0][w] + q[1][w] * q[1][w] + q[2][w] * q[2][w];
+        }
+#if defined(__SSE2__)
+        for (int w = 0; w < W; w += 4) {
+            const __m128 l2 = _mm_loadu_ps(len2 + w);
+            const __m128 r = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(l2));
+            _mm_storeu_ps(inv + w, _mm_and_ps(r, _mm_cmpgt_ps(l2, _mm_setzero_ps()))); // 0 where |n| = 0
+        }
+#else
+        for (int w = 0; w < W; ++w) inv[w] = len2[w] > 0 ? 1.0f / std::sqrt(len2[w]) : 0.0f;
+#endif
+        const std::size_t lanes = std::min<std::size_t>(W, count - base);
+        for (std::size_t w = 0; w < lanes; ++w) {
+            for (int x = 0; x < 3; ++x) {
+                pos[3 * (base + w) + std::size_t(x)] = double(p[x][w]);
+                mn[x] = p[x][w] < mn[x] ? p[x][w] : mn[x];
+                mx[x] = p[x][w] > mx[x] ? p[x][w] : mx[x];
+            }
+            if (nor)
+                for (int x = 0; x < 3; ++x) nor[3 * (base + w) + std::size_t(x)] = double(q[x][w] * inv[w]);
+            det[base + w] = d[w];
+            const double dd = double(d[w]);
+            lo = std::min(lo, dd);
+            hi = std::max(hi, dd);
+            if (!(dd > 0)) report.folds.push_back(static_cast<int>(base + w));
+        }
+    }
+    report.minDetJ = lo;
+    report.maxDetJ = hi;
+    report.foldCount = report.folds.size();
+    if (bounds) {
+        bounds->setEmpty();
+        if (count) bounds->extend(Eigen::AlignedBox3d(Eigen::Vector3d(mn[0], mn[1], mn[2]), Eigen::Vector3d(mx[0], mx[1], mx[2])));
+    }
+}
+
+void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds) const
+{
+    // One pass over the float results, on the same threads as before, in chunks combined in chunk
+    // order: the scene's double mesh (exact widening), the report from det J as FfdBinding::deform
+    // makes it (min, max, folds ascending) and the bounding box. Before, the library's report, the
+    // widening and the scene's bounds were three passes (docs/performance.md, "lattice drag").
+    const Eigen::Index count = positions_.cols();
+    struct Part {
+        double lo = 1, hi = 1;
+        std::vector<int> folds;
+        float min[3] = {0, 0, 0}, max[3] = {0, 0, 0};
+    };
+    constexpr std::size_t kGrain = 16384;
+    std::vector<Part> parts(static_cast<std::size_t>(parallelChunkCount(0, static_cast<std::size_t>(count), kGrain, 0)));
+    parallelFor(0, static_cast<std::size_t>(count), kGrain, 0, [&](int c, std::size_t first, std::size_t last) {
         const auto n = static_cast<Eigen::Index>(last - first), f = static_cast<Eigen::Index>(first);
         out.positions.middleCols(f, n) = positions_.middleCols(f, n).cast<double>();
         if (normals) out.normals.middleCols(f, n) = normals_.middleCols(f, n).cast<double>();
+        Part& part = parts[static_cast<std::size_t>(c)];
+        // det J: the same comparisons in double as the library's report.
+        double lo = double(det[first]), hi = lo;
+        for (std::size_t v = first; v < last; ++v) {
+            const double d = double(det[v]);
+            lo = std::min(lo, d);
+            hi = std::max(hi, d);
+            if (!(d > 0)) part.folds.push_back(static_cast<int>(v));
+        }
+        part.lo = lo;
+        part.hi = hi;
+        // The box in float (widening to double is exact and keeps the order, so the box is the one
+        // of the double positions), in a loop the compiler vectorises.
+        const float* p = positions_.data() + 3 * first;
+        float mn[3] = {p[0], p[1], p[2]}, mx[3] = {p[0], p[1], p[2]};
+        for (std::size_t v = 0; v < last - first; ++v)
+            for (int x = 0; x < 3; ++x) {
+                const float a = p[3 * v + std::size_t(x)];
+                mn[x] = a < mn[x] ? a : mn[x];
+                mx[x] = a > mx[x] ? a : mx[x];
+            }
+        for (int x = 0; x < 3; ++x) {
+            part.min[x] = mn[x];
+            part.max[x] = mx[x];
+        }
     });
-    return report;
+    report = DeformReport{};
+    report.vertices = static_cast<std::size_t>(count);
+    report.outside = binding_.outsideVertices().size();
+    if (count > 0) {
+        report.minDetJ = parts[0].lo;
+        report.maxDetJ = parts[0].hi;
+    }
+    for (const Part& p : parts) {
+        report.minDetJ = std::min(report.minDetJ, p.lo);
+        report.maxDetJ = std::max(report.maxDetJ, p.hi);
+        report.folds.insert(report.folds.end(), p.folds.begin(), p.folds.end());
+    }
+    report.foldCount = report.folds.size();
+    if (bounds) {
+        bounds->setEmpty();
+        for (const Part& p : parts)
+            bounds->extend(Eigen::AlignedBox3d(Eigen::Vector3d(p.min[0], p.min[1], p.min[2]), Eigen::Vector3d(p.max[0], p.max[1], p.max[2])));
+    }
 }
 
 } // namespace freeform::editor

@@ -134,7 +134,7 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
     }
     if (geometryChanged || gpu.normalLength != normalLength) {
         LineBuilder normals;
-        if (g.surface && g.surface->normals.cols() == g.surface->positions.cols())
+        if (normalLength > 0 && g.surface && g.surface->normals.cols() == g.surface->positions.cols())
             for (Eigen::Index i = 0; i < g.surface->positions.cols(); ++i)
                 normals.add(g.surface->positions.col(i), g.surface->positions.col(i) + normalLength * g.surface->normals.col(i),
                             kNormalColor);
@@ -188,7 +188,9 @@ long SceneDrawer::draw(Scene& scene, int width, int height, int selected, const 
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& item = scene.item(i);
         present.insert(item.id);
-        upload(item, gpu_[item.id], i == selected, d.normalLength * diameter);
+        // The normals overlay's lines only while it is shown (length 0: none built): a lattice
+        // drag changes a mesh every frame, and its lines were a pass over every vertex.
+        upload(item, gpu_[item.id], i == selected, d.normals ? d.normalLength * diameter : 0.0);
     }
     for (auto it = gpu_.begin(); it != gpu_.end();) {
         if (present.count(it->first)) {
