@@ -3,7 +3,9 @@
 // type LOOP, the quartic box spline of 12 points) becomes a quartic triangular Bézier patch (15
 // points, a fixed matrix) split by triangular de Casteljau into four until its second-difference
 // bound is within the tolerance; an irregular cell (a face next to an extraordinary vertex on the
-// finest level) is bounded by the convex hull of its 1-ring. Vertices are exact limit points under
+// finest level) is bounded by the convex hull of its 1-ring; one still above the tolerance at
+// OpenSubdiv's level 10 gets a local cage (its level-10 1-ring) cut into cells the same way, nested
+// down to depth 30 ("Deeper than level 10"). Vertices are exact limit points under
 // canonical keys (cage vertex, cage edge + dyadic parameter, face + dyadic (u, v)); each leaf is cut
 // as the polygon of its corners and of the registered points inside its sides (ear clipping in
 // (u, v)), so the mesh is conforming and closed cages give closed meshes.
@@ -394,6 +396,220 @@ std::array<Index, 3> descend(const osd::Far::TopologyRefiner& refiner, const std
     return out;
 }
 
+constexpr int kOsdMaxDepth = 10; // OpenSubdiv's PatchParam holds no deeper level
+
+/// An irregular cell (an end cap on the finest level): its corners' limit points and normals and
+/// its 1-ring hull bound, in base-face coordinates.
+struct LoopIrregular {
+    int face = 0;
+    std::array<UV, 3> c;
+    std::array<Eigen::Vector3d, 3> corner, normal;
+    double bound = 0;
+};
+/// A regular cell: its quartic Bézier net, in base-face coordinates.
+struct LoopRegular {
+    int face = 0;
+    std::array<UV, 3> c;
+    Net net;
+};
+
+/// A triangle cage handed to OpenSubdiv: the base cage, or a local cage (docs/subdivision.md,
+/// "Deeper than level 10").
+struct TriCage {
+    std::vector<Vertex3> points;
+    std::vector<int> faceVerts;
+};
+
+/// Where a face of a TriCage lies on the base: the base face and the base (u, v) of the face's
+/// corners 0, 1, 2 (face < 0: a face whose cells are not wanted, the ring of a local cage).
+struct TriFrame {
+    int face = -1;
+    std::array<UV, 3> c{};
+};
+
+/// A point (u, v) of a cage face (corner 0 at (0, 0), 1 at (kR, 0), 2 at (0, kR)) in base-face
+/// coordinates. The frame's triangle has sides along the three directions, of a power-of-two size,
+/// so the map is exact in integers for every point on that size's dyadic grid.
+UV toBase(const TriFrame& frame, const UV& x)
+{
+    const UV& c0 = frame.c[0];
+    const Int size = std::max(std::abs(frame.c[1][0] - c0[0]), std::abs(frame.c[1][1] - c0[1]));
+    const Int step = kR / size;
+    if (x[0] % step != 0 || x[1] % step != 0) throw Error("subdivision tessellation: a Loop cell finer than its keys (internal)");
+    const Int a = x[0] / step, b = x[1] / step;
+    return {c0[0] + (frame.c[1][0] - c0[0]) / size * a + (frame.c[2][0] - c0[0]) / size * b,
+            c0[1] + (frame.c[1][1] - c0[1]) / size * a + (frame.c[2][1] - c0[1]) / size * b};
+}
+
+struct LoopSearch {
+    osd::Sdc::Options sdc;
+    double tol = 0;
+    int maxDepth = kOsdMaxDepth;
+    bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
+    std::vector<LoopIrregular> irregular;
+    std::vector<LoopRegular> regular;
+};
+
+/// The cells of the faces of m that have a frame: OpenSubdiv's adaptive Loop refinement and patch
+/// table at isolation levels 1, 2, ... until every irregular cell's hull bound is at most the
+/// tolerance or maxDepth is reached. There, with `deeper`, an irregular cell still above the
+/// tolerance is replaced by the cells of its own local cage (the faces around its corners on that
+/// level, docs/subdivision.md "Deeper than level 10"), found the same way. Returns the level
+/// reached on m.
+int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame>& frames)
+{
+    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+    const int faces = static_cast<int>(m.faceVerts.size() / 3);
+    const std::vector<int> counts(static_cast<std::size_t>(faces), 3);
+    for (int depth = 1;; ++depth) {
+        std::vector<LoopIrregular> irregular;
+        std::vector<LoopRegular> regular;
+        std::vector<std::array<Index, 3>> irregularCorners; // the level-d vertex at each corner
+        osd::Far::TopologyDescriptor desc;
+        desc.numVertices = static_cast<int>(m.points.size());
+        desc.numFaces = faces;
+        desc.numVertsPerFace = counts.data();
+        desc.vertIndicesPerFace = m.faceVerts.data();
+        clearOsdError();
+        std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, s.sdc)));
+        takeOsdError();
+        if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop topology");
+        refiner->RefineAdaptive(osd::Far::TopologyRefiner::AdaptiveOptions(depth));
+        osd::Far::PatchTableFactory::Options po(static_cast<unsigned>(depth));
+        po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
+        clearOsdError();
+        std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
+        takeOsdError();
+        if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop patch table");
+
+        // Positions on every level, and the limit points and tangents of every level's vertices.
+        std::vector<Vertex3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+        std::copy(m.points.begin(), m.points.end(), all.begin());
+        const int maxLevel = refiner->GetMaxLevel();
+        std::vector<std::size_t> offset(static_cast<std::size_t>(maxLevel) + 2, 0);
+        for (int l = 0; l <= maxLevel; ++l)
+            offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] + static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices());
+        const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+        for (int l = 1; l <= maxLevel; ++l) {
+            const Vertex3* src = all.data() + offset[static_cast<std::size_t>(l) - 1];
+            Vertex3* dst = all.data() + offset[static_cast<std::size_t>(l)];
+            primvar.Interpolate(l, src, dst);
+        }
+        std::vector<Vertex3> limit, tan1, tan2; // of the finest level's vertices, computed when needed
+
+        double worst = 0;
+        for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
+            const auto type = table->GetPatchArrayDescriptor(array).GetType();
+            for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
+                const osd::Far::PatchParam param = table->GetPatchParam(array, patch);
+                const TriFrame& frame = frames[static_cast<std::size_t>(param.GetFaceId())];
+                if (frame.face < 0) continue;
+                const auto cvs = table->GetPatchVertices(array, patch);
+                const std::array<UV, 3> corners = cellCorners(param);
+                const std::array<UV, 3> baseCorners{toBase(frame, corners[0]), toBase(frame, corners[1]), toBase(frame, corners[2])};
+                if (type == osd::Far::PatchDescriptor::LOOP && param.GetBoundary() == 0) {
+                    regular.push_back({frame.face, baseCorners, bezierOfLoop(all, cvs)});
+                    continue;
+                }
+                if (type != osd::Far::PatchDescriptor::TRIANGLES)
+                    throw Error("subdivision tessellation: an unexpected Loop patch type (internal)");
+                // An irregular cell (an end cap on the finest level d): find its face on level d by
+                // descending from the base face, keeping which vertex sits at each corner.
+                const int d = param.GetDepth();
+                if (d != maxLevel) throw Error("subdivision tessellation: a Loop end cap above the finest level (internal)");
+                const auto D = static_cast<std::size_t>(d);
+                if (limit.empty()) {
+                    const std::size_t n = static_cast<std::size_t>(refiner->GetLevel(d).GetNumVertices());
+                    limit.resize(n);
+                    tan1.resize(n);
+                    tan2.resize(n);
+                    clearOsdError();
+                    const Vertex3* src = all.data() + offset[D];
+                    primvar.Limit(src, limit, tan1, tan2);
+                    takeOsdError();
+                }
+                const std::array<Index, 3> local = descend(*refiner, m.faceVerts, param.GetFaceId(), corners, d);
+                const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
+                // The 1-ring: every vertex of every face at one of the cell's corners.
+                std::vector<Index> ring;
+                for (Index v : local)
+                    for (Index f : level.GetVertexFaces(v))
+                        for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
+                std::sort(ring.begin(), ring.end());
+                ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+                LoopIrregular cell;
+                cell.face = frame.face;
+                cell.c = baseCorners;
+                double bound = std::numeric_limits<double>::infinity();
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const auto v = static_cast<std::size_t>(local[k]);
+                    cell.corner[k] = limit[v].vec();
+                    const Eigen::Vector3d n = tan1[v].vec().cross(tan2[v].vec());
+                    cell.normal[k] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+                    double far = 0;
+                    for (Index w : ring) far = std::max(far, (all[offset[D] + static_cast<std::size_t>(w)].vec() - cell.corner[k]).norm());
+                    bound = std::min(bound, far);
+                }
+                cell.bound = bound;
+                worst = std::max(worst, bound);
+                irregular.push_back(cell);
+                irregularCorners.push_back(local);
+            }
+        }
+        if (worst > s.tol && depth < s.maxDepth) continue;
+
+        s.regular.insert(s.regular.end(), std::make_move_iterator(regular.begin()), std::make_move_iterator(regular.end()));
+        for (std::size_t i = 0; i < irregular.size(); ++i) {
+            const LoopIrregular& cell = irregular[i];
+            const Int size = std::max(std::abs(cell.c[1][0] - cell.c[0][0]), std::abs(cell.c[1][1] - cell.c[0][1]));
+            // Past the deepest level: a local cage, while the cell leaves room for 10 more levels and
+            // 10 halvings of its regular cells in the 2^40 resolution of the keys.
+            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > s.tol && (size >> kOsdMaxDepth) >= (Int(1) << 10))) {
+                s.irregular.push_back(cell);
+                continue;
+            }
+            // The local cage: every face of level `depth` at a corner of the cell (its 1-ring), the
+            // cell first with its corners in the cell's order (counter-clockwise, as the level's faces).
+            const osd::Far::TopologyLevel& level = refiner->GetLevel(depth);
+            const std::array<Index, 3>& corner = irregularCorners[i];
+            std::vector<Index> ringFaces;
+            for (Index v : corner)
+                for (Index f : level.GetVertexFaces(v)) ringFaces.push_back(f);
+            std::sort(ringFaces.begin(), ringFaces.end());
+            ringFaces.erase(std::unique(ringFaces.begin(), ringFaces.end()), ringFaces.end());
+            TriCage local;
+            std::unordered_map<Index, int> localOf;
+            auto localVertex = [&](Index v) {
+                const auto [it, added] = localOf.emplace(v, static_cast<int>(local.points.size()));
+                if (added) local.points.push_back(all[offset[static_cast<std::size_t>(depth)] + static_cast<std::size_t>(v)]);
+                return it->second;
+            };
+            for (Index v : corner) local.faceVerts.push_back(localVertex(v));
+            bool own = false;
+            for (Index f : ringFaces) {
+                const auto fv = level.GetFaceVertices(f);
+                int shared = 0, first = -1;
+                for (int k = 0; k < 3; ++k) {
+                    shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
+                    if (fv[k] == corner[0]) first = k;
+                }
+                if (shared == 3) { // the cell itself, already first: the same turning
+                    if (first < 0 || fv[(first + 1) % 3] != corner[1])
+                        throw Error("subdivision tessellation: a Loop cell turns against its face (internal)");
+                    own = true;
+                    continue;
+                }
+                for (int k = 0; k < 3; ++k) local.faceVerts.push_back(localVertex(fv[k]));
+            }
+            if (!own) throw Error("subdivision tessellation: a Loop cell's face is not around its corners (internal)");
+            std::vector<TriFrame> localFrames(local.faceVerts.size() / 3);
+            localFrames[0] = {cell.face, cell.c};
+            collectLoopCells(s, local, localFrames);
+        }
+        return depth;
+    }
+}
+
 } // namespace
 
 QuarticTriangleNet loopPatchToBezier(const std::array<Eigen::Vector3d, 12>& points)
@@ -435,120 +651,26 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
     const double tol = options.tolerance;
     const PolygonMesh& mesh = cage_.mesh;
     const int faces = mesh.faceCount();
-    std::vector<int> counts(static_cast<std::size_t>(faces), 3);
     std::vector<Vertex3> cagePoints(static_cast<std::size_t>(mesh.vertexCount()));
     for (int v = 0; v < mesh.vertexCount(); ++v)
         for (int k = 0; k < 3; ++k) cagePoints[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
 
-    osd::Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-
-    struct Irregular {
-        int face = 0;
-        std::array<UV, 3> c;
-        std::array<Eigen::Vector3d, 3> corner, normal;
-        double bound = 0;
-    };
-    struct Regular {
-        int face = 0;
-        std::array<UV, 3> c;
-        Net net;
-    };
-    std::vector<Irregular> irregular;
-    std::vector<Regular> regular;
-    int depth = 1;
-    for (;; ++depth) {
-        irregular.clear();
-        regular.clear();
-        osd::Far::TopologyDescriptor desc;
-        desc.numVertices = mesh.vertexCount();
-        desc.numFaces = faces;
-        desc.numVertsPerFace = counts.data();
-        desc.vertIndicesPerFace = mesh.faceVertices.data();
-        clearOsdError();
-        std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, sdc)));
-        takeOsdError();
-        if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop topology");
-        refiner->RefineAdaptive(osd::Far::TopologyRefiner::AdaptiveOptions(depth));
-        osd::Far::PatchTableFactory::Options po(static_cast<unsigned>(depth));
-        po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
-        clearOsdError();
-        std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
-        takeOsdError();
-        if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop patch table");
-
-        // Positions on every level, and the limit points and tangents of every level's vertices.
-        std::vector<Vertex3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-        std::copy(cagePoints.begin(), cagePoints.end(), all.begin());
-        const int maxLevel = refiner->GetMaxLevel();
-        std::vector<std::size_t> offset(static_cast<std::size_t>(maxLevel) + 2, 0);
-        for (int l = 0; l <= maxLevel; ++l)
-            offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] + static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices());
-        const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-        for (int l = 1; l <= maxLevel; ++l) {
-            const Vertex3* src = all.data() + offset[static_cast<std::size_t>(l) - 1];
-            Vertex3* dst = all.data() + offset[static_cast<std::size_t>(l)];
-            primvar.Interpolate(l, src, dst);
-        }
-        std::vector<Vertex3> limit, tan1, tan2; // of the finest level's vertices, computed when needed
-
-        double worst = 0;
-        for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
-            const auto type = table->GetPatchArrayDescriptor(array).GetType();
-            for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
-                const osd::Far::PatchParam param = table->GetPatchParam(array, patch);
-                const auto cvs = table->GetPatchVertices(array, patch);
-                const std::array<UV, 3> corners = cellCorners(param);
-                if (type == osd::Far::PatchDescriptor::LOOP && param.GetBoundary() == 0) {
-                    regular.push_back({param.GetFaceId(), corners, bezierOfLoop(all, cvs)});
-                    continue;
-                }
-                if (type != osd::Far::PatchDescriptor::TRIANGLES)
-                    throw Error("subdivision tessellation: an unexpected Loop patch type (internal)");
-                // An irregular cell (an end cap on the finest level d): find its face on level d by
-                // descending from the base face, keeping which vertex sits at each corner.
-                const int d = param.GetDepth();
-                if (d != maxLevel) throw Error("subdivision tessellation: a Loop end cap above the finest level (internal)");
-                const auto D = static_cast<std::size_t>(d);
-                if (limit.empty()) {
-                    const std::size_t n = static_cast<std::size_t>(refiner->GetLevel(d).GetNumVertices());
-                    limit.resize(n);
-                    tan1.resize(n);
-                    tan2.resize(n);
-                    clearOsdError();
-                    const Vertex3* src = all.data() + offset[D];
-                    primvar.Limit(src, limit, tan1, tan2);
-                    takeOsdError();
-                }
-                const std::array<Index, 3> local = descend(*refiner, mesh.faceVertices, param.GetFaceId(), corners, d);
-                const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
-                // The 1-ring: every vertex of every face at one of the cell's corners.
-                std::vector<Index> ring;
-                for (Index v : local)
-                    for (Index f : level.GetVertexFaces(v))
-                        for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
-                std::sort(ring.begin(), ring.end());
-                ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-                Irregular cell;
-                cell.face = param.GetFaceId();
-                cell.c = corners;
-                double bound = std::numeric_limits<double>::infinity();
-                for (std::size_t k = 0; k < 3; ++k) {
-                    const auto v = static_cast<std::size_t>(local[k]);
-                    cell.corner[k] = limit[v].vec();
-                    const Eigen::Vector3d n = tan1[v].vec().cross(tan2[v].vec());
-                    cell.normal[k] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
-                    double far = 0;
-                    for (Index w : ring) far = std::max(far, (all[offset[D] + static_cast<std::size_t>(w)].vec() - cell.corner[k]).norm());
-                    bound = std::min(bound, far);
-                }
-                cell.bound = bound;
-                worst = std::max(worst, bound);
-                irregular.push_back(cell);
-            }
-        }
-        if (worst <= tol || depth >= options.maxDepth) break;
+    LoopSearch search;
+    search.sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    search.tol = tol;
+    search.maxDepth = options.maxDepth;
+    search.deeper = options.maxDepth == kOsdMaxDepth;
+    const TriCage base{cagePoints, mesh.faceVertices};
+    std::vector<TriFrame> frames(static_cast<std::size_t>(faces));
+    for (int f = 0; f < faces; ++f) frames[static_cast<std::size_t>(f)] = {f, {UV{0, 0}, UV{kR, 0}, UV{0, kR}}};
+    int depth = collectLoopCells(search, base, frames);
+    const std::vector<LoopIrregular>& irregular = search.irregular;
+    const std::vector<LoopRegular>& regular = search.regular;
+    for (const LoopIrregular& c : irregular) {
+        const Int size = std::max(std::abs(c.c[1][0] - c.c[0][0]), std::abs(c.c[1][1] - c.c[0][1]));
+        int d = 0;
+        while ((kR >> d) > size) ++d;
+        depth = std::max(depth, d);
     }
 
     // Leaves: irregular cells as they are, regular cells split into four by de Casteljau.
@@ -563,7 +685,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
         int splits;
     };
     std::vector<Task> stack;
-    for (const Regular& r : regular) stack.push_back({r.face, r.c, r.net, 0});
+    for (const LoopRegular& r : regular) stack.push_back({r.face, r.c, r.net, 0});
     const Eigen::Vector3d e0(1, 0, 0), e1(0, 1, 0), e2(0, 0, 1), m01(0.5, 0.5, 0), m12(0, 0.5, 0.5), m20(0.5, 0, 0.5);
     while (!stack.empty()) {
         Task t = std::move(stack.back());
@@ -598,7 +720,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
                 keys.registerPoint(l.face, uv[0], uv[1]);
                 vertexOf.emplace(key, static_cast<int>(positions.size()));
                 if (l.net < 0) {
-                    const Irregular& c = irregular[static_cast<std::size_t>(-1 - l.net)];
+                    const LoopIrregular& c = irregular[static_cast<std::size_t>(-1 - l.net)];
                     positions.push_back(c.corner[static_cast<std::size_t>(k)]);
                     normals.push_back(c.normal[static_cast<std::size_t>(k)]);
                 } else {
@@ -615,7 +737,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
     // faces run counter-clockwise); a missing normal becomes the cell's.
     for (const Leaf& l : leaves) {
         if (l.net >= 0) continue;
-        const Irregular& c = irregular[static_cast<std::size_t>(-1 - l.net)];
+        const LoopIrregular& c = irregular[static_cast<std::size_t>(-1 - l.net)];
         const Eigen::Vector3d cellNormal = (c.corner[1] - c.corner[0]).cross(c.corner[2] - c.corner[0]).normalized();
         for (int k = 0; k < 3; ++k) {
             const UV& uv = l.c[static_cast<std::size_t>(k)];
