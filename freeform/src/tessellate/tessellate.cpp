@@ -886,8 +886,16 @@ double geometricBoundAlong(const Eigen::Vector3d* net, int m, int n, const Bicub
     const double h = static_cast<double>(along == 1 ? box.v1 - box.v0 : box.u1 - box.u0) / S;
     const double lo = static_cast<double>(along == 1 ? box.v0 : box.u0) / S, hi = static_cast<double>(along == 1 ? box.v1 : box.u1) / S;
     if (lo - Delta * h < 0 || hi + Delta * h > 1) return std::numeric_limits<double>::infinity();
-    const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0, diff);
-    const double quad = 0.5 * (along == 1 ? G.tt : G.ss);
+    // Only the second derivative along the step is needed: for a bicubic net just that one of
+    // grownBicubicBounds' three extended nets (the same value; the other two were unused work).
+    double quad;
+    if (diff) {
+        const Extensions s(along == 0 ? Delta : 0.0), t(along == 1 ? Delta : 0.0);
+        quad = 0.5 * (along == 1 ? 6 * largestExtended<4, 2>(diff->vv, s.e3, t.e1) : 6 * largestExtended<2, 4>(diff->uu, s.e1, t.e3));
+    } else {
+        const Second G = grownBounds(net, m, n, along == 0 ? Delta : 0, along == 1 ? Delta : 0, diff);
+        quad = 0.5 * (along == 1 ? G.tt : G.ss);
+    }
     auto cell = [&](double a0, double a1, double b0, double b1) {
         const PointFactors f(a0, b0);
         const double d = stepAt(f, a1, b1);
