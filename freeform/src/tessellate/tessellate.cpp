@@ -12,6 +12,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 
 #ifdef __SSE2__
@@ -399,13 +400,24 @@ struct BicubicDifferences {
 
 void bicubicDifferences(const Eigen::Vector3d* net, BicubicDifferences& d)
 {
+    // Each row of the net (points 4 i .. 4 i + 3) is 12 contiguous numbers, and so is each row of
+    // every difference net (uu: 12, uv: 9, vv: 6 numbers): whole rows at once, the same operations
+    // on each number as point by point (uu(i, j) = x(i + 2, j) - 2 x(i + 1, j) + x(i, j), uv(i, j) =
+    // x(i + 1, j + 1) - x(i + 1, j) - x(i, j + 1) + x(i, j), vv(i, j) = x(i, j + 2) - 2 x(i, j + 1) +
+    // x(i, j)), so the same values, in vector registers.
+    const double* x = net[0].data();
+    auto at = [x]<int N>(std::integral_constant<int, N>, int i, int offset) {
+        return Eigen::Map<const Eigen::Matrix<double, N, 1>>(x + 12 * i + offset);
+    };
+    constexpr std::integral_constant<int, 12> n12;
+    constexpr std::integral_constant<int, 9> n9;
+    constexpr std::integral_constant<int, 6> n6;
     for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 4; ++j) d.uu[4 * i + j] = net[(i + 2) * 4 + j] - 2 * net[(i + 1) * 4 + j] + net[i * 4 + j];
+        Eigen::Map<Eigen::Matrix<double, 12, 1>>(d.uu[4 * i].data()) = at(n12, i + 2, 0) - 2 * at(n12, i + 1, 0) + at(n12, i, 0);
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            d.uv[3 * i + j] = net[(i + 1) * 4 + j + 1] - net[(i + 1) * 4 + j] - net[i * 4 + j + 1] + net[i * 4 + j];
+        Eigen::Map<Eigen::Matrix<double, 9, 1>>(d.uv[3 * i].data()) = at(n9, i + 1, 3) - at(n9, i + 1, 0) - at(n9, i, 3) + at(n9, i, 0);
     for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 2; ++j) d.vv[2 * i + j] = net[i * 4 + j + 2] - 2 * net[i * 4 + j + 1] + net[i * 4 + j];
+        Eigen::Map<Eigen::Matrix<double, 6, 1>>(d.vv[2 * i].data()) = at(n6, i, 6) - 2 * at(n6, i, 3) + at(n6, i, 0);
 }
 
 /// netTerms of a bicubic net from its differences (the same values).
