@@ -13,7 +13,8 @@
 //     (FfdSession::deform, live): the first two frames are full evaluations, the others linear.
 // BM_DragFrame's CPU column is the benchmark thread's; BM_DragFrameProcessCpu is the same loop with
 // the CPU time of every thread of the process (the full evaluation runs on all cores).
-// BM_DragRelease times the frame after the release (the full evaluation that the drag owes).
+// BM_DragRelease times the frame after the release (the full evaluation that the drag owes);
+// BM_DragGrab the first frame of a drag (the grab), both with the CPU time of every thread.
 // Spline and patch drags (issue 12): a handle of a cubic spline of 4, 16 and 64 segments dragged, its joints
 // all C2, all mirrored, or mixed; each frame the spline tool enforces every joint's mode.
 // Uploading to the GPU is not included (the driver's work). A second benchmark times the
@@ -140,6 +141,46 @@ void BM_DragRelease(benchmark::State& state)
     }
 }
 BENCHMARK(BM_DragRelease)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
+
+/// The grab: the first frame of a drag (with the process's CPU time), the one that moves a point
+/// away from the last full evaluation (made at fit, at every release and at undo). Each iteration
+/// is a short drag and its release (not timed), then the first frame of a new drag.
+void BM_DragGrab(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    ToolContext context{d.scene, d.selection};
+    const int k = 21;
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    int frame = 0;
+    double deformMs = 0; // the deformation's share (FfdLink::deformMs, wall time)
+    for (auto _ : state) {
+        state.PauseTiming();
+        d.scene.beginMerge(); // a short drag (two frames) and its release: a full evaluation
+        for (int f = 0; f < 2; ++f) {
+            const double offset = 0.1 * std::sin(0.05 * ++frame);
+            d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+            d.scene.updateGeometry();
+        }
+        d.scene.endMerge();
+        d.scene.updateGeometry();
+        d.scene.beginMerge();
+        state.ResumeTiming();
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+        state.PauseTiming();
+        if (!d.scene.ffdLinks().empty()) deformMs += d.scene.ffdLinks().begin()->second.deformMs;
+        d.scene.endMerge();
+        state.ResumeTiming();
+    }
+    const auto& links = d.scene.ffdLinks();
+    state.counters["deform_ms"] = deformMs / double(state.iterations());
+    if (!links.empty()) state.counters["approximate"] = links.begin()->second.session && links.begin()->second.session->approximate();
+}
+BENCHMARK(BM_DragGrab)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
 
 /// A cubic spline of `segments` segments (a zigzag in the xy plane) whose inner joints are all in
 /// `mode` ("c2", "mirrored", "aligned") or, for "mixed", C2, aligned and mirrored in turn, as a

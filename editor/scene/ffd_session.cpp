@@ -1,12 +1,14 @@
 #include "scene/ffd_session.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
+#include "freeform/core/bernstein.h" // kMaxDegree
 #include "freeform/core/parallel.h"
 
 namespace freeform::editor {
@@ -51,6 +53,10 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
         if (detJ) std::fill(detJ->begin(), detJ->end(), 1.0f);
         drag_.reset();
         previous_ = lattice.controlPoints();
+        // The base of the next grab: the identity (no copy: grabDrag reads the rest mesh).
+        base_ = normals ? Base::Identity : Base::None;
+        basePoints_ = lattice.controlPoints();
+        baseStrength_ = strength;
         report.vertices = static_cast<std::size_t>(count);
         report.outside = binding_.outsideVertices().size();
         if (bounds) {
@@ -72,6 +78,28 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
         approximate_ = true;
         previous_ = lattice.controlPoints();
         return report;
+    } else if (base_ != Base::None && normals && baseStrength_ == strength && basePoints_.cols() == lattice.controlPoints().cols() &&
+               binding_.outsideVertices().empty()) {
+        // The grab: when the points that moved since the last full evaluation (or the identity)
+        // moved by one common vector, the drag starts from that evaluation without a new one.
+        // Only for meshes inside the lattice box (the outside policies' handling in grabDrag is
+        // not covered by a test yet; with vertices outside, the grab is today's full path).
+        auto drag = std::make_unique<Drag>();
+        drag->points = basePoints_;
+        drag->strength = strength;
+        for (Eigen::Index k = 0; k < basePoints_.cols(); ++k)
+            if (basePoints_.col(k) != lattice.controlPoints().col(k)) drag->moved.push_back(static_cast<int>(k));
+        if (!drag->moved.empty()) {
+            drag_ = std::move(drag);
+            if (const auto grabDelta = dragDelta(lattice, strength)) {
+                grabDrag(lattice, strength, drag_->moved);
+                dragFrame(*grabDelta, normals, out, o.determinants, report, bounds);
+                approximate_ = true;
+                previous_ = lattice.controlPoints();
+                return report;
+            }
+            drag_.reset();
+        }
     }
     // The full evaluation; its report, the double copy and the bounds come from one pass below.
     // In a drag, when the points that moved since the last evaluation are known, the Jacobians
@@ -81,13 +109,21 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
         for (Eigen::Index k = 0; k < previous_.cols(); ++k)
             if (previous_.col(k) != lattice.controlPoints().col(k)) moved.push_back(static_cast<int>(k));
     drag_.reset();
-    if (!moved.empty() && normals) {
+    // The Jacobians A are kept with every full evaluation (with normals): the next grab starts
+    // from them (grabDrag).
+    if (normals) {
         jacobians_.resize(9 * static_cast<std::size_t>(count));
         o.jacobians = jacobians_.data();
     }
     binding_.deform(lattice, o, options, nullptr);
     finish(o.determinants, normals, out, report, bounds);
-    if (o.jacobians) startDrag(lattice, strength, std::move(moved), jacobians_, o.determinants);
+    base_ = normals ? Base::Evaluated : Base::None;
+    if (normals) {
+        baseDet_.assign(o.determinants, o.determinants + count);
+        basePoints_ = lattice.controlPoints();
+        baseStrength_ = strength;
+    }
+    if (o.jacobians && !moved.empty()) startDrag(lattice, strength, std::move(moved), jacobians_, o.determinants);
     previous_ = lattice.controlPoints();
     return report;
 }
@@ -172,6 +208,166 @@ void FfdSession::startDrag(const Lattice& lattice, double strength, std::vector<
         }
     });
     drag_ = std::move(drag);
+}
+
+void FfdSession::grabDrag(const Lattice& lattice, double strength, std::vector<int> moved)
+{
+    // As startDrag, with A, p0, n0 and det A from the base, and B and v = dual^T grad B computed
+    // here: B(s,t,u) = sum over the moved points (i,j,k) of B_i(s) B_j(t) B_k(u), at the bound
+    // lattice coordinates with the outside policy as FfdBinding::deform applies it: inside the box
+    // and under extrapolate the coordinates as bound; under clamp the clamped coordinates, and
+    // no gradient along an axis whose coordinate lies outside [0, 1] (the library's Jacobian
+    // there); under keep nothing moves outside (B = 0, v = 0, A = I). (deform() calls this only
+    // when no vertex is outside, so the outside branches are not reached yet: no test covers them.)
+    (void)strength;
+    constexpr int W = kLanes;
+    const std::size_t count = static_cast<std::size_t>(positions_.cols());
+    const OutsidePolicy policy = lattice.outside();
+    const int deg[3] = {lattice.degree(0), lattice.degree(1), lattice.degree(2)};
+    std::vector<std::array<int, 3>> ijk;
+    ijk.reserve(moved.size());
+    for (const int k : moved) {
+        const int nu = deg[2] + 1, nt = deg[1] + 1;
+        ijk.push_back({k / (nt * nu), (k / nu) % nt, k % nu});
+    }
+    float dual[9]; // row-major
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) dual[3 * r + c] = float(lattice.dual()(r, c));
+    const Eigen::Matrix3d toLattice = lattice.dual();
+    const Eigen::Vector3d origin = lattice.origin();
+    const std::vector<int>& outside = binding_.outsideVertices();
+    const bool identity = base_ == Base::Identity;
+    const std::size_t blocks = (count + W - 1) / W;
+    dragData_.resize(blocks * kFields * W);
+    // In float, W lanes at a time (loops over the lanes the compiler vectorises), as dragFrame.
+    parallelFor(0, blocks, 256, 0, [&](int, std::size_t firstBlock, std::size_t lastBlock) {
+        auto it = std::lower_bound(outside.begin(), outside.end(), static_cast<int>(firstBlock * W));
+        float q[3][W], act[3][W], on[W], a[9][W], nr[3][W], p0[3][W], n0[3][W], det0[W];
+        float b[3][kMaxDegree + 1][W], db[3][kMaxDegree + 1][W];
+        for (std::size_t blk = firstBlock; blk < lastBlock; ++blk) {
+            // Gather: coordinates with the policy, the base's A, p0, n0, det A, the rest normal.
+            for (int w = 0; w < W; ++w) {
+                const std::size_t v = std::min(blk * W + std::size_t(w), count - 1); // padding repeats the last vertex
+                const auto col = static_cast<Eigen::Index>(v);
+                const bool out = it != outside.end() && *it == static_cast<int>(v);
+                if (out && blk * W + std::size_t(w) < count) ++it;
+                on[w] = out && policy == OutsidePolicy::Keep ? 0.0f : 1.0f;
+                // Inside the box the coordinates dual (p - X0) (as the binding's to float rounding, without
+                // a library call per vertex); outside, the binding's own unclamped ones.
+                const Eigen::Vector3d raw = out ? binding_.parameters(v) : Eigen::Vector3d(toLattice * (rest_.positions.col(col) - origin));
+                for (int x = 0; x < 3; ++x) {
+                    double t = raw[x];
+                    act[x][w] = 1.0f;
+                    if (out && policy == OutsidePolicy::Clamp && (t < 0 || t > 1)) {
+                        act[x][w] = 0.0f;
+                        t = std::clamp(t, 0.0, 1.0);
+                    }
+                    q[x][w] = float(t);
+                    nr[x][w] = restNormals_(x, col);
+                }
+                if (identity) {
+                    const float len = std::sqrt(nr[0][w] * nr[0][w] + nr[1][w] * nr[1][w] + nr[2][w] * nr[2][w]);
+                    for (int x = 0; x < 3; ++x) {
+                        p0[x][w] = float(rest_.positions(x, col));
+                        n0[x][w] = len > 0 ? nr[x][w] / len : 0.0f;
+                    }
+                    for (int c = 0; c < 9; ++c) a[c][w] = c % 4 == 0 ? 1.0f : 0.0f;
+                    det0[w] = 1.0f;
+                } else {
+                    for (int x = 0; x < 3; ++x) {
+                        p0[x][w] = positions_(x, col);
+                        n0[x][w] = normals_(x, col);
+                    }
+                    const float* j = jacobians_.data() + 9 * v; // column-major: A(r, c) = j[3 c + r]
+                    for (int c = 0; c < 9; ++c) a[c][w] = j[c];
+                    det0[w] = baseDet_[v];
+                }
+            }
+            // Bernstein values and derivatives of each axis by the triangle (no binomials).
+            for (int x = 0; x < 3; ++x) {
+                const int n = deg[x];
+                if (n == 3) { // the usual lattice, in closed form
+                    for (int w = 0; w < W; ++w) {
+                        const float t = q[x][w], r = 1.0f - t;
+                        b[x][0][w] = r * r * r, b[x][1][w] = 3 * t * r * r, b[x][2][w] = 3 * t * t * r, b[x][3][w] = t * t * t;
+                        db[x][0][w] = -3 * r * r, db[x][1][w] = 3 * (r * r - 2 * t * r), db[x][2][w] = 3 * (2 * t * r - t * t),
+                        db[x][3][w] = 3 * t * t;
+                    }
+                    continue;
+                }
+                for (int w = 0; w < W; ++w) {
+                    b[x][0][w] = 1.0f;
+                    db[x][0][w] = 0.0f;
+                }
+                for (int d = 1; d <= n; ++d) {
+                    if (d == n)
+                        for (int i = 0; i <= n; ++i)
+                            for (int w = 0; w < W; ++w)
+                                db[x][i][w] = float(n) * ((i > 0 ? b[x][i - 1][w] : 0.0f) - (i < n ? b[x][i][w] : 0.0f));
+                    for (int w = 0; w < W; ++w) {
+                        const float t = q[x][w], r = 1.0f - t;
+                        b[x][d][w] = t * b[x][d - 1][w];
+                        for (int i = d - 1; i > 0; --i) b[x][i][w] = r * b[x][i][w] + t * b[x][i - 1][w];
+                        b[x][0][w] *= r;
+                    }
+                }
+            }
+            float bs[W], g[3][W];
+            for (int w = 0; w < W; ++w) bs[w] = g[0][w] = g[1][w] = g[2][w] = 0.0f;
+            for (const auto& m : ijk)
+                for (int w = 0; w < W; ++w) {
+                    const float x = b[0][m[0]][w], y = b[1][m[1]][w], z = b[2][m[2]][w];
+                    bs[w] += x * y * z;
+                    g[0][w] += db[0][m[0]][w] * y * z;
+                    g[1][w] += x * db[1][m[1]][w] * z;
+                    g[2][w] += x * y * db[2][m[2]][w];
+                }
+            float* out = dragData_.data() + blk * kFields * W;
+            float len2[W], inv[W];
+            for (int w = 0; w < W; ++w) {
+                const float g0 = g[0][w] * act[0][w] * on[w], g1 = g[1][w] * act[1][w] * on[w], g2 = g[2][w] * act[2][w] * on[w];
+                // v = dual^T g
+                const float v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
+                const float v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
+                const float v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
+                // A column-major (a[3 c + r]); its cofactor columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1
+                const float k0x = a[4][w] * a[8][w] - a[5][w] * a[7][w], k0y = a[5][w] * a[6][w] - a[3][w] * a[8][w],
+                            k0z = a[3][w] * a[7][w] - a[4][w] * a[6][w];
+                const float k1x = a[7][w] * a[2][w] - a[8][w] * a[1][w], k1y = a[8][w] * a[0][w] - a[6][w] * a[2][w],
+                            k1z = a[6][w] * a[1][w] - a[7][w] * a[0][w];
+                const float k2x = a[1][w] * a[5][w] - a[2][w] * a[4][w], k2y = a[2][w] * a[3][w] - a[0][w] * a[5][w],
+                            k2z = a[0][w] * a[4][w] - a[1][w] * a[3][w];
+                const float nx = nr[0][w], ny = nr[1][w], nz = nr[2][w];
+                const float cx = nx * k0x + ny * k1x + nz * k2x, cy = nx * k0y + ny * k1y + nz * k2y, cz = nx * k0z + ny * k1z + nz * k2z;
+                out[kE * W + w] = v0 * k0x + v1 * k1x + v2 * k2x;
+                out[(kE + 1) * W + w] = v0 * k0y + v1 * k1y + v2 * k2y;
+                out[(kE + 2) * W + w] = v0 * k0z + v1 * k1z + v2 * k2z;
+                const float mx = ny * v2 - nz * v1, my = nz * v0 - nx * v2, mz = nx * v1 - ny * v0; // n x v
+                out[kH * W + w] = a[0][w] * mx + a[3][w] * my + a[6][w] * mz; // A (n x v), scaled below
+                out[(kH + 1) * W + w] = a[1][w] * mx + a[4][w] * my + a[7][w] * mz;
+                out[(kH + 2) * W + w] = a[2][w] * mx + a[5][w] * my + a[8][w] * mz;
+                len2[w] = cx * cx + cy * cy + cz * cz;
+                for (int x = 0; x < 3; ++x) {
+                    out[(kP + x) * W + w] = p0[x][w];
+                    out[(kN + x) * W + w] = n0[x][w];
+                }
+                out[kB * W + w] = bs[w] * on[w];
+                out[kD * W + w] = det0[w];
+            }
+#if defined(__SSE2__)
+            for (int w = 0; w < W; w += 4) {
+                const __m128 l2 = _mm_loadu_ps(len2 + w);
+                const __m128 pos = _mm_cmpgt_ps(l2, _mm_setzero_ps());
+                const __m128 r = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(_mm_or_ps(_mm_and_ps(pos, l2), _mm_andnot_ps(pos, _mm_set1_ps(1.0f)))));
+                _mm_storeu_ps(inv + w, r); // 1 where |cof(A) n| = 0 (h unscaled, as startDrag)
+            }
+#else
+            for (int w = 0; w < W; ++w) inv[w] = len2[w] > 0 ? 1.0f / std::sqrt(len2[w]) : 1.0f;
+#endif
+            for (int x = 0; x < 3; ++x)
+                for (int w = 0; w < W; ++w) out[(kH + x) * W + w] *= inv[w];
+        }
+    });
 }
 
 void FfdSession::dragFrame(const Eigen::Vector3d& delta, bool normals, PolygonMesh& out, float* det, DeformReport& report,

@@ -52,8 +52,9 @@ private:
     /// positions_/normals_ (and det J) -> out (double), report, bounds: one pass.
     void finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds) const;
 
-    /// The drag's data (dragData_), from a full evaluation with Jacobians and one of the set's
-    /// unit displacement (startDrag): per vertex, in blocks
+    /// The drag's data (dragData_), from the kept last full evaluation (grabDrag) or, when the
+    /// grab is not a common translation of points from it, from a full evaluation with Jacobians
+    /// and one of the set's unit displacement (startDrag): per vertex, in blocks
     /// of kLanes, the fields p0 (3), n0 (3), h (3), e (3), B, det A (ffd_session.cpp).
     static constexpr int kLanes = 16, kP = 0, kN = 3, kH = 6, kE = 9, kB = 12, kD = 13, kFields = 14;
     struct Drag {
@@ -65,6 +66,10 @@ private:
     std::optional<Eigen::Vector3d> dragDelta(const Lattice& lattice, double strength) const;
     void startDrag(const Lattice& lattice, double strength, std::vector<int> moved, const std::vector<float>& jacobians,
                    const float* det);
+    /// The grab without a library call: the drag's data from the kept base (the last full
+    /// evaluation, or the identity) and B, grad B of `moved` per vertex from the bound lattice
+    /// coordinates, with the outside policy as the library applies it.
+    void grabDrag(const Lattice& lattice, double strength, std::vector<int> moved);
     void dragFrame(const Eigen::Vector3d& delta, bool normals, PolygonMesh& out, float* det, DeformReport& report,
                    Eigen::AlignedBox3d* bounds) const;
 
@@ -79,6 +84,13 @@ private:
     std::vector<float> jacobians_, unitJacobians_;
     Eigen::Matrix<float, 3, Eigen::Dynamic> unitPositions_;
     bool approximate_ = false;
+    /// The base of the next grab: the last full evaluation (positions_, normals_, jacobians_ = A,
+    /// baseDet_), or the identity (rest mesh, A = I, det 1), at basePoints_ and baseStrength_.
+    enum class Base { None, Identity, Evaluated };
+    Base base_ = Base::None;
+    Eigen::Matrix3Xd basePoints_;
+    double baseStrength_ = 0;
+    std::vector<float> baseDet_;
 };
 
 } // namespace freeform::editor

@@ -196,9 +196,9 @@ TEST_CASE("Lattice drag: linear updates within float rounding, the full evaluati
                     worst.normals = std::max(worst.normals, e.normals);
                     worst.det = std::max(worst.det, e.det);
                 }
-                // The first frame is a full evaluation that keeps the Jacobians; the other eleven
-                // took the linear path, so the bounds below are about it.
-                CHECK(linear == 11);
+                // Every frame, the grab included, took the linear path (the grab starts from the
+                // last full evaluation, here the rest lattice), so the bounds below are about it.
+                CHECK(linear == 12);
                 INFO("worst difference during the drag: positions " << worst.positions << ", normals " << worst.normals
                                                                     << ", det J " << worst.det);
                 CHECK(worst.positions <= kPositionBound);
@@ -218,6 +218,50 @@ TEST_CASE("Lattice drag: linear updates within float rounding, the full evaluati
                 CHECK(d.deformed().normals == d.rest.normals);
             }
         }
+    }
+}
+
+TEST_CASE("Lattice drag: a grab from a deformed lattice starts from the last full evaluation", "[ffd][drag]")
+{
+    // The base of the grab is a full evaluation (not the identity): a first gesture moves a point
+    // and is released, then a second one grabs another point. Every frame of the second gesture
+    // is linear from the release's evaluation and within the same bounds; its release is exact.
+    const std::string file = ellipsoidFile("drag_grab.obj", 40);
+    for (const int degree : {2, 3}) {
+        Drag d(file, degree);
+        const Lattice rest = d.current();
+        const int k = degree == 3 ? rest.index(1, 2, 1) : rest.index(1, 1, 1);
+        const int k2 = degree == 3 ? rest.index(2, 1, 2) : rest.index(2, 1, 1);
+        d.scene.beginMerge();
+        d.scene.setControlPoint(d.lattice, k, rest.controlPoints().col(k) + Eigen::Vector3d(0.3, -0.2, 0.1));
+        d.update();
+        d.scene.endMerge();
+        d.update();
+        requireExact(d, fullEvaluation(d.current(), 1.0, d.rest));
+        const Eigen::Vector3d p2 = d.current().controlPoints().col(k2);
+        Difference worst;
+        int linear = 0;
+        d.scene.beginMerge();
+        for (int f = 1; f <= 6; ++f) {
+            d.scene.setControlPoint(d.lattice, k2, p2 + 0.25 * f * Eigen::Vector3d(-0.5, 0.7, 0.3) / 6);
+            d.update();
+            const FfdLink* link = d.scene.ffdLink(d.lattice);
+            REQUIRE(link);
+            linear += link->approximate ? 1 : 0;
+            const Difference e = difference(d, fullEvaluation(d.current(), 1.0, d.rest));
+            worst.positions = std::max(worst.positions, e.positions);
+            worst.normals = std::max(worst.normals, e.normals);
+            worst.det = std::max(worst.det, e.det);
+        }
+        INFO("degree " << degree << ": worst difference positions " << worst.positions << ", normals " << worst.normals
+                       << ", det J " << worst.det);
+        CHECK(linear == 6);
+        CHECK(worst.positions <= kPositionBound);
+        CHECK(worst.normals <= kNormalBound);
+        CHECK(worst.det <= kDetBound);
+        d.scene.endMerge();
+        d.update();
+        requireExact(d, fullEvaluation(d.current(), 1.0, d.rest));
     }
 }
 
