@@ -19,7 +19,7 @@ command -v python3 >/dev/null 2>&1 || { echo "skip: no python3 to read the state
 mkdir -p "$WORK"
 rm -f "$WORK"/state.json
 
-. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap
+. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap, wait_for
 
 cat >"$WORK/doc.json" <<'DOC'
 {"format": "freeform", "version": 1, "objects": [
@@ -33,17 +33,6 @@ EDITOR_PID=$!
 WID=$(timeout 20 xdotool search --sync --onlyvisible --name "freeform editor" | head -1)
 [ -n "$WID" ] || { echo "FAIL: no editor window"; cat "$WORK/editor.err"; exit 1; }
 
-# wait_for WHAT PYTHON-EXPRESSION over s (the state): up to 10 s.
-wait_for() {
-    i=0
-    while [ $i -lt 100 ]; do
-        if [ -f "$WORK/state.json" ] && python3 -c "import json,sys; s=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$WORK/state.json" 2>/dev/null; then
-            return 0
-        fi
-        i=$((i + 1)); sleep 0.1
-    done
-    echo "FAIL: $1"; cat "$WORK/state.json" 2>/dev/null; cat "$WORK/editor.err"; exit 1
-}
 wait_for "the first frame" "len(s['panels']) == 3"
 # (LeakSanitizer off for the dropping side too: Xlib keeps allocations to exit.)
 export ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0"

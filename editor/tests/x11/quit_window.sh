@@ -14,7 +14,7 @@ command -v xdotool >/dev/null 2>&1 || { echo "skip: no xdotool"; exit 77; }
 command -v python3 >/dev/null 2>&1 || { echo "skip: no python3 to read the state"; exit 77; }
 mkdir -p "$WORK"
 rm -f "$WORK"/state.json
-. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap
+. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap, wait_for
 
 cat >"$WORK/original.json" <<'DOC'
 {"format": "freeform", "version": 1, "objects": [
@@ -22,22 +22,6 @@ cat >"$WORK/original.json" <<'DOC'
 DOC
 cp "$WORK/original.json" "$WORK/doc.json"
 
-wait_for() {
-    python3 - "$WORK/state.json" "$2" <<'WAIT' && return 0
-import json, sys, time
-deadline = time.monotonic() + 20
-while time.monotonic() < deadline:
-    try:
-        s = json.load(open(sys.argv[1]))
-        if eval(sys.argv[2]):
-            sys.exit(0)
-    except (OSError, ValueError, KeyError, TypeError, IndexError):
-        pass
-    time.sleep(0.03)
-sys.exit(1)
-WAIT
-    echo "FAIL: $1"; cat "$WORK/state.json" 2>/dev/null; cat "$WORK/editor.err"; exit 1
-}
 # The editor on doc.json with --state, its window focused.
 start() {
     rm -f "$WORK/state.json"

@@ -24,7 +24,7 @@ command -v python3 >/dev/null 2>&1 || { echo "skip: no python3 to read the state
 mkdir -p "$WORK"
 rm -f "$WORK"/state.json "$WORK"/state.json.part
 
-. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap
+. "$(dirname "$0")/xvfb.sh" # Xvfb on a free display, DISPLAY, the EXIT trap, wait_for
 xdotool getdisplaygeometry >/dev/null 2>&1 || { echo "FAIL: no X display $DISPLAY"; exit 1; }
 
 cat >"$WORK/doc.json" <<'DOC'
@@ -47,22 +47,6 @@ state() {
 }
 # wait_for WHAT PYTHON-EXPRESSION: until the expression over s (the state) holds, up to 20 s of wall
 # clock; one python process polls the file (starting python takes a second on a loaded machine).
-wait_for() {
-    python3 - "$WORK/state.json" "$2" <<'WAIT' && return 0
-import json, sys, time
-deadline = time.monotonic() + 20
-while time.monotonic() < deadline:
-    try:
-        s = json.load(open(sys.argv[1]))
-        if eval(sys.argv[2]):
-            sys.exit(0)
-    except (OSError, ValueError, KeyError, TypeError, IndexError):
-        pass
-    time.sleep(0.03)
-sys.exit(1)
-WAIT
-    echo "FAIL: $1"; cat "$WORK/state.json" 2>/dev/null; cat "$WORK/editor.err"; exit 1
-}
 wait_for "the first frame" "len(s['panels']) == 3"
 
 # 1. Open a corrupt file, confirmed with Enter held across frames.
