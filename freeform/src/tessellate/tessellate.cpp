@@ -398,6 +398,7 @@ struct BicubicDifferences {
     Eigen::Vector3d uu[8], uv[9], vv[8];
 };
 
+#ifndef __SSE2__
 void bicubicDifferences(const Eigen::Vector3d* net, BicubicDifferences& d)
 {
     // Each row of the net (points 4 i .. 4 i + 3) is 12 contiguous numbers, and so is each row of
@@ -420,7 +421,8 @@ void bicubicDifferences(const Eigen::Vector3d* net, BicubicDifferences& d)
         Eigen::Map<Eigen::Matrix<double, 6, 1>>(d.vv[2 * i].data()) = at(n6, i, 6) - 2 * at(n6, i, 3) + at(n6, i, 0);
 }
 
-/// netTerms of a bicubic net from its differences (the same values).
+/// netTerms of a bicubic net from its differences (the same values). (Without SSE2 only: with it,
+/// bicubicDifferencesAndTerms below does both in one pass.)
 std::array<double, 3> bicubicTerms(const BicubicDifferences& d)
 {
     double uu = 0, uv = 0, vv = 0;
@@ -428,6 +430,97 @@ std::array<double, 3> bicubicTerms(const BicubicDifferences& d)
     for (const auto& x : d.uv) uv = std::max(uv, x.squaredNorm());
     for (const auto& x : d.vv) vv = std::max(vv, x.squaredNorm());
     return {3 * (3 - 1.0) * std::sqrt(uu), 2.0 * 3 * 3 * std::sqrt(uv), 3 * (3 - 1.0) * std::sqrt(vv)};
+}
+#endif
+
+#ifdef __SSE2__
+/// The squared norms of two points whose six numbers are the packets (x0, y0), (z0, x1), (y1, z1),
+/// each summed as Eigen sums a Vector3d's squaredNorm, (x^2 + y^2) + z^2: the same values.
+inline __m128d squaredNormsOfPair(__m128d p0, __m128d p1, __m128d p2)
+{
+    const __m128d q0 = _mm_mul_pd(p0, p0), q1 = _mm_mul_pd(p1, p1), q2 = _mm_mul_pd(p2, p2);
+    const __m128d xs = _mm_move_sd(q1, q0);       // (x0^2, x1^2)
+    const __m128d ys = _mm_shuffle_pd(q0, q2, 1); // (y0^2, y1^2)
+    const __m128d zs = _mm_move_sd(q2, q1);       // (z0^2, z1^2)
+    return _mm_add_pd(_mm_add_pd(xs, ys), zs);
+}
+#endif
+
+/// bicubicDifferences and bicubicTerms in one pass (the same values): with SSE2 the net's 16
+/// points are 24 packets held in registers, each difference is formed packet by packet with the
+/// same operations on each number, stored in the layout of bicubicDifferences, and its squared
+/// norm taken from the registers instead of being read back.
+std::array<double, 3> bicubicDifferencesAndTerms(const Eigen::Vector3d* net, BicubicDifferences& d)
+{
+#ifdef __SSE2__
+    const double* x = net[0].data();
+    __m128d P[4][6], S[4][4]; // row i's numbers (2k, 2k + 1), and (2k + 3, 2k + 4)
+    for (int i = 0; i < 4; ++i) {
+        for (int k = 0; k < 6; ++k) P[i][k] = _mm_loadu_pd(x + 12 * i + 2 * k);
+        for (int k = 0; k < 4; ++k) S[i][k] = _mm_shuffle_pd(P[i][k + 1], P[i][k + 2], 1);
+    }
+    const __m128d two = _mm_set1_pd(2.0);
+    // D_uu(i, j) = x(i + 2, j) - 2 x(i + 1, j) + x(i, j): rows of 12 numbers.
+    __m128d bestUu = _mm_setzero_pd();
+    double* uu = d.uu[0].data();
+    for (int i = 0; i < 2; ++i) {
+        __m128d r[6];
+        for (int k = 0; k < 6; ++k) {
+            r[k] = _mm_add_pd(_mm_sub_pd(P[i + 2][k], _mm_mul_pd(two, P[i + 1][k])), P[i][k]);
+            _mm_storeu_pd(uu + 12 * i + 2 * k, r[k]);
+        }
+        // maxpd gives its second operand where either is NaN: a NaN is passed over, as by std::max.
+        bestUu = _mm_max_pd(squaredNormsOfPair(r[0], r[1], r[2]), bestUu);
+        bestUu = _mm_max_pd(squaredNormsOfPair(r[3], r[4], r[5]), bestUu);
+    }
+    // D_uv(i, j) = x(i + 1, j + 1) - x(i + 1, j) - x(i, j + 1) + x(i, j): rows of 9 numbers, the
+    // first 8 as packets, the ninth (x(., 3) and x(., 2)'s last coordinates) as a scalar.
+    __m128d bestUv = _mm_setzero_pd();
+    double* uv = d.uv[0].data();
+    __m128d third[3][2]; // each row's third point: (its x, y), (its z, z)
+    for (int i = 0; i < 3; ++i) {
+        __m128d r[4];
+        for (int k = 0; k < 4; ++k) {
+            r[k] = _mm_add_pd(_mm_sub_pd(_mm_sub_pd(S[i + 1][k], P[i + 1][k]), S[i][k]), P[i][k]);
+            _mm_storeu_pd(uv + 9 * i + 2 * k, r[k]);
+        }
+        const double* a = x + 12 * (i + 1);
+        const double* c = x + 12 * i;
+        const double last = ((a[11] - a[8]) - c[11]) + c[8];
+        uv[9 * i + 8] = last;
+        bestUv = _mm_max_pd(squaredNormsOfPair(r[0], r[1], r[2]), bestUv);
+        third[i][0] = r[3];
+        third[i][1] = _mm_set1_pd(last);
+    }
+    for (int i = 0; i < 3; i += 2) { // rows (0, 1), then row 2 with itself
+        const int j = std::min(i + 1, 2);
+        const __m128d xs = _mm_unpacklo_pd(third[i][0], third[j][0]), ys = _mm_unpackhi_pd(third[i][0], third[j][0]);
+        const __m128d zs = _mm_unpacklo_pd(third[i][1], third[j][1]);
+        const __m128d sq = _mm_add_pd(_mm_add_pd(_mm_mul_pd(xs, xs), _mm_mul_pd(ys, ys)), _mm_mul_pd(zs, zs));
+        bestUv = _mm_max_pd(sq, bestUv);
+    }
+    // D_vv(i, j) = x(i, j + 2) - 2 x(i, j + 1) + x(i, j): rows of 6 numbers.
+    __m128d bestVv = _mm_setzero_pd();
+    double* vv = d.vv[0].data();
+    for (int i = 0; i < 4; ++i) {
+        __m128d r[3];
+        for (int k = 0; k < 3; ++k) {
+            r[k] = _mm_add_pd(_mm_sub_pd(P[i][k + 3], _mm_mul_pd(two, S[i][k])), P[i][k]);
+            _mm_storeu_pd(vv + 6 * i + 2 * k, r[k]);
+        }
+        bestVv = _mm_max_pd(squaredNormsOfPair(r[0], r[1], r[2]), bestVv);
+    }
+    double lanes[3][2];
+    _mm_storeu_pd(lanes[0], bestUu);
+    _mm_storeu_pd(lanes[1], bestUv);
+    _mm_storeu_pd(lanes[2], bestVv);
+    const double mu = std::max(lanes[0][0], lanes[0][1]), mc = std::max(lanes[1][0], lanes[1][1]),
+                 mv = std::max(lanes[2][0], lanes[2][1]);
+    return {3 * (3 - 1.0) * std::sqrt(mu), 2.0 * 3 * 3 * std::sqrt(mc), 3 * (3 - 1.0) * std::sqrt(mv)};
+#else
+    bicubicDifferences(net, d);
+    return bicubicTerms(d);
+#endif
 }
 
 std::vector<Eigen::Vector3d> netOf(const Patch& p)
@@ -984,9 +1077,8 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         const BicubicDifferences* diff = nullptr;
         std::array<double, 3> t;
         if (m == 3 && n == 3) {
-            bicubicDifferences(net, differences);
+            t = bicubicDifferencesAndTerms(net, differences);
             diff = &differences;
-            t = bicubicTerms(differences);
         } else {
             t = netTerms(net, m, n);
         }
