@@ -353,6 +353,29 @@ struct PatchRow {
             }
         return {Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Vector3d(fu[0], fu[1], fu[2]), Eigen::Vector3d(fv[0], fv[1], fv[2])};
     }
+    /// The numbers of at(v) into plain arrays (the same sums in the same order). For n = 3 the
+    /// basis and the sums are unrolled with the degree known, so the basis stays in registers: a
+    /// basis written as scalars and read back as 16-byte packets (what GCC made of at()) stalls on
+    /// the store-to-load forwarding, on every vertex.
+    void at(double v, double* p, double* fu, double* fv) const
+    {
+        if (n == 3) return atOf<3>(v, p, fu, fv);
+        const Jet1 j = at(v);
+        for (int e = 0; e < 3; ++e) p[e] = j.p[e], fu[e] = j.fu[e], fv[e] = j.fv[e];
+    }
+    template <int N>
+    void atOf(double v, double* p, double* fu, double* fv) const
+    {
+        double bv[N + 1], dbv[N + 1];
+        basisWithDerivativeOf<N>(N, v, bv, dbv);
+        for (int e = 0; e < 3; ++e) p[e] = 0, fu[e] = 0, fv[e] = 0;
+        for (int j = 0; j <= N; ++j)
+            for (int e = 0; e < 3; ++e) {
+                p[e] += bv[j] * c[j][e];
+                fu[e] += bv[j] * d[j][e];
+                fv[e] += dbv[j] * c[j][e];
+            }
+    }
 };
 
 /// The largest value(D) over the second differences D of an (m+1) x (n+1) net (point (i, j) at
@@ -1372,8 +1395,9 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             else if (u == S) side = 1, t = v;
             else if (v == 0) side = 2, t = u;
             else if (v == S) side = 3, t = u;
-            const Jet1 j = row.at(v * inv);
-            Eigen::Vector3d q = j.p;
+            double jp[3], ju[3], jv[3]; // f, f_u, f_v as plain numbers (see PatchRow::at)
+            row.at(v * inv, jp, ju, jv);
+            Eigen::Vector3d q(jp[0], jp[1], jp[2]);
             bool onCollapsed = false;
             if (side >= 0) {
                 const Side& sd = sides[4 * p + side];
@@ -1385,16 +1409,20 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                     if (on && sides[4 * p + s].collapsed) onCollapsed = true;
                 }
             }
-            Eigen::Vector3d nrm = j.fu.cross(j.fv);
-            const double len2 = nrm.squaredNorm(), len = std::sqrt(len2);
+            // f_u x f_v, its squared norm and |f_u|^2, |f_v|^2 in plain numbers, formed as Eigen's
+            // cross, squaredNorm and norm form them ((x^2 + y^2) + z^2; norm = sqrt(squaredNorm)).
+            const double cx = ju[1] * jv[2] - ju[2] * jv[1], cy = ju[2] * jv[0] - ju[0] * jv[2], cz = ju[0] * jv[1] - ju[1] * jv[0];
+            const double len2 = cx * cx + cy * cy + cz * cz, len = std::sqrt(len2);
             // len > 1e-10 |f_u| |f_v| without the two square roots where it clearly holds: len^2 >
             // 1e-19 |f_u|^2 |f_v|^2 (ten times the margin of the few roundings), all in the normal range.
-            const double fu2 = j.fu.squaredNorm(), fv2 = j.fv.squaredNorm(), product = fu2 * fv2;
+            const double fu2 = ju[0] * ju[0] + ju[1] * ju[1] + ju[2] * ju[2], fv2 = jv[0] * jv[0] + jv[1] * jv[1] + jv[2] * jv[2];
+            const double product = fu2 * fv2;
             const bool clearlyRegular = product > 1e-250 && product < 1e250 && len2 > 1e-19 * product;
-            if (onCollapsed || (!clearlyRegular && (!(len > 1e-10 * j.fu.norm() * j.fv.norm()) || len == 0)))
+            Eigen::Vector3d nrm;
+            if (onCollapsed || (!clearlyRegular && (!(len > 1e-10 * std::sqrt(fu2) * std::sqrt(fv2)) || len == 0)))
                 nrm = patch.normal(u * inv, v * inv);
             else
-                nrm /= len;
+                nrm = Eigen::Vector3d(cx / len, cy / len, cz / len);
             keyPos[k] = q;
             if (side >= 0) {
                 const PositionKey key{q.x() + 0.0, q.y() + 0.0, q.z() + 0.0};
