@@ -254,8 +254,9 @@ struct MeshVertices {
 
 /// Bernstein values b[0..n] and their derivatives db[0..n] at t. N > 0 fixes n = N at compile
 /// time (the cubic case, unrolled by the compiler; the same operations, so the same numbers).
+/// Always inlined, so that a caller's b and db can stay in registers (PatchRow::atOf).
 template <int N = 0>
-void basisWithDerivativeOf(int n, double t, double* b, double* db)
+[[gnu::always_inline]] inline void basisWithDerivativeOf(int n, double t, double* b, double* db)
 {
     if constexpr (N > 0) n = N;
     if (n == 0) {
@@ -1357,13 +1358,20 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         const Tree leaves = treeOf(p);
         // Keys sorted with the leaf corner (slot 4 leaf + corner, -1 for side samples) they came
         // from, so that every corner knows its index without a search.
+        // (Written in place: an insert of an initializer list built the four pairs on the stack
+        // with 8- and 4-byte stores and copied them with 16-byte loads, which stall on the
+        // store-to-load forwarding.)
         items.clear();
         items.reserve(leaves.size() * 4 + 16);
+        items.resize(leaves.size() * 4);
         for (std::size_t l = 0; l < leaves.size(); ++l) {
             const Leaf& f = leaves[l];
             const int slot = static_cast<int>(4 * l);
-            items.insert(items.end(), {{packKey(f.u0, f.v0), slot}, {packKey(f.u1, f.v0), slot + 1},
-                                       {packKey(f.u1, f.v1), slot + 2}, {packKey(f.u0, f.v1), slot + 3}});
+            std::pair<std::uint64_t, int>* out = items.data() + slot;
+            out[0].first = packKey(f.u0, f.v0), out[0].second = slot;
+            out[1].first = packKey(f.u1, f.v0), out[1].second = slot + 1;
+            out[2].first = packKey(f.u1, f.v1), out[2].second = slot + 2;
+            out[3].first = packKey(f.u0, f.v1), out[3].second = slot + 3;
         }
         for (std::int32_t t : sidePoints[4 * p + 0]) items.push_back({packKey(0, t), -1});
         for (std::int32_t t : sidePoints[4 * p + 1]) items.push_back({packKey(S, t), -1});
