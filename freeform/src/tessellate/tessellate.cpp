@@ -1164,12 +1164,37 @@ void sortPairs(std::vector<std::pair<std::uint64_t, int>>& v, std::vector<std::p
         return;
     }
     tmp.resize(v.size());
+    // Each pass counts and places the two halves [0, half) and [half, size) of its input with their
+    // own counters, interleaved: neighbours often fall in one bucket (a leaf's corners share their
+    // coordinates), and one counter bumped by both would chain every increment through memory.
+    // The second half's elements of a bucket go after the first half's: the same stable order.
     auto pass = [&](std::vector<std::pair<std::uint64_t, int>>& from, std::vector<std::pair<std::uint64_t, int>>& to,
                     std::uint64_t buckets, auto bucketOf) {
-        counts.assign(buckets + 1, 0);
-        for (const auto& e : from) ++counts[bucketOf(e.first) + 1];
-        for (std::size_t k = 1; k < counts.size(); ++k) counts[k] += counts[k - 1];
-        for (const auto& e : from) to[static_cast<std::size_t>(counts[bucketOf(e.first)]++)] = e;
+        const std::size_t size = from.size(), half = size / 2;
+        counts.assign(2 * buckets, 0);
+        int* first = counts.data();
+        int* second = first + buckets;
+        const auto* f = from.data();
+        for (std::size_t k = 0; k < half; ++k) {
+            ++first[bucketOf(f[k].first)];
+            ++second[bucketOf(f[half + k].first)];
+        }
+        if (size % 2) ++second[bucketOf(f[size - 1].first)];
+        int start = 0;
+        for (std::size_t b = 0; b < buckets; ++b) {
+            const int n1 = first[b], n2 = second[b];
+            first[b] = start;
+            second[b] = start + n1;
+            start += n1 + n2;
+        }
+        auto* t = to.data();
+        for (std::size_t k = 0; k < half; ++k) {
+            const auto& x = f[k];
+            const auto& y = f[half + k];
+            t[first[bucketOf(x.first)]++] = x;
+            t[second[bucketOf(y.first)]++] = y;
+        }
+        if (size % 2) t[second[bucketOf(f[size - 1].first)]++] = f[size - 1];
     };
     pass(v, tmp, bucketsB, [&](std::uint64_t key) { return static_cast<std::size_t>((key & 0xffffffffu) >> shiftB); });
     pass(tmp, v, bucketsA, [&](std::uint64_t key) { return static_cast<std::size_t>((key >> 32) >> shiftA); });
