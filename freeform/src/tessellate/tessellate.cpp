@@ -1242,6 +1242,22 @@ void clipEars(const std::vector<int>& ring, const std::vector<std::uint64_t>& ke
     if (poly.size() == 3 && cross2(keys[poly[0]], keys[poly[1]], keys[poly[2]]) > 0) emit(poly[0], poly[1], poly[2]);
 }
 
+/// c.evaluate(t) (BezierCurve::deCasteljau: w_i = (1 - t) w_i + t w_(i+1), level by level) without
+/// its copy of the control points on the heap (a malloc and a free per side vertex): the same
+/// operations on each coordinate, so the same point.
+Eigen::Vector3d curvePoint(const BezierCurve<double, 3>& c, double t)
+{
+    const int n = c.degree();
+    double w[3 * (kMaxDegree + 1)];
+    const double* P = c.controlPoints().data();
+    std::copy(P, P + 3 * (n + 1), w);
+    const double s = 1.0 - t;
+    for (int k = 1; k <= n; ++k)
+        for (int i = 0; i <= n - k; ++i)
+            for (int e = 0; e < 3; ++e) w[3 * i + e] = s * w[3 * i + e] + t * w[3 * (i + 1) + e];
+    return {w[0], w[1], w[2]};
+}
+
 /// The adaptive mesh with local bounds (docs/surfaces.md, "Local refinement").
 PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptions& options, TessellationReport* report)
 {
@@ -1436,7 +1452,7 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 const Side& sd = sides[4 * p + side];
                 const std::int32_t tc = sd.reversed ? S - t : t;
                 q = sd.curve.controlPoint(0);
-                if (!sd.collapsed) q = sd.curve.evaluate(tc * inv);
+                if (!sd.collapsed) q = curvePoint(sd.curve, tc * inv);
                 for (int s = 0; s < 4; ++s) {
                     const bool on = (s == 0 && u == 0) || (s == 1 && u == S) || (s == 2 && v == 0) || (s == 3 && v == S);
                     if (on && sides[4 * p + s].collapsed) onCollapsed = true;
