@@ -254,8 +254,9 @@ struct MeshVertices {
 
 /// Bernstein values b[0..n] and their derivatives db[0..n] at t. N > 0 fixes n = N at compile
 /// time (the cubic case, unrolled by the compiler; the same operations, so the same numbers).
+/// Always inlined, so that a caller's b and db can stay in registers (PatchRow::atOf).
 template <int N = 0>
-void basisWithDerivativeOf(int n, double t, double* b, double* db)
+[[gnu::always_inline]] inline void basisWithDerivativeOf(int n, double t, double* b, double* db)
 {
     if constexpr (N > 0) n = N;
     if (n == 0) {
@@ -353,6 +354,29 @@ struct PatchRow {
             }
         return {Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Vector3d(fu[0], fu[1], fu[2]), Eigen::Vector3d(fv[0], fv[1], fv[2])};
     }
+    /// The numbers of at(v) into plain arrays (the same sums in the same order). For n = 3 the
+    /// basis and the sums are unrolled with the degree known, so the basis stays in registers: a
+    /// basis written as scalars and read back as 16-byte packets (what GCC made of at()) stalls on
+    /// the store-to-load forwarding, on every vertex.
+    void at(double v, double* p, double* fu, double* fv) const
+    {
+        if (n == 3) return atOf<3>(v, p, fu, fv);
+        const Jet1 j = at(v);
+        for (int e = 0; e < 3; ++e) p[e] = j.p[e], fu[e] = j.fu[e], fv[e] = j.fv[e];
+    }
+    template <int N>
+    void atOf(double v, double* p, double* fu, double* fv) const
+    {
+        double bv[N + 1], dbv[N + 1];
+        basisWithDerivativeOf<N>(N, v, bv, dbv);
+        for (int e = 0; e < 3; ++e) p[e] = 0, fu[e] = 0, fv[e] = 0;
+        for (int j = 0; j <= N; ++j)
+            for (int e = 0; e < 3; ++e) {
+                p[e] += bv[j] * c[j][e];
+                fu[e] += bv[j] * d[j][e];
+                fv[e] += dbv[j] * c[j][e];
+            }
+    }
 };
 
 /// The largest value(D) over the second differences D of an (m+1) x (n+1) net (point (i, j) at
@@ -398,6 +422,7 @@ struct BicubicDifferences {
     Eigen::Vector3d uu[8], uv[9], vv[8];
 };
 
+#ifndef __SSE2__
 void bicubicDifferences(const Eigen::Vector3d* net, BicubicDifferences& d)
 {
     // Each row of the net (points 4 i .. 4 i + 3) is 12 contiguous numbers, and so is each row of
@@ -420,7 +445,8 @@ void bicubicDifferences(const Eigen::Vector3d* net, BicubicDifferences& d)
         Eigen::Map<Eigen::Matrix<double, 6, 1>>(d.vv[2 * i].data()) = at(n6, i, 6) - 2 * at(n6, i, 3) + at(n6, i, 0);
 }
 
-/// netTerms of a bicubic net from its differences (the same values).
+/// netTerms of a bicubic net from its differences (the same values). (Without SSE2 only: with it,
+/// bicubicDifferencesAndTerms below does both in one pass.)
 std::array<double, 3> bicubicTerms(const BicubicDifferences& d)
 {
     double uu = 0, uv = 0, vv = 0;
@@ -428,6 +454,97 @@ std::array<double, 3> bicubicTerms(const BicubicDifferences& d)
     for (const auto& x : d.uv) uv = std::max(uv, x.squaredNorm());
     for (const auto& x : d.vv) vv = std::max(vv, x.squaredNorm());
     return {3 * (3 - 1.0) * std::sqrt(uu), 2.0 * 3 * 3 * std::sqrt(uv), 3 * (3 - 1.0) * std::sqrt(vv)};
+}
+#endif
+
+#ifdef __SSE2__
+/// The squared norms of two points whose six numbers are the packets (x0, y0), (z0, x1), (y1, z1),
+/// each summed as Eigen sums a Vector3d's squaredNorm, (x^2 + y^2) + z^2: the same values.
+inline __m128d squaredNormsOfPair(__m128d p0, __m128d p1, __m128d p2)
+{
+    const __m128d q0 = _mm_mul_pd(p0, p0), q1 = _mm_mul_pd(p1, p1), q2 = _mm_mul_pd(p2, p2);
+    const __m128d xs = _mm_move_sd(q1, q0);       // (x0^2, x1^2)
+    const __m128d ys = _mm_shuffle_pd(q0, q2, 1); // (y0^2, y1^2)
+    const __m128d zs = _mm_move_sd(q2, q1);       // (z0^2, z1^2)
+    return _mm_add_pd(_mm_add_pd(xs, ys), zs);
+}
+#endif
+
+/// bicubicDifferences and bicubicTerms in one pass (the same values): with SSE2 the net's 16
+/// points are 24 packets held in registers, each difference is formed packet by packet with the
+/// same operations on each number, stored in the layout of bicubicDifferences, and its squared
+/// norm taken from the registers instead of being read back.
+std::array<double, 3> bicubicDifferencesAndTerms(const Eigen::Vector3d* net, BicubicDifferences& d)
+{
+#ifdef __SSE2__
+    const double* x = net[0].data();
+    __m128d P[4][6], S[4][4]; // row i's numbers (2k, 2k + 1), and (2k + 3, 2k + 4)
+    for (int i = 0; i < 4; ++i) {
+        for (int k = 0; k < 6; ++k) P[i][k] = _mm_loadu_pd(x + 12 * i + 2 * k);
+        for (int k = 0; k < 4; ++k) S[i][k] = _mm_shuffle_pd(P[i][k + 1], P[i][k + 2], 1);
+    }
+    const __m128d two = _mm_set1_pd(2.0);
+    // D_uu(i, j) = x(i + 2, j) - 2 x(i + 1, j) + x(i, j): rows of 12 numbers.
+    __m128d bestUu = _mm_setzero_pd();
+    double* uu = d.uu[0].data();
+    for (int i = 0; i < 2; ++i) {
+        __m128d r[6];
+        for (int k = 0; k < 6; ++k) {
+            r[k] = _mm_add_pd(_mm_sub_pd(P[i + 2][k], _mm_mul_pd(two, P[i + 1][k])), P[i][k]);
+            _mm_storeu_pd(uu + 12 * i + 2 * k, r[k]);
+        }
+        // maxpd gives its second operand where either is NaN: a NaN is passed over, as by std::max.
+        bestUu = _mm_max_pd(squaredNormsOfPair(r[0], r[1], r[2]), bestUu);
+        bestUu = _mm_max_pd(squaredNormsOfPair(r[3], r[4], r[5]), bestUu);
+    }
+    // D_uv(i, j) = x(i + 1, j + 1) - x(i + 1, j) - x(i, j + 1) + x(i, j): rows of 9 numbers, the
+    // first 8 as packets, the ninth (x(., 3) and x(., 2)'s last coordinates) as a scalar.
+    __m128d bestUv = _mm_setzero_pd();
+    double* uv = d.uv[0].data();
+    __m128d third[3][2]; // each row's third point: (its x, y), (its z, z)
+    for (int i = 0; i < 3; ++i) {
+        __m128d r[4];
+        for (int k = 0; k < 4; ++k) {
+            r[k] = _mm_add_pd(_mm_sub_pd(_mm_sub_pd(S[i + 1][k], P[i + 1][k]), S[i][k]), P[i][k]);
+            _mm_storeu_pd(uv + 9 * i + 2 * k, r[k]);
+        }
+        const double* a = x + 12 * (i + 1);
+        const double* c = x + 12 * i;
+        const double last = ((a[11] - a[8]) - c[11]) + c[8];
+        uv[9 * i + 8] = last;
+        bestUv = _mm_max_pd(squaredNormsOfPair(r[0], r[1], r[2]), bestUv);
+        third[i][0] = r[3];
+        third[i][1] = _mm_set1_pd(last);
+    }
+    for (int i = 0; i < 3; i += 2) { // rows (0, 1), then row 2 with itself
+        const int j = std::min(i + 1, 2);
+        const __m128d xs = _mm_unpacklo_pd(third[i][0], third[j][0]), ys = _mm_unpackhi_pd(third[i][0], third[j][0]);
+        const __m128d zs = _mm_unpacklo_pd(third[i][1], third[j][1]);
+        const __m128d sq = _mm_add_pd(_mm_add_pd(_mm_mul_pd(xs, xs), _mm_mul_pd(ys, ys)), _mm_mul_pd(zs, zs));
+        bestUv = _mm_max_pd(sq, bestUv);
+    }
+    // D_vv(i, j) = x(i, j + 2) - 2 x(i, j + 1) + x(i, j): rows of 6 numbers.
+    __m128d bestVv = _mm_setzero_pd();
+    double* vv = d.vv[0].data();
+    for (int i = 0; i < 4; ++i) {
+        __m128d r[3];
+        for (int k = 0; k < 3; ++k) {
+            r[k] = _mm_add_pd(_mm_sub_pd(P[i][k + 3], _mm_mul_pd(two, S[i][k])), P[i][k]);
+            _mm_storeu_pd(vv + 6 * i + 2 * k, r[k]);
+        }
+        bestVv = _mm_max_pd(squaredNormsOfPair(r[0], r[1], r[2]), bestVv);
+    }
+    double lanes[3][2];
+    _mm_storeu_pd(lanes[0], bestUu);
+    _mm_storeu_pd(lanes[1], bestUv);
+    _mm_storeu_pd(lanes[2], bestVv);
+    const double mu = std::max(lanes[0][0], lanes[0][1]), mc = std::max(lanes[1][0], lanes[1][1]),
+                 mv = std::max(lanes[2][0], lanes[2][1]);
+    return {3 * (3 - 1.0) * std::sqrt(mu), 2.0 * 3 * 3 * std::sqrt(mc), 3 * (3 - 1.0) * std::sqrt(mv)};
+#else
+    bicubicDifferences(net, d);
+    return bicubicTerms(d);
+#endif
 }
 
 std::vector<Eigen::Vector3d> netOf(const Patch& p)
@@ -984,9 +1101,8 @@ double buildTree(const Patch& patch, double tolerance, bool geometric, std::int3
         const BicubicDifferences* diff = nullptr;
         std::array<double, 3> t;
         if (m == 3 && n == 3) {
-            bicubicDifferences(net, differences);
+            t = bicubicDifferencesAndTerms(net, differences);
             diff = &differences;
-            t = bicubicTerms(differences);
         } else {
             t = netTerms(net, m, n);
         }
@@ -1048,12 +1164,37 @@ void sortPairs(std::vector<std::pair<std::uint64_t, int>>& v, std::vector<std::p
         return;
     }
     tmp.resize(v.size());
+    // Each pass counts and places the two halves [0, half) and [half, size) of its input with their
+    // own counters, interleaved: neighbours often fall in one bucket (a leaf's corners share their
+    // coordinates), and one counter bumped by both would chain every increment through memory.
+    // The second half's elements of a bucket go after the first half's: the same stable order.
     auto pass = [&](std::vector<std::pair<std::uint64_t, int>>& from, std::vector<std::pair<std::uint64_t, int>>& to,
                     std::uint64_t buckets, auto bucketOf) {
-        counts.assign(buckets + 1, 0);
-        for (const auto& e : from) ++counts[bucketOf(e.first) + 1];
-        for (std::size_t k = 1; k < counts.size(); ++k) counts[k] += counts[k - 1];
-        for (const auto& e : from) to[static_cast<std::size_t>(counts[bucketOf(e.first)]++)] = e;
+        const std::size_t size = from.size(), half = size / 2;
+        counts.assign(2 * buckets, 0);
+        int* first = counts.data();
+        int* second = first + buckets;
+        const auto* f = from.data();
+        for (std::size_t k = 0; k < half; ++k) {
+            ++first[bucketOf(f[k].first)];
+            ++second[bucketOf(f[half + k].first)];
+        }
+        if (size % 2) ++second[bucketOf(f[size - 1].first)];
+        int start = 0;
+        for (std::size_t b = 0; b < buckets; ++b) {
+            const int n1 = first[b], n2 = second[b];
+            first[b] = start;
+            second[b] = start + n1;
+            start += n1 + n2;
+        }
+        auto* t = to.data();
+        for (std::size_t k = 0; k < half; ++k) {
+            const auto& x = f[k];
+            const auto& y = f[half + k];
+            t[first[bucketOf(x.first)]++] = x;
+            t[second[bucketOf(y.first)]++] = y;
+        }
+        if (size % 2) t[second[bucketOf(f[size - 1].first)]++] = f[size - 1];
     };
     pass(v, tmp, bucketsB, [&](std::uint64_t key) { return static_cast<std::size_t>((key & 0xffffffffu) >> shiftB); });
     pass(tmp, v, bucketsA, [&](std::uint64_t key) { return static_cast<std::size_t>((key >> 32) >> shiftA); });
@@ -1099,6 +1240,22 @@ void clipEars(const std::vector<int>& ring, const std::vector<std::uint64_t>& ke
         poly.erase(poly.begin() + best);
     }
     if (poly.size() == 3 && cross2(keys[poly[0]], keys[poly[1]], keys[poly[2]]) > 0) emit(poly[0], poly[1], poly[2]);
+}
+
+/// c.evaluate(t) (BezierCurve::deCasteljau: w_i = (1 - t) w_i + t w_(i+1), level by level) without
+/// its copy of the control points on the heap (a malloc and a free per side vertex): the same
+/// operations on each coordinate, so the same point.
+Eigen::Vector3d curvePoint(const BezierCurve<double, 3>& c, double t)
+{
+    const int n = c.degree();
+    double w[3 * (kMaxDegree + 1)];
+    const double* P = c.controlPoints().data();
+    std::copy(P, P + 3 * (n + 1), w);
+    const double s = 1.0 - t;
+    for (int k = 1; k <= n; ++k)
+        for (int i = 0; i <= n - k; ++i)
+            for (int e = 0; e < 3; ++e) w[3 * i + e] = s * w[3 * i + e] + t * w[3 * (i + 1) + e];
+    return {w[0], w[1], w[2]};
 }
 
 /// The adaptive mesh with local bounds (docs/surfaces.md, "Local refinement").
@@ -1242,13 +1399,20 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
         const Tree leaves = treeOf(p);
         // Keys sorted with the leaf corner (slot 4 leaf + corner, -1 for side samples) they came
         // from, so that every corner knows its index without a search.
+        // (Written in place: an insert of an initializer list built the four pairs on the stack
+        // with 8- and 4-byte stores and copied them with 16-byte loads, which stall on the
+        // store-to-load forwarding.)
         items.clear();
         items.reserve(leaves.size() * 4 + 16);
+        items.resize(leaves.size() * 4);
         for (std::size_t l = 0; l < leaves.size(); ++l) {
             const Leaf& f = leaves[l];
             const int slot = static_cast<int>(4 * l);
-            items.insert(items.end(), {{packKey(f.u0, f.v0), slot}, {packKey(f.u1, f.v0), slot + 1},
-                                       {packKey(f.u1, f.v1), slot + 2}, {packKey(f.u0, f.v1), slot + 3}});
+            std::pair<std::uint64_t, int>* out = items.data() + slot;
+            out[0].first = packKey(f.u0, f.v0), out[0].second = slot;
+            out[1].first = packKey(f.u1, f.v0), out[1].second = slot + 1;
+            out[2].first = packKey(f.u1, f.v1), out[2].second = slot + 2;
+            out[3].first = packKey(f.u0, f.v1), out[3].second = slot + 3;
         }
         for (std::int32_t t : sidePoints[4 * p + 0]) items.push_back({packKey(0, t), -1});
         for (std::int32_t t : sidePoints[4 * p + 1]) items.push_back({packKey(S, t), -1});
@@ -1280,29 +1444,34 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
             else if (u == S) side = 1, t = v;
             else if (v == 0) side = 2, t = u;
             else if (v == S) side = 3, t = u;
-            const Jet1 j = row.at(v * inv);
-            Eigen::Vector3d q = j.p;
+            double jp[3], ju[3], jv[3]; // f, f_u, f_v as plain numbers (see PatchRow::at)
+            row.at(v * inv, jp, ju, jv);
+            Eigen::Vector3d q(jp[0], jp[1], jp[2]);
             bool onCollapsed = false;
             if (side >= 0) {
                 const Side& sd = sides[4 * p + side];
                 const std::int32_t tc = sd.reversed ? S - t : t;
                 q = sd.curve.controlPoint(0);
-                if (!sd.collapsed) q = sd.curve.evaluate(tc * inv);
+                if (!sd.collapsed) q = curvePoint(sd.curve, tc * inv);
                 for (int s = 0; s < 4; ++s) {
                     const bool on = (s == 0 && u == 0) || (s == 1 && u == S) || (s == 2 && v == 0) || (s == 3 && v == S);
                     if (on && sides[4 * p + s].collapsed) onCollapsed = true;
                 }
             }
-            Eigen::Vector3d nrm = j.fu.cross(j.fv);
-            const double len2 = nrm.squaredNorm(), len = std::sqrt(len2);
+            // f_u x f_v, its squared norm and |f_u|^2, |f_v|^2 in plain numbers, formed as Eigen's
+            // cross, squaredNorm and norm form them ((x^2 + y^2) + z^2; norm = sqrt(squaredNorm)).
+            const double cx = ju[1] * jv[2] - ju[2] * jv[1], cy = ju[2] * jv[0] - ju[0] * jv[2], cz = ju[0] * jv[1] - ju[1] * jv[0];
+            const double len2 = cx * cx + cy * cy + cz * cz, len = std::sqrt(len2);
             // len > 1e-10 |f_u| |f_v| without the two square roots where it clearly holds: len^2 >
             // 1e-19 |f_u|^2 |f_v|^2 (ten times the margin of the few roundings), all in the normal range.
-            const double fu2 = j.fu.squaredNorm(), fv2 = j.fv.squaredNorm(), product = fu2 * fv2;
+            const double fu2 = ju[0] * ju[0] + ju[1] * ju[1] + ju[2] * ju[2], fv2 = jv[0] * jv[0] + jv[1] * jv[1] + jv[2] * jv[2];
+            const double product = fu2 * fv2;
             const bool clearlyRegular = product > 1e-250 && product < 1e250 && len2 > 1e-19 * product;
-            if (onCollapsed || (!clearlyRegular && (!(len > 1e-10 * j.fu.norm() * j.fv.norm()) || len == 0)))
+            Eigen::Vector3d nrm;
+            if (onCollapsed || (!clearlyRegular && (!(len > 1e-10 * std::sqrt(fu2) * std::sqrt(fv2)) || len == 0)))
                 nrm = patch.normal(u * inv, v * inv);
             else
-                nrm /= len;
+                nrm = Eigen::Vector3d(cx / len, cy / len, cz / len);
             keyPos[k] = q;
             if (side >= 0) {
                 const PositionKey key{q.x() + 0.0, q.y() + 0.0, q.z() + 0.0};
