@@ -9,7 +9,12 @@
 //     and its limit masks (exact limit points; the library's adaptive path is not used): surface to
 //     mesh and mesh to surface within the reported bound, certified at 1e-2 and 1e-3 (the
 //     icosahedron at 1e-3 through local cages past depth 10), closed, Euler characteristic 2, no
-//     T-junction, unit outward normals; triangle counts guarded.
+//     T-junction, unit outward normals; triangle counts guarded;
+//   - cages with features (open under edge_only, edge_and_corner and none, a hole, infinitely sharp
+//     and semi-sharp creases and corners, Chaikin) against the same kind of reference built by Far
+//     with the cage's own tags and boundary rule: the bound both ways, every face certified,
+//     conforming, closed cages closed; and OpenSubdiv's own per-level stencils for those cages have
+//     no negative weight (the hull bound's premise, docs/subdivision.md "Loop cages").
 
 #include <catch2/catch.hpp>
 

@@ -5,7 +5,11 @@
 // bound is within the tolerance; an irregular cell (a face next to an extraordinary vertex on the
 // finest level) is bounded by the convex hull of its 1-ring; one still above the tolerance at
 // OpenSubdiv's level 10 gets a local cage (its level-10 1-ring) cut into cells the same way, nested
-// down to depth 30 ("Deeper than level 10"). Vertices are exact limit points under
+// down to depth 30 ("Deeper than level 10"). A cell next to a boundary or an infinitely sharp
+// crease (a LOOP patch with boundary bits: phantom points, not the limit) is a feature cell, bounded
+// by its 1-ring hull and, above the tolerance, split through its own local cage refined once
+// (splitFeature). Creases, corners, boundary rule and creasing method are the cage's; holes (and
+// boundary none's faces) stay in the cage without a frame. Vertices are exact limit points under
 // canonical keys (cage vertex, cage edge + dyadic parameter, face + dyadic (u, v)); each leaf is cut
 // as the polygon of its corners and of the registered points inside its sides (ear clipping in
 // (u, v)), so the mesh is conforming and closed cages give closed meshes.
