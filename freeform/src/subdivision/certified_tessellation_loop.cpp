@@ -616,6 +616,15 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
         }
         return it->second;
     };
+    auto onFeature = [&](Index f) {
+        for (Index v : l1.GetFaceVertices(f)) {
+            if (l1.IsVertexBoundary(v) || l1.GetVertexSharpness(v) >= osd::Sdc::Crease::SHARPNESS_INFINITE) return true;
+            for (Index e : l1.GetVertexEdges(v))
+                if (l1.GetEdgeSharpness(e) >= osd::Sdc::Crease::SHARPNESS_INFINITE) return true;
+        }
+        return false;
+    };
+    bool wanted = false;
     std::unordered_map<Index, char> edgeSeen;
     for (Index f : ringFaces) {
         const auto v = l1.GetFaceVertices(f);
@@ -628,11 +637,20 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
             next.creaseWeights.push_back(sharp);
         }
         TriFrame frame;
-        if (std::find(children.begin(), children.end(), f) != children.end())
+        if (std::find(children.begin(), children.end(), f) != children.end() && !onFeature(f))
             frame = {cell.face, {uvOf.at(v[0]), uvOf.at(v[1]), uvOf.at(v[2])}};
+        wanted = wanted || frame.face >= 0;
         frames.push_back(frame);
     }
-    collectLoopCells(s, next, frames);
+    // A child with a corner on a boundary or an infinitely sharp feature is never a regular patch
+    // without boundary bits: a feature cell again, split here without a patch table. The others are
+    // cut into cells by OpenSubdiv (regular ones become Bézier cells).
+    for (Index ch : children)
+        if (onFeature(ch)) {
+            const auto v = l1.GetFaceVertices(ch);
+            splitFeature(s, localCage(l1, fine.data(), {v[0], v[1], v[2]}), {cell.face, {uvOf.at(v[0]), uvOf.at(v[1]), uvOf.at(v[2])}});
+        }
+    if (wanted) collectLoopCells(s, next, frames);
 }
 
 /// The cells of the faces of m that have a frame: OpenSubdiv's adaptive Loop refinement and patch
