@@ -9,7 +9,12 @@
 //     and its limit masks (exact limit points; the library's adaptive path is not used): surface to
 //     mesh and mesh to surface within the reported bound, certified at 1e-2 and 1e-3 (the
 //     icosahedron at 1e-3 through local cages past depth 10), closed, Euler characteristic 2, no
-//     T-junction, unit outward normals; triangle counts guarded.
+//     T-junction, unit outward normals; triangle counts guarded;
+//   - cages with features (open under edge_only, edge_and_corner and none, a hole, infinitely sharp
+//     and semi-sharp creases and corners, Chaikin) against the same kind of reference built by Far
+//     with the cage's own tags and boundary rule: the bound both ways, every face certified,
+//     conforming, closed cages closed; and OpenSubdiv's own per-level stencils for those cages have
+//     no negative weight (the hull bound's premise, docs/subdivision.md "Loop cages").
 
 #include <catch2/catch.hpp>
 
@@ -17,6 +22,7 @@
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
@@ -51,19 +57,51 @@ struct P3 {
     V3 vec() const { return {p[0], p[1], p[2]}; }
 };
 
-std::unique_ptr<osd::Far::TopologyRefiner> loopRefiner(const PolygonMesh& mesh)
+/// OpenSubdiv's own refiner of a Loop cage with its creases, corners, holes and boundary rule,
+/// built here from the cage (not through the library).
+std::unique_ptr<osd::Far::TopologyRefiner> loopRefiner(const SubdivisionCage& cage,
+                                                       BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly)
 {
+    const PolygonMesh& mesh = cage.mesh;
     std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()), 3);
+    std::vector<int> pairs, cornerVerts;
+    std::vector<float> creaseWeights, cornerWeights;
+    for (const EdgeCrease& c : cage.creases) {
+        pairs.insert(pairs.end(), {c.v0, c.v1});
+        creaseWeights.push_back(static_cast<float>(c.sharpness));
+    }
+    for (const VertexCorner& c : cage.corners) {
+        cornerVerts.push_back(c.vertex);
+        cornerWeights.push_back(static_cast<float>(c.sharpness));
+    }
     osd::Far::TopologyDescriptor desc;
     desc.numVertices = mesh.vertexCount();
     desc.numFaces = mesh.faceCount();
     desc.numVertsPerFace = counts.data();
     desc.vertIndicesPerFace = mesh.faceVertices.data();
+    desc.numCreases = static_cast<int>(creaseWeights.size());
+    desc.creaseVertexIndexPairs = pairs.data();
+    desc.creaseWeights = creaseWeights.data();
+    desc.numCorners = static_cast<int>(cornerWeights.size());
+    desc.cornerVertexIndices = cornerVerts.data();
+    desc.cornerWeights = cornerWeights.data();
+    desc.numHoles = static_cast<int>(cage.holes.size());
+    desc.holeIndices = cage.holes.data();
     osd::Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                    : boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
+                                                                                    : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetCreasingMethod(cage.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
     std::unique_ptr<osd::Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, sdc)));
     REQUIRE(r);
     return r;
+}
+
+std::unique_ptr<osd::Far::TopologyRefiner> loopRefiner(const PolygonMesh& mesh)
+{
+    SubdivisionCage cage;
+    cage.mesh = mesh;
+    return loopRefiner(cage);
 }
 
 /// Limit points of the uniform level-N Loop refinement, and those points joined as its triangles.
@@ -72,9 +110,10 @@ struct Reference {
     PolygonMesh mesh;
 };
 
-Reference reference(const PolygonMesh& cage, int level)
+Reference reference(const SubdivisionCage& subdivisionCage, int level, BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly)
 {
-    auto refiner = loopRefiner(cage);
+    const PolygonMesh& cage = subdivisionCage.mesh;
+    auto refiner = loopRefiner(subdivisionCage, boundary);
     osd::Far::TopologyRefiner::UniformOptions uniform(level);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
@@ -93,15 +132,25 @@ Reference reference(const PolygonMesh& cage, int level)
     primvar.Limit(src, limit);
     Reference r;
     r.mesh.positions.resize(3, last.GetNumVertices());
-    for (int v = 0; v < last.GetNumVertices(); ++v) {
-        r.points.push_back(limit[static_cast<std::size_t>(v)].vec());
-        r.mesh.positions.col(v) = r.points.back();
-    }
+    std::vector<char> used(static_cast<std::size_t>(last.GetNumVertices()), 0);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
+        if (last.IsFaceHole(f)) continue; // no limit surface
         const auto fv = last.GetFaceVertices(f);
         r.mesh.addFace({fv[0], fv[1], fv[2]});
+        for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(fv[k])] = 1;
+    }
+    for (int v = 0; v < last.GetNumVertices(); ++v) {
+        r.mesh.positions.col(v) = limit[static_cast<std::size_t>(v)].vec();
+        if (used[static_cast<std::size_t>(v)]) r.points.push_back(limit[static_cast<std::size_t>(v)].vec());
     }
     return r;
+}
+
+Reference reference(const PolygonMesh& mesh, int level)
+{
+    SubdivisionCage cage;
+    cage.mesh = mesh;
+    return reference(cage, level);
 }
 
 /// The grid's distance from p to its nearest triangle within radius: first searched within a small
@@ -450,19 +499,167 @@ TEST_CASE("certified Loop tessellation: the bound holds both ways and the mesh i
         }
 }
 
-TEST_CASE("certified Loop tessellation: open cages keep the estimate and say so", "[subdivision][tessellation][loop]")
+namespace {
+
+/// A fan of six triangles around a raised centre, radius r (an open cage: one boundary loop, the
+/// centre regular).
+PolygonMesh fan(double r = 1)
 {
-    // A square of two triangles... of eight: a fan around a centre vertex, with a boundary.
-    PolygonMesh fan;
-    fan.positions.resize(3, 7);
-    fan.positions.col(0) = V3(0, 0, 0.5);
-    for (int k = 0; k < 6; ++k) fan.positions.col(k + 1) = V3(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0);
-    for (int k = 0; k < 6; ++k) fan.addFace({0, k + 1, (k + 1) % 6 + 1});
+    PolygonMesh m;
+    m.positions.resize(3, 7);
+    m.positions.col(0) = V3(0, 0, 0.5 * r);
+    for (int k = 0; k < 6; ++k) m.positions.col(k + 1) = r * V3(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0);
+    for (int k = 0; k < 6; ++k) m.addFace({0, k + 1, (k + 1) % 6 + 1});
+    return m;
+}
+
+/// An n x n grid of squares of side h, each cut into two triangles along the same diagonal, the
+/// points raised by a bump: corners (0, 0) and (n, n) have two faces, (n, 0) and (0, n) one (a
+/// corner under edge_and_corner).
+PolygonMesh grid(int n, double h)
+{
+    PolygonMesh m;
+    const int w = n + 1;
+    m.positions.resize(3, w * w);
+    for (int j = 0; j < w; ++j)
+        for (int i = 0; i < w; ++i) {
+            const double x = i - n / 2.0, y = j - n / 2.0;
+            m.positions.col(w * j + i) = h * V3(x, y, 0.6 * std::exp(-(x * x + y * y)) * (1 + 0.2 * x));
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int a = w * j + i;
+            m.addFace({a, a + 1, a + w + 1});
+            m.addFace({a, a + w + 1, a + w});
+        }
+    return m;
+}
+
+/// The number of weights below zero in OpenSubdiv's per-level stencils (each level from the one
+/// before, not factorised) of the cage's uniform refinement to `levels`, and the largest
+/// |sum - 1| of a stencil's weights.
+std::pair<long, double> negativeStencilWeights(const SubdivisionCage& cage, BoundaryInterpolation boundary, int levels)
+{
+    auto refiner = loopRefiner(cage, boundary);
+    refiner->RefineUniform(osd::Far::TopologyRefiner::UniformOptions(levels));
+    using StencilFactory = osd::Far::StencilTableFactoryReal<double>;
+    StencilFactory::Options o;
+    o.generateIntermediateLevels = true;
+    o.factorizeIntermediateLevels = false;
+    o.generateOffsets = true;
+    std::unique_ptr<const osd::Far::StencilTableReal<double>> table(StencilFactory::Create(*refiner, o));
+    REQUIRE(table);
+    long negative = 0;
+    double sumOff = 0;
+    for (int i = 0; i < table->GetNumStencils(); ++i) {
+        const auto st = table->GetStencil(i);
+        double sum = 0;
+        for (int k = 0; k < st.GetSize(); ++k) {
+            negative += st.GetWeights()[k] < 0 ? 1 : 0;
+            sum += st.GetWeights()[k];
+        }
+        sumOff = std::max(sumOff, std::abs(sum - 1));
+    }
+    return {negative, sumOff};
+}
+
+} // namespace
+
+TEST_CASE("certified Loop tessellation: boundaries, holes, creases and corners", "[subdivision][tessellation][loop]")
+{
+    struct Case {
+        std::string name;
+        SubdivisionCage cage;
+        BoundaryInterpolation boundary;
+        long boundaryLoops; // of the mesh
+        int maxTriangles;   // regression guard at 1e-2: about 1.1 x the count measured when written
+        int level = 7;      // of the reference (the small open cages: 6, as dense for their size)
+    };
+    std::vector<Case> cases;
+    {
+        SubdivisionCage c;
+        // Small cages: a boundary's cells are bounded to first order, so its triangles grow with its
+        // length over the tolerance (test time under ASan).
+        c.mesh = fan(0.5);
+        cases.push_back({"open fan, edge_only", c, BoundaryInterpolation::EdgeOnly, 1, 5770, 6});
+        c.mesh = grid(2, 0.5);
+        cases.push_back({"open grid, edge_only", c, BoundaryInterpolation::EdgeOnly, 1, 7620, 6});
+        cases.push_back({"open grid, edge_and_corner", c, BoundaryInterpolation::EdgeAndCorner, 1, 7620, 6});
+        // Boundary none: only the two faces of the middle square (no boundary vertex) have a limit surface.
+        c.mesh = grid(3, 1.0);
+        cases.push_back({"open 3 x 3 grid, none", c, BoundaryInterpolation::None, 1, 36});
+        // Octahedron vertices: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z.
+        c.mesh = readCage(kCages + "octahedron.obj").mesh;
+        SubdivisionCage holed = c;
+        holed.holes = {0};
+        cases.push_back({"octahedron with a hole", holed, BoundaryInterpolation::EdgeOnly, 1, 1650});
+        SubdivisionCage sharp = c;
+        sharp.creases = {{0, 2, 10}, {2, 1, 10}}; // half the equator, infinitely sharp, ending at two darts
+        sharp.corners = {{4, 10}};                                         // the top, an infinitely sharp corner
+        cases.push_back({"octahedron, sharp half equator and corner", sharp, BoundaryInterpolation::EdgeOnly, 0, 9550});
+        SubdivisionCage semi = c;
+        semi.creases = {{0, 2, 2}, {2, 1, 1.5}, {1, 3, 0.5}}; // integer and fractional, Chaikin
+        semi.corners = {{5, 0.7}};
+        semi.chaikin = true;
+        cases.push_back({"octahedron, semi-sharp, Chaikin", semi, BoundaryInterpolation::EdgeOnly, 0, 2100});
+    }
+    const double tol = 1e-2;
+    for (const Case& c : cases)
+        DYNAMIC_SECTION(c.name)
+        {
+            // Every refinement weight of these cages' rules is >= 0 (the hull bound's premise).
+            const auto [negative, sumOff] = negativeStencilWeights(c.cage, c.boundary, 4);
+            CHECK(negative == 0);
+            CHECK(sumOff < 1e-12);
+
+            const Reference ref = reference(c.cage, c.level, c.boundary);
+            const test::TriangleGrid grid(ref.mesh, 0.02);
+            const double slack = referenceError(reference(c.cage, c.level - 1, c.boundary), grid);
+            const SubdivisionSurface s(c.cage, SubdivisionScheme::Loop, c.boundary);
+            SubdivisionTessellationOptions o;
+            o.tolerance = tol;
+            SubdivisionTessellationReport report;
+            const PolygonMesh mesh = s.tessellate(o, &report);
+            const Deviation d = deviation(mesh, ref, grid, 4 * tol);
+            int certified = 0;
+            for (char f : report.faceCertified) certified += f;
+            const auto t = test::topology(mesh);
+            std::printf("%-36s tol %.0e: %7d triangles, %6lld leaves, %5lld cells (%lld irregular, depth %d), bound %.3g, "
+                        "measured surface->mesh %.3g, mesh->surface %.3g, vertices off %.2g (reference slack %.2g), "
+                        "faces certified %d of %zu, boundary edges %ld, euler %ld\n",
+                        c.name.c_str(), tol, mesh.faceCount(), report.leaves, report.cells, report.irregularCells, report.depth,
+                        report.errorBound, d.surfaceToMesh, d.meshToSurface, d.vertexOff, slack, certified, report.faceCertified.size(),
+                        t.boundaryEdges, t.euler());
+            CHECK(slack < 1e-3);
+            CHECK(report.certifiedPath);
+            CHECK(certified == c.cage.mesh.faceCount());
+            CHECK(report.errorBound <= tol);
+            CHECK(report.errorBound > 0);
+            CHECK(d.surfaceToMesh <= report.errorBound);
+            CHECK(d.meshToSurface <= report.errorBound + slack);
+            CHECK(d.vertexOff <= slack);
+            // Conforming: no edge of three faces, no vertex inside another edge; boundary edges only
+            // where the surface has a boundary (Euler characteristic 2 - loops for these spheres and discs).
+            CHECK(t.nonManifoldEdges == 0);
+            CHECK(tJunctions(mesh) == 0);
+            CHECK((t.boundaryEdges == 0) == (c.boundaryLoops == 0));
+            CHECK(t.euler() == 2 - c.boundaryLoops);
+            CHECK(t.vertices == mesh.vertexCount());
+            for (int v = 0; v < mesh.vertexCount(); ++v) CHECK(std::abs(mesh.normals.col(v).norm() - 1) < 1e-9);
+            CHECK(mesh.faceCount() <= c.maxTriangles);
+        }
+}
+
+TEST_CASE("Loop tessellation with certified = false keeps the estimate and says so", "[subdivision][tessellation][loop]")
+{
+    // Formerly: open cages kept the estimate. Every Loop cage is certified now; the estimate path
+    // stays reachable by asking for it.
     SubdivisionCage cage;
-    cage.mesh = fan;
+    cage.mesh = fan();
     const SubdivisionSurface s(cage, SubdivisionScheme::Loop);
     SubdivisionTessellationOptions o;
     o.tolerance = 1e-2;
+    o.certified = false;
     SubdivisionTessellationReport report;
     const PolygonMesh m = s.tessellate(o, &report);
     CHECK_FALSE(report.certifiedPath);

@@ -5,7 +5,11 @@
 // bound is within the tolerance; an irregular cell (a face next to an extraordinary vertex on the
 // finest level) is bounded by the convex hull of its 1-ring; one still above the tolerance at
 // OpenSubdiv's level 10 gets a local cage (its level-10 1-ring) cut into cells the same way, nested
-// down to depth 30 ("Deeper than level 10"). Vertices are exact limit points under
+// down to depth 30 ("Deeper than level 10"). A cell next to a boundary or an infinitely sharp
+// crease (a LOOP patch with boundary bits: phantom points, not the limit) is a feature cell, bounded
+// by its 1-ring hull and, above the tolerance, split through its own local cage refined once
+// (splitFeature). Creases, corners, boundary rule and creasing method are the cage's; holes (and
+// boundary none's faces) stay in the cage without a frame. Vertices are exact limit points under
 // canonical keys (cage vertex, cage edge + dyadic parameter, face + dyadic (u, v)); each leaf is cut
 // as the polygon of its corners and of the registered points inside its sides (ear clipping in
 // (u, v)), so the mesh is conforming and closed cages give closed meshes.
@@ -418,7 +422,82 @@ struct LoopRegular {
 struct TriCage {
     std::vector<Vertex3> points;
     std::vector<int> faceVerts;
+    std::vector<int> creasePairs;     // the sharp edges, vertex pairs
+    std::vector<float> creaseWeights; // their sharpness
+    std::vector<int> cornerVerts;     // the sharp vertices
+    std::vector<float> cornerWeights; // their sharpness
 };
+
+/// The descriptor of a TriCage for OpenSubdiv (pointing into it).
+osd::Far::TopologyDescriptor describe(const TriCage& m, const std::vector<int>& counts)
+{
+    osd::Far::TopologyDescriptor desc;
+    desc.numVertices = static_cast<int>(m.points.size());
+    desc.numFaces = static_cast<int>(m.faceVerts.size() / 3);
+    desc.numVertsPerFace = counts.data();
+    desc.vertIndicesPerFace = m.faceVerts.data();
+    desc.numCreases = static_cast<int>(m.creaseWeights.size());
+    desc.creaseVertexIndexPairs = m.creasePairs.data();
+    desc.creaseWeights = m.creaseWeights.data();
+    desc.numCorners = static_cast<int>(m.cornerWeights.size());
+    desc.cornerVertexIndices = m.cornerVerts.data();
+    desc.cornerWeights = m.cornerWeights.data();
+    return desc;
+}
+
+/// The local cage of a cell (docs/subdivision.md, "Deeper than level 10", "Loop cages"): every face
+/// of `level` at one of the cell's corners (its 1-ring), the cell first with its corners in the
+/// cell's order (counter-clockwise, as the level's faces), with the level's points (`points`,
+/// indexed by the level's vertices) and its edge and vertex sharpness.
+TriCage localCage(const osd::Far::TopologyLevel& level, const Vertex3* points, const std::array<Index, 3>& corner)
+{
+    std::vector<Index> ringFaces;
+    for (Index v : corner)
+        for (Index f : level.GetVertexFaces(v)) ringFaces.push_back(f);
+    std::sort(ringFaces.begin(), ringFaces.end());
+    ringFaces.erase(std::unique(ringFaces.begin(), ringFaces.end()), ringFaces.end());
+    TriCage out;
+    std::unordered_map<Index, int> localOf;
+    auto localVertex = [&](Index v) {
+        const auto [it, added] = localOf.emplace(v, static_cast<int>(out.points.size()));
+        if (added) {
+            out.points.push_back(points[static_cast<std::size_t>(v)]);
+            const float sharp = level.GetVertexSharpness(v);
+            if (sharp > 0) {
+                out.cornerVerts.push_back(it->second);
+                out.cornerWeights.push_back(sharp);
+            }
+        }
+        return it->second;
+    };
+    for (Index v : corner) out.faceVerts.push_back(localVertex(v));
+    bool own = false;
+    std::unordered_map<Index, char> edgeSeen;
+    for (Index f : ringFaces) {
+        const auto fv = level.GetFaceVertices(f);
+        int shared = 0, first = -1;
+        for (int k = 0; k < 3; ++k) {
+            shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
+            if (fv[k] == corner[0]) first = k;
+        }
+        if (shared == 3) { // the cell itself, already first: the same turning
+            if (first < 0 || fv[(first + 1) % 3] != corner[1])
+                throw Error("subdivision tessellation: a Loop cell turns against its face (internal)");
+            own = true;
+        } else {
+            for (int k = 0; k < 3; ++k) out.faceVerts.push_back(localVertex(fv[k]));
+        }
+        const auto fe = level.GetFaceEdges(f);
+        for (int k = 0; k < 3; ++k) {
+            const float sharp = level.GetEdgeSharpness(fe[k]);
+            if (!(sharp > 0) || !edgeSeen.emplace(fe[k], 1).second) continue;
+            out.creasePairs.insert(out.creasePairs.end(), {localOf.at(fv[k]), localOf.at(fv[(k + 1) % 3])});
+            out.creaseWeights.push_back(sharp);
+        }
+    }
+    if (!own) throw Error("subdivision tessellation: a Loop cell's face is not around its corners (internal)");
+    return out;
+}
 
 /// Where a face of a TriCage lies on the base: the base face and the base (u, v) of the face's
 /// corners 0, 1, 2 (face < 0: a face whose cells are not wanted, the ring of a local cage).
@@ -450,6 +529,130 @@ struct LoopSearch {
     std::vector<LoopRegular> regular;
 };
 
+int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame>& frames);
+
+/// A feature cell (docs/subdivision.md, "Loop cages", "Boundaries, holes, creases and corners"):
+/// face 0 of its local cage m, at base face and corners `cell`. Refined once uniformly: its
+/// corners' limit points (OpenSubdiv's limit masks on the refined level) and the 1-ring hull bound
+/// (every point of m); within the tolerance (or at the finest allowed size) it is an irregular
+/// leaf, else its four children are cut into cells by collectLoopCells on the refined local cage's
+/// faces around the children (their 1-rings).
+void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
+{
+    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+    const std::vector<int> counts(m.faceVerts.size() / 3, 3);
+    const osd::Far::TopologyDescriptor desc = describe(m, counts);
+    clearOsdError();
+    std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, s.sdc)));
+    takeOsdError();
+    if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build a Loop local cage");
+    osd::Far::TopologyRefiner::UniformOptions uniform(1);
+    uniform.fullTopologyInLastLevel = true;
+    refiner->RefineUniform(uniform);
+    const osd::Far::TopologyLevel& l0 = refiner->GetLevel(0);
+    const osd::Far::TopologyLevel& l1 = refiner->GetLevel(1);
+    const auto n1 = static_cast<std::size_t>(l1.GetNumVertices());
+    std::vector<Vertex3> fine(n1), limit(n1), tan1(n1), tan2(n1);
+    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+    clearOsdError();
+    const Vertex3* src = m.points.data();
+    Vertex3* dst = fine.data();
+    primvar.Interpolate(1, src, dst);
+    primvar.Limit(fine, limit, tan1, tan2);
+    takeOsdError();
+
+    const auto fv = l0.GetFaceVertices(0);
+    const auto fe = l0.GetFaceEdges(0);
+    LoopIrregular leaf;
+    leaf.face = cell.face;
+    leaf.c = cell.c;
+    double bound = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < 3; ++k) {
+        const auto v = static_cast<std::size_t>(l0.GetVertexChildVertex(fv[static_cast<int>(k)]));
+        leaf.corner[k] = limit[v].vec();
+        const Eigen::Vector3d n = tan1[v].vec().cross(tan2[v].vec());
+        leaf.normal[k] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+        double far = 0;
+        for (const Vertex3& w : m.points) far = std::max(far, (w.vec() - leaf.corner[k]).norm());
+        bound = std::min(bound, far);
+    }
+    leaf.bound = bound;
+    const Int size = std::max(std::abs(cell.c[1][0] - cell.c[0][0]), std::abs(cell.c[1][1] - cell.c[0][1]));
+    int level = 0;
+    while ((kR >> level) > size) ++level;
+    // Split while the children leave room for 10 levels of OpenSubdiv and 10 halvings of their
+    // regular cells in the 2^40 resolution of the keys; below maxDepth 10, no deeper than maxDepth.
+    const int finest = s.deeper ? 40 - 21 : s.maxDepth;
+    if (bound <= s.tol || level >= finest) {
+        s.irregular.push_back(leaf);
+        return;
+    }
+
+    // The children's 1-rings on the refined level: every level-1 face at a vertex of face 0's children.
+    auto mid = [](const UV& a, const UV& b) { return UV{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2}; };
+    std::unordered_map<Index, UV> uvOf;
+    for (int k = 0; k < 3; ++k) {
+        uvOf[l0.GetVertexChildVertex(fv[k])] = cell.c[static_cast<std::size_t>(k)];
+        uvOf[l0.GetEdgeChildVertex(fe[k])] = mid(cell.c[static_cast<std::size_t>(k)], cell.c[static_cast<std::size_t>((k + 1) % 3)]);
+    }
+    std::vector<Index> ringFaces;
+    for (const auto& [v, uv] : uvOf)
+        for (Index f : l1.GetVertexFaces(v)) ringFaces.push_back(f);
+    std::sort(ringFaces.begin(), ringFaces.end());
+    ringFaces.erase(std::unique(ringFaces.begin(), ringFaces.end()), ringFaces.end());
+    const auto children = l0.GetFaceChildFaces(0);
+    TriCage next;
+    std::vector<TriFrame> frames;
+    std::unordered_map<Index, int> localOf;
+    auto localVertex = [&](Index v) {
+        const auto [it, added] = localOf.emplace(v, static_cast<int>(next.points.size()));
+        if (added) {
+            next.points.push_back(fine[static_cast<std::size_t>(v)]);
+            const float sharp = l1.GetVertexSharpness(v);
+            if (sharp > 0) {
+                next.cornerVerts.push_back(it->second);
+                next.cornerWeights.push_back(sharp);
+            }
+        }
+        return it->second;
+    };
+    auto onFeature = [&](Index f) {
+        for (Index v : l1.GetFaceVertices(f)) {
+            if (l1.IsVertexBoundary(v) || l1.GetVertexSharpness(v) >= osd::Sdc::Crease::SHARPNESS_INFINITE) return true;
+            for (Index e : l1.GetVertexEdges(v))
+                if (l1.GetEdgeSharpness(e) >= osd::Sdc::Crease::SHARPNESS_INFINITE) return true;
+        }
+        return false;
+    };
+    bool wanted = false;
+    std::unordered_map<Index, char> edgeSeen;
+    for (Index f : ringFaces) {
+        const auto v = l1.GetFaceVertices(f);
+        const auto e = l1.GetFaceEdges(f);
+        for (int k = 0; k < 3; ++k) next.faceVerts.push_back(localVertex(v[k]));
+        for (int k = 0; k < 3; ++k) {
+            const float sharp = l1.GetEdgeSharpness(e[k]);
+            if (!(sharp > 0) || !edgeSeen.emplace(e[k], 1).second) continue;
+            next.creasePairs.insert(next.creasePairs.end(), {localOf.at(v[k]), localOf.at(v[(k + 1) % 3])});
+            next.creaseWeights.push_back(sharp);
+        }
+        TriFrame frame;
+        if (std::find(children.begin(), children.end(), f) != children.end() && !onFeature(f))
+            frame = {cell.face, {uvOf.at(v[0]), uvOf.at(v[1]), uvOf.at(v[2])}};
+        wanted = wanted || frame.face >= 0;
+        frames.push_back(frame);
+    }
+    // A child with a corner on a boundary or an infinitely sharp feature is never a regular patch
+    // without boundary bits: a feature cell again, split here without a patch table. The others are
+    // cut into cells by OpenSubdiv (regular ones become Bézier cells).
+    for (Index ch : children)
+        if (onFeature(ch)) {
+            const auto v = l1.GetFaceVertices(ch);
+            splitFeature(s, localCage(l1, fine.data(), {v[0], v[1], v[2]}), {cell.face, {uvOf.at(v[0]), uvOf.at(v[1]), uvOf.at(v[2])}});
+        }
+    if (wanted) collectLoopCells(s, next, frames);
+}
+
 /// The cells of the faces of m that have a frame: OpenSubdiv's adaptive Loop refinement and patch
 /// table at isolation levels 1, 2, ... until every irregular cell's hull bound is at most the
 /// tolerance or maxDepth is reached. There, with `deeper`, an irregular cell still above the
@@ -465,18 +668,27 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
         std::vector<LoopIrregular> irregular;
         std::vector<LoopRegular> regular;
         std::vector<std::array<Index, 3>> irregularCorners; // the level-d vertex at each corner
-        osd::Far::TopologyDescriptor desc;
-        desc.numVertices = static_cast<int>(m.points.size());
-        desc.numFaces = faces;
-        desc.numVertsPerFace = counts.data();
-        desc.vertIndicesPerFace = m.faceVerts.data();
+        struct Feature {
+            int face;
+            std::array<UV, 3> c;
+            std::array<Index, 3> corner; // its level-d vertices
+            int d;
+        };
+        std::vector<Feature> features;
+        const osd::Far::TopologyDescriptor desc = describe(m, counts);
         clearOsdError();
         std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, s.sdc)));
         takeOsdError();
         if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop topology");
-        refiner->RefineAdaptive(osd::Far::TopologyRefiner::AdaptiveOptions(depth));
+        // Infinitely sharp creases as boundaries: their cells are regular patches with a boundary
+        // mask (feature cells, split by splitFeature where needed) rather than isolated to the
+        // finest level all along the crease.
+        osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
+        adaptive.useInfSharpPatch = true;
+        refiner->RefineAdaptive(adaptive);
         osd::Far::PatchTableFactory::Options po(static_cast<unsigned>(depth));
         po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
+        po.useInfSharpPatch = true; // as the refinement: an infinitely sharp edge bounds a patch (its mask)
         clearOsdError();
         std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
         takeOsdError();
@@ -509,6 +721,14 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
                 const std::array<UV, 3> baseCorners{toBase(frame, corners[0]), toBase(frame, corners[1]), toBase(frame, corners[2])};
                 if (type == osd::Far::PatchDescriptor::LOOP && param.GetBoundary() == 0) {
                     regular.push_back({frame.face, baseCorners, bezierOfLoop(all, cvs)});
+                    continue;
+                }
+                if (type == osd::Far::PatchDescriptor::LOOP) {
+                    // A regular patch with a boundary mask (phantom points by extrapolation, negative
+                    // weights): not the limit, so a feature cell, split by its own local cages
+                    // (splitFeature) once the depth here is final.
+                    const int d = param.GetDepth();
+                    features.push_back({frame.face, baseCorners, descend(*refiner, m.faceVerts, param.GetFaceId(), corners, d), d});
                     continue;
                 }
                 if (type != osd::Far::PatchDescriptor::TRIANGLES)
@@ -568,44 +788,14 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
                 s.irregular.push_back(cell);
                 continue;
             }
-            // The local cage: every face of level `depth` at a corner of the cell (its 1-ring), the
-            // cell first with its corners in the cell's order (counter-clockwise, as the level's faces).
             const osd::Far::TopologyLevel& level = refiner->GetLevel(depth);
-            const std::array<Index, 3>& corner = irregularCorners[i];
-            std::vector<Index> ringFaces;
-            for (Index v : corner)
-                for (Index f : level.GetVertexFaces(v)) ringFaces.push_back(f);
-            std::sort(ringFaces.begin(), ringFaces.end());
-            ringFaces.erase(std::unique(ringFaces.begin(), ringFaces.end()), ringFaces.end());
-            TriCage local;
-            std::unordered_map<Index, int> localOf;
-            auto localVertex = [&](Index v) {
-                const auto [it, added] = localOf.emplace(v, static_cast<int>(local.points.size()));
-                if (added) local.points.push_back(all[offset[static_cast<std::size_t>(depth)] + static_cast<std::size_t>(v)]);
-                return it->second;
-            };
-            for (Index v : corner) local.faceVerts.push_back(localVertex(v));
-            bool own = false;
-            for (Index f : ringFaces) {
-                const auto fv = level.GetFaceVertices(f);
-                int shared = 0, first = -1;
-                for (int k = 0; k < 3; ++k) {
-                    shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
-                    if (fv[k] == corner[0]) first = k;
-                }
-                if (shared == 3) { // the cell itself, already first: the same turning
-                    if (first < 0 || fv[(first + 1) % 3] != corner[1])
-                        throw Error("subdivision tessellation: a Loop cell turns against its face (internal)");
-                    own = true;
-                    continue;
-                }
-                for (int k = 0; k < 3; ++k) local.faceVerts.push_back(localVertex(fv[k]));
-            }
-            if (!own) throw Error("subdivision tessellation: a Loop cell's face is not around its corners (internal)");
+            const TriCage local = localCage(level, all.data() + offset[static_cast<std::size_t>(depth)], irregularCorners[i]);
             std::vector<TriFrame> localFrames(local.faceVerts.size() / 3);
             localFrames[0] = {cell.face, cell.c};
             collectLoopCells(s, local, localFrames);
         }
+        for (const Feature& f : features)
+            splitFeature(s, localCage(refiner->GetLevel(f.d), all.data() + offset[static_cast<std::size_t>(f.d)], f.corner), {f.face, f.c});
         return depth;
     }
 }
@@ -656,13 +846,30 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
         for (int k = 0; k < 3; ++k) cagePoints[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
 
     LoopSearch search;
-    search.sdc.SetVtxBoundaryInterpolation(osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    // The cage's own rules (boundary none: the faces without a limit surface are left out below,
+    // and the rest refine as under edge_only, docs/subdivision.md "Loop cages").
+    search.sdc.SetVtxBoundaryInterpolation(boundary() == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                                                                            : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    search.sdc.SetCreasingMethod(cage_.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
     search.tol = tol;
     search.maxDepth = options.maxDepth;
     search.deeper = options.maxDepth == kOsdMaxDepth;
-    const TriCage base{cagePoints, mesh.faceVertices};
+    TriCage base{cagePoints, mesh.faceVertices, {}, {}, {}, {}};
+    for (const EdgeCrease& c : cage_.creases) {
+        if (!(c.sharpness > 0)) continue;
+        base.creasePairs.insert(base.creasePairs.end(), {c.v0, c.v1});
+        base.creaseWeights.push_back(static_cast<float>(c.sharpness));
+    }
+    for (const VertexCorner& c : cage_.corners) {
+        if (!(c.sharpness > 0)) continue;
+        base.cornerVerts.push_back(c.vertex);
+        base.cornerWeights.push_back(static_cast<float>(c.sharpness));
+    }
+    // Holes, and under boundary none the faces touching the boundary, have no limit surface: they
+    // stay in the cage (their points shape their neighbours) without a frame.
     std::vector<TriFrame> frames(static_cast<std::size_t>(faces));
-    for (int f = 0; f < faces; ++f) frames[static_cast<std::size_t>(f)] = {f, {UV{0, 0}, UV{kR, 0}, UV{0, kR}}};
+    for (int f = 0; f < faces; ++f)
+        if (hasLimitSurface(f)) frames[static_cast<std::size_t>(f)] = {f, {UV{0, 0}, UV{kR, 0}, UV{0, kR}}};
     int depth = collectLoopCells(search, base, frames);
     const std::vector<LoopIrregular>& irregular = search.irregular;
     const std::vector<LoopRegular>& regular = search.regular;

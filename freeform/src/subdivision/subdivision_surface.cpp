@@ -502,12 +502,9 @@ PolygonMesh SubdivisionSurface::tessellate(const SubdivisionTessellationOptions&
     if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Catmark && t.boundary != BoundaryInterpolation::None &&
         cage_.holes.empty() && !cage_.smoothTriangles && !smoothCorner)
         return tessellateCertified(options, report);
-    // Loop cages: closed (no boundary edge), no holes, no sharpness (certified_tessellation_loop.cpp).
-    bool loopCertified = t.scheme == SubdivisionScheme::Loop && cage_.holes.empty();
-    for (std::size_t v = 0; v < t.boundaryVertex.size(); ++v) loopCertified = loopCertified && !t.boundaryVertex[v];
-    for (const EdgeCrease& c : cage_.creases) loopCertified = loopCertified && !(c.sharpness > 0);
-    for (const VertexCorner& c : cage_.corners) loopCertified = loopCertified && !(c.sharpness > 0);
-    if (options.tolerance > 0 && options.certified && loopCertified) return tessellateCertifiedLoop(options, report);
+    // Loop cages: every cage, with boundaries (any interpolation), holes, creases and corners
+    // (certified_tessellation_loop.cpp; docs/subdivision.md, "Loop cages").
+    if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Loop) return tessellateCertifiedLoop(options, report);
     const PolygonMesh& cageMesh = cage_.mesh;
     const int faces = faceCount();
     auto patchOf = [&](int f) { return patchPoints_.data() + 3 * t.patchOffset[static_cast<std::size_t>(f)]; };
