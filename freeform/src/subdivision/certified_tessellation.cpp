@@ -62,6 +62,8 @@ struct QuadBase {
     std::vector<Point3> positions;
     std::vector<int> creasePairs, cornerIdx;
     std::vector<float> creaseW, cornerW;
+    std::vector<int> holes;  // faces without a limit surface (the cage's holes, boundary `none`'s faces)
+    std::vector<char> taint; // per vertex (or empty): a boundary vertex of one face under edge_only
     int faces() const { return static_cast<int>(faceVerts.size() / 4); }
 };
 
@@ -69,7 +71,9 @@ osd::Sdc::Options sdcOptions(const SubdivisionCage& cage, BoundaryInterpolation 
 {
     osd::Sdc::Options sdc;
     sdc.SetCreasingMethod(cage.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
-    sdc.SetTriangleSubdivision(osd::Sdc::Options::TRI_SUB_CATMARK);
+    // The triangle rule acts only where a face is a triangle: in the one refinement that makes the
+    // quad base (below); every later level is quads.
+    sdc.SetTriangleSubdivision(cage.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
     sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
                                     : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                                    : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
@@ -79,7 +83,7 @@ osd::Sdc::Options sdcOptions(const SubdivisionCage& cage, BoundaryInterpolation 
 std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::vector<int>& counts, const std::vector<int>& indices,
                                                        const std::vector<int>& creasePairs, const std::vector<float>& creaseW,
                                                        const std::vector<int>& cornerIdx, const std::vector<float>& cornerW,
-                                                       const osd::Sdc::Options& sdc)
+                                                       const std::vector<int>& holes, const osd::Sdc::Options& sdc)
 {
     osd::Far::TopologyDescriptor desc;
     desc.numVertices = vertices;
@@ -92,6 +96,8 @@ std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::
     desc.numCorners = static_cast<int>(cornerW.size());
     desc.cornerVertexIndices = cornerIdx.data();
     desc.cornerWeights = cornerW.data();
+    desc.numHoles = static_cast<int>(holes.size());
+    desc.holeIndices = holes.data();
     using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
     clearOsdError();
     std::unique_ptr<osd::Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
@@ -128,12 +134,13 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
         b.creaseW = std::move(creaseW);
         b.cornerIdx = std::move(cornerIdx);
         b.cornerW = std::move(cornerW);
+        b.holes = cage.holes;
         return b;
     }
     // One uniform level: every face becomes quads; sharpness as OpenSubdiv carries it to level 1.
     std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()));
     for (int f = 0; f < mesh.faceCount(); ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
-    auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, sdc);
+    auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, cage.holes, sdc);
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
@@ -148,6 +155,8 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
         const auto fv = level.GetFaceVertices(f);
         for (int k = 0; k < fv.size(); ++k) b.faceVerts.push_back(fv[k]);
         b.cageFace.push_back(level.GetFaceParentFace(f));
+        // A hole's children are holes (so are boundary `none`'s faces: OpenSubdiv tags them so).
+        if (level.IsFaceHole(f)) b.holes.push_back(f);
     }
     for (int e = 0; e < level.GetNumEdges(); ++e) {
         const float s = level.GetEdgeSharpness(e);
@@ -455,7 +464,7 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
         irregular.clear();
         irregularCorners.clear();
         regular.clear();
-        auto refiner = makeRefiner(m.vertices, counts, m.faceVerts, m.creasePairs, m.creaseW, m.cornerIdx, m.cornerW, s.sdc);
+        auto refiner = makeRefiner(m.vertices, counts, m.faceVerts, m.creasePairs, m.creaseW, m.cornerIdx, m.cornerW, m.holes, s.sdc);
         osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
         adaptive.SetSecondaryLevel(depth);
         adaptive.useInfSharpPatch = true;
@@ -611,6 +620,7 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
                 int shared = 0;
                 for (int k = 0; k < 4; ++k) shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
                 if (shared == 4) continue; // the cell itself, already first
+                if (level.IsFaceHole(f)) local.holes.push_back(local.faces());
                 for (int k = 0; k < 4; ++k) local.faceVerts.push_back(localVertex(fv[k]));
             }
             std::sort(edges.begin(), edges.end());
@@ -833,7 +843,9 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         report->faceBounds = faceBound;
         report->faceCertified.assign(static_cast<std::size_t>(faceCount()), 0);
         for (int f = 0; f < faceCount(); ++f)
-            report->faceCertified[static_cast<std::size_t>(f)] = hasLimitSurface(f) && faceBound[static_cast<std::size_t>(f)] <= tol;
+            // A face without a limit surface (a hole, a boundary face under `none`) has nothing to
+            // approximate and no triangle: certified (vacuously), with bound 0.
+            report->faceCertified[static_cast<std::size_t>(f)] = !hasLimitSurface(f) || faceBound[static_cast<std::size_t>(f)] <= tol;
     }
     return out;
 }

@@ -1,0 +1,392 @@
+// Certified tessellation of Catmull-Clark cages with the features that took the estimate path
+// before (docs/subdivision.md, "Certified tessellation", "What is certified and what not"): holes,
+// boundary interpolation `none`, `smoothtriangles`, and `edge_only` with a boundary vertex of one
+// face. Checked as in test_subdivision_tessellation.cpp against an independent evaluation: OpenSubdiv
+// Far's *uniform* refinement of the whole cage (with the same holes, boundary rule and triangle
+// rule) to level 7 and its limit masks, which the library's adaptive path does not use.
+//   - surface to mesh: every reference limit point of a face with a limit surface lies within the
+//     bound of the mesh (exact limit points: no slack);
+//   - mesh to surface: 10 points per triangle lie within the bound (plus the reference's own chord
+//     error, measured against level 6) of the reference's triangles;
+//   - every face is certified, the bound is within the tolerance;
+//   - conforming: no edge with more than two triangles, no vertex inside another triangle's edge,
+//     no two vertices at one place, the Euler characteristic of the expected surface.
+// Also: every first-level stencil weight under `smoothtriangles` is non-negative (Far's
+// StencilTableFactory), which the hull bound's convexity argument uses.
+
+#include <catch2/catch.hpp>
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <unordered_map>
+
+#include "freeform/io/geometry_data.h"
+#include "freeform/subdivision/subdivision_surface.h"
+#include "support/tessellation_checks.h"
+
+using namespace freeform;
+using freeform::test::V3;
+
+namespace {
+
+namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+const std::string kCages = std::string(FREEFORM_SOURCE_DIR) + "/data/cages/";
+
+struct P3 {
+    double p[3] = {0, 0, 0};
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const P3& s, double w)
+    {
+        for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
+    }
+};
+
+using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
+
+/// OpenSubdiv's own topology of the cage, with every tag the library passes (holes, boundary,
+/// triangle rule), built here independently of the library.
+std::unique_ptr<osd::Far::TopologyRefiner> refinerOf(const SubdivisionCage& cage, BoundaryInterpolation boundary)
+{
+    static thread_local std::vector<int> counts, pairs, corners;
+    static thread_local std::vector<float> creaseW, cornerW;
+    counts.clear(), pairs.clear(), corners.clear(), creaseW.clear(), cornerW.clear();
+    for (int f = 0; f < cage.mesh.faceCount(); ++f) counts.push_back(cage.mesh.faceSize(f));
+    for (const auto& c : cage.creases) {
+        pairs.insert(pairs.end(), {c.v0, c.v1});
+        creaseW.push_back(static_cast<float>(c.sharpness));
+    }
+    for (const auto& c : cage.corners) {
+        corners.push_back(c.vertex);
+        cornerW.push_back(static_cast<float>(c.sharpness));
+    }
+    osd::Far::TopologyDescriptor desc;
+    desc.numVertices = cage.mesh.vertexCount();
+    desc.numFaces = static_cast<int>(counts.size());
+    desc.numVertsPerFace = counts.data();
+    desc.vertIndicesPerFace = cage.mesh.faceVertices.data();
+    desc.numCreases = static_cast<int>(creaseW.size());
+    desc.creaseVertexIndexPairs = pairs.data();
+    desc.creaseWeights = creaseW.data();
+    desc.numCorners = static_cast<int>(cornerW.size());
+    desc.cornerVertexIndices = corners.data();
+    desc.cornerWeights = cornerW.data();
+    desc.numHoles = static_cast<int>(cage.holes.size());
+    desc.holeIndices = cage.holes.data();
+    osd::Sdc::Options sdc;
+    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                    : boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
+                                                                                     : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetTriangleSubdivision(cage.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
+    std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
+    REQUIRE(refiner);
+    return refiner;
+}
+
+/// The reference: exact limit points of the uniform level-N refinement on the faces that have a
+/// limit surface (not holes), and those points joined as triangles.
+struct Reference {
+    std::vector<V3> points;
+    PolygonMesh mesh;
+};
+
+Reference reference(const SubdivisionCage& cage, BoundaryInterpolation boundary, int level)
+{
+    auto refiner = refinerOf(cage, boundary);
+    osd::Far::TopologyRefiner::UniformOptions uniform(level);
+    uniform.fullTopologyInLastLevel = true;
+    refiner->RefineUniform(uniform);
+    std::vector<P3> buffer(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+    for (int v = 0; v < cage.mesh.vertexCount(); ++v)
+        for (int k = 0; k < 3; ++k) buffer[static_cast<std::size_t>(v)].p[k] = cage.mesh.positions(k, v);
+    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+    P3* src = buffer.data();
+    for (int l = 1; l <= level; ++l) {
+        P3* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
+        primvar.Interpolate(l, src, dst);
+        src = dst;
+    }
+    const osd::Far::TopologyLevel& last = refiner->GetLevel(level);
+    std::vector<P3> limit(static_cast<std::size_t>(last.GetNumVertices()));
+    primvar.Limit(src, limit);
+    Reference r;
+    r.mesh.positions.resize(3, last.GetNumVertices());
+    std::vector<char> used(static_cast<std::size_t>(last.GetNumVertices()), 0);
+    for (int v = 0; v < last.GetNumVertices(); ++v)
+        r.mesh.positions.col(v) = V3(limit[static_cast<std::size_t>(v)].p[0], limit[static_cast<std::size_t>(v)].p[1],
+                                     limit[static_cast<std::size_t>(v)].p[2]);
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        if (last.IsFaceHole(f)) continue;
+        const auto fv = last.GetFaceVertices(f);
+        r.mesh.addFace({fv[0], fv[1], fv[2]});
+        r.mesh.addFace({fv[0], fv[2], fv[3]});
+        for (int k = 0; k < 4; ++k) used[static_cast<std::size_t>(fv[k])] = 1;
+    }
+    for (int v = 0; v < last.GetNumVertices(); ++v)
+        if (used[static_cast<std::size_t>(v)]) r.points.push_back(r.mesh.positions.col(v));
+    return r;
+}
+
+struct Deviation {
+    double surfaceToMesh = 0, meshToSurface = 0, vertexOff = 0;
+};
+
+Deviation deviation(const PolygonMesh& mesh, const Reference& ref, double radius)
+{
+    Deviation d;
+    const test::TriangleGrid meshGrid(mesh, 0.02);
+    for (const V3& p : ref.points) d.surfaceToMesh = std::max(d.surfaceToMesh, meshGrid.distance(p, radius));
+    const test::TriangleGrid refGrid(ref.mesh, 0.02);
+    for (int v = 0; v < mesh.vertexCount(); ++v) d.vertexOff = std::max(d.vertexOff, refGrid.distance(mesh.positions.col(v), radius));
+    for (int f = 0; f < mesh.faceCount(); ++f) {
+        const int* t = mesh.face(f);
+        const V3 a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
+        for (int i = 0; i <= 4; ++i)
+            for (int j = 0; i + j <= 4; ++j) {
+                if (i == 4 || j == 4 || i + j == 0) continue; // the corners are vertices
+                const double x = i / 4.0, y = j / 4.0;
+                d.meshToSurface = std::max(d.meshToSurface, refGrid.distance(x * a + y * b + (1 - x - y) * c, radius));
+            }
+    }
+    return d;
+}
+
+/// The reference triangles' own distance to the limit surface, bounded by the level-6 triangles'
+/// centroids against the level-7 triangles.
+double referenceError(const Reference& coarse, const Reference& fine)
+{
+    const test::TriangleGrid grid(fine.mesh, 0.02);
+    double worst = 0;
+    for (int f = 0; f < coarse.mesh.faceCount(); ++f) {
+        const int* t = coarse.mesh.face(f);
+        const V3 c = (V3(coarse.mesh.positions.col(t[0])) + V3(coarse.mesh.positions.col(t[1])) + V3(coarse.mesh.positions.col(t[2]))) / 3;
+        worst = std::max(worst, grid.distance(c, 0.01));
+    }
+    return worst;
+}
+
+/// Vertices lying inside another triangle's edge (brute force over the edges, vertices bucketed).
+long tJunctions(const PolygonMesh& mesh)
+{
+    std::map<std::pair<int, int>, int> edges;
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % 3];
+            edges[{std::min(a, b), std::max(a, b)}]++;
+        }
+    std::unordered_map<long, std::vector<int>> buckets;
+    double cell = 1e-3; // the bucket size: the longest edge, so every vertex on an edge is in a bucket next to its midpoint
+    for (const auto& [e, n] : edges) cell = std::max(cell, (V3(mesh.positions.col(e.second)) - V3(mesh.positions.col(e.first))).norm());
+    auto key = [&](const V3& p) {
+        return (static_cast<long>(std::floor(p.x() / cell)) + 512) * 1048576 + (static_cast<long>(std::floor(p.y() / cell)) + 512) * 1024 +
+               (static_cast<long>(std::floor(p.z() / cell)) + 512);
+    };
+    for (int v = 0; v < mesh.vertexCount(); ++v) buckets[key(mesh.positions.col(v))].push_back(v);
+    long found = 0;
+    for (const auto& [e, n] : edges) {
+        const V3 a = mesh.positions.col(e.first), b = mesh.positions.col(e.second);
+        const double len = (b - a).norm();
+        const V3 m = (a + b) / 2;
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = buckets.find(key(m + cell * V3(dx, dy, dz)));
+                    if (it == buckets.end()) continue;
+                    for (int v : it->second) {
+                        if (v == e.first || v == e.second) continue;
+                        const V3 p = mesh.positions.col(v);
+                        const double t = (p - a).dot(b - a) / (len * len);
+                        if (t <= 0 || t >= 1) continue;
+                        if ((a + t * (b - a) - p).norm() <= 1e-12 * std::max(1.0, len)) ++found;
+                    }
+                }
+    }
+    return found;
+}
+
+/// A 6 x 6 open grid with random heights (25 quads; its four corner vertices have one face each).
+SubdivisionCage openGrid()
+{
+    SubdivisionCage cage;
+    const int n = 6;
+    cage.mesh.positions.resize(3, n * n);
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c)
+            cage.mesh.positions.col(r * n + c) = V3(0.4 * r, 0.4 * c, 0.3 * std::sin(1.3 * r + 0.7 * c * c));
+    for (int r = 0; r + 1 < n; ++r)
+        for (int c = 0; c + 1 < n; ++c) cage.mesh.addFace({r * n + c, (r + 1) * n + c, (r + 1) * n + c + 1, r * n + c + 1});
+    return cage;
+}
+
+/// A closed triangular prism: two triangles and three quads (the triangles' centres become
+/// valence-3 vertices after the first refinement; the triangle rule acts there).
+SubdivisionCage triangularPrism()
+{
+    SubdivisionCage cage;
+    cage.mesh.positions.resize(3, 6);
+    for (int k = 0; k < 3; ++k) {
+        const double a = 2 * M_PI * k / 3;
+        cage.mesh.positions.col(k) = V3(std::cos(a), std::sin(a), -0.7);
+        cage.mesh.positions.col(k + 3) = V3(std::cos(a), std::sin(a), 0.7);
+    }
+    cage.mesh.addFace({2, 1, 0});
+    cage.mesh.addFace({3, 4, 5});
+    for (int k = 0; k < 3; ++k) cage.mesh.addFace({k, (k + 1) % 3, (k + 1) % 3 + 3, k + 3});
+    return cage;
+}
+
+struct Case {
+    std::string name;
+    SubdivisionCage cage;
+    BoundaryInterpolation boundary;
+    double tol;
+    long euler;        // of the limit surface's mesh
+    int maxTriangles;  // regression guard: about 1.1 x the count measured when written
+};
+
+void checkCase(const Case& c)
+{
+    const SubdivisionSurface s(c.cage, SubdivisionScheme::Catmark, c.boundary);
+    SubdivisionTessellationOptions o;
+    o.tolerance = c.tol;
+    SubdivisionTessellationReport report;
+    const PolygonMesh mesh = s.tessellate(o, &report);
+    const Reference level7 = reference(c.cage, c.boundary, 7);
+    const double slack = referenceError(reference(c.cage, c.boundary, 6), level7);
+    const Deviation d = deviation(mesh, level7, 2 * c.tol);
+    int certified = 0, limitFaces = 0;
+    for (char f : report.faceCertified) certified += f;
+    for (int f = 0; f < s.faceCount(); ++f) limitFaces += s.hasLimitSurface(f) ? 1 : 0;
+    std::printf("%-48s tol %.0e: %6d triangles, %6lld leaves, %5lld cells (%lld irregular, depth %d), bound %.3g, measured "
+                "surface->mesh %.3g, mesh->surface %.3g, vertices off %.2g (reference slack %.2g), faces certified %d of %zu "
+                "(%d with a limit surface)\n",
+                c.name.c_str(), c.tol, mesh.faceCount(), report.leaves, report.cells, report.irregularCells, report.depth,
+                report.errorBound, d.surfaceToMesh, d.meshToSurface, d.vertexOff, slack, certified, report.faceCertified.size(),
+                limitFaces);
+    CHECK(slack < 2e-4);
+    REQUIRE(report.certifiedPath);
+    CHECK(report.errorBound <= c.tol);
+    CHECK(certified == s.faceCount());
+    for (int f = 0; f < s.faceCount(); ++f)
+        if (!s.hasLimitSurface(f)) CHECK(report.faceBounds[static_cast<std::size_t>(f)] == 0);
+    // The bound holds both ways (surface to mesh against exact limit points, no slack).
+    CHECK(d.surfaceToMesh <= report.errorBound);
+    CHECK(d.meshToSurface <= report.errorBound + slack);
+    CHECK(d.vertexOff <= slack);
+    // Conforming: no non-manifold edge, no T-junction, each vertex once, the expected topology.
+    const auto t = test::topology(mesh);
+    CHECK(t.nonManifoldEdges == 0);
+    CHECK(t.vertices == mesh.vertexCount());
+    CHECK(t.euler() == c.euler);
+    CHECK(tJunctions(mesh) == 0);
+    std::map<std::array<double, 3>, int> at;
+    for (int v = 0; v < mesh.vertexCount(); ++v) at[{mesh.positions(0, v), mesh.positions(1, v), mesh.positions(2, v)}]++;
+    CHECK(at.size() == static_cast<std::size_t>(mesh.vertexCount()));
+    for (int v = 0; v < mesh.normals.cols(); ++v) CHECK(std::abs(mesh.normals.col(v).norm() - 1) < 1e-9);
+    CHECK(mesh.faceCount() <= c.maxTriangles);
+}
+
+} // namespace
+
+TEST_CASE("certified tessellation with holes: the other faces as before, a boundary at the hole", "[subdivision][tessellation]")
+{
+    SubdivisionCage cube = readCage(kCages + "cube.obj");
+    cube.holes = {2};
+    // The cube without face 2: a disc (Euler 1); its five faces certified, the hole vacuously.
+    checkCase({"cube, face 2 a hole", cube, BoundaryInterpolation::EdgeOnly, 1e-2, 1, 3050});
+    // The faces next to the hole keep their limit surface: the mesh of the four others and the
+    // top is the whole cube's mesh without the hole's triangles.
+    const SubdivisionSurface whole(readCage(kCages + "cube.obj"), SubdivisionScheme::Catmark);
+    const SubdivisionSurface holed(cube, SubdivisionScheme::Catmark);
+    SubdivisionTessellationOptions o;
+    o.tolerance = 1e-2;
+    const PolygonMesh a = whole.tessellate(o), b = holed.tessellate(o);
+    const test::TriangleGrid grid(a, 0.02);
+    double off = 0;
+    for (int v = 0; v < b.vertexCount(); ++v) off = std::max(off, grid.distance(b.positions.col(v), 0.1));
+    CHECK(off < 1e-12); // every vertex of the holed mesh is a vertex of the whole cube's mesh
+    CHECK(b.faceCount() < a.faceCount());
+
+    // Two holes in the open grid (edge_and_corner): faces 6 and 18.
+    SubdivisionCage grid2 = openGrid();
+    grid2.holes = {6, 18};
+    checkCase({"open grid, two holes (edge_and_corner)", grid2, BoundaryInterpolation::EdgeAndCorner, 1e-2, -1, 1150});
+}
+
+TEST_CASE("certified tessellation under boundary none: only faces away from the boundary", "[subdivision][tessellation]")
+{
+    // The 6 x 6 grid: the 16 faces touching the boundary have no limit surface, the 3 x 3 inside do.
+    checkCase({"open grid, boundary none", openGrid(), BoundaryInterpolation::None, 1e-2, 1, 500});
+    checkCase({"open grid, boundary none", openGrid(), BoundaryInterpolation::None, 1e-3, 1, 4150});
+}
+
+TEST_CASE("certified tessellation with smoothtriangles", "[subdivision][tessellation]")
+{
+    SubdivisionCage prism = triangularPrism();
+    prism.smoothTriangles = true;
+    checkCase({"triangular prism, smoothtriangles", prism, BoundaryInterpolation::EdgeOnly, 1e-2, 2, 1960});
+    SubdivisionCage octa = readCage(kCages + "octahedron.obj");
+    octa.smoothTriangles = true;
+    checkCase({"octahedron (Catmark), smoothtriangles", octa, BoundaryInterpolation::EdgeOnly, 1e-2, 2, 2060});
+    // The two rules give different surfaces (so the reference above tells them apart).
+    SubdivisionCage plain = triangularPrism();
+    const SubdivisionSurface a(prism, SubdivisionScheme::Catmark), b(plain, SubdivisionScheme::Catmark);
+    double diff = 0;
+    for (int f = 0; f < 2; ++f) diff = std::max(diff, (a.evaluate(f, 0.3, 0.3).position - b.evaluate(f, 0.3, 0.3).position).norm());
+    CHECK(diff > 1e-3);
+}
+
+TEST_CASE("smoothtriangles: every first-level stencil weight is non-negative and they sum to 1", "[subdivision][tessellation]")
+{
+    // The refinement from the cage to the quad base is the one place the triangle rule acts; its
+    // weights, read from Far's stencil tables (not the library's code), are convex combinations.
+    // Cages: triangles next to triangles, to quads, on a boundary, along a crease.
+    SubdivisionCage prism = triangularPrism();
+    prism.smoothTriangles = true;
+    SubdivisionCage octa = readCage(kCages + "octahedron.obj");
+    octa.smoothTriangles = true;
+    SubdivisionCage open; // a triangle and a quad on one edge, both on the boundary
+    open.mesh.positions.resize(3, 5);
+    open.mesh.positions << 0, 1, 0.5, 0, 1, 0, 0, -0.8, 0, 0, 0, 0, 0.2, 1, 1.1;
+    open.mesh.addFace({0, 2, 1});
+    open.mesh.addFace({0, 1, 4, 3});
+    open.smoothTriangles = true;
+    SubdivisionCage creased = octa;
+    creased.creases.push_back({creased.mesh.face(0)[0], creased.mesh.face(0)[1], 1.5});
+    int cages = 0;
+    for (const SubdivisionCage* cage : {&prism, &octa, &open, &creased}) {
+        validateCage(*cage, SubdivisionScheme::Catmark);
+        for (const int levels : {1, 3}) {
+            auto refiner = refinerOf(*cage, BoundaryInterpolation::EdgeOnly);
+            refiner->RefineUniform(osd::Far::TopologyRefiner::UniformOptions(levels));
+            osd::Far::StencilTableFactoryReal<double>::Options so;
+            so.generateIntermediateLevels = false;
+            so.factorizeIntermediateLevels = true;
+            std::unique_ptr<const osd::Far::StencilTableReal<double>> table(
+                osd::Far::StencilTableFactoryReal<double>::Create(*refiner, so));
+            REQUIRE(table);
+            double least = 1, worstSum = 0;
+            for (int i = 0; i < table->GetNumStencils(); ++i) {
+                const auto st = table->GetStencil(i);
+                double sum = 0;
+                for (int k = 0; k < st.GetSize(); ++k) {
+                    least = std::min(least, st.GetWeights()[k]);
+                    sum += st.GetWeights()[k];
+                }
+                worstSum = std::max(worstSum, std::abs(sum - 1));
+            }
+            CHECK(table->GetNumStencils() == refiner->GetLevel(levels).GetNumVertices());
+            CHECK(least >= 0);
+            CHECK(worstSum < 1e-12);
+            if (levels == 1) std::printf("smoothtriangles stencils, cage %d: least weight %.4g\n", cages, least);
+        }
+        ++cages;
+    }
+}
