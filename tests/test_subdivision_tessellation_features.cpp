@@ -390,3 +390,20 @@ TEST_CASE("smoothtriangles: every first-level stencil weight is non-negative and
         ++cages;
     }
 }
+
+TEST_CASE("certified tessellation under edge_only with boundary vertices of one face", "[subdivision][tessellation]")
+{
+    // The 6 x 6 grid's four corners have one face each: OpenSubdiv's corner patch there misses the
+    // limit surface (0.024 on this grid), so the cells whose 1-ring holds such a corner are bounded
+    // by their hull and refined apart; the reference here is uniform refinement, right at corners.
+    checkCase({"open grid, edge_only (four one-face corners)", openGrid(), BoundaryInterpolation::EdgeOnly, 1e-2, 1, 1840});
+    checkCase({"open grid, edge_only (four one-face corners)", openGrid(), BoundaryInterpolation::EdgeOnly, 1e-3, 1, 11100});
+    // Not all quads: a triangle and a quad on one edge, three one-face corners (one of them the
+    // triangle's, whose one-face child in the quad base is found through the first refinement).
+    SubdivisionCage open;
+    open.mesh.positions.resize(3, 5);
+    open.mesh.positions << 0, 1, 0.5, 0, 1, 0, 0, -0.8, 0, 0, 0, 0, 0.2, 1, 1.1;
+    open.mesh.addFace({0, 2, 1});
+    open.mesh.addFace({0, 1, 4, 3});
+    checkCase({"a triangle and a quad, edge_only", open, BoundaryInterpolation::EdgeOnly, 1e-2, 1, 810});
+}

@@ -492,14 +492,9 @@ PolygonMesh SubdivisionSurface::tessellate(const SubdivisionTessellationOptions&
                     std::to_string(options.maxLevel));
     const Topology& t = *topology_;
     // The certified path (docs/subdivision.md, "Certified tessellation"): every Catmull-Clark cage,
-    // holes, boundary none and smooth triangles included, except (for now) a cage under edge_only
-    // with a boundary vertex of one face (a smooth corner: OpenSubdiv's patch table gives its faces
-    // a regular corner patch that is not the limit surface; measured 0.024 off on a 6 x 6 grid,
-    // tests/test_subdivision_tessellation.cpp).
-    bool smoothCorner = false;
-    if (t.boundary == BoundaryInterpolation::EdgeOnly)
-        for (std::size_t v = 0; v < t.valence.size(); ++v) smoothCorner = smoothCorner || (t.boundaryVertex[v] && t.valence[v] == 1);
-    if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Catmark && !smoothCorner)
+    // holes, boundary none, smooth triangles and smooth boundary corners (edge_only, a boundary
+    // vertex of one face) included.
+    if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Catmark)
         return tessellateCertified(options, report);
     // Loop cages: closed (no boundary edge), no holes, no sharpness (certified_tessellation_loop.cpp).
     bool loopCertified = t.scheme == SubdivisionScheme::Loop && cage_.holes.empty();
