@@ -89,7 +89,7 @@ TEST_CASE("subdivide: cube cage -> closed genus 0, torus cage -> genus 1", "[cli
     CHECK(info(octa)["genus"] == 0);
 }
 
-TEST_CASE("subdivide --tolerance: holes, boundary none and smoothtriangles are certified", "[cli]")
+TEST_CASE("subdivide --tolerance: holes, boundary none, smoothtriangles and one-face corners are certified", "[cli]")
 {
     // Each took the estimate path before (certified: false); docs/subdivision.md, "What is
     // certified and what not".
@@ -108,6 +108,7 @@ TEST_CASE("subdivide --tolerance: holes, boundary none and smoothtriangles are c
     const std::vector<Case> cases = {
         {"sub_hole.obj", cube + "t hole 1/0/0 2\n", "", 6},
         {"sub_none.obj", grid, " --boundary none", 16},
+        {"sub_corner.obj", grid, "", 16}, // edge_only (the default): four boundary vertices of one face
         {"sub_smoothtri.obj",
          "v 1 0 -0.7\nv -0.5 0.866 -0.7\nv -0.5 -0.866 -0.7\nv 1 0 0.7\nv -0.5 0.866 0.7\nv -0.5 -0.866 0.7\n"
          "f 3 2 1\nf 4 5 6\nf 1 2 5 4\nf 2 3 6 5\nf 3 1 4 6\nt smoothtriangles 0/0/1 smooth\n",
