@@ -880,6 +880,14 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
             if (terms[0] > 2 * terms[2]) splitV = false;
             else if (terms[2] > 2 * terms[0]) splitU = false;
         }
+        if (splitU && splitV) {
+            // The last split: where halving one direction is expected to bring the bound within the
+            // tolerance (a halving in u quarters the u term and halves the mixed one), halve only
+            // that one. The halves' bounds are computed again, so this choice never weakens the
+            // bound; it saves the overshoot of halving both.
+            const double afterU = terms[0] / 4 + terms[1] / 2 + terms[2], afterV = terms[0] + terms[1] / 2 + terms[2] / 4;
+            if (std::min(afterU, afterV) <= tol) (afterU <= afterV ? splitV : splitU) = false;
+        }
         std::vector<Task> parts{t};
         if (splitU) {
             std::vector<Task> next;
