@@ -225,6 +225,25 @@ SubdivisionCage openGrid()
     return cage;
 }
 
+/// The open grid with its centre quad (face 12) cut into two triangles: not all quads, so the
+/// library works on the cage refined once, where holes and one-face corners must be carried.
+SubdivisionCage gridWithTriangles()
+{
+    SubdivisionCage grid = openGrid();
+    SubdivisionCage cage;
+    cage.mesh.positions = grid.mesh.positions;
+    for (int f = 0; f < grid.mesh.faceCount(); ++f) {
+        const int* v = grid.mesh.face(f);
+        if (f == 12) {
+            cage.mesh.addFace({v[0], v[1], v[2]});
+            cage.mesh.addFace({v[0], v[2], v[3]});
+        } else {
+            cage.mesh.addFace({v[0], v[1], v[2], v[3]});
+        }
+    }
+    return cage;
+}
+
 /// A closed triangular prism: two triangles and three quads (the triangles' centres become
 /// valence-3 vertices after the first refinement; the triangle rule acts there).
 SubdivisionCage triangularPrism()
@@ -321,12 +340,22 @@ TEST_CASE("certified tessellation with holes: the other faces as before, a bound
     SubdivisionCage grid2 = openGrid();
     grid2.holes = {6, 18};
     checkCase({"open grid, two holes (edge_and_corner)", grid2, BoundaryInterpolation::EdgeAndCorner, 1e-2, -1, 850});
+    // Not all quads: the holes reach the quad base as their level-1 children (the prism's bottom
+    // triangle; a quad of the grid with triangles).
+    SubdivisionCage prism = triangularPrism();
+    prism.holes = {0};
+    checkCase({"triangular prism, the bottom triangle a hole", prism, BoundaryInterpolation::EdgeOnly, 1e-2, 1, 1300});
+    SubdivisionCage mixed = gridWithTriangles();
+    mixed.holes = {7};
+    checkCase({"grid with two triangles, one hole", mixed, BoundaryInterpolation::EdgeAndCorner, 1e-2, 0, 1730});
 }
 
 TEST_CASE("certified tessellation under boundary none: only faces away from the boundary", "[subdivision][tessellation]")
 {
     // The 6 x 6 grid: the 16 faces touching the boundary have no limit surface, the 3 x 3 inside do.
     checkCase({"open grid, boundary none", openGrid(), BoundaryInterpolation::None, 1e-2, 1, 390});
+    // Not all quads: the boundary faces' children stay holes in the quad base.
+    checkCase({"grid with two triangles, boundary none", gridWithTriangles(), BoundaryInterpolation::None, 1e-2, 1, 1280});
 }
 
 TEST_CASE("certified tessellation with smoothtriangles", "[subdivision][tessellation]")
@@ -408,4 +437,5 @@ TEST_CASE("certified tessellation under edge_only with boundary vertices of one 
     open.mesh.addFace({0, 2, 1});
     open.mesh.addFace({0, 1, 4, 3});
     checkCase({"a triangle and a quad, edge_only", open, BoundaryInterpolation::EdgeOnly, 1e-2, 1, 790});
+    checkCase({"grid with two triangles, edge_only", gridWithTriangles(), BoundaryInterpolation::EdgeOnly, 1e-2, 1, 2510});
 }
