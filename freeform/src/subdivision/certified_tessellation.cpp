@@ -3,7 +3,11 @@
 // bicubic Bézier patch split by de Casteljau until netErrorBound(patch) <= tolerance, an irregular
 // cell (innermost level, next to an extraordinary vertex or an irregular sharp feature) is bounded
 // by the convex hull of its 1-ring; one still above the tolerance at OpenSubdiv's deepest level 10
-// gets a local cage (its level-10 1-ring) that is cut into cells the same way. Every mesh vertex is
+// gets a local cage (its level-10 1-ring) that is cut into cells the same way. Holes (and boundary
+// `none`'s faces) get no cells; `smoothtriangles` acts in the quad base's one refinement only; a cell
+// whose 1-ring holds an edge_only boundary vertex of one face is never OpenSubdiv's patch but a hull
+// bounded cell refined apart (refineTainted; docs/subdivision.md, "Holes, boundary none, smooth
+// triangles, smooth boundary corners"). Every mesh vertex is
 // an exact limit point, computed once under a canonical key (cage vertex, cage edge + dyadic
 // parameter, or face + dyadic (u, v)), so the mesh is conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
 // corners of the leaves touching its sides (ear clipping in (u, v)), so its bound holds.
