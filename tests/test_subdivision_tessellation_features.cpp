@@ -16,6 +16,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
@@ -448,4 +450,51 @@ TEST_CASE("certified tessellation under edge_only with boundary vertices of one 
     // Not all quads (two triangles in the middle): the base is the cage refined once, and the four
     // corners' children there carry the mark.
     checkCase({"grid with two triangles, edge_only", gridWithTriangles(), BoundaryInterpolation::EdgeOnly, 1e-2, 1, 2510});
+}
+
+TEST_CASE("OpenSubdiv's corner patch under edge_only misses the limit at a one-face corner", "[subdivision][tessellation]")
+{
+    // Why such cells are never taken from the patch table: at the grid's corner vertex X = 0 (one
+    // face, its two boundary edges sharp: the crease rule), the limit point is the crease limit mask
+    // (A + 4 X + B) / 6 of X and its boundary neighbours; the patch table's patch of face 0 (depth 3)
+    // evaluated at that corner, (u, v) = (0, 0), misses it by 1.9e-3 (float weights: 1e-6 noise).
+    const SubdivisionCage cage = openGrid();
+    auto refiner = refinerOf(cage, BoundaryInterpolation::EdgeOnly);
+    osd::Far::TopologyRefiner::AdaptiveOptions adaptive(3);
+    adaptive.useInfSharpPatch = true;
+    refiner->RefineAdaptive(adaptive);
+    osd::Far::PatchTableFactory::Options po(3);
+    po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
+    po.useInfSharpPatch = true;
+    std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
+    REQUIRE(table);
+    std::vector<P3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+    for (int v = 0; v < cage.mesh.vertexCount(); ++v)
+        for (int k = 0; k < 3; ++k) all[static_cast<std::size_t>(v)].p[k] = cage.mesh.positions(k, v);
+    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+    P3* src = all.data();
+    for (int l = 1; l <= refiner->GetMaxLevel(); ++l) {
+        P3* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
+        primvar.Interpolate(l, src, dst);
+        src = dst;
+    }
+    const osd::Far::PatchMap map(*table);
+    const osd::Far::PatchTable::PatchHandle* handle = map.FindPatch(0, 0.0, 0.0);
+    REQUIRE(handle);
+    float w[20];
+    table->EvaluateBasis(*handle, 0.0f, 0.0f, w);
+    const auto cvs = table->GetPatchVertices(*handle);
+    V3 patch = V3::Zero();
+    for (int k = 0; k < cvs.size(); ++k)
+        patch += static_cast<double>(w[k]) * V3(all[static_cast<std::size_t>(cvs[k])].p[0], all[static_cast<std::size_t>(cvs[k])].p[1],
+                                                all[static_cast<std::size_t>(cvs[k])].p[2]);
+    // The crease limit mask by hand: vertex 0's boundary neighbours are 1 and 6.
+    const V3 X = cage.mesh.positions.col(0), A = cage.mesh.positions.col(1), B = cage.mesh.positions.col(6);
+    const V3 limit = (A + 4 * X + B) / 6;
+    // And the library's limit evaluation (Bfr) agrees with the hand mask.
+    const SubdivisionSurface s(cage, SubdivisionScheme::Catmark, BoundaryInterpolation::EdgeOnly);
+    CHECK((s.evaluate(0, 0, 0).position - limit).norm() < 1e-12);
+    std::printf("edge_only corner: patch table %.4g off the limit point (vertex itself %.4g off)\n", (patch - limit).norm(),
+                (X - limit).norm());
+    CHECK((patch - limit).norm() > 1e-3);
 }
