@@ -130,10 +130,9 @@ Action defineSubdivide(CLI::App& app)
                         ->type_name("N")
                         ->capture_default_str();
     o->toleranceGiven = addNumber(app, "--tolerance", o->tolerance,
-                                  "adaptive to distance E: certified on Catmull-Clark cages and closed Loop cages without "
-                                  "creases (Bezier cells and 1-ring hulls, docs/subdivision.md), an estimate for open or "
-                                  "creased Loop cages, holes, boundary none and edge_only cages with a one-face corner "
-                                  "(not with --level)")
+                                  "adaptive to distance E, certified on every Catmull-Clark and Loop cage (Bezier cells and "
+                                  "1-ring hulls, docs/subdivision.md; a face whose cells stay above E at the deepest "
+                                  "level is reported in faces_certified) (not with --level)")
                             ->type_name("E");
     app.add_option("--boundary", o->boundary, "boundary interpolation: edge_only, edge_and_corner, or none (boundary faces dropped)")
         ->type_name("B")

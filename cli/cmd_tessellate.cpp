@@ -36,7 +36,7 @@ struct TessellateOptions {
 };
 
 /// A subdivision_surface named by --object: the library's tessellation (certified with a tolerance
-/// on a Catmull-Clark cage or a closed Loop cage, docs/subdivision.md), reported with the patch fields where they apply.
+/// on every Catmull-Clark and Loop cage, docs/subdivision.md), reported with the patch fields where they apply.
 Json subdivisionCommand(const SubdivisionSurface& surface, const TessellateOptions& o, const std::string& output)
 {
     SubdivisionTessellationOptions options;

@@ -89,6 +89,48 @@ TEST_CASE("subdivide: cube cage -> closed genus 0, torus cage -> genus 1", "[cli
     CHECK(info(octa)["genus"] == 0);
 }
 
+TEST_CASE("subdivide --tolerance: holes, boundary none, smoothtriangles and one-face corners are certified", "[cli]")
+{
+    // Each took the estimate path before (certified: false); docs/subdivision.md, "What is
+    // certified and what not".
+    const std::string cube = freeform::test::slurp(cage("cube.obj"));
+    struct Case {
+        std::string name, text, extra;
+        int faces;
+    };
+    std::string grid;
+    for (int r = 0; r < 5; ++r)
+        for (int c = 0; c < 5; ++c) grid += "v " + std::to_string(0.5 * r) + " " + std::to_string(0.5 * c) + " " + std::to_string(0.1 * ((r * c) % 3)) + "\n";
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c)
+            grid += "f " + std::to_string(r * 5 + c + 1) + " " + std::to_string((r + 1) * 5 + c + 1) + " " + std::to_string((r + 1) * 5 + c + 2) +
+                    " " + std::to_string(r * 5 + c + 2) + "\n";
+    const std::vector<Case> cases = {
+        {"sub_hole.obj", cube + "t hole 1/0/0 2\n", "", 6},
+        {"sub_none.obj", grid, " --boundary none", 16},
+        {"sub_corner.obj", grid, "", 16}, // edge_only (the default): four boundary vertices of one face
+        {"sub_smoothtri.obj",
+         "v 1 0 -0.7\nv -0.5 0.866 -0.7\nv -0.5 -0.866 -0.7\nv 1 0 0.7\nv -0.5 0.866 0.7\nv -0.5 -0.866 0.7\n"
+         "f 3 2 1\nf 4 5 6\nf 1 2 5 4\nf 2 3 6 5\nf 3 1 4 6\nt smoothtriangles 0/0/1 smooth\n",
+         "", 5},
+    };
+    for (const Case& c : cases) {
+        INFO(c.name);
+        writeText(tmp(c.name), c.text);
+        const std::string out = tmp(c.name + ".out.obj");
+        std::filesystem::remove(out);
+        const auto r = cli("subdivide '" + tmp(c.name) + "' -o '" + out + "' --tolerance 1e-2" + c.extra);
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        const Json j = Json::parse(r.out);
+        CHECK(j["certified"] == true);
+        CHECK(j["faces_certified"] == c.faces);
+        CHECK(j["error_bound"].get<double>() <= 1e-2);
+        CHECK(j["error_bound"].get<double>() > 0);
+        CHECK(std::filesystem::exists(out));
+    }
+}
+
 TEST_CASE("subdivide --lattice: an affine lattice moves the limit mesh affinely", "[cli]")
 {
     // Rest lattice of degree 1 around [-2,2]^3, every point doubled in x and shifted by 1 in z.

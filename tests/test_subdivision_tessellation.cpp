@@ -442,12 +442,17 @@ TEST_CASE("certified tessellation: Loop with certified = false stays an estimate
     CHECK(m.faceCount() > 0);
 }
 
-TEST_CASE("certified tessellation: a smooth boundary corner (edge_only) keeps the estimate", "[subdivision][tessellation]")
+TEST_CASE("certified tessellation: a smooth boundary corner (edge_only) is certified", "[subdivision][tessellation]")
 {
     // A 6 x 6 grid under edge_only: its four corner vertices have one face each. OpenSubdiv's patch
     // table gives these faces a regular corner patch that misses the limit surface (0.024 measured
-    // against uniform refinement), so the certified path is not taken there.
+    // against uniform refinement), so this cage kept the estimate before; now every cell whose
+    // 1-ring holds such a corner is bounded by its hull and refined apart, never its patch
+    // (docs/subdivision.md, "Smooth boundary corners"; the bound is checked against uniform
+    // refinement in test_subdivision_tessellation_features).
     const Run r = run(openGrid(), 1e-2);
-    CHECK_FALSE(r.report.certifiedPath);
+    CHECK(r.report.certifiedPath);
+    CHECK(r.report.errorBound <= 1e-2);
+    for (char f : r.report.faceCertified) CHECK(f == 1);
     CHECK(r.mesh.faceCount() > 0);
 }

@@ -3,7 +3,11 @@
 // bicubic Bézier patch split by de Casteljau until netErrorBound(patch) <= tolerance, an irregular
 // cell (innermost level, next to an extraordinary vertex or an irregular sharp feature) is bounded
 // by the convex hull of its 1-ring; one still above the tolerance at OpenSubdiv's deepest level 10
-// gets a local cage (its level-10 1-ring) that is cut into cells the same way. Every mesh vertex is
+// gets a local cage (its level-10 1-ring) that is cut into cells the same way. Holes (and boundary
+// `none`'s faces) get no cells; `smoothtriangles` acts in the quad base's one refinement only; a cell
+// whose 1-ring holds an edge_only boundary vertex of one face is never OpenSubdiv's patch but a hull
+// bounded cell refined apart (refineTainted; docs/subdivision.md, "Holes, boundary none, smooth
+// triangles, smooth boundary corners"). Every mesh vertex is
 // an exact limit point, computed once under a canonical key (cage vertex, cage edge + dyadic
 // parameter, or face + dyadic (u, v)), so the mesh is conforming and watertight; every leaf is triangulated as a polygon of its corners and of the
 // corners of the leaves touching its sides (ear clipping in (u, v)), so its bound holds.
@@ -23,6 +27,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <unordered_map>
 
 #include "freeform/tessellate/tessellate.h"
@@ -62,6 +67,8 @@ struct QuadBase {
     std::vector<Point3> positions;
     std::vector<int> creasePairs, cornerIdx;
     std::vector<float> creaseW, cornerW;
+    std::vector<int> holes;  // faces without a limit surface (the cage's holes, boundary `none`'s faces)
+    std::vector<char> taint; // per vertex (or empty): a boundary vertex of one face under edge_only
     int faces() const { return static_cast<int>(faceVerts.size() / 4); }
 };
 
@@ -69,7 +76,9 @@ osd::Sdc::Options sdcOptions(const SubdivisionCage& cage, BoundaryInterpolation 
 {
     osd::Sdc::Options sdc;
     sdc.SetCreasingMethod(cage.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
-    sdc.SetTriangleSubdivision(osd::Sdc::Options::TRI_SUB_CATMARK);
+    // The triangle rule acts only where a face is a triangle: in the one refinement that makes the
+    // quad base (below); every later level is quads.
+    sdc.SetTriangleSubdivision(cage.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
     sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
                                     : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                                    : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
@@ -79,7 +88,7 @@ osd::Sdc::Options sdcOptions(const SubdivisionCage& cage, BoundaryInterpolation 
 std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::vector<int>& counts, const std::vector<int>& indices,
                                                        const std::vector<int>& creasePairs, const std::vector<float>& creaseW,
                                                        const std::vector<int>& cornerIdx, const std::vector<float>& cornerW,
-                                                       const osd::Sdc::Options& sdc)
+                                                       const std::vector<int>& holes, const osd::Sdc::Options& sdc)
 {
     osd::Far::TopologyDescriptor desc;
     desc.numVertices = vertices;
@@ -92,6 +101,8 @@ std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::
     desc.numCorners = static_cast<int>(cornerW.size());
     desc.cornerVertexIndices = cornerIdx.data();
     desc.cornerWeights = cornerW.data();
+    desc.numHoles = static_cast<int>(holes.size());
+    desc.holeIndices = holes.data();
     using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
     clearOsdError();
     std::unique_ptr<osd::Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
@@ -116,6 +127,19 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
     }
     bool quads = true;
     for (int f = 0; f < mesh.faceCount(); ++f) quads = quads && mesh.faceSize(f) == 4;
+    // Under edge_only, a boundary vertex of one face (a smooth corner: its rule is the crease rule)
+    // gets a regular corner patch from OpenSubdiv that is not the limit surface; the cells near it
+    // are handled apart (refineTainted).
+    std::vector<char> oneFace(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    bool anyOneFace = false;
+    if (sdc.GetVtxBoundaryInterpolation() == osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY) {
+        std::vector<int> faceCount(static_cast<std::size_t>(mesh.vertexCount()), 0);
+        for (int v : mesh.faceVertices) ++faceCount[static_cast<std::size_t>(v)];
+        for (std::size_t v = 0; v < faceCount.size(); ++v) {
+            oneFace[v] = faceCount[v] == 1;
+            anyOneFace = anyOneFace || oneFace[v];
+        }
+    }
     b.positions.resize(static_cast<std::size_t>(mesh.vertexCount()));
     for (int v = 0; v < mesh.vertexCount(); ++v)
         for (int k = 0; k < 3; ++k) b.positions[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
@@ -128,12 +152,14 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
         b.creaseW = std::move(creaseW);
         b.cornerIdx = std::move(cornerIdx);
         b.cornerW = std::move(cornerW);
+        b.holes = cage.holes;
+        if (anyOneFace) b.taint = std::move(oneFace);
         return b;
     }
     // One uniform level: every face becomes quads; sharpness as OpenSubdiv carries it to level 1.
     std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()));
     for (int f = 0; f < mesh.faceCount(); ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
-    auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, sdc);
+    auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, cage.holes, sdc);
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
@@ -144,10 +170,17 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
     osd::Far::PrimvarRefinerReal<double>(*refiner).Interpolate(1, src, dst);
     b.positions = std::move(fine);
     b.vertices = level.GetNumVertices();
+    if (anyOneFace) {
+        b.taint.assign(static_cast<std::size_t>(b.vertices), 0);
+        for (std::size_t v = 0; v < oneFace.size(); ++v)
+            if (oneFace[v]) b.taint[static_cast<std::size_t>(refiner->GetLevel(0).GetVertexChildVertex(static_cast<Index>(v)))] = 1;
+    }
     for (int f = 0; f < level.GetNumFaces(); ++f) {
         const auto fv = level.GetFaceVertices(f);
         for (int k = 0; k < fv.size(); ++k) b.faceVerts.push_back(fv[k]);
         b.cageFace.push_back(level.GetFaceParentFace(f));
+        // A hole's children are holes (so are boundary `none`'s faces: OpenSubdiv tags them so).
+        if (level.IsFaceHole(f)) b.holes.push_back(f);
     }
     for (int e = 0; e < level.GetNumEdges(); ++e) {
         const float s = level.GetEdgeSharpness(e);
@@ -439,23 +472,213 @@ struct CellSearch {
     std::vector<Regular> regular;
 };
 
+/// The child of face `current` on level l in quadrant (qa, qb) of its (u, v), and the vertices at
+/// its corners on level l + 1 (slot 2 b + a at corner (a, b); `corner` holds the parent's so).
+std::pair<Index, std::array<Index, 4>> childFace(const osd::Far::TopologyRefiner& refiner, int l, Index current,
+                                                 const std::array<Index, 4>& corner, int qa, int qb)
+{
+    const osd::Far::TopologyLevel& level = refiner.GetLevel(l);
+    const auto faceVerts = level.GetFaceVertices(current);
+    const auto faceEdges = level.GetFaceEdges(current);
+    auto edgeBetween = [&](Index x, Index y) {
+        for (int k = 0; k < 4; ++k)
+            if ((faceVerts[k] == x && faceVerts[(k + 1) % 4] == y) || (faceVerts[k] == y && faceVerts[(k + 1) % 4] == x))
+                return level.GetEdgeChildVertex(faceEdges[k]);
+        throw Error("subdivision tessellation: a cell's corners are not an edge (internal)");
+    };
+    std::array<Index, 4> next{};
+    next[static_cast<std::size_t>(2 * qb + qa)] = level.GetVertexChildVertex(corner[static_cast<std::size_t>(2 * qb + qa)]);
+    next[static_cast<std::size_t>(2 * qb + (1 - qa))] =
+        edgeBetween(corner[static_cast<std::size_t>(2 * qb + qa)], corner[static_cast<std::size_t>(2 * qb + (1 - qa))]);
+    next[static_cast<std::size_t>(2 * (1 - qb) + qa)] =
+        edgeBetween(corner[static_cast<std::size_t>(2 * qb + qa)], corner[static_cast<std::size_t>(2 * (1 - qb) + qa)]);
+    next[static_cast<std::size_t>(2 * (1 - qb) + (1 - qa))] = level.GetFaceChildVertex(current);
+    Index child = -1;
+    for (Index c : level.GetFaceChildFaces(current)) {
+        if (c < 0) continue;
+        const auto cv = refiner.GetLevel(l + 1).GetFaceVertices(c);
+        int found = 0;
+        for (int k = 0; k < cv.size(); ++k) found += std::count(next.begin(), next.end(), cv[k]) > 0 ? 1 : 0;
+        if (found == 4) child = c;
+    }
+    if (child < 0) throw Error("subdivision tessellation: a cell's face was not refined (internal)");
+    return {child, next};
+}
+
+/// The 1-ring of a cell on a level: every vertex of every face at one of its corners.
+std::vector<Index> ringOf(const osd::Far::TopologyLevel& level, const std::array<Index, 4>& corner)
+{
+    std::vector<Index> ring;
+    for (Index v : corner)
+        for (Index f : level.GetVertexFaces(v))
+            for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    return ring;
+}
+
+/// The local cage of a cell (docs/subdivision.md, "Deeper than level 10"): every face of the level
+/// at a corner of the cell (its 1-ring), the cell first with its corners in (u, v) order, edge and
+/// vertex sharpness and holes as on that level; `taint` (or null) marks the level's one-face
+/// boundary vertices under edge_only, carried to the local vertices.
+QuadBase localCage(const osd::Far::TopologyLevel& level, const std::array<Index, 4>& corner, const Point3* positions,
+                   const std::vector<char>* taint)
+{
+    std::vector<Index> faces;
+    for (Index v : corner)
+        for (Index f : level.GetVertexFaces(v)) faces.push_back(f);
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    QuadBase local;
+    std::unordered_map<Index, int> localOf;
+    bool tainted = false;
+    auto localVertex = [&](Index v) {
+        const auto [it, added] = localOf.emplace(v, static_cast<int>(local.positions.size()));
+        if (added) {
+            local.positions.push_back(positions[v]);
+            const char t = taint && static_cast<std::size_t>(v) < taint->size() ? (*taint)[static_cast<std::size_t>(v)] : 0;
+            local.taint.push_back(t);
+            tainted = tainted || t;
+        }
+        return it->second;
+    };
+    for (int k : {0, 1, 3, 2}) local.faceVerts.push_back(localVertex(corner[static_cast<std::size_t>(k)]));
+    std::vector<Index> edges;
+    for (Index f : faces) {
+        const auto fv = level.GetFaceVertices(f);
+        if (fv.size() != 4) throw Error("subdivision tessellation: a refined face is not a quad (internal)");
+        const auto fe = level.GetFaceEdges(f);
+        edges.insert(edges.end(), fe.begin(), fe.end());
+        int shared = 0;
+        for (int k = 0; k < 4; ++k) shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
+        if (shared == 4) continue; // the cell itself, already first
+        if (level.IsFaceHole(f)) local.holes.push_back(local.faces());
+        for (int k = 0; k < 4; ++k) local.faceVerts.push_back(localVertex(fv[k]));
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (Index e : edges) {
+        const float sharp = level.GetEdgeSharpness(e);
+        if (sharp > 0 && level.GetEdgeFaces(e).size() == 2) {
+            const auto ev = level.GetEdgeVertices(e);
+            local.creasePairs.insert(local.creasePairs.end(), {localVertex(ev[0]), localVertex(ev[1])});
+            local.creaseW.push_back(sharp);
+        }
+    }
+    for (const auto& [v, lv] : localOf) {
+        const float sharp = level.GetVertexSharpness(v);
+        if (sharp > 0) {
+            local.cornerIdx.push_back(lv);
+            local.cornerW.push_back(sharp);
+        }
+    }
+    local.vertices = static_cast<int>(local.positions.size());
+    if (!tainted) local.taint.clear();
+    return local;
+}
+
+int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth);
+
+/// A cell whose 1-ring holds a boundary vertex of one face under edge_only (docs/subdivision.md,
+/// "Smooth boundary corners"): OpenSubdiv's patch there is not the limit surface, so the cell is
+/// never a patch. Its local cage (face 0 the cell, in `frame` of the base) is refined uniformly
+/// by one level; the cell is an irregular leaf with its 1-ring hull bound when that is within the
+/// tolerance, else each of its four children is handled again: as such a cell when its 1-ring
+/// still holds such a vertex, else as an ordinary local cage (collectCells).
+void refineTainted(CellSearch& s, const QuadBase& local, const Frame& frame)
+{
+    const std::vector<int> counts(static_cast<std::size_t>(local.faces()), 4);
+    auto refiner = makeRefiner(local.vertices, counts, local.faceVerts, local.creasePairs, local.creaseW, local.cornerIdx, local.cornerW,
+                               local.holes, s.sdc);
+    osd::Far::TopologyRefiner::UniformOptions uniform(1);
+    uniform.fullTopologyInLastLevel = true;
+    refiner->RefineUniform(uniform);
+    const osd::Far::TopologyLevel& level0 = refiner->GetLevel(0);
+    const osd::Far::TopologyLevel& level1 = refiner->GetLevel(1);
+    std::vector<Point3> fine(static_cast<std::size_t>(level1.GetNumVertices()));
+    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
+    const Point3* src = local.positions.data();
+    Point3* dst = fine.data();
+    primvar.Interpolate(1, src, dst);
+    std::vector<Point3> limit(fine.size()), tan1(fine.size()), tan2(fine.size());
+    clearOsdError();
+    primvar.Limit(fine, limit, tan1, tan2);
+    takeOsdError();
+
+    // The cell's bound from its 1-ring (every local vertex) and its corners' limit points (those
+    // of their children on level 1, the same points).
+    Irregular cell;
+    cell.face = frame.face;
+    cell.u0 = frame.u0;
+    cell.v0 = frame.v0;
+    cell.size = frame.size;
+    double bound = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) {
+        const Index v = level0.GetVertexChildVertex(local.faceVerts[static_cast<std::size_t>(k)]);
+        const Eigen::Vector3d c = limit[static_cast<std::size_t>(v)].vec();
+        const Eigen::Vector3d n = tan1[static_cast<std::size_t>(v)].vec().cross(tan2[static_cast<std::size_t>(v)].vec());
+        cell.corner[static_cast<std::size_t>(k)] = c;
+        cell.normal[static_cast<std::size_t>(k)] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+        double far = 0;
+        for (const Point3& x : local.positions) far = std::max(far, (x.vec() - c).norm());
+        bound = std::min(bound, far);
+    }
+    cell.bound = bound;
+    // Room for the children and their own cells (10 levels and 10 halvings) in the 2^40 keys.
+    if (bound <= s.tol || (frame.size >> 1 >> kOsdMaxDepth) < (Int(1) << 10)) {
+        s.irregular.push_back(cell);
+        return;
+    }
+    std::vector<char> taint1(static_cast<std::size_t>(level1.GetNumVertices()), 0);
+    for (int v = 0; v < local.vertices; ++v)
+        if (local.taint[static_cast<std::size_t>(v)]) {
+            const Index c = level0.GetVertexChildVertex(v);
+            if (c >= 0) taint1[static_cast<std::size_t>(c)] = 1;
+        }
+    const std::array<Index, 4> corner{local.faceVerts[0], local.faceVerts[1], local.faceVerts[3], local.faceVerts[2]};
+    const Int half = frame.size / 2;
+    for (int qb = 0; qb < 2; ++qb)
+        for (int qa = 0; qa < 2; ++qa) {
+            const auto [child, next] = childFace(*refiner, 0, 0, corner, qa, qb);
+            (void)child;
+            const QuadBase sub = localCage(level1, next, fine.data(), &taint1);
+            const Frame subFrame{frame.face, frame.u0 + qa * half, frame.v0 + qb * half, half};
+            if (!sub.taint.empty()) {
+                refineTainted(s, sub, subFrame);
+                continue;
+            }
+            std::vector<Frame> subFrames(static_cast<std::size_t>(sub.faces()));
+            subFrames[0] = subFrame;
+            collectCells(s, sub, subFrames, firstDepthOf(sub, s.maxDepth));
+        }
+}
+
 /// The cells of the faces of m that have a frame: OpenSubdiv's adaptive refinement and patch table
 /// at isolation levels firstDepth, firstDepth + 1, ... until every irregular cell's hull bound is at
 /// most the tolerance or maxDepth is reached. There, with `deeper`, an irregular cell still above
 /// the tolerance is replaced by the cells of its own local cage (the faces around its corners on
-/// that level, docs/subdivision.md "Deeper than level 10"), found the same way. Returns the level
-/// reached on m.
+/// that level, docs/subdivision.md "Deeper than level 10"), found the same way. A cell whose 1-ring
+/// holds a one-face boundary vertex under edge_only (m.taint) goes to refineTainted instead.
+/// Returns the level reached on m.
 int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth)
 {
     const std::vector<int> counts(static_cast<std::size_t>(m.faces()), 4);
+    const bool hasTaint = std::find(m.taint.begin(), m.taint.end(), char(1)) != m.taint.end();
     std::vector<Irregular> irregular;
     std::vector<std::array<Index, 4>> irregularCorners; // the level-d vertices at each cell's corners
     std::vector<Regular> regular;
+    struct Tainted {
+        Frame frame;
+        int depth = 0;
+        std::array<Index, 4> corner{};
+    };
+    std::vector<Tainted> tainted;
     for (int depth = firstDepth;; ++depth) {
         irregular.clear();
         irregularCorners.clear();
         regular.clear();
-        auto refiner = makeRefiner(m.vertices, counts, m.faceVerts, m.creasePairs, m.creaseW, m.cornerIdx, m.cornerW, s.sdc);
+        tainted.clear();
+        auto refiner = makeRefiner(m.vertices, counts, m.faceVerts, m.creasePairs, m.creaseW, m.cornerIdx, m.cornerW, m.holes, s.sdc);
         osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
         adaptive.SetSecondaryLevel(depth);
         adaptive.useInfSharpPatch = true;
@@ -481,6 +704,22 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
             Point3* dst = all.data() + offset[static_cast<std::size_t>(l)];
             primvar.Interpolate(l, src, dst);
         }
+        // The one-face boundary vertices on every level: the vertex children of the base's (no
+        // other vertex has one face: edge and face children have two or more).
+        std::vector<std::vector<char>> taintAt;
+        if (hasTaint) {
+            taintAt.push_back(m.taint);
+            for (int l = 1; l <= refiner->GetMaxLevel(); ++l) {
+                std::vector<char> next(static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices()), 0);
+                const std::vector<char>& prev = taintAt.back();
+                for (std::size_t v = 0; v < prev.size(); ++v)
+                    if (prev[v]) {
+                        const Index c = refiner->GetLevel(l - 1).GetVertexChildVertex(static_cast<Index>(v));
+                        if (c >= 0) next[static_cast<std::size_t>(c)] = 1;
+                    }
+                taintAt.push_back(std::move(next));
+            }
+        }
         // Limit positions and tangents of the finest level.
         const int finest = refiner->GetMaxLevel();
         const std::size_t nFine = static_cast<std::size_t>(refiner->GetLevel(finest).GetNumVertices());
@@ -501,61 +740,44 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
                 const int d = param.GetDepth();
                 const Int size = frame.size >> d;
                 const Int u0 = frame.u0 + static_cast<Int>(param.GetU()) * size, v0 = frame.v0 + static_cast<Int>(param.GetV()) * size;
-                if (type == osd::Far::PatchDescriptor::REGULAR) {
+                const bool isRegular = type == osd::Far::PatchDescriptor::REGULAR;
+                if (isRegular && !hasTaint) {
                     regular.push_back({frame.face, u0, v0, size,
                                        bezierOfRegular(all, table->GetPatchVertices(array, patch), param.GetBoundary())});
                     continue;
                 }
-                // An irregular cell: find its face on level d by descending from the base face,
-                // keeping which vertex sits at each corner.
+                // The cell's face on level d, found by descending from the base face, keeping which
+                // vertex sits at each corner.
+                const int* fv = &m.faceVerts[static_cast<std::size_t>(4 * face)];
+                std::array<Index, 4> corner{fv[0], fv[1], fv[3], fv[2]}; // slot 2 * b + a at corner (a, b)
+                Index current = face;
+                for (int l = 0; l < d; ++l) {
+                    const int shift = d - 1 - l;
+                    const int qa = static_cast<int>((param.GetU() >> shift) & 1), qb = static_cast<int>((param.GetV() >> shift) & 1);
+                    std::tie(current, corner) = childFace(*refiner, l, current, corner, qa, qb);
+                }
+                const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
+                const std::vector<Index> ring = ringOf(level, corner);
+                if (hasTaint) {
+                    const std::vector<char>& t = taintAt[static_cast<std::size_t>(d)];
+                    bool near = false;
+                    for (Index w : ring) near = near || t[static_cast<std::size_t>(w)];
+                    if (near) {
+                        tainted.push_back({{frame.face, u0, v0, size}, d, corner});
+                        continue;
+                    }
+                }
+                if (isRegular) {
+                    regular.push_back({frame.face, u0, v0, size,
+                                       bezierOfRegular(all, table->GetPatchVertices(array, patch), param.GetBoundary())});
+                    continue;
+                }
+                if (d != finest) throw Error("subdivision tessellation: an irregular cell above the finest level (internal)");
                 Irregular cell;
                 cell.face = frame.face;
                 cell.u0 = u0;
                 cell.v0 = v0;
                 cell.size = size;
-                const int* fv = &m.faceVerts[static_cast<std::size_t>(4 * face)];
-                std::array<Index, 4> corner{fv[0], fv[1], fv[3], fv[2]}; // slot 2 * b + a at corner (a, b)
-                Index current = face;
-                for (int l = 0; l < d; ++l) {
-                    const osd::Far::TopologyLevel& level = refiner->GetLevel(l);
-                    const int shift = d - 1 - l;
-                    const int qa = static_cast<int>((param.GetU() >> shift) & 1), qb = static_cast<int>((param.GetV() >> shift) & 1);
-                    const auto faceVerts = level.GetFaceVertices(current);
-                    const auto faceEdges = level.GetFaceEdges(current);
-                    auto edgeBetween = [&](Index x, Index y) {
-                        for (int k = 0; k < 4; ++k)
-                            if ((faceVerts[k] == x && faceVerts[(k + 1) % 4] == y) || (faceVerts[k] == y && faceVerts[(k + 1) % 4] == x))
-                                return level.GetEdgeChildVertex(faceEdges[k]);
-                        throw Error("subdivision tessellation: a cell's corners are not an edge (internal)");
-                    };
-                    std::array<Index, 4> next{};
-                    next[static_cast<std::size_t>(2 * qb + qa)] = level.GetVertexChildVertex(corner[static_cast<std::size_t>(2 * qb + qa)]);
-                    next[static_cast<std::size_t>(2 * qb + (1 - qa))] =
-                        edgeBetween(corner[static_cast<std::size_t>(2 * qb + qa)], corner[static_cast<std::size_t>(2 * qb + (1 - qa))]);
-                    next[static_cast<std::size_t>(2 * (1 - qb) + qa)] =
-                        edgeBetween(corner[static_cast<std::size_t>(2 * qb + qa)], corner[static_cast<std::size_t>(2 * (1 - qb) + qa)]);
-                    next[static_cast<std::size_t>(2 * (1 - qb) + (1 - qa))] = level.GetFaceChildVertex(current);
-                    Index child = -1;
-                    for (Index c : level.GetFaceChildFaces(current)) {
-                        if (c < 0) continue;
-                        const auto cv = refiner->GetLevel(l + 1).GetFaceVertices(c);
-                        int found = 0;
-                        for (int k = 0; k < cv.size(); ++k) found += std::count(next.begin(), next.end(), cv[k]) > 0 ? 1 : 0;
-                        if (found == 4) child = c;
-                    }
-                    if (child < 0) throw Error("subdivision tessellation: a cell's face was not refined (internal)");
-                    current = child;
-                    corner = next;
-                }
-                if (d != finest) throw Error("subdivision tessellation: an irregular cell above the finest level (internal)");
-                // The 1-ring of the cell: every vertex of every face at one of its corners.
-                const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
-                std::vector<Index> ring;
-                for (Index v : corner)
-                    for (Index f : level.GetVertexFaces(v))
-                        for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
-                std::sort(ring.begin(), ring.end());
-                ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
                 const std::array<int, 4> order{0, 1, 3, 2}; // slots at (0,0), (1,0), (1,1), (0,1)
                 double bound = std::numeric_limits<double>::infinity();
                 for (int k = 0; k < 4; ++k) {
@@ -585,55 +807,16 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
                 s.irregular.push_back(cell);
                 continue;
             }
-            // The local cage: every face of level `depth` at a corner of the cell (its 1-ring),
-            // the cell first with its corners in (u, v) order, sharpness as on that level.
-            const osd::Far::TopologyLevel& level = refiner->GetLevel(depth);
-            const std::array<Index, 4>& corner = irregularCorners[i];
-            std::vector<Index> faces;
-            for (Index v : corner)
-                for (Index f : level.GetVertexFaces(v)) faces.push_back(f);
-            std::sort(faces.begin(), faces.end());
-            faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-            QuadBase local;
-            std::unordered_map<Index, int> localOf;
-            auto localVertex = [&](Index v) {
-                const auto [it, added] = localOf.emplace(v, static_cast<int>(local.positions.size()));
-                if (added) local.positions.push_back(all[offset[static_cast<std::size_t>(depth)] + static_cast<std::size_t>(v)]);
-                return it->second;
-            };
-            for (int k : {0, 1, 3, 2}) local.faceVerts.push_back(localVertex(corner[static_cast<std::size_t>(k)]));
-            std::vector<Index> edges;
-            for (Index f : faces) {
-                const auto fv = level.GetFaceVertices(f);
-                if (fv.size() != 4) throw Error("subdivision tessellation: a refined face is not a quad (internal)");
-                const auto fe = level.GetFaceEdges(f);
-                edges.insert(edges.end(), fe.begin(), fe.end());
-                int shared = 0;
-                for (int k = 0; k < 4; ++k) shared += std::count(corner.begin(), corner.end(), fv[k]) > 0 ? 1 : 0;
-                if (shared == 4) continue; // the cell itself, already first
-                for (int k = 0; k < 4; ++k) local.faceVerts.push_back(localVertex(fv[k]));
-            }
-            std::sort(edges.begin(), edges.end());
-            edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-            for (Index e : edges) {
-                const float sharp = level.GetEdgeSharpness(e);
-                if (sharp > 0 && level.GetEdgeFaces(e).size() == 2) {
-                    const auto ev = level.GetEdgeVertices(e);
-                    local.creasePairs.insert(local.creasePairs.end(), {localVertex(ev[0]), localVertex(ev[1])});
-                    local.creaseW.push_back(sharp);
-                }
-            }
-            for (const auto& [v, lv] : localOf) {
-                const float sharp = level.GetVertexSharpness(v);
-                if (sharp > 0) {
-                    local.cornerIdx.push_back(lv);
-                    local.cornerW.push_back(sharp);
-                }
-            }
-            local.vertices = static_cast<int>(local.positions.size());
+            const QuadBase local = localCage(refiner->GetLevel(depth), irregularCorners[i],
+                                             all.data() + offset[static_cast<std::size_t>(depth)], nullptr);
             std::vector<Frame> localFrames(static_cast<std::size_t>(local.faces()));
             localFrames[0] = {cell.face, cell.u0, cell.v0, cell.size};
             collectCells(s, local, localFrames, firstDepthOf(local, kOsdMaxDepth));
+        }
+        for (const Tainted& t : tainted) {
+            const QuadBase local = localCage(refiner->GetLevel(t.depth), t.corner, all.data() + offset[static_cast<std::size_t>(t.depth)],
+                                             &taintAt[static_cast<std::size_t>(t.depth)]);
+            refineTainted(s, local, t.frame);
         }
         return depth;
     }
@@ -700,6 +883,14 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         if (canU && canV) {
             if (terms[0] > 2 * terms[2]) splitV = false;
             else if (terms[2] > 2 * terms[0]) splitU = false;
+        }
+        if (splitU && splitV) {
+            // The last split: where halving one direction is expected to bring the bound within the
+            // tolerance (a halving in u quarters the u term and halves the mixed one), halve only
+            // that one. The halves' bounds are computed again, so this choice never weakens the
+            // bound; it saves the overshoot of halving both.
+            const double afterU = terms[0] / 4 + terms[1] / 2 + terms[2], afterV = terms[0] + terms[1] / 2 + terms[2] / 4;
+            if (std::min(afterU, afterV) <= tol) (afterU <= afterV ? splitV : splitU) = false;
         }
         std::vector<Task> parts{t};
         if (splitU) {
@@ -833,7 +1024,9 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         report->faceBounds = faceBound;
         report->faceCertified.assign(static_cast<std::size_t>(faceCount()), 0);
         for (int f = 0; f < faceCount(); ++f)
-            report->faceCertified[static_cast<std::size_t>(f)] = hasLimitSurface(f) && faceBound[static_cast<std::size_t>(f)] <= tol;
+            // A face without a limit surface (a hole, a boundary face under `none`) has nothing to
+            // approximate and no triangle: certified (vacuously), with bound 0.
+            report->faceCertified[static_cast<std::size_t>(f)] = !hasLimitSurface(f) || faceBound[static_cast<std::size_t>(f)] <= tol;
     }
     return out;
 }

@@ -491,16 +491,10 @@ PolygonMesh SubdivisionSurface::tessellate(const SubdivisionTessellationOptions&
         throw Error("subdivision tessellation: level " + std::to_string(options.level) + " is outside 1.." +
                     std::to_string(options.maxLevel));
     const Topology& t = *topology_;
-    // The certified path (docs/subdivision.md, "Certified tessellation"). Not for: Loop; holes and
-    // boundary none (faces without a limit surface); smooth triangles (other masks); and, with
-    // boundary edge_only, a cage with a boundary vertex of one face (a smooth corner: OpenSubdiv's
-    // patch table gives its faces a regular corner patch that is not the limit surface; measured
-    // 0.024 off on a 6 x 6 grid, tests/test_subdivision_tessellation.cpp).
-    bool smoothCorner = false;
-    if (t.boundary == BoundaryInterpolation::EdgeOnly)
-        for (std::size_t v = 0; v < t.valence.size(); ++v) smoothCorner = smoothCorner || (t.boundaryVertex[v] && t.valence[v] == 1);
-    if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Catmark && t.boundary != BoundaryInterpolation::None &&
-        cage_.holes.empty() && !cage_.smoothTriangles && !smoothCorner)
+    // The certified path (docs/subdivision.md, "Certified tessellation"): every Catmull-Clark cage,
+    // holes, boundary none, smooth triangles and smooth boundary corners (edge_only, a boundary
+    // vertex of one face) included.
+    if (options.tolerance > 0 && options.certified && t.scheme == SubdivisionScheme::Catmark)
         return tessellateCertified(options, report);
     // Loop cages: every cage, with boundaries (any interpolation), holes, creases and corners
     // (certified_tessellation_loop.cpp; docs/subdivision.md, "Loop cages").

@@ -96,18 +96,19 @@ struct LimitPoint {
 struct SubdivisionTessellationOptions {
     /// Segments per face edge in uniform mode (tolerance 0), at least 1.
     int level = 8;
-    /// > 0: adaptive. Catmark cages (without holes, boundary none or smooth triangles) take the
-    /// certified path (docs/subdivision.md, "Certified tessellation"): every base face is cut into
-    /// cells (OpenSubdiv's adaptive refinement and patch table), a regular cell is a bicubic Bézier
-    /// patch split by de Casteljau until netErrorBound is at most this, an irregular cell (at an
-    /// extraordinary vertex, a sharp corner, an irregular crease or boundary vertex) is bounded by
-    /// the convex hull of its 1-ring; the bound holds both ways (mesh to surface, surface to mesh)
-    /// and the mesh is conforming and watertight. Closed Loop cages without creases or corners take
-    /// the same kind of path with quartic Bézier triangles (docs/subdivision.md, "Loop cages").
-    /// Other cages (open or creased Loop cages, holes, boundary none, smooth triangles) keep the
-    /// estimate: each face gets the fewest segments whose error estimate is at
-    /// most this (regular faces: the certified bound of their Bézier patch; other faces: sampled
-    /// second derivatives, not certified); a shared edge gets the larger count of its two faces.
+    /// > 0: adaptive, on the certified path (docs/subdivision.md, "Certified tessellation") for
+    /// every cage. Catmull-Clark (holes, boundary none, smooth triangles, creases, corners and
+    /// edge_only one-face corners included): every base face is cut into cells (OpenSubdiv's
+    /// adaptive refinement and patch table), a regular cell is a bicubic Bézier patch split by
+    /// de Casteljau until netErrorBound is at most this, an irregular cell (at an extraordinary
+    /// vertex, a sharp corner, an irregular crease or boundary vertex, an edge_only one-face corner)
+    /// is bounded by the convex hull of its 1-ring; the bound holds both ways (mesh to surface,
+    /// surface to mesh) and the mesh is conforming, and watertight for closed cages. Loop cages take
+    /// the same kind of path with quartic Bézier triangles for interior regular cells and 1-ring
+    /// hulls for the rest (docs/subdivision.md, "Loop cages"). With `certified` false, the estimate:
+    /// each face gets the fewest segments whose error estimate is at most this (regular faces: the
+    /// certified bound of their Bézier patch; other faces: sampled second derivatives, not
+    /// certified); a shared edge gets the larger count of its two faces.
     double tolerance = 0;
     int maxLevel = 256;
     /// false: the estimate path (per-face segment counts, rates in the report) even where the
