@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -15,16 +16,27 @@ namespace freeform::editor {
 
 namespace {
 
+// The frame's per-vertex data (FfdSession: coords_ and base_): fields per block of lanes.
+constexpr int FfdCoordFields = 6, FfdBaseFields = 13;
+
+/// Four float lanes (SSE2 at the baseline; GCC's vector extension).
+typedef float V4 __attribute__((vector_size(16)));
+typedef int V4i __attribute__((vector_size(16)));
+inline V4 load4(const float* p)
+{
+    V4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void store4(float* p, V4 v) { std::memcpy(p, &v, sizeof v); }
+
 /// What one drag frame reads and writes (FfdSession::dragFrame), and what it finds.
 struct FrameArgs {
     std::size_t count = 0;
-    const float* coords = nullptr;        // blocks of W: s, t, u
+    const float* coords = nullptr;        // blocks of W: s, t, u, rest normal x, y, z
     const unsigned char* masks = nullptr; // per vertex (Masked only)
-    const float* p0 = nullptr;            // 3 x V, the base's positions (Evaluated only)
+    const float* base = nullptr;          // blocks of W: p0 (3), A (9, column-major), det A (Evaluated only)
     const double* rest = nullptr;         // 3 x V, the rest positions (Identity only)
-    const float* a = nullptr;             // 9 x V, the base's Jacobians (Evaluated only)
-    const float* det0 = nullptr;          // V, the base's det J (Evaluated only)
-    const float* nr = nullptr;            // 3 x V, rest normals
     int deg[3] = {3, 3, 3};
     const std::array<int, 3>* ijk = nullptr;
     std::size_t moved = 0;
@@ -82,9 +94,11 @@ void framePass(FrameArgs& f)
     const float u0 = f.u[0], u1 = f.u[1], u2 = f.u[2];
     const float* dual = f.dual;
     float b[3][kMaxDegree + 1][W], db[3][kMaxDegree + 1][W];
+    const V4 inf = V4{} + std::numeric_limits<float>::infinity();
+    V4 vmn[3] = {inf, inf, inf}, vmx[3] = {-inf, -inf, -inf}, vlo = inf, vhi = -inf;
     for (std::size_t base = 0; base < count; base += W) {
         const std::size_t lanes = std::min<std::size_t>(W, count - base);
-        const float* q = f.coords + (base / W) * 3 * W;
+        const float* q = f.coords + (base / W) * FfdCoordFields * W;
         for (int x = 0; x < 3; ++x) laneBernstein<W>(f.deg[x], q + x * W, b[x], db[x]);
         // B and grad B (lattice coordinates) of the moved points.
         float bs[W], g[3][W];
@@ -108,50 +122,56 @@ void framePass(FrameArgs& f)
                 for (int x = 0; x < 3; ++x) g[x][w] = (m & 8u) && (m >> x & 1u) ? g[x][w] : 0.0f;
             }
         }
-        // The base: A (column-major, a[3 c + r]), p0, det A, the rest normal.
-        float a[9][W], p0[3][W], d0[W], nr[3][W];
-        for (int w = 0; w < W; ++w) {
-            const std::size_t v = std::min(base + std::size_t(w), count - 1); // padding repeats the last vertex
-            for (int x = 0; x < 3; ++x) nr[x][w] = f.nr[3 * v + std::size_t(x)];
-            if constexpr (Identity) {
-                for (int x = 0; x < 3; ++x) p0[x][w] = float(f.rest[3 * v + std::size_t(x)]);
-                for (int c = 0; c < 9; ++c) a[c][w] = c % 4 == 0 ? 1.0f : 0.0f;
-                d0[w] = 1.0f;
-            } else {
-                for (int x = 0; x < 3; ++x) p0[x][w] = f.p0[3 * v + std::size_t(x)];
-                for (int c = 0; c < 9; ++c) a[c][w] = f.a[9 * v + std::size_t(c)];
-                d0[w] = f.det0[v];
-            }
-        }
         float p[3][W], n[3][W], d[W], len2[W], inv[W];
-        for (int w = 0; w < W; ++w) {
+        const float* cb = f.coords + (base / W) * FfdCoordFields * W;
+        const float* bb = f.base + (base / W) * FfdBaseFields * W;
+        float rp[3][W]; // Identity: the rest positions in float
+        if constexpr (Identity)
+            for (int w = 0; w < W; ++w) {
+                const std::size_t v = std::min(base + std::size_t(w), count - 1); // padding repeats the last vertex
+                for (int x = 0; x < 3; ++x) rp[x][w] = float(f.rest[3 * v + std::size_t(x)]);
+            }
+        // Four lanes at a time (SSE2; the base and the coordinates are structures of arrays).
+        for (int w = 0; w < W; w += 4) {
+            const V4 g0 = load4(g[0] + w), g1 = load4(g[1] + w), g2 = load4(g[2] + w), b4 = load4(bs + w);
+            const V4 nx = load4(cb + 3 * W + w), ny = load4(cb + 4 * W + w), nz = load4(cb + 5 * W + w);
             // v = dual^T g
-            const float v0 = dual[0] * g[0][w] + dual[3] * g[1][w] + dual[6] * g[2][w];
-            const float v1 = dual[1] * g[0][w] + dual[4] * g[1][w] + dual[7] * g[2][w];
-            const float v2 = dual[2] * g[0][w] + dual[5] * g[1][w] + dual[8] * g[2][w];
-            // cof(A)'s columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1.
-            const float k0x = a[4][w] * a[8][w] - a[5][w] * a[7][w], k0y = a[5][w] * a[6][w] - a[3][w] * a[8][w],
-                        k0z = a[3][w] * a[7][w] - a[4][w] * a[6][w];
-            const float k1x = a[7][w] * a[2][w] - a[8][w] * a[1][w], k1y = a[8][w] * a[0][w] - a[6][w] * a[2][w],
-                        k1z = a[6][w] * a[1][w] - a[7][w] * a[0][w];
-            const float k2x = a[1][w] * a[5][w] - a[2][w] * a[4][w], k2y = a[2][w] * a[3][w] - a[0][w] * a[5][w],
-                        k2z = a[0][w] * a[4][w] - a[1][w] * a[3][w];
-            const float nx = nr[0][w], ny = nr[1][w], nz = nr[2][w];
-            // det J = det A + (cof(A) v) . u
-            const float ex = v0 * k0x + v1 * k1x + v2 * k2x, ey = v0 * k0y + v1 * k1y + v2 * k2y, ez = v0 * k0z + v1 * k1z + v2 * k2z;
-            d[w] = d0[w] + (ex * u0 + ey * u1 + ez * u2);
-            // cof(J) n = cof(A) n + u x (A (n x v))
-            const float mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0;
-            const float hx = a[0][w] * mxv + a[3][w] * myv + a[6][w] * mzv;
-            const float hy = a[1][w] * mxv + a[4][w] * myv + a[7][w] * mzv;
-            const float hz = a[2][w] * mxv + a[5][w] * myv + a[8][w] * mzv;
-            n[0][w] = (nx * k0x + ny * k1x + nz * k2x) + (u1 * hz - u2 * hy);
-            n[1][w] = (nx * k0y + ny * k1y + nz * k2y) + (u2 * hx - u0 * hz);
-            n[2][w] = (nx * k0z + ny * k1z + nz * k2z) + (u0 * hy - u1 * hx);
-            len2[w] = n[0][w] * n[0][w] + n[1][w] * n[1][w] + n[2][w] * n[2][w];
-            p[0][w] = p0[0][w] + bs[w] * u0;
-            p[1][w] = p0[1][w] + bs[w] * u1;
-            p[2][w] = p0[2][w] + bs[w] * u2;
+            const V4 v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
+            const V4 v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
+            const V4 v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
+            const V4 mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0; // n x v
+            V4 px, py, pz, cx, cy, cz, ex, ey, ez, hx, hy, hz, d0;
+            if constexpr (Identity) {
+                px = load4(rp[0] + w), py = load4(rp[1] + w), pz = load4(rp[2] + w);
+                cx = nx, cy = ny, cz = nz;           // cof(I) n
+                ex = v0, ey = v1, ez = v2;           // cof(I) v
+                hx = mxv, hy = myv, hz = mzv;        // I (n x v)
+                d0 = V4{} + 1.0f;
+            } else {
+                px = load4(bb + w), py = load4(bb + W + w), pz = load4(bb + 2 * W + w);
+                V4 a[9];
+                for (int c = 0; c < 9; ++c) a[c] = load4(bb + (3 + c) * W + w);
+                d0 = load4(bb + 12 * W + w);
+                // cof(A)'s columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1 (A column-major, a[3 c + r]).
+                const V4 k0x = a[4] * a[8] - a[5] * a[7], k0y = a[5] * a[6] - a[3] * a[8], k0z = a[3] * a[7] - a[4] * a[6];
+                const V4 k1x = a[7] * a[2] - a[8] * a[1], k1y = a[8] * a[0] - a[6] * a[2], k1z = a[6] * a[1] - a[7] * a[0];
+                const V4 k2x = a[1] * a[5] - a[2] * a[4], k2y = a[2] * a[3] - a[0] * a[5], k2z = a[0] * a[4] - a[1] * a[3];
+                cx = nx * k0x + ny * k1x + nz * k2x, cy = nx * k0y + ny * k1y + nz * k2y, cz = nx * k0z + ny * k1z + nz * k2z;
+                ex = v0 * k0x + v1 * k1x + v2 * k2x, ey = v0 * k0y + v1 * k1y + v2 * k2y, ez = v0 * k0z + v1 * k1z + v2 * k2z;
+                hx = a[0] * mxv + a[3] * myv + a[6] * mzv;
+                hy = a[1] * mxv + a[4] * myv + a[7] * mzv;
+                hz = a[2] * mxv + a[5] * myv + a[8] * mzv;
+            }
+            // det J = det A + (cof(A) v) . u;  cof(J) n = cof(A) n + u x (A (n x v));  p = p0 + B u
+            store4(d + w, d0 + (ex * u0 + ey * u1 + ez * u2));
+            const V4 qx = cx + (u1 * hz - u2 * hy), qy = cy + (u2 * hx - u0 * hz), qz = cz + (u0 * hy - u1 * hx);
+            store4(n[0] + w, qx);
+            store4(n[1] + w, qy);
+            store4(n[2] + w, qz);
+            store4(len2 + w, qx * qx + qy * qy + qz * qz);
+            store4(p[0] + w, px + b4 * u0);
+            store4(p[1] + w, py + b4 * u1);
+            store4(p[2] + w, pz + b4 * u2);
         }
 #if defined(__SSE2__)
         for (int w = 0; w < W; w += 4) {
@@ -162,6 +182,34 @@ void framePass(FrameArgs& f)
 #else
         for (int w = 0; w < W; ++w) inv[w] = len2[w] > 0 ? 1.0f / std::sqrt(len2[w]) : 0.0f;
 #endif
+        if (lanes == std::size_t(W)) {
+            // A whole block: the box and det J's range in vectors (min and max in float, then
+            // widened: the same values as in double), folds looked for only where a lane has one.
+            for (int w = 0; w < W; w += 4) {
+                for (int x = 0; x < 3; ++x) {
+                    const V4 px = load4(p[x] + w);
+                    vmn[x] = px < vmn[x] ? px : vmn[x];
+                    vmx[x] = vmx[x] < px ? px : vmx[x];
+                    store4(n[x] + w, load4(n[x] + w) * load4(inv + w));
+                }
+                const V4 dv = load4(d + w);
+                vlo = dv < vlo ? dv : vlo;
+                vhi = vhi < dv ? dv : vhi;
+                const V4i positive = dv > 0.0f;
+                if ((positive[0] & positive[1] & positive[2] & positive[3]) == 0)
+                    for (int k = w; k < w + 4; ++k)
+                        if (!(d[k] > 0)) f.folds->push_back(static_cast<int>(base + std::size_t(k)));
+            }
+            double* po = f.pos + 3 * base;
+            double* no = f.nor + 3 * base;
+            for (int w = 0; w < W; ++w)
+                for (int x = 0; x < 3; ++x) {
+                    po[3 * w + x] = double(p[x][w]);
+                    no[3 * w + x] = double(n[x][w]);
+                }
+            if (f.det) std::memcpy(f.det + base, d, sizeof d);
+            continue;
+        }
         for (std::size_t w = 0; w < lanes; ++w) {
             for (int x = 0; x < 3; ++x) {
                 f.pos[3 * (base + w) + std::size_t(x)] = double(p[x][w]);
@@ -175,6 +223,14 @@ void framePass(FrameArgs& f)
             hi = std::max(hi, dd);
             if (!(dd > 0)) f.folds->push_back(static_cast<int>(base + w));
         }
+    }
+    for (int k = 0; k < 4; ++k) {
+        for (int x = 0; x < 3; ++x) {
+            mn[x] = vmn[x][k] < mn[x] ? vmn[x][k] : mn[x];
+            mx[x] = vmx[x][k] > mx[x] ? vmx[x][k] : mx[x];
+        }
+        lo = std::min(lo, double(vlo[k]));
+        hi = std::max(hi, double(vhi[k]));
     }
     f.lo = lo;
     f.hi = hi;
@@ -196,7 +252,8 @@ FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
     const std::vector<int>& outside = binding_.outsideVertices();
     const OutsidePolicy policy = lattice.outside();
     const bool masked = !outside.empty() && policy != OutsidePolicy::Extrapolate;
-    coords_.assign(((count + W - 1) / W) * 3 * W, 0.5f);
+    const bool normals = rest_.normals.cols() == rest_.positions.cols();
+    coords_.assign(((count + W - 1) / W) * kCoordFields * W, 0.5f);
     if (masked) masks_.assign(count, 0x0f);
     auto next = outside.begin();
     for (std::size_t v = 0; v < count; ++v) {
@@ -210,12 +267,18 @@ FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
             masks_[v] = m;
             q = q.cwiseMax(0.0).cwiseMin(1.0);
         }
-        float* b = coords_.data() + (v / W) * 3 * W + v % W;
-        for (int x = 0; x < 3; ++x) b[x * W] = static_cast<float>(q[x]);
+        float* b = coords_.data() + (v / W) * kCoordFields * W + v % W;
+        for (int x = 0; x < 3; ++x) {
+            b[x * W] = static_cast<float>(q[x]);
+            b[(3 + x) * W] = normals ? restNormals_(x, static_cast<Eigen::Index>(v)) : 0.0f;
+        }
     }
+    static_assert(kCoordFields == FfdCoordFields && kBaseFields == FfdBaseFields);
     // Padding lanes repeat the last vertex (finite; never written out).
     for (std::size_t v = count; count > 0 && v % W != 0; ++v)
-        for (int x = 0; x < 3; ++x) coords_[(v / W) * 3 * W + std::size_t(x) * W + v % W] = coords_[((count - 1) / W) * 3 * W + std::size_t(x) * W + (count - 1) % W];
+        for (int x = 0; x < kCoordFields; ++x)
+            coords_[(v / W) * kCoordFields * W + std::size_t(x) * W + v % W] =
+                coords_[((count - 1) / W) * kCoordFields * W + std::size_t(x) * W + (count - 1) % W];
 }
 
 FfdSession::~FfdSession()
@@ -418,11 +481,8 @@ void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta,
     f.count = static_cast<std::size_t>(rest_.positions.cols());
     f.coords = coords_.data();
     f.masks = masks_.empty() ? nullptr : masks_.data();
-    f.p0 = positions_.data();
+    f.base = baseBlocks_.data();
     f.rest = rest_.positions.data();
-    f.a = jacobians_.data();
-    f.det0 = baseDet_.data();
-    f.nr = restNormals_.data();
     for (int x = 0; x < 3; ++x) f.deg[x] = lattice.degree(x);
     f.ijk = drag_->ijk.data();
     f.moved = drag_->ijk.size();
@@ -455,7 +515,7 @@ void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta,
 }
 
 void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds,
-                        int threads) const
+                        int threads)
 {
     // One pass over the float results, on the same threads as before, in chunks combined in chunk
     // order: the scene's double mesh (exact widening), the report from det J as FfdBinding::deform
@@ -468,12 +528,25 @@ void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, Deform
         float min[3] = {0, 0, 0}, max[3] = {0, 0, 0};
     };
     constexpr std::size_t kGrain = 16384;
+    constexpr int W = kLanes;
+    static_assert(kGrain % W == 0);
+    if (normals) baseBlocks_.resize(((static_cast<std::size_t>(count) + W - 1) / W) * kBaseFields * W);
     std::vector<Part> parts(static_cast<std::size_t>(parallelChunkCount(0, static_cast<std::size_t>(count), kGrain, threads)));
     parallelFor(0, static_cast<std::size_t>(count), kGrain, threads, [&](int c, std::size_t first, std::size_t last) {
         const auto n = static_cast<Eigen::Index>(last - first), f = static_cast<Eigen::Index>(first);
         out.positions.middleCols(f, n) = positions_.middleCols(f, n).cast<double>();
         if (normals) out.normals.middleCols(f, n) = normals_.middleCols(f, n).cast<double>();
         Part& part = parts[static_cast<std::size_t>(c)];
+        // The base's blocks for the drag frames (chunks start at whole blocks: kGrain % W == 0).
+        if (normals)
+            for (std::size_t v = first; v < last; ++v) {
+                float* b = baseBlocks_.data() + (v / W) * kBaseFields * W + v % W;
+                const auto col = static_cast<Eigen::Index>(v);
+                for (int x = 0; x < 3; ++x) b[x * W] = positions_(x, col);
+                const float* j = jacobians_.data() + 9 * v;
+                for (int k = 0; k < 9; ++k) b[(3 + k) * W] = j[k];
+                b[12 * W] = det[v];
+            }
         // det J: the same comparisons in double as the library's report.
         double lo = double(det[first]), hi = lo;
         for (std::size_t v = first; v < last; ++v) {

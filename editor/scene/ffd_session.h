@@ -85,11 +85,12 @@ private:
     void identity(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
                   Eigen::AlignedBox3d* bounds);
     /// positions_/normals_ (and det J) -> out (double), report, bounds: one pass.
-    void finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds, int threads) const;
+    /// With normals, also the base's blocks (baseBlocks_) from positions_, jacobians_ and det.
+    void finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds, int threads);
     /// Waits for a background evaluation and drops its result (its base stays).
     void settle();
 
-    static constexpr int kLanes = 16;
+    static constexpr int kLanes = 16, kCoordFields = 6, kBaseFields = 13;
     struct Drag {
         Eigen::Matrix3Xd points;   // the lattice's control points at the base (basePoints_)
         double strength = 0;
@@ -110,14 +111,17 @@ private:
     FfdBinding<float> binding_;
     Eigen::Matrix<float, 3, Eigen::Dynamic> restNormals_;      // rest_.normals in float
     Eigen::Matrix<float, 3, Eigen::Dynamic> positions_, normals_; // the last full evaluation (the base)
-    /// Lattice coordinates per vertex in blocks of kLanes (s[W] t[W] u[W]) as the library's
-    /// kernel uses them (the outside policy applied: clamped under keep and clamp), made once per
-    /// bind; and, only when some vertex lies outside the box, a mask per vertex: bit a (a < 3) the
+    /// Lattice coordinates per vertex in blocks of kLanes (s[W] t[W] u[W], then the rest normal
+    /// x[W] y[W] z[W]) as the library's kernel uses them (the outside policy applied: clamped
+    /// under keep and clamp), made once per bind; and, only when some vertex lies outside the box, a mask per vertex: bit a (a < 3) the
     /// axis contributes to the Jacobian, bit 3 the vertex moves at all (off under keep).
     std::vector<float> coords_;
     std::vector<unsigned char> masks_;
     std::unique_ptr<Drag> drag_;         // the current drag, if any
-    std::vector<float> jacobians_;       // A of the base (9 per vertex, column-major)
+    std::vector<float> jacobians_;       // A of the base (9 per vertex, column-major; the library's output)
+    /// The base as the frames read it, in blocks of kLanes: p0 x, y, z, A (9, column-major),
+    /// det A (written by finish() with every full evaluation with normals).
+    std::vector<float> baseBlocks_;
     bool approximate_ = false;
     /// The base of a drag: the last full evaluation (positions_, normals_, jacobians_ = A,
     /// baseDet_), or the identity (rest mesh, A = I, det 1), at basePoints_ and baseStrength_.
