@@ -121,6 +121,37 @@ BENCHMARK(BM_DragFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2
 void BM_DragFrameProcessCpu(benchmark::State& state) { BM_DragFrame(state); }
 BENCHMARK(BM_DragFrameProcessCpu)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
 
+/// BM_DragFrame from a deformed lattice: the frames of a drag whose base is a full evaluation
+/// (a first drag of another point, released, made before the loop) rather than the identity of
+/// the rest lattice: each frame reads p0, A and det A of that evaluation (the usual case once a
+/// lattice has been edited). Process CPU of every thread.
+void BM_DragFrameFromDeformed(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    ToolContext context{d.scene, d.selection};
+    const int first = 42, k = 21;
+    d.scene.beginMerge();
+    d.scene.setControlPoint(d.lattice, first, d.scene.controlPoints(d.lattice).col(first) + Eigen::Vector3d(0.05, -0.04, 0.03));
+    d.scene.updateGeometry();
+    d.scene.endMerge();
+    d.scene.updateGeometry(); // the full evaluation: the base of the drag below
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    d.scene.beginMerge();
+    int frame = 0;
+    for (auto _ : state) {
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+    }
+    d.scene.endMerge();
+    const auto& links = d.scene.ffdLinks();
+    if (!links.empty()) state.counters["approximate"] = links.begin()->second.approximate;
+}
+BENCHMARK(BM_DragFrameFromDeformed)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
+
 /// A short drag (frames frames, not timed) of point k, then its release (endMerge): what the
 /// release benchmarks below start from.
 void shortDrag(DragScene& d, int k, const Eigen::Vector3d& rest, int& frame, int frames)

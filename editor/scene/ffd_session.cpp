@@ -124,7 +124,7 @@ void framePass(FrameArgs& f)
         }
         float p[3][W], n[3][W], d[W], len2[W], inv[W];
         const float* cb = f.coords + (base / W) * FfdCoordFields * W;
-        const float* bb = f.base + (base / W) * FfdBaseFields * W;
+        const float* bb = Identity ? nullptr : f.base + (base / W) * FfdBaseFields * W; // (no base blocks at the identity)
         float rp[3][W]; // Identity: the rest positions in float
         if constexpr (Identity)
             for (int w = 0; w < W; ++w) {
