@@ -17,7 +17,7 @@ namespace freeform::editor {
 namespace {
 
 // The frame's per-vertex data (FfdSession: coords_ and base_): fields per block of lanes.
-constexpr int FfdCoordFields = 6, FfdBaseFields = 25;
+constexpr int FfdCoordFields = 6, FfdBaseFields = 13;
 
 /// Four float lanes (SSE2 at the baseline; GCC's vector extension).
 typedef float V4 __attribute__((vector_size(16)));
@@ -35,7 +35,7 @@ struct FrameArgs {
     std::size_t count = 0;
     const float* coords = nullptr;        // blocks of W: s, t, u, rest normal x, y, z
     const unsigned char* masks = nullptr; // per vertex (Masked only)
-    const float* base = nullptr;          // blocks of W: p0 (3), cof(A) n (3), E (9), N (9), det A (Evaluated only)
+    const float* base = nullptr;          // blocks of W: p0 (3), A (9, column-major), det A (Evaluated only)
     const double* rest = nullptr;         // 3 x V, the rest positions (Identity only)
     int deg[3] = {3, 3, 3};
     const std::array<int, 3>* ijk = nullptr;
@@ -134,33 +134,33 @@ void framePass(FrameArgs& f)
         // Four lanes at a time (SSE2; the base and the coordinates are structures of arrays).
         for (int w = 0; w < W; w += 4) {
             const V4 g0 = load4(g[0] + w), g1 = load4(g[1] + w), g2 = load4(g[2] + w), b4 = load4(bs + w);
+            const V4 nx = load4(cb + 3 * W + w), ny = load4(cb + 4 * W + w), nz = load4(cb + 5 * W + w);
+            // v = dual^T g
+            const V4 v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
+            const V4 v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
+            const V4 v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
+            const V4 mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0; // n x v
             V4 px, py, pz, cx, cy, cz, ex, ey, ez, hx, hy, hz, d0;
             if constexpr (Identity) {
-                const V4 nx = load4(cb + 3 * W + w), ny = load4(cb + 4 * W + w), nz = load4(cb + 5 * W + w);
-                // v = dual^T g
-                const V4 v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
-                const V4 v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
-                const V4 v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
-                const V4 mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0; // n x v
                 px = load4(rp[0] + w), py = load4(rp[1] + w), pz = load4(rp[2] + w);
                 cx = nx, cy = ny, cz = nz;           // cof(I) n
                 ex = v0, ey = v1, ez = v2;           // cof(I) v
                 hx = mxv, hy = myv, hz = mzv;        // I (n x v)
                 d0 = V4{} + 1.0f;
             } else {
-                // The base's blocks hold what does not change while the drag goes on (made by
-                // finish() with the evaluation): c = cof(A) n, E = cof(A) dual^T and
-                // N = A [n]x dual^T, so that cof(A) v = E g and A (n x v) = N g.
                 px = load4(bb + w), py = load4(bb + W + w), pz = load4(bb + 2 * W + w);
-                cx = load4(bb + 3 * W + w), cy = load4(bb + 4 * W + w), cz = load4(bb + 5 * W + w);
-                V4 e[3], h[3];
-                for (int r = 0; r < 3; ++r) {
-                    e[r] = load4(bb + (6 + 3 * r) * W + w) * g0 + load4(bb + (7 + 3 * r) * W + w) * g1 + load4(bb + (8 + 3 * r) * W + w) * g2;
-                    h[r] = load4(bb + (15 + 3 * r) * W + w) * g0 + load4(bb + (16 + 3 * r) * W + w) * g1 + load4(bb + (17 + 3 * r) * W + w) * g2;
-                }
-                ex = e[0], ey = e[1], ez = e[2];
-                hx = h[0], hy = h[1], hz = h[2];
-                d0 = load4(bb + 24 * W + w);
+                V4 a[9];
+                for (int c = 0; c < 9; ++c) a[c] = load4(bb + (3 + c) * W + w);
+                d0 = load4(bb + 12 * W + w);
+                // cof(A)'s columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1 (A column-major, a[3 c + r]).
+                const V4 k0x = a[4] * a[8] - a[5] * a[7], k0y = a[5] * a[6] - a[3] * a[8], k0z = a[3] * a[7] - a[4] * a[6];
+                const V4 k1x = a[7] * a[2] - a[8] * a[1], k1y = a[8] * a[0] - a[6] * a[2], k1z = a[6] * a[1] - a[7] * a[0];
+                const V4 k2x = a[1] * a[5] - a[2] * a[4], k2y = a[2] * a[3] - a[0] * a[5], k2z = a[0] * a[4] - a[1] * a[3];
+                cx = nx * k0x + ny * k1x + nz * k2x, cy = nx * k0y + ny * k1y + nz * k2y, cz = nx * k0z + ny * k1z + nz * k2z;
+                ex = v0 * k0x + v1 * k1x + v2 * k2x, ey = v0 * k0y + v1 * k1y + v2 * k2y, ez = v0 * k0z + v1 * k1z + v2 * k2z;
+                hx = a[0] * mxv + a[3] * myv + a[6] * mzv;
+                hy = a[1] * mxv + a[4] * myv + a[7] * mzv;
+                hz = a[2] * mxv + a[5] * myv + a[8] * mzv;
             }
             // det J = det A + (cof(A) v) . u;  cof(J) n = cof(A) n + u x (A (n x v));  p = p0 + B u
             store4(d + w, d0 + (ex * u0 + ey * u1 + ez * u2));
@@ -531,7 +531,6 @@ void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, Deform
     constexpr int W = kLanes;
     static_assert(kGrain % W == 0);
     if (normals) baseBlocks_.resize(((static_cast<std::size_t>(count) + W - 1) / W) * kBaseFields * W);
-    const Eigen::Matrix3f dualT = frame_.dual().transpose().cast<float>();
     std::vector<Part> parts(static_cast<std::size_t>(parallelChunkCount(0, static_cast<std::size_t>(count), kGrain, threads)));
     parallelFor(0, static_cast<std::size_t>(count), kGrain, threads, [&](int c, std::size_t first, std::size_t last) {
         const auto n = static_cast<Eigen::Index>(last - first), f = static_cast<Eigen::Index>(first);
@@ -539,29 +538,14 @@ void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, Deform
         if (normals) out.normals.middleCols(f, n) = normals_.middleCols(f, n).cast<double>();
         Part& part = parts[static_cast<std::size_t>(c)];
         // The base's blocks for the drag frames (chunks start at whole blocks: kGrain % W == 0).
-        // Per vertex p0, c = cof(A) n, E = cof(A) dual^T, N = A [n]x dual^T (row-major), det A.
         if (normals)
             for (std::size_t v = first; v < last; ++v) {
                 float* b = baseBlocks_.data() + (v / W) * kBaseFields * W + v % W;
                 const auto col = static_cast<Eigen::Index>(v);
                 for (int x = 0; x < 3; ++x) b[x * W] = positions_(x, col);
-                const Eigen::Matrix3f a = Eigen::Map<const Eigen::Matrix3f>(jacobians_.data() + 9 * v); // column-major
-                Eigen::Matrix3f k; // cof(A): columns a1 x a2, a2 x a0, a0 x a1
-                k.col(0) = a.col(1).cross(a.col(2));
-                k.col(1) = a.col(2).cross(a.col(0));
-                k.col(2) = a.col(0).cross(a.col(1));
-                const Eigen::Vector3f n = restNormals_.col(col);
-                const Eigen::Vector3f c = k * n;
-                Eigen::Matrix3f nx;
-                nx << 0, -n.z(), n.y(), n.z(), 0, -n.x(), -n.y(), n.x(), 0;
-                const Eigen::Matrix3f e = k * dualT, m = a * nx * dualT;
-                for (int x = 0; x < 3; ++x) b[(3 + x) * W] = c[x];
-                for (int r = 0; r < 3; ++r)
-                    for (int q = 0; q < 3; ++q) {
-                        b[(6 + 3 * r + q) * W] = e(r, q);
-                        b[(15 + 3 * r + q) * W] = m(r, q);
-                    }
-                b[24 * W] = det[v];
+                const float* j = jacobians_.data() + 9 * v;
+                for (int k = 0; k < 9; ++k) b[(3 + k) * W] = j[k];
+                b[12 * W] = det[v];
             }
         // det J: the same comparisons in double as the library's report.
         double lo = double(det[first]), hi = lo;

@@ -90,7 +90,7 @@ private:
     /// Waits for a background evaluation and drops its result (its base stays).
     void settle();
 
-    static constexpr int kLanes = 16, kCoordFields = 6, kBaseFields = 25;
+    static constexpr int kLanes = 16, kCoordFields = 6, kBaseFields = 13;
     struct Drag {
         Eigen::Matrix3Xd points;   // the lattice's control points at the base (basePoints_)
         double strength = 0;
@@ -119,10 +119,8 @@ private:
     std::vector<unsigned char> masks_;
     std::unique_ptr<Drag> drag_;         // the current drag, if any
     std::vector<float> jacobians_;       // A of the base (9 per vertex, column-major; the library's output)
-    /// The base as the frames read it, in blocks of kLanes: p0 (3), c = cof(A) n (3),
-    /// E = cof(A) dual^T (9), N = A [n]x dual^T (9), det A: what does not change in a drag, so
-    /// that a frame's cof(A) v = E g and A (n x v) = N g (written by finish() with every full
-    /// evaluation with normals).
+    /// The base as the frames read it, in blocks of kLanes: p0 x, y, z, A (9, column-major),
+    /// det A (written by finish() with every full evaluation with normals).
     std::vector<float> baseBlocks_;
     bool approximate_ = false;
     /// The base of a drag: the last full evaluation (positions_, normals_, jacobians_ = A,
