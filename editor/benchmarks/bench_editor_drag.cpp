@@ -10,11 +10,15 @@
 //     of every vertex through the binding made at fit time (no lattice coordinates are computed
 //     again), the det J colour scalars and the bounds. While the drag goes on (the scene merges
 //     its changes) the link may update the mesh linearly from the drag's last full evaluation
-//     (FfdSession::deform, live): the first two frames are full evaluations, the others linear.
+//     (FfdSession::deform, live): every frame, the grab included, is one pass over the vertices
+//     from the last full evaluation (the base).
 // BM_DragFrame's CPU column is the benchmark thread's; BM_DragFrameProcessCpu is the same loop with
 // the CPU time of every thread of the process (the full evaluation runs on all cores).
-// BM_DragRelease times the frame after the release (the full evaluation that the drag owes);
-// BM_DragGrab the first frame of a drag (the grab), both with the CPU time of every thread.
+// BM_DragRelease times the frame of the release (the exact evaluation the drag owes starts on a
+// worker thread, as in the editor's window), BM_DragReleaseApply the frame that takes its result,
+// BM_DragReleaseBackground the whole background evaluation (not a frame), BM_DragReleaseSynchronous
+// the release evaluated on the frame (background work off), BM_DragGrab the first frame of a
+// drag (the grab), all with the CPU time of every thread.
 // Spline and patch drags (issue 12): a handle of a cubic spline of 4, 16 and 64 segments dragged, its joints
 // all C2, all mirrored, or mixed; each frame the spline tool enforces every joint's mode.
 // Uploading to the GPU is not included (the driver's work). A second benchmark times the
@@ -24,12 +28,14 @@
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <thread>
 
 #include "interaction/selection.h"
 #include "scene/overlay.h"
@@ -115,24 +121,144 @@ BENCHMARK(BM_DragFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2
 void BM_DragFrameProcessCpu(benchmark::State& state) { BM_DragFrame(state); }
 BENCHMARK(BM_DragFrameProcessCpu)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
 
-/// The frame after the release of a drag: the full evaluation at the last position (with the
-/// process's CPU time). Each iteration is a short drag (three frames, not timed) and its release.
+/// BM_DragFrame from a deformed lattice: the frames of a drag whose base is a full evaluation
+/// (a first drag of another point, released, made before the loop) rather than the identity of
+/// the rest lattice: each frame reads p0, A and det A of that evaluation (the usual case once a
+/// lattice has been edited). Process CPU of every thread.
+void BM_DragFrameFromDeformed(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    ToolContext context{d.scene, d.selection};
+    const int first = 42, k = 21;
+    d.scene.beginMerge();
+    d.scene.setControlPoint(d.lattice, first, d.scene.controlPoints(d.lattice).col(first) + Eigen::Vector3d(0.05, -0.04, 0.03));
+    d.scene.updateGeometry();
+    d.scene.endMerge();
+    d.scene.updateGeometry(); // the full evaluation: the base of the drag below
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    d.scene.beginMerge();
+    int frame = 0;
+    for (auto _ : state) {
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+    }
+    d.scene.endMerge();
+    const auto& links = d.scene.ffdLinks();
+    if (!links.empty()) state.counters["approximate"] = links.begin()->second.approximate;
+}
+BENCHMARK(BM_DragFrameFromDeformed)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
+
+/// A short drag (frames frames, not timed) of point k, then its release (endMerge): what the
+/// release benchmarks below start from.
+void shortDrag(DragScene& d, int k, const Eigen::Vector3d& rest, int& frame, int frames)
+{
+    d.scene.beginMerge();
+    for (int f = 0; f < frames; ++f) {
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        d.scene.updateGeometry();
+    }
+    d.scene.endMerge();
+}
+
+bool backgroundDone(const DragScene& d)
+{
+    const auto& links = d.scene.ffdLinks();
+    return links.empty() || !links.begin()->second.pending || links.begin()->second.session->backgroundDone();
+}
+
+/// The frame of the release of a drag (with the process's CPU time): as in the editor's window
+/// (background work on), it keeps the drag's last linear frame and starts the exact evaluation
+/// on a worker thread. Each iteration is a short drag (three frames, not timed), its release
+/// frame (timed), then, not timed, the wait for the worker and the frame that takes its result.
+/// (The worker's CPU while the release frame runs is counted in it.)
 void BM_DragRelease(benchmark::State& state)
 {
     static DragScene& d = *new DragScene; // one more scene: the other benchmarks' is local to them
+    d.scene.setBackgroundTessellation(true);
     ToolContext context{d.scene, d.selection};
     const int k = 21;
     const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
     int frame = 0;
     for (auto _ : state) {
         state.PauseTiming();
-        d.scene.beginMerge();
-        for (int f = 0; f < 3; ++f) {
-            const double offset = 0.1 * std::sin(0.05 * ++frame);
-            d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
-            d.scene.updateGeometry();
-        }
-        d.scene.endMerge();
+        shortDrag(d, k, rest, frame, 3);
+        state.ResumeTiming();
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+        state.PauseTiming();
+        d.scene.finishDeformation();
+        state.ResumeTiming();
+    }
+}
+BENCHMARK(BM_DragRelease)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
+
+/// The frame that shows the exact result (with the process's CPU time): the worker has finished
+/// (waited for, not timed); the frame swaps its positions, normals and det J into the mesh.
+void BM_DragReleaseApply(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    d.scene.setBackgroundTessellation(true);
+    ToolContext context{d.scene, d.selection};
+    const int k = 21;
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    int frame = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        shortDrag(d, k, rest, frame, 3);
+        d.scene.updateGeometry(); // the release frame
+        while (!backgroundDone(d)) std::this_thread::sleep_for(std::chrono::microseconds(100));
+        state.ResumeTiming();
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        d.scene.updateGeometry();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+        state.PauseTiming();
+        if (!d.scene.ffdLinks().empty() && d.scene.ffdLinks().begin()->second.pending) state.SkipWithError("result not taken");
+        state.ResumeTiming();
+    }
+}
+BENCHMARK(BM_DragReleaseApply)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
+
+/// The background exact evaluation, not on a frame: from the release frame to the result taken
+/// (Scene::finishDeformation waits for it), with the process's CPU time: the worker's evaluation
+/// (on one thread fewer than the machine has) plus the release and apply frames measured above.
+void BM_DragReleaseBackground(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    d.scene.setBackgroundTessellation(true);
+    const int k = 21;
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    int frame = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        shortDrag(d, k, rest, frame, 3);
+        state.ResumeTiming();
+        d.scene.updateGeometry();
+        d.scene.finishDeformation();
+        benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
+    }
+}
+BENCHMARK(BM_DragReleaseBackground)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
+
+/// The release evaluated on the frame itself (background work off, as headless runs and tests
+/// without it do): the full evaluation, what the release frame cost before the worker.
+void BM_DragReleaseSynchronous(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    ToolContext context{d.scene, d.selection};
+    const int k = 21;
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    int frame = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        shortDrag(d, k, rest, frame, 3);
         state.ResumeTiming();
         d.overlay = Overlay{};
         d.tools.update(context, d.overlay);
@@ -140,14 +266,16 @@ void BM_DragRelease(benchmark::State& state)
         benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
     }
 }
-BENCHMARK(BM_DragRelease)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
+BENCHMARK(BM_DragReleaseSynchronous)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(20);
 
 /// The grab: the first frame of a drag (with the process's CPU time), the one that moves a point
 /// away from the last full evaluation (made at fit, at every release and at undo). Each iteration
-/// is a short drag and its release (not timed), then the first frame of a new drag.
+/// is a short drag and its release, the exact result taken (not timed), then the first frame of
+/// a new drag: one pass over the vertices straight from that evaluation.
 void BM_DragGrab(benchmark::State& state)
 {
     static DragScene& d = *new DragScene;
+    d.scene.setBackgroundTessellation(true);
     ToolContext context{d.scene, d.selection};
     const int k = 21;
     const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
@@ -155,14 +283,9 @@ void BM_DragGrab(benchmark::State& state)
     double deformMs = 0; // the deformation's share (FfdLink::deformMs, wall time)
     for (auto _ : state) {
         state.PauseTiming();
-        d.scene.beginMerge(); // a short drag (two frames) and its release: a full evaluation
-        for (int f = 0; f < 2; ++f) {
-            const double offset = 0.1 * std::sin(0.05 * ++frame);
-            d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
-            d.scene.updateGeometry();
-        }
-        d.scene.endMerge();
+        shortDrag(d, k, rest, frame, 2); // a short drag (two frames) and its release
         d.scene.updateGeometry();
+        d.scene.finishDeformation();
         d.scene.beginMerge();
         state.ResumeTiming();
         const double offset = 0.1 * std::sin(0.05 * ++frame);

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <map>
+#include <optional>
 
 #include "freeform/io/geometry_data.h"
 #include "freeform/core/error.h"
@@ -84,11 +85,51 @@ void Scene::updateDerived()
             }
             // While a drag goes on (the history merges its changes), a frame may be the linear
             // update (FfdSession::deform, live); the first update after it is the full evaluation,
-            // also when nothing else changed: what the drag leaves is exact.
+            // also when nothing else changed: what the drag leaves is exact. With background work
+            // on (the editor's window), that release evaluation runs on a worker thread: the
+            // release frame keeps the drag's last linear frame, and a later update swaps the exact
+            // result in once it is done (docs/architecture.md, "A lattice drag").
             const bool live = history_.merging();
-            const bool changed = rebind || link.appliedRevision != mesh.revision || link.appliedPoints != data.points ||
-                                 link.appliedStrength != strength || (link.approximate && !live);
+            const bool inputs = rebind || link.appliedRevision != mesh.revision || link.appliedPoints != data.points ||
+                                link.appliedStrength != strength;
+            if (link.pending && !inputs && link.session->backgroundPending()) {
+                const auto t0 = std::chrono::steady_clock::now();
+                std::vector<float> scalars = std::move(mesh.scalars);
+                std::optional<DeformReport> report;
+                try {
+                    report = link.session->takeBackground(*mesh.geometry.surface, scalars, mesh.geometry.bounds, waitDeformation_);
+                } catch (...) {
+                    mesh.scalars = std::move(scalars);
+                    link.pending = false;
+                    throw;
+                }
+                if (!report) { // still running: the linear frame stays
+                    mesh.scalars = std::move(scalars);
+                    continue;
+                }
+                link.report = std::move(*report);
+                link.approximate = false;
+                link.pending = false;
+                setScalars(m, std::move(scalars)); // a new revision: the drawer uploads the exact mesh
+                link.appliedRevision = mesh.revision;
+                link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                link.certificate.reset();
+                link.error.clear();
+                continue;
+            }
+            // (Inputs changed meanwhile: deform() waits for the job and starts from its result. A
+            // copy of the scene that shares the session may have taken the result: evaluate here.)
+            link.pending = false;
+            const bool changed = inputs || (link.approximate && !live);
             if (!changed) continue;
+            if (!inputs && backgroundOn_ && !waitDeformation_) {
+                // The release: the exact evaluation in the background; nothing changes this frame.
+                const auto t0 = std::chrono::steady_clock::now();
+                link.session->deformInBackground(lattice, strength);
+                link.pending = true;
+                link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                continue;
+            }
             const auto t0 = std::chrono::steady_clock::now();
             // det J straight into the colour scalars, in the last frame's memory (no fresh pages).
             std::vector<float> scalars = std::move(mesh.scalars);
@@ -106,6 +147,19 @@ void Scene::updateDerived()
             link.error = e.what();
         }
     }
+}
+
+} // namespace freeform::editor
+
+namespace freeform::editor {
+
+void Scene::finishDeformation()
+{
+    struct Waiting {
+        bool& flag;
+        ~Waiting() { flag = false; }
+    } waiting{waitDeformation_ = true};
+    updateDerived();
 }
 
 } // namespace freeform::editor

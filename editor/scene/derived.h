@@ -5,7 +5,8 @@
 // evaluates every link after rebuilding dirty items: the one path by which a deformed mesh is
 // written. Its inputs are the lattice's points, frame and outside policy, the strength and the
 // mesh item's content (key) and revision; when none changed, nothing is computed (except the full
-// evaluation owed after a drag's linear updates: FfdLink::approximate). A link that
+// evaluation owed after a drag's linear updates: FfdLink::approximate, made on a worker thread when
+// the scene's background work is on: FfdLink::pending). A link that
 // goes away (lattice deleted, its mesh changed to another or none) puts the rest mesh back.
 
 #include <memory>
@@ -29,6 +30,8 @@ struct FfdLink {
     DeformReport report;
     double deformMs = 0;                    // CPU time of the last update (positions, normals, det J)
     bool approximate = false;               // the last update was a drag's linear update (float rounding)
+    bool pending = false;                   // the exact evaluation owed runs in the background
+                                            // (FfdSession::deformInBackground; approximate until taken)
     std::optional<Certificate> certificate; // computed on request for appliedPoints
     std::string error;                      // why the last update failed (empty: it did not)
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -13,9 +14,276 @@
 
 namespace freeform::editor {
 
+namespace {
+
+// The frame's per-vertex data (FfdSession: coords_ and base_): fields per block of lanes.
+constexpr int FfdCoordFields = 6, FfdBaseFields = 13;
+
+/// Four float lanes (SSE2 at the baseline; GCC's vector extension).
+typedef float V4 __attribute__((vector_size(16)));
+typedef int V4i __attribute__((vector_size(16)));
+inline V4 load4(const float* p)
+{
+    V4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void store4(float* p, V4 v) { std::memcpy(p, &v, sizeof v); }
+
+/// What one drag frame reads and writes (FfdSession::dragFrame), and what it finds.
+struct FrameArgs {
+    std::size_t count = 0;
+    const float* coords = nullptr;        // blocks of W: s, t, u, rest normal x, y, z
+    const unsigned char* masks = nullptr; // per vertex (Masked only)
+    const float* base = nullptr;          // blocks of W: p0 (3), A (9, column-major), det A (Evaluated only)
+    const double* rest = nullptr;         // 3 x V, the rest positions (Identity only)
+    int deg[3] = {3, 3, 3};
+    const std::array<int, 3>* ijk = nullptr;
+    std::size_t moved = 0;
+    float dual[9] = {}; // row-major
+    float u[3] = {};
+    double* pos = nullptr;
+    double* nor = nullptr;
+    float* det = nullptr;
+    // Found: det J's range and folds, the box in float.
+    double lo = 1, hi = 1;
+    std::vector<int>* folds = nullptr;
+    float mn[3] = {}, mx[3] = {};
+};
+
+/// Bernstein values b[0..n] and derivatives db of degree n at the W lanes t, by the triangle
+/// (no binomials); the cubic in closed form.
+template <int W>
+inline void laneBernstein(int n, const float* t, float (*b)[W], float (*db)[W])
+{
+    if (n == 3) {
+        for (int w = 0; w < W; ++w) {
+            const float s = t[w], r = 1.0f - s;
+            b[0][w] = r * r * r, b[1][w] = 3 * s * r * r, b[2][w] = 3 * s * s * r, b[3][w] = s * s * s;
+            db[0][w] = -3 * r * r, db[1][w] = 3 * (r * r - 2 * s * r), db[2][w] = 3 * (2 * s * r - s * s), db[3][w] = 3 * s * s;
+        }
+        return;
+    }
+    for (int w = 0; w < W; ++w) {
+        b[0][w] = 1.0f;
+        db[0][w] = 0.0f;
+    }
+    for (int d = 1; d <= n; ++d) {
+        if (d == n)
+            for (int i = 0; i <= n; ++i)
+                for (int w = 0; w < W; ++w) db[i][w] = float(n) * ((i > 0 ? b[i - 1][w] : 0.0f) - (i < n ? b[i][w] : 0.0f));
+        for (int w = 0; w < W; ++w) {
+            const float s = t[w], r = 1.0f - s;
+            b[d][w] = s * b[d - 1][w];
+            for (int i = d - 1; i > 0; --i) b[i][w] = r * b[i][w] + s * b[i - 1][w];
+            b[0][w] *= r;
+        }
+    }
+}
+
+/// The frame's pass (FfdSession::dragFrame), W lanes at a time in loops the compiler vectorises
+/// (SSE2 baseline): Identity reads the rest mesh as the base (A = I, det A = 1), Masked applies
+/// the per-vertex masks of the outside policy.
+template <int W, bool Identity, bool Masked>
+void framePass(FrameArgs& f)
+{
+    const std::size_t count = f.count;
+    float mn[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+    float mx[3] = {-mn[0], -mn[1], -mn[2]};
+    double lo = count ? std::numeric_limits<double>::infinity() : 1, hi = count ? -lo : 1;
+    const float u0 = f.u[0], u1 = f.u[1], u2 = f.u[2];
+    const float* dual = f.dual;
+    float b[3][kMaxDegree + 1][W], db[3][kMaxDegree + 1][W];
+    const V4 inf = V4{} + std::numeric_limits<float>::infinity();
+    V4 vmn[3] = {inf, inf, inf}, vmx[3] = {-inf, -inf, -inf}, vlo = inf, vhi = -inf;
+    for (std::size_t base = 0; base < count; base += W) {
+        const std::size_t lanes = std::min<std::size_t>(W, count - base);
+        const float* q = f.coords + (base / W) * FfdCoordFields * W;
+        for (int x = 0; x < 3; ++x) laneBernstein<W>(f.deg[x], q + x * W, b[x], db[x]);
+        // B and grad B (lattice coordinates) of the moved points.
+        float bs[W], g[3][W];
+        for (int w = 0; w < W; ++w) bs[w] = g[0][w] = g[1][w] = g[2][w] = 0.0f;
+        for (std::size_t m = 0; m < f.moved; ++m) {
+            const int i = f.ijk[m][0], j = f.ijk[m][1], k = f.ijk[m][2];
+            for (int w = 0; w < W; ++w) {
+                const float x = b[0][i][w], y = b[1][j][w], z = b[2][k][w];
+                bs[w] += x * y * z;
+                g[0][w] += db[0][i][w] * y * z;
+                g[1][w] += x * db[1][j][w] * z;
+                g[2][w] += x * y * db[2][k][w];
+            }
+        }
+        if constexpr (Masked) {
+            // Outside the box: under keep nothing moves (bit 3 off), under clamp an axis whose
+            // coordinate lies beyond the box adds no gradient (its bit off).
+            for (std::size_t w = 0; w < lanes; ++w) {
+                const unsigned m = f.masks[base + w];
+                bs[w] = m & 8u ? bs[w] : 0.0f;
+                for (int x = 0; x < 3; ++x) g[x][w] = (m & 8u) && (m >> x & 1u) ? g[x][w] : 0.0f;
+            }
+        }
+        float p[3][W], n[3][W], d[W], len2[W], inv[W];
+        const float* cb = f.coords + (base / W) * FfdCoordFields * W;
+        const float* bb = Identity ? nullptr : f.base + (base / W) * FfdBaseFields * W; // (no base blocks at the identity)
+        float rp[3][W]; // Identity: the rest positions in float
+        if constexpr (Identity)
+            for (int w = 0; w < W; ++w) {
+                const std::size_t v = std::min(base + std::size_t(w), count - 1); // padding repeats the last vertex
+                for (int x = 0; x < 3; ++x) rp[x][w] = float(f.rest[3 * v + std::size_t(x)]);
+            }
+        // Four lanes at a time (SSE2; the base and the coordinates are structures of arrays).
+        for (int w = 0; w < W; w += 4) {
+            const V4 g0 = load4(g[0] + w), g1 = load4(g[1] + w), g2 = load4(g[2] + w), b4 = load4(bs + w);
+            const V4 nx = load4(cb + 3 * W + w), ny = load4(cb + 4 * W + w), nz = load4(cb + 5 * W + w);
+            // v = dual^T g
+            const V4 v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
+            const V4 v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
+            const V4 v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
+            const V4 mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0; // n x v
+            V4 px, py, pz, cx, cy, cz, ex, ey, ez, hx, hy, hz, d0;
+            if constexpr (Identity) {
+                px = load4(rp[0] + w), py = load4(rp[1] + w), pz = load4(rp[2] + w);
+                cx = nx, cy = ny, cz = nz;           // cof(I) n
+                ex = v0, ey = v1, ez = v2;           // cof(I) v
+                hx = mxv, hy = myv, hz = mzv;        // I (n x v)
+                d0 = V4{} + 1.0f;
+            } else {
+                px = load4(bb + w), py = load4(bb + W + w), pz = load4(bb + 2 * W + w);
+                V4 a[9];
+                for (int c = 0; c < 9; ++c) a[c] = load4(bb + (3 + c) * W + w);
+                d0 = load4(bb + 12 * W + w);
+                // cof(A)'s columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1 (A column-major, a[3 c + r]).
+                const V4 k0x = a[4] * a[8] - a[5] * a[7], k0y = a[5] * a[6] - a[3] * a[8], k0z = a[3] * a[7] - a[4] * a[6];
+                const V4 k1x = a[7] * a[2] - a[8] * a[1], k1y = a[8] * a[0] - a[6] * a[2], k1z = a[6] * a[1] - a[7] * a[0];
+                const V4 k2x = a[1] * a[5] - a[2] * a[4], k2y = a[2] * a[3] - a[0] * a[5], k2z = a[0] * a[4] - a[1] * a[3];
+                cx = nx * k0x + ny * k1x + nz * k2x, cy = nx * k0y + ny * k1y + nz * k2y, cz = nx * k0z + ny * k1z + nz * k2z;
+                ex = v0 * k0x + v1 * k1x + v2 * k2x, ey = v0 * k0y + v1 * k1y + v2 * k2y, ez = v0 * k0z + v1 * k1z + v2 * k2z;
+                hx = a[0] * mxv + a[3] * myv + a[6] * mzv;
+                hy = a[1] * mxv + a[4] * myv + a[7] * mzv;
+                hz = a[2] * mxv + a[5] * myv + a[8] * mzv;
+            }
+            // det J = det A + (cof(A) v) . u;  cof(J) n = cof(A) n + u x (A (n x v));  p = p0 + B u
+            store4(d + w, d0 + (ex * u0 + ey * u1 + ez * u2));
+            const V4 qx = cx + (u1 * hz - u2 * hy), qy = cy + (u2 * hx - u0 * hz), qz = cz + (u0 * hy - u1 * hx);
+            store4(n[0] + w, qx);
+            store4(n[1] + w, qy);
+            store4(n[2] + w, qz);
+            store4(len2 + w, qx * qx + qy * qy + qz * qz);
+            store4(p[0] + w, px + b4 * u0);
+            store4(p[1] + w, py + b4 * u1);
+            store4(p[2] + w, pz + b4 * u2);
+        }
+#if defined(__SSE2__)
+        for (int w = 0; w < W; w += 4) {
+            const __m128 l2 = _mm_loadu_ps(len2 + w);
+            const __m128 r = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(l2));
+            _mm_storeu_ps(inv + w, _mm_and_ps(r, _mm_cmpgt_ps(l2, _mm_setzero_ps()))); // 0 where |n| = 0
+        }
+#else
+        for (int w = 0; w < W; ++w) inv[w] = len2[w] > 0 ? 1.0f / std::sqrt(len2[w]) : 0.0f;
+#endif
+        if (lanes == std::size_t(W)) {
+            // A whole block: the box and det J's range in vectors (min and max in float, then
+            // widened: the same values as in double), folds looked for only where a lane has one.
+            for (int w = 0; w < W; w += 4) {
+                for (int x = 0; x < 3; ++x) {
+                    const V4 px = load4(p[x] + w);
+                    vmn[x] = px < vmn[x] ? px : vmn[x];
+                    vmx[x] = vmx[x] < px ? px : vmx[x];
+                    store4(n[x] + w, load4(n[x] + w) * load4(inv + w));
+                }
+                const V4 dv = load4(d + w);
+                vlo = dv < vlo ? dv : vlo;
+                vhi = vhi < dv ? dv : vhi;
+                const V4i positive = dv > 0.0f;
+                if ((positive[0] & positive[1] & positive[2] & positive[3]) == 0)
+                    for (int k = w; k < w + 4; ++k)
+                        if (!(d[k] > 0)) f.folds->push_back(static_cast<int>(base + std::size_t(k)));
+            }
+            double* po = f.pos + 3 * base;
+            double* no = f.nor + 3 * base;
+            for (int w = 0; w < W; ++w)
+                for (int x = 0; x < 3; ++x) {
+                    po[3 * w + x] = double(p[x][w]);
+                    no[3 * w + x] = double(n[x][w]);
+                }
+            if (f.det) std::memcpy(f.det + base, d, sizeof d);
+            continue;
+        }
+        for (std::size_t w = 0; w < lanes; ++w) {
+            for (int x = 0; x < 3; ++x) {
+                f.pos[3 * (base + w) + std::size_t(x)] = double(p[x][w]);
+                mn[x] = p[x][w] < mn[x] ? p[x][w] : mn[x];
+                mx[x] = p[x][w] > mx[x] ? p[x][w] : mx[x];
+            }
+            for (int x = 0; x < 3; ++x) f.nor[3 * (base + w) + std::size_t(x)] = double(n[x][w] * inv[w]);
+            if (f.det) f.det[base + w] = d[w];
+            const double dd = double(d[w]);
+            lo = std::min(lo, dd);
+            hi = std::max(hi, dd);
+            if (!(dd > 0)) f.folds->push_back(static_cast<int>(base + w));
+        }
+    }
+    for (int k = 0; k < 4; ++k) {
+        for (int x = 0; x < 3; ++x) {
+            mn[x] = vmn[x][k] < mn[x] ? vmn[x][k] : mn[x];
+            mx[x] = vmx[x][k] > mx[x] ? vmx[x][k] : mx[x];
+        }
+        lo = std::min(lo, double(vlo[k]));
+        hi = std::max(hi, double(vhi[k]));
+    }
+    f.lo = lo;
+    f.hi = hi;
+    for (int x = 0; x < 3; ++x) {
+        f.mn[x] = mn[x];
+        f.mx[x] = mx[x];
+    }
+}
+
+} // namespace
+
 FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
     : frame_(lattice), rest_(std::move(rest)), binding_(lattice, rest_.positions), restNormals_(rest_.normals.cast<float>())
 {
+    // The lattice coordinates of every vertex as the library's kernel uses them (float; the
+    // policy's clamp applied), and the outside policy's masks (docs/ffd.md, "Outside the box").
+    constexpr int W = kLanes;
+    const std::size_t count = static_cast<std::size_t>(rest_.positions.cols());
+    const std::vector<int>& outside = binding_.outsideVertices();
+    const OutsidePolicy policy = lattice.outside();
+    const bool masked = !outside.empty() && policy != OutsidePolicy::Extrapolate;
+    const bool normals = rest_.normals.cols() == rest_.positions.cols();
+    coords_.assign(((count + W - 1) / W) * kCoordFields * W, 0.5f);
+    if (masked) masks_.assign(count, 0x0f);
+    auto next = outside.begin();
+    for (std::size_t v = 0; v < count; ++v) {
+        const bool out = next != outside.end() && *next == static_cast<int>(v);
+        if (out) ++next;
+        Eigen::Vector3d q = binding_.parameters(v); // inside: the binding's own float coordinates
+        if (out && policy != OutsidePolicy::Extrapolate) {
+            unsigned char m = policy == OutsidePolicy::Keep ? 0 : 0x08;
+            for (int x = 0; x < 3; ++x)
+                if (q[x] >= 0 && q[x] <= 1) m = static_cast<unsigned char>(m | (1u << x));
+            masks_[v] = m;
+            q = q.cwiseMax(0.0).cwiseMin(1.0);
+        }
+        float* b = coords_.data() + (v / W) * kCoordFields * W + v % W;
+        for (int x = 0; x < 3; ++x) {
+            b[x * W] = static_cast<float>(q[x]);
+            b[(3 + x) * W] = normals ? restNormals_(x, static_cast<Eigen::Index>(v)) : 0.0f;
+        }
+    }
+    static_assert(kCoordFields == FfdCoordFields && kBaseFields == FfdBaseFields);
+    // Padding lanes repeat the last vertex (finite; never written out).
+    for (std::size_t v = count; count > 0 && v % W != 0; ++v)
+        for (int x = 0; x < kCoordFields; ++x)
+            coords_[(v / W) * kCoordFields * W + std::size_t(x) * W + v % W] =
+                coords_[((count - 1) / W) * kCoordFields * W + std::size_t(x) * W + (count - 1) % W];
+}
+
+FfdSession::~FfdSession()
+{
+    if (job_.joinable()) job_.join();
 }
 
 bool FfdSession::matches(const Lattice& lattice) const
@@ -23,109 +291,156 @@ bool FfdSession::matches(const Lattice& lattice) const
     return lattice.sameFrame(frame_) && lattice.outside() == frame_.outside();
 }
 
+void FfdSession::settle()
+{
+    if (!job_.joinable()) return;
+    job_.join();
+    jobError_ = nullptr; // (a failed evaluation left no base: base_ is None)
+}
+
 DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ,
                                 Eigen::AlignedBox3d* bounds, bool live)
 {
+    settle(); // a background evaluation in flight becomes the base of this call
     approximate_ = false;
     const Eigen::Index count = rest_.positions.cols();
     const bool normals = rest_.normals.cols() == count;
-    positions_.resize(3, count);
     if (out.positions.cols() != count) out.positions.resize(3, count);
+    if (normals && out.normals.cols() != count) out.normals.resize(3, count);
+    if (detJ) detJ->resize(static_cast<std::size_t>(count));
+    DeformReport report;
+    if (lattice.isRest() || strength == 0) {
+        identity(lattice, strength, out, detJ, report, bounds);
+        return report;
+    }
+    if (live && base_ != Base::None && normals) {
+        // A frame of a drag: when the points that moved since the base (the last full evaluation,
+        // or the identity) moved by one common vector, the frame is the base plus the linear
+        // change, straight from the base (the grab, the first such frame, costs what any does).
+        if (!dragDelta(lattice, strength)) {
+            drag_.reset();
+            const Lattice::Points& p = lattice.controlPoints();
+            if (baseStrength_ == strength && basePoints_.cols() == p.cols()) {
+                auto drag = std::make_unique<Drag>();
+                drag->points = basePoints_;
+                drag->strength = strength;
+                const int nu = lattice.degree(2) + 1, nt = lattice.degree(1) + 1;
+                for (Eigen::Index k = 0; k < p.cols(); ++k)
+                    if (basePoints_.col(k) != p.col(k)) {
+                        const int i = static_cast<int>(k);
+                        drag->moved.push_back(i);
+                        drag->ijk.push_back({i / (nt * nu), (i / nu) % nt, i % nu});
+                    }
+                if (!drag->moved.empty()) drag_ = std::move(drag);
+            }
+        }
+        if (const auto delta = dragDelta(lattice, strength)) {
+            dragFrame(lattice, *delta, out, detJ ? detJ->data() : nullptr, report, bounds);
+            approximate_ = true;
+            return report;
+        }
+        drag_.reset();
+    }
+    evaluate(lattice, strength, out, detJ, report, bounds, 0);
+    return report;
+}
+
+void FfdSession::identity(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
+                          Eigen::AlignedBox3d* bounds)
+{
+    // The identity: the file's own vertices, bit for bit (float would round them), det J 1.
+    const Eigen::Index count = rest_.positions.cols();
+    const bool normals = rest_.normals.cols() == count;
+    out.positions = rest_.positions;
+    if (normals) out.normals = rest_.normals;
+    if (detJ) detJ->assign(static_cast<std::size_t>(count), 1.0f);
+    drag_.reset();
+    // The base of the next grab: the identity (no copy: the frames read the rest mesh).
+    base_ = normals ? Base::Identity : Base::None;
+    basePoints_ = lattice.controlPoints();
+    baseStrength_ = strength;
+    report = DeformReport{};
+    report.vertices = static_cast<std::size_t>(count);
+    report.outside = binding_.outsideVertices().size();
+    if (bounds) {
+        bounds->setEmpty();
+        for (Eigen::Index k = 0; k < count; ++k) bounds->extend(Eigen::Vector3d(out.positions.col(k)));
+    }
+}
+
+void FfdSession::evaluate(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
+                          Eigen::AlignedBox3d* bounds, int threads)
+{
+    // The library's evaluation in float into the base (the Jacobians A kept with normals: the
+    // next drag starts from them), then the report, the double copy and the bounds in one pass.
+    const Eigen::Index count = rest_.positions.cols();
+    const bool normals = rest_.normals.cols() == count;
+    drag_.reset();
+    base_ = Base::None;
+    positions_.resize(3, count);
+    baseDet_.resize(static_cast<std::size_t>(count));
     FfdOutputs<float> o;
     o.positions = positions_.data();
+    o.determinants = baseDet_.data();
     if (normals) {
         normals_.resize(3, count);
-        if (out.normals.cols() != count) out.normals.resize(3, count);
+        jacobians_.resize(9 * static_cast<std::size_t>(count));
         o.normalsIn = restNormals_.data();
         o.normalsOut = normals_.data();
-    }
-    if (detJ) {
-        detJ->resize(static_cast<std::size_t>(count));
-        o.determinants = detJ->data();
+        o.jacobians = jacobians_.data();
     }
     DeformOptions options;
     options.strength = strength;
-    DeformReport report;
-    if (lattice.isRest() || strength == 0) {
-        // The identity: the file's own vertices, bit for bit (float would round them), det J 1.
-        out.positions = rest_.positions;
-        if (normals) out.normals = rest_.normals;
-        if (detJ) std::fill(detJ->begin(), detJ->end(), 1.0f);
-        drag_.reset();
-        previous_ = lattice.controlPoints();
-        // The base of the next grab: the identity (no copy: grabDrag reads the rest mesh).
-        base_ = normals ? Base::Identity : Base::None;
-        basePoints_ = lattice.controlPoints();
-        baseStrength_ = strength;
-        report.vertices = static_cast<std::size_t>(count);
-        report.outside = binding_.outsideVertices().size();
-        if (bounds) {
-            bounds->setEmpty();
-            for (Eigen::Index k = 0; k < count; ++k) bounds->extend(Eigen::Vector3d(out.positions.col(k)));
-        }
-        return report;
-    }
-    std::vector<float> scratch;
-    if (!detJ) {
-        scratch.resize(static_cast<std::size_t>(count));
-        o.determinants = scratch.data();
-    }
-    if (!live) {
-        drag_.reset();
-    } else if (const auto delta = dragDelta(lattice, strength)) {
-        // A drag frame that only translates the drag's points further: the linear update.
-        dragFrame(*delta, normals, out, o.determinants, report, bounds);
-        approximate_ = true;
-        previous_ = lattice.controlPoints();
-        return report;
-    } else if (base_ != Base::None && normals && baseStrength_ == strength && basePoints_.cols() == lattice.controlPoints().cols() &&
-               binding_.outsideVertices().empty()) {
-        // The grab: when the points that moved since the last full evaluation (or the identity)
-        // moved by one common vector, the drag starts from that evaluation without a new one.
-        // Only for meshes inside the lattice box (the outside policies' handling in grabDrag is
-        // not covered by a test yet; with vertices outside, the grab is today's full path).
-        auto drag = std::make_unique<Drag>();
-        drag->points = basePoints_;
-        drag->strength = strength;
-        for (Eigen::Index k = 0; k < basePoints_.cols(); ++k)
-            if (basePoints_.col(k) != lattice.controlPoints().col(k)) drag->moved.push_back(static_cast<int>(k));
-        if (!drag->moved.empty()) {
-            drag_ = std::move(drag);
-            if (const auto grabDelta = dragDelta(lattice, strength)) {
-                grabDrag(lattice, strength, drag_->moved);
-                dragFrame(*grabDelta, normals, out, o.determinants, report, bounds);
-                approximate_ = true;
-                previous_ = lattice.controlPoints();
-                return report;
-            }
-            drag_.reset();
-        }
-    }
-    // The full evaluation; its report, the double copy and the bounds come from one pass below.
-    // In a drag, when the points that moved since the last evaluation are known, the Jacobians
-    // are kept too: the next frames of the drag are linear updates from this one.
-    std::vector<int> moved;
-    if (live && previous_.cols() == lattice.controlPoints().cols())
-        for (Eigen::Index k = 0; k < previous_.cols(); ++k)
-            if (previous_.col(k) != lattice.controlPoints().col(k)) moved.push_back(static_cast<int>(k));
-    drag_.reset();
-    // The Jacobians A are kept with every full evaluation (with normals): the next grab starts
-    // from them (grabDrag).
-    if (normals) {
-        jacobians_.resize(9 * static_cast<std::size_t>(count));
-        o.jacobians = jacobians_.data();
-    }
+    options.threads = threads;
     binding_.deform(lattice, o, options, nullptr);
-    finish(o.determinants, normals, out, report, bounds);
+    if (out.positions.cols() != count) out.positions.resize(3, count);
+    if (normals && out.normals.cols() != count) out.normals.resize(3, count);
+    finish(baseDet_.data(), normals, out, report, bounds, threads);
+    if (detJ) detJ->assign(baseDet_.begin(), baseDet_.end());
     base_ = normals ? Base::Evaluated : Base::None;
-    if (normals) {
-        baseDet_.assign(o.determinants, o.determinants + count);
-        basePoints_ = lattice.controlPoints();
-        baseStrength_ = strength;
+    basePoints_ = lattice.controlPoints();
+    baseStrength_ = strength;
+}
+
+void FfdSession::deformInBackground(const Lattice& lattice, double strength)
+{
+    settle();
+    approximate_ = false;
+    jobDone_.store(false, std::memory_order_relaxed);
+    // One thread fewer than the machine has: the frames keep a core.
+    const int threads = std::max(1, resolveThreadCount(0) - 1);
+    job_ = std::thread([this, lattice, strength, threads] {
+        try {
+            if (lattice.isRest() || strength == 0) {
+                identity(lattice, strength, jobMesh_, &jobDet_, jobReport_, &jobBounds_);
+            } else {
+                evaluate(lattice, strength, jobMesh_, &jobDet_, jobReport_, &jobBounds_, threads);
+            }
+        } catch (...) {
+            jobError_ = std::current_exception();
+            base_ = Base::None;
+        }
+        jobDone_.store(true, std::memory_order_release);
+    });
+}
+
+std::optional<DeformReport> FfdSession::takeBackground(PolygonMesh& out, std::vector<float>& detJ, Eigen::AlignedBox3d& bounds, bool wait)
+{
+    if (!job_.joinable()) return std::nullopt;
+    if (!wait && !jobDone_.load(std::memory_order_acquire)) return std::nullopt;
+    job_.join();
+    if (jobError_) {
+        const std::exception_ptr e = jobError_;
+        jobError_ = nullptr;
+        std::rethrow_exception(e);
     }
-    if (o.jacobians && !moved.empty()) startDrag(lattice, strength, std::move(moved), jacobians_, o.determinants);
-    previous_ = lattice.controlPoints();
-    return report;
+    // Swapped, not copied: the scene's buffers come back here for the next release.
+    out.positions.swap(jobMesh_.positions);
+    if (rest_.normals.cols() == rest_.positions.cols()) out.normals.swap(jobMesh_.normals);
+    detJ.swap(jobDet_);
+    bounds = jobBounds_;
+    approximate_ = false;
+    return jobReport_;
 }
 
 std::optional<Eigen::Vector3d> FfdSession::dragDelta(const Lattice& lattice, double strength) const
@@ -153,286 +468,54 @@ std::optional<Eigen::Vector3d> FfdSession::dragDelta(const Lattice& lattice, dou
     return delta;
 }
 
-void FfdSession::startDrag(const Lattice& lattice, double strength, std::vector<int> moved, const std::vector<float>& jacobians,
-                           const float* det)
-{
-    // Per vertex, from the evaluation just made (J = A there): with every point of the set moved
-    // by the same delta, D changes by w B delta and J by u v^T, u = w delta, v = dual^T grad B,
-    // B the sum of the set's Bernstein products (docs/architecture.md, "Lattice drag"). Then
-    //   p = p0 + B u,   det J = det A + (cof(A) v) . u,   cof(J) n = cof(A) n + u x (A (n x v)),
-    // the last because cof(M) has the columns m1 x m2, m2 x m0, m0 x m1. Normals are stored as
-    // n0 = cof(A) n / |cof(A) n| and h = A (n x v) / |cof(A) n|, so n = normalise(n0 + u x h).
-    constexpr int W = kLanes;
-    const std::size_t count = static_cast<std::size_t>(positions_.cols());
-    auto drag = std::make_unique<Drag>();
-    drag->points = lattice.controlPoints();
-    drag->strength = strength;
-    drag->moved = std::move(moved);
-    // (The scratch arrays stay allocated between drags: fresh pages cost more than the work.)
-    dragData_.resize(((count + W - 1) / W) * kFields * W);
-    // B and v of every vertex by the library's own kernel (so with its outside policy): by
-    // linearity, the lattice whose set is displaced by 2^10 e_x (all else at rest), strength 1,
-    // gives p + 2^10 B e_x and J = I + 2^10 e_x v^T (a power of two: the scaling is exact).
-    constexpr float kScale = 1024.0f;
-    Lattice unit = lattice;
-    Lattice::Points points = lattice.restPoints();
-    for (const int k : drag->moved) points(0, k) += double(kScale);
-    unit.setControlPoints(points);
-    unitPositions_.resize(3, static_cast<Eigen::Index>(count));
-    unitJacobians_.resize(9 * count);
-    const auto& unitPositions = unitPositions_;
-    FfdOutputs<float> o;
-    o.positions = unitPositions_.data();
-    o.jacobians = unitJacobians_.data();
-    binding_.deform(unit, o);
-    const Eigen::Matrix<double, 3, Eigen::Dynamic>& restPositions = rest_.positions;
-    parallelFor(0, count, 4096, 0, [&](int, std::size_t first, std::size_t last) {
-        for (std::size_t v = first; v < last; ++v) {
-            const auto col = static_cast<Eigen::Index>(v);
-            // The x coordinate as the kernel holds it (float), then the displacement it added.
-            const double b = (double(unitPositions(0, col)) - double(float(restPositions(0, col)))) / kScale;
-            const float* uj = unitJacobians_.data() + 9 * v; // column-major: J(0, c) = uj[3 c]
-            const Eigen::Vector3d gv((double(uj[0]) - 1) / kScale, double(uj[3]) / kScale, double(uj[6]) / kScale);
-            const Eigen::Matrix3d a = Eigen::Map<const Eigen::Matrix<float, 3, 3>>(jacobians.data() + 9 * v).cast<double>();
-            const Eigen::Vector3d k0 = a.col(1).cross(a.col(2)), k1 = a.col(2).cross(a.col(0)), k2 = a.col(0).cross(a.col(1));
-            const Eigen::Vector3d nr = rest_.normals.col(static_cast<Eigen::Index>(v));
-            const Eigen::Vector3d c0 = nr[0] * k0 + nr[1] * k1 + nr[2] * k2;
-            const Eigen::Vector3d e = gv[0] * k0 + gv[1] * k1 + gv[2] * k2;
-            Eigen::Vector3d h = a * nr.cross(gv);
-            if (const double len = c0.norm(); len > 0) h /= len;
-            float* blk = dragData_.data() + (v / W) * kFields * W + v % W;
-            const float values[kFields] = {positions_(0, Eigen::Index(v)), positions_(1, Eigen::Index(v)), positions_(2, Eigen::Index(v)),
-                                           normals_(0, Eigen::Index(v)),   normals_(1, Eigen::Index(v)),   normals_(2, Eigen::Index(v)),
-                                           float(h[0]), float(h[1]), float(h[2]), float(e[0]), float(e[1]), float(e[2]), float(b), det[v]};
-            for (int f = 0; f < kFields; ++f) blk[f * W] = values[f];
-        }
-    });
-    drag_ = std::move(drag);
-}
-
-void FfdSession::grabDrag(const Lattice& lattice, double strength, std::vector<int> moved)
-{
-    // As startDrag, with A, p0, n0 and det A from the base, and B and v = dual^T grad B computed
-    // here: B(s,t,u) = sum over the moved points (i,j,k) of B_i(s) B_j(t) B_k(u), at the bound
-    // lattice coordinates with the outside policy as FfdBinding::deform applies it: inside the box
-    // and under extrapolate the coordinates as bound; under clamp the clamped coordinates, and
-    // no gradient along an axis whose coordinate lies outside [0, 1] (the library's Jacobian
-    // there); under keep nothing moves outside (B = 0, v = 0, A = I). (deform() calls this only
-    // when no vertex is outside, so the outside branches are not reached yet: no test covers them.)
-    (void)strength;
-    constexpr int W = kLanes;
-    const std::size_t count = static_cast<std::size_t>(positions_.cols());
-    const OutsidePolicy policy = lattice.outside();
-    const int deg[3] = {lattice.degree(0), lattice.degree(1), lattice.degree(2)};
-    std::vector<std::array<int, 3>> ijk;
-    ijk.reserve(moved.size());
-    for (const int k : moved) {
-        const int nu = deg[2] + 1, nt = deg[1] + 1;
-        ijk.push_back({k / (nt * nu), (k / nu) % nt, k % nu});
-    }
-    float dual[9]; // row-major
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) dual[3 * r + c] = float(lattice.dual()(r, c));
-    const Eigen::Matrix3d toLattice = lattice.dual();
-    const Eigen::Vector3d origin = lattice.origin();
-    const std::vector<int>& outside = binding_.outsideVertices();
-    const bool identity = base_ == Base::Identity;
-    const std::size_t blocks = (count + W - 1) / W;
-    dragData_.resize(blocks * kFields * W);
-    // In float, W lanes at a time (loops over the lanes the compiler vectorises), as dragFrame.
-    parallelFor(0, blocks, 256, 0, [&](int, std::size_t firstBlock, std::size_t lastBlock) {
-        auto it = std::lower_bound(outside.begin(), outside.end(), static_cast<int>(firstBlock * W));
-        float q[3][W], act[3][W], on[W], a[9][W], nr[3][W], p0[3][W], n0[3][W], det0[W];
-        float b[3][kMaxDegree + 1][W], db[3][kMaxDegree + 1][W];
-        for (std::size_t blk = firstBlock; blk < lastBlock; ++blk) {
-            // Gather: coordinates with the policy, the base's A, p0, n0, det A, the rest normal.
-            for (int w = 0; w < W; ++w) {
-                const std::size_t v = std::min(blk * W + std::size_t(w), count - 1); // padding repeats the last vertex
-                const auto col = static_cast<Eigen::Index>(v);
-                const bool out = it != outside.end() && *it == static_cast<int>(v);
-                if (out && blk * W + std::size_t(w) < count) ++it;
-                on[w] = out && policy == OutsidePolicy::Keep ? 0.0f : 1.0f;
-                // Inside the box the coordinates dual (p - X0) (as the binding's to float rounding, without
-                // a library call per vertex); outside, the binding's own unclamped ones.
-                const Eigen::Vector3d raw = out ? binding_.parameters(v) : Eigen::Vector3d(toLattice * (rest_.positions.col(col) - origin));
-                for (int x = 0; x < 3; ++x) {
-                    double t = raw[x];
-                    act[x][w] = 1.0f;
-                    if (out && policy == OutsidePolicy::Clamp && (t < 0 || t > 1)) {
-                        act[x][w] = 0.0f;
-                        t = std::clamp(t, 0.0, 1.0);
-                    }
-                    q[x][w] = float(t);
-                    nr[x][w] = restNormals_(x, col);
-                }
-                if (identity) {
-                    const float len = std::sqrt(nr[0][w] * nr[0][w] + nr[1][w] * nr[1][w] + nr[2][w] * nr[2][w]);
-                    for (int x = 0; x < 3; ++x) {
-                        p0[x][w] = float(rest_.positions(x, col));
-                        n0[x][w] = len > 0 ? nr[x][w] / len : 0.0f;
-                    }
-                    for (int c = 0; c < 9; ++c) a[c][w] = c % 4 == 0 ? 1.0f : 0.0f;
-                    det0[w] = 1.0f;
-                } else {
-                    for (int x = 0; x < 3; ++x) {
-                        p0[x][w] = positions_(x, col);
-                        n0[x][w] = normals_(x, col);
-                    }
-                    const float* j = jacobians_.data() + 9 * v; // column-major: A(r, c) = j[3 c + r]
-                    for (int c = 0; c < 9; ++c) a[c][w] = j[c];
-                    det0[w] = baseDet_[v];
-                }
-            }
-            // Bernstein values and derivatives of each axis by the triangle (no binomials).
-            for (int x = 0; x < 3; ++x) {
-                const int n = deg[x];
-                if (n == 3) { // the usual lattice, in closed form
-                    for (int w = 0; w < W; ++w) {
-                        const float t = q[x][w], r = 1.0f - t;
-                        b[x][0][w] = r * r * r, b[x][1][w] = 3 * t * r * r, b[x][2][w] = 3 * t * t * r, b[x][3][w] = t * t * t;
-                        db[x][0][w] = -3 * r * r, db[x][1][w] = 3 * (r * r - 2 * t * r), db[x][2][w] = 3 * (2 * t * r - t * t),
-                        db[x][3][w] = 3 * t * t;
-                    }
-                    continue;
-                }
-                for (int w = 0; w < W; ++w) {
-                    b[x][0][w] = 1.0f;
-                    db[x][0][w] = 0.0f;
-                }
-                for (int d = 1; d <= n; ++d) {
-                    if (d == n)
-                        for (int i = 0; i <= n; ++i)
-                            for (int w = 0; w < W; ++w)
-                                db[x][i][w] = float(n) * ((i > 0 ? b[x][i - 1][w] : 0.0f) - (i < n ? b[x][i][w] : 0.0f));
-                    for (int w = 0; w < W; ++w) {
-                        const float t = q[x][w], r = 1.0f - t;
-                        b[x][d][w] = t * b[x][d - 1][w];
-                        for (int i = d - 1; i > 0; --i) b[x][i][w] = r * b[x][i][w] + t * b[x][i - 1][w];
-                        b[x][0][w] *= r;
-                    }
-                }
-            }
-            float bs[W], g[3][W];
-            for (int w = 0; w < W; ++w) bs[w] = g[0][w] = g[1][w] = g[2][w] = 0.0f;
-            for (const auto& m : ijk)
-                for (int w = 0; w < W; ++w) {
-                    const float x = b[0][m[0]][w], y = b[1][m[1]][w], z = b[2][m[2]][w];
-                    bs[w] += x * y * z;
-                    g[0][w] += db[0][m[0]][w] * y * z;
-                    g[1][w] += x * db[1][m[1]][w] * z;
-                    g[2][w] += x * y * db[2][m[2]][w];
-                }
-            float* out = dragData_.data() + blk * kFields * W;
-            float len2[W], inv[W];
-            for (int w = 0; w < W; ++w) {
-                const float g0 = g[0][w] * act[0][w] * on[w], g1 = g[1][w] * act[1][w] * on[w], g2 = g[2][w] * act[2][w] * on[w];
-                // v = dual^T g
-                const float v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
-                const float v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
-                const float v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
-                // A column-major (a[3 c + r]); its cofactor columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1
-                const float k0x = a[4][w] * a[8][w] - a[5][w] * a[7][w], k0y = a[5][w] * a[6][w] - a[3][w] * a[8][w],
-                            k0z = a[3][w] * a[7][w] - a[4][w] * a[6][w];
-                const float k1x = a[7][w] * a[2][w] - a[8][w] * a[1][w], k1y = a[8][w] * a[0][w] - a[6][w] * a[2][w],
-                            k1z = a[6][w] * a[1][w] - a[7][w] * a[0][w];
-                const float k2x = a[1][w] * a[5][w] - a[2][w] * a[4][w], k2y = a[2][w] * a[3][w] - a[0][w] * a[5][w],
-                            k2z = a[0][w] * a[4][w] - a[1][w] * a[3][w];
-                const float nx = nr[0][w], ny = nr[1][w], nz = nr[2][w];
-                const float cx = nx * k0x + ny * k1x + nz * k2x, cy = nx * k0y + ny * k1y + nz * k2y, cz = nx * k0z + ny * k1z + nz * k2z;
-                out[kE * W + w] = v0 * k0x + v1 * k1x + v2 * k2x;
-                out[(kE + 1) * W + w] = v0 * k0y + v1 * k1y + v2 * k2y;
-                out[(kE + 2) * W + w] = v0 * k0z + v1 * k1z + v2 * k2z;
-                const float mx = ny * v2 - nz * v1, my = nz * v0 - nx * v2, mz = nx * v1 - ny * v0; // n x v
-                out[kH * W + w] = a[0][w] * mx + a[3][w] * my + a[6][w] * mz; // A (n x v), scaled below
-                out[(kH + 1) * W + w] = a[1][w] * mx + a[4][w] * my + a[7][w] * mz;
-                out[(kH + 2) * W + w] = a[2][w] * mx + a[5][w] * my + a[8][w] * mz;
-                len2[w] = cx * cx + cy * cy + cz * cz;
-                for (int x = 0; x < 3; ++x) {
-                    out[(kP + x) * W + w] = p0[x][w];
-                    out[(kN + x) * W + w] = n0[x][w];
-                }
-                out[kB * W + w] = bs[w] * on[w];
-                out[kD * W + w] = det0[w];
-            }
-#if defined(__SSE2__)
-            for (int w = 0; w < W; w += 4) {
-                const __m128 l2 = _mm_loadu_ps(len2 + w);
-                const __m128 pos = _mm_cmpgt_ps(l2, _mm_setzero_ps());
-                const __m128 r = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(_mm_or_ps(_mm_and_ps(pos, l2), _mm_andnot_ps(pos, _mm_set1_ps(1.0f)))));
-                _mm_storeu_ps(inv + w, r); // 1 where |cof(A) n| = 0 (h unscaled, as startDrag)
-            }
-#else
-            for (int w = 0; w < W; ++w) inv[w] = len2[w] > 0 ? 1.0f / std::sqrt(len2[w]) : 1.0f;
-#endif
-            for (int x = 0; x < 3; ++x)
-                for (int w = 0; w < W; ++w) out[(kH + x) * W + w] *= inv[w];
-        }
-    });
-}
-
-void FfdSession::dragFrame(const Eigen::Vector3d& delta, bool normals, PolygonMesh& out, float* det, DeformReport& report,
+void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta, PolygonMesh& out, float* det, DeformReport& report,
                            Eigen::AlignedBox3d* bounds) const
 {
-    // One thread, one pass: every output (double mesh, det J, report, box) from the drag's data.
+    // One thread, one pass from the base (docs/architecture.md, "A lattice drag"): with every
+    // point of the set moved by the same delta since the base, D changes by w B delta and J by
+    // u v^T, u = w delta, v = dual^T grad B, B the sum of the set's Bernstein products. Then
+    //   p = p0 + B u,   det J = det A + (cof(A) v) . u,   cof(J) n = cof(A) n + u x (A (n x v)),
+    // the last because cof(M) has the columns m1 x m2, m2 x m0, m0 x m1.
     constexpr int W = kLanes;
-    const std::size_t count = static_cast<std::size_t>(positions_.cols());
+    FrameArgs f;
+    f.count = static_cast<std::size_t>(rest_.positions.cols());
+    f.coords = coords_.data();
+    f.masks = masks_.empty() ? nullptr : masks_.data();
+    f.base = baseBlocks_.data();
+    f.rest = rest_.positions.data();
+    for (int x = 0; x < 3; ++x) f.deg[x] = lattice.degree(x);
+    f.ijk = drag_->ijk.data();
+    f.moved = drag_->ijk.size();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) f.dual[3 * r + c] = float(lattice.dual()(r, c));
     const Eigen::Vector3f u = (drag_->strength * delta).cast<float>();
+    for (int x = 0; x < 3; ++x) f.u[x] = u[x];
+    f.pos = out.positions.data();
+    f.nor = out.normals.data();
+    f.det = det;
     report = DeformReport{};
-    report.vertices = count;
+    report.vertices = f.count;
     report.outside = binding_.outsideVertices().size();
-    double lo = count ? std::numeric_limits<double>::infinity() : 1, hi = count ? -lo : 1;
-    float mn[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
-    float mx[3] = {-mn[0], -mn[1], -mn[2]};
-    double* pos = out.positions.data();
-    double* nor = normals ? out.normals.data() : nullptr;
-    for (std::size_t base = 0; base < count; base += W) {
-        const float* b = dragData_.data() + (base / W) * kFields * W;
-        float p[3][W], q[3][W], d[W], len2[W], inv[W];
-        for (int w = 0; w < W; ++w) {
-            const float bw = b[kB * W + w];
-            for (int x = 0; x < 3; ++x) p[x][w] = b[(kP + x) * W + w] + bw * u[x];
-            const float hx = b[kH * W + w], hy = b[(kH + 1) * W + w], hz = b[(kH + 2) * W + w];
-            q[0][w] = b[kN * W + w] + (u[1] * hz - u[2] * hy);
-            q[1][w] = b[(kN + 1) * W + w] + (u[2] * hx - u[0] * hz);
-            q[2][w] = b[(kN + 2) * W + w] + (u[0] * hy - u[1] * hx);
-            d[w] = b[kD * W + w] + (b[kE * W + w] * u[0] + b[(kE + 1) * W + w] * u[1] + b[(kE + 2) * W + w] * u[2]);
-            len2[w] = q[0][w] * q[0][w] + q[1][w] * q[1][w] + q[2][w] * q[2][w];
-        }
-#if defined(__SSE2__)
-        for (int w = 0; w < W; w += 4) {
-            const __m128 l2 = _mm_loadu_ps(len2 + w);
-            const __m128 r = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(l2));
-            _mm_storeu_ps(inv + w, _mm_and_ps(r, _mm_cmpgt_ps(l2, _mm_setzero_ps()))); // 0 where |n| = 0
-        }
-#else
-        for (int w = 0; w < W; ++w) inv[w] = len2[w] > 0 ? 1.0f / std::sqrt(len2[w]) : 0.0f;
-#endif
-        const std::size_t lanes = std::min<std::size_t>(W, count - base);
-        for (std::size_t w = 0; w < lanes; ++w) {
-            for (int x = 0; x < 3; ++x) {
-                pos[3 * (base + w) + std::size_t(x)] = double(p[x][w]);
-                mn[x] = p[x][w] < mn[x] ? p[x][w] : mn[x];
-                mx[x] = p[x][w] > mx[x] ? p[x][w] : mx[x];
-            }
-            if (nor)
-                for (int x = 0; x < 3; ++x) nor[3 * (base + w) + std::size_t(x)] = double(q[x][w] * inv[w]);
-            det[base + w] = d[w];
-            const double dd = double(d[w]);
-            lo = std::min(lo, dd);
-            hi = std::max(hi, dd);
-            if (!(dd > 0)) report.folds.push_back(static_cast<int>(base + w));
-        }
+    f.folds = &report.folds;
+    const bool identity = base_ == Base::Identity;
+    if (identity) {
+        if (f.masks) framePass<W, true, true>(f);
+        else framePass<W, true, false>(f);
+    } else {
+        if (f.masks) framePass<W, false, true>(f);
+        else framePass<W, false, false>(f);
     }
-    report.minDetJ = lo;
-    report.maxDetJ = hi;
+    report.minDetJ = f.lo;
+    report.maxDetJ = f.hi;
     report.foldCount = report.folds.size();
     if (bounds) {
         bounds->setEmpty();
-        if (count) bounds->extend(Eigen::AlignedBox3d(Eigen::Vector3d(mn[0], mn[1], mn[2]), Eigen::Vector3d(mx[0], mx[1], mx[2])));
+        if (f.count) bounds->extend(Eigen::AlignedBox3d(Eigen::Vector3d(f.mn[0], f.mn[1], f.mn[2]), Eigen::Vector3d(f.mx[0], f.mx[1], f.mx[2])));
     }
 }
 
-void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds) const
+void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds,
+                        int threads)
 {
     // One pass over the float results, on the same threads as before, in chunks combined in chunk
     // order: the scene's double mesh (exact widening), the report from det J as FfdBinding::deform
@@ -445,12 +528,25 @@ void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, Deform
         float min[3] = {0, 0, 0}, max[3] = {0, 0, 0};
     };
     constexpr std::size_t kGrain = 16384;
-    std::vector<Part> parts(static_cast<std::size_t>(parallelChunkCount(0, static_cast<std::size_t>(count), kGrain, 0)));
-    parallelFor(0, static_cast<std::size_t>(count), kGrain, 0, [&](int c, std::size_t first, std::size_t last) {
+    constexpr int W = kLanes;
+    static_assert(kGrain % W == 0);
+    if (normals) baseBlocks_.resize(((static_cast<std::size_t>(count) + W - 1) / W) * kBaseFields * W);
+    std::vector<Part> parts(static_cast<std::size_t>(parallelChunkCount(0, static_cast<std::size_t>(count), kGrain, threads)));
+    parallelFor(0, static_cast<std::size_t>(count), kGrain, threads, [&](int c, std::size_t first, std::size_t last) {
         const auto n = static_cast<Eigen::Index>(last - first), f = static_cast<Eigen::Index>(first);
         out.positions.middleCols(f, n) = positions_.middleCols(f, n).cast<double>();
         if (normals) out.normals.middleCols(f, n) = normals_.middleCols(f, n).cast<double>();
         Part& part = parts[static_cast<std::size_t>(c)];
+        // The base's blocks for the drag frames (chunks start at whole blocks: kGrain % W == 0).
+        if (normals)
+            for (std::size_t v = first; v < last; ++v) {
+                float* b = baseBlocks_.data() + (v / W) * kBaseFields * W + v % W;
+                const auto col = static_cast<Eigen::Index>(v);
+                for (int x = 0; x < 3; ++x) b[x * W] = positions_(x, col);
+                const float* j = jacobians_.data() + 9 * v;
+                for (int k = 0; k < 9; ++k) b[(3 + k) * W] = j[k];
+                b[12 * W] = det[v];
+            }
         // det J: the same comparisons in double as the library's report.
         double lo = double(det[first]), hi = lo;
         for (std::size_t v = first; v < last; ++v) {

@@ -869,6 +869,7 @@ void Scene::finishTessellation()
         background_.worker->wait();
         updateGeometry();
     }
+    finishDeformation();
 }
 
 Eigen::AlignedBox3d Scene::bounds() const

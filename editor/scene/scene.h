@@ -256,7 +256,9 @@ public:
     /// a worker thread, keeps their old geometry until the result is back, then swaps it in on the
     /// calling thread, item by item, only where the item's content key is still the one copied (an
     /// edit meanwhile gives a new key and its own synchronous rebuild). A newer tolerance
-    /// supersedes the job in flight. Edits are always rebuilt synchronously.
+    /// supersedes the job in flight. Edits are always rebuilt synchronously. On also moves the
+    /// exact evaluation of a lattice's mesh owed at the release of a drag to a worker thread
+    /// (scene/derived.h, FfdLink::pending): the release frame keeps the drag's last linear frame.
     void setBackgroundTessellation(bool on);
     bool backgroundTessellation() const { return backgroundOn_; }
     /// Whether some item waits for the current tolerance (a job in flight or not yet submitted).
@@ -265,6 +267,10 @@ public:
     /// and applying it: headless runs call it every frame, so they are deterministic (the same
     /// geometry as the synchronous path).
     void finishTessellation();
+    /// Blocks until the exact evaluation of a lattice's mesh owed after a drag (made on a worker
+    /// thread at the release while background work is on: FfdLink::pending) is done and applied.
+    /// finishTessellation() calls it.
+    void finishDeformation();
     /// Background counters: jobs submitted, items swapped in, results dropped (their item was
     /// edited or removed, or the tolerance had changed, while the job ran).
     struct BackgroundStats {
@@ -288,6 +294,7 @@ private:
     void takeBackgroundResult();
     void submitStale();
     bool backgroundOn_ = false;
+    bool waitDeformation_ = false; // updateDerived waits for background lattice evaluations
     BackgroundTessellation background_;
     BackgroundStats backgroundStats_;
     void rebuildItems();

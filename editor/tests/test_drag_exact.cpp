@@ -8,11 +8,13 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "freeform/io/geometry_data.h"
@@ -349,4 +351,204 @@ TEST_CASE("Lattice drag: the normals overlay is built only while shown, from the
     drawer.draw(d.scene, 320, 240, -1);
     CHECK(r.buffer(handle).lines.positions.cols() == 0);
     d.scene.endMerge();
+}
+
+namespace {
+
+/// The reference in double: FfdBinding<double> on the rest mesh (the library's ffd, as `freeform
+/// ffd` and the exports compute it), for the bound of a drag frame against the exact map.
+Reference doubleEvaluation(const Lattice& lattice, double strength, const PolygonMesh& rest)
+{
+    const auto count = rest.positions.cols();
+    const FfdBinding<double> binding(lattice, rest.positions);
+    Reference r;
+    r.positions.resize(3, count);
+    r.normals.resize(3, count);
+    std::vector<double> det(static_cast<std::size_t>(count));
+    FfdOutputs<double> o;
+    o.positions = r.positions.data();
+    o.normalsIn = rest.normals.data();
+    o.normalsOut = r.normals.data();
+    o.determinants = det.data();
+    DeformOptions options;
+    options.strength = strength;
+    binding.deform(lattice, o, options, &r.report);
+    r.det.assign(det.begin(), det.end()); // (compared in double below through the float copy)
+    return r;
+}
+
+Difference differenceFromDouble(const Drag& d, const Lattice& lattice, double strength)
+{
+    const Reference r = doubleEvaluation(lattice, strength, d.rest);
+    const FfdBinding<double> binding(lattice, d.rest.positions);
+    std::vector<double> det(static_cast<std::size_t>(d.rest.positions.cols()));
+    Eigen::Matrix3Xd p(3, d.rest.positions.cols());
+    FfdOutputs<double> o;
+    o.positions = p.data();
+    o.determinants = det.data();
+    DeformOptions options;
+    options.strength = strength;
+    binding.deform(lattice, o, options);
+    Difference out;
+    out.positions = (d.deformed().positions - r.positions).cwiseAbs().maxCoeff();
+    out.normals = (d.deformed().normals - r.normals).cwiseAbs().maxCoeff();
+    const std::vector<float>& s = d.scene.item(d.mesh).scalars;
+    for (std::size_t v = 0; v < s.size(); ++v) out.det = std::max(out.det, std::abs(double(s[v]) - det[v]));
+    return out;
+}
+
+// Against the library's ffd in double (float rounding of the base, of the lattice coordinates and
+// of the update; measured worst printed with -s). docs/performance.md states these.
+constexpr double kDoublePositionBound = 1e-6, kDoubleNormalBound = 2e-6, kDoubleDetBound = 5e-6;
+
+/// The lattice shrunk about its centre to 70 % with `outside` as its policy (its rest points):
+/// a band of the mesh's vertices lies outside the box.
+void shrinkLattice(Drag& d, const std::string& outside)
+{
+    DocumentObject object = d.scene.object(d.lattice);
+    auto& data = std::get<LatticeData>(object.data);
+    data.origin += 0.15 * data.axes * Eigen::Vector3d(1, 1, 1);
+    data.axes *= 0.7;
+    data.outside = outside;
+    const Lattice shrunk = latticeFromData(data);
+    const Lattice::Points points = shrunk.restPoints();
+    data.points = points;
+    d.scene.replaceObject(d.lattice, object, "shrink");
+    d.update();
+}
+
+/// Frames of a drag of points `ks` by `step` * f (f = 1..frames), each checked against the float
+/// reference (kPositionBound ...) and the double one (kDoublePositionBound ...); every frame,
+/// the grab included, must be linear. Leaves the drag open (the caller releases it).
+void dragFrames(Drag& d, const std::vector<int>& ks, const Eigen::Vector3d& step, int frames)
+{
+    const Lattice start = d.current();
+    Difference worst, worstDouble;
+    int linear = 0;
+    d.scene.beginMerge();
+    for (int f = 1; f <= frames; ++f) {
+        Eigen::Matrix3Xd ps(3, Eigen::Index(ks.size()));
+        for (std::size_t i = 0; i < ks.size(); ++i) ps.col(Eigen::Index(i)) = start.controlPoints().col(ks[i]) + f * step;
+        d.scene.setControlPoints(d.lattice, ks, ps);
+        d.update();
+        const FfdLink* link = d.scene.ffdLink(d.lattice);
+        REQUIRE(link);
+        linear += link->approximate ? 1 : 0;
+        const Reference r = fullEvaluation(d.current(), d.strength(), d.rest);
+        const Difference e = difference(d, r);
+        const Difference x = differenceFromDouble(d, d.current(), d.strength());
+        worst.positions = std::max(worst.positions, e.positions);
+        worst.normals = std::max(worst.normals, e.normals);
+        worst.det = std::max(worst.det, e.det);
+        worstDouble.positions = std::max(worstDouble.positions, x.positions);
+        worstDouble.normals = std::max(worstDouble.normals, x.normals);
+        worstDouble.det = std::max(worstDouble.det, x.det);
+        // The report of a linear frame: det J's range and folds of its own det J, the outside count.
+        CHECK(link->report.outside == r.report.outside);
+    }
+    INFO("worst against float: positions " << worst.positions << ", normals " << worst.normals << ", det J " << worst.det
+                                           << "; against double: positions " << worstDouble.positions << ", normals "
+                                           << worstDouble.normals << ", det J " << worstDouble.det);
+    CHECK(linear == frames);
+    CHECK(worst.positions <= kPositionBound);
+    CHECK(worst.normals <= kNormalBound);
+    CHECK(worst.det <= kDetBound);
+    CHECK(worstDouble.positions <= kDoublePositionBound);
+    CHECK(worstDouble.normals <= kDoubleNormalBound);
+    CHECK(worstDouble.det <= kDoubleDetBound);
+}
+
+} // namespace
+
+TEST_CASE("Lattice drag: every outside policy on the linear path, vertices outside the box", "[ffd][drag][outside]")
+{
+    // The lattice covers the middle 70 % of the mesh's box: the rest of the vertices are outside,
+    // where keep freezes them (J = I), clamp moves them with the clamped coordinates and drops the
+    // gradient across the faces they lie beyond, extrapolate continues the polynomials. A corner
+    // point and a face point move (both reach outside vertices); then, from that release's
+    // evaluation, another point. Every frame linear and within the bounds; every release exact.
+    const std::string file = ellipsoidFile("drag_outside.obj", 40);
+    for (const std::string outside : {"keep", "clamp", "extrapolate"})
+        for (const int degree : {2, 3}) {
+            INFO(outside << ", degree " << degree);
+            Drag d(file, degree);
+            shrinkLattice(d, outside);
+            const Lattice rest = d.current();
+            REQUIRE(d.scene.ffdLink(d.lattice));
+            const std::size_t outsideCount = d.scene.ffdLink(d.lattice)->report.outside;
+            CHECK(outsideCount > 100);
+            CHECK(outsideCount < std::size_t(d.rest.positions.cols()) - 100);
+            const int corner = rest.index(degree, degree, 0), face = rest.index(1, degree, 1);
+            dragFrames(d, {corner, face}, Eigen::Vector3d(0.04, -0.03, 0.05), 6);
+            d.scene.endMerge();
+            d.update();
+            requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+            const int inner = rest.index(1, 1, 1);
+            dragFrames(d, {inner}, Eigen::Vector3d(-0.05, 0.04, 0.02), 5);
+            d.scene.endMerge();
+            d.update();
+            requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+        }
+}
+
+TEST_CASE("Lattice drag: the release's exact evaluation on a worker thread", "[ffd][drag][background]")
+{
+    // With background work on (the editor's window), the release frame keeps the drag's last
+    // linear frame and starts the exact evaluation on a worker; a later update swaps it in, bit
+    // for bit the full evaluation. A grab right after the release, before the result was taken,
+    // waits for it and starts from it.
+    const std::string file = ellipsoidFile("drag_background.obj", 40);
+    for (const std::string outside : {"clamp", "keep", "extrapolate"}) {
+        INFO(outside);
+        Drag d(file, 3);
+        if (outside != "clamp") shrinkLattice(d, outside);
+        d.scene.setBackgroundTessellation(true);
+        const Lattice rest = d.current();
+        const int k = rest.index(1, 2, 1), k2 = rest.index(2, 1, 2);
+        dragFrames(d, {k}, Eigen::Vector3d(0.05, 0.03, -0.02), 5);
+        const PolygonMesh last = d.deformed();
+        const std::vector<float> lastDet = d.scene.item(d.mesh).scalars;
+        d.scene.endMerge();
+        d.update(); // the release frame: the worker starts
+        const FfdLink* link = d.scene.ffdLink(d.lattice);
+        REQUIRE(link);
+        REQUIRE(link->pending);
+        CHECK(link->approximate);
+        // Nothing changed on the release frame: the last linear frame is still shown.
+        CHECK(d.deformed().positions == last.positions);
+        CHECK(d.deformed().normals == last.normals);
+        CHECK(d.scene.item(d.mesh).scalars == lastDet);
+        // Frames go on until the result is there (polled, not waited for), then it is exact.
+        int frames = 0;
+        while (d.scene.ffdLink(d.lattice)->pending && frames < 20000) {
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+            d.update();
+            ++frames;
+        }
+        REQUIRE_FALSE(d.scene.ffdLink(d.lattice)->pending);
+        requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+        const auto revision = d.scene.item(d.mesh).revision;
+        d.update(); // taken once: no more changes
+        CHECK(d.scene.item(d.mesh).revision == revision);
+
+        // A grab right after a release (the result not taken yet): the grab waits for the
+        // evaluation and starts from it; its frames stay within the bounds, its release is exact.
+        dragFrames(d, {k2}, Eigen::Vector3d(-0.04, 0.05, 0.03), 3);
+        d.scene.endMerge();
+        d.update();
+        REQUIRE(d.scene.ffdLink(d.lattice)->pending);
+        dragFrames(d, {k}, Eigen::Vector3d(0.02, -0.05, 0.04), 4);
+        CHECK_FALSE(d.scene.ffdLink(d.lattice)->pending);
+        d.scene.endMerge();
+        d.update();
+        // Waiting (headless runs do this every frame: Scene::finishTessellation).
+        d.scene.finishTessellation();
+        CHECK_FALSE(d.scene.ffdLink(d.lattice)->pending);
+        requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+        // Undo: synchronous, exact at once.
+        d.scene.undo();
+        d.update();
+        CHECK_FALSE(d.scene.ffdLink(d.lattice)->pending);
+        requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+    }
 }
