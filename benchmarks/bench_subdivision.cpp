@@ -8,11 +8,11 @@
 // face). Figures: docs/performance.md. BM_CertifiedCube: the certified tessellation of the cube cage
 // at 1e-3 (docs/subdivision.md); BM_CertifiedPrism and BM_CertifiedCreasedCube the same for the
 // cages whose irregular cells go past OpenSubdiv's depth 10 (valence-5 vertices, sharp corners);
-// BM_CertifiedLoopOctahedron a closed Loop cage. The rows with an argument (2: 1e-2, 3: 1e-3) are
-// the cages certified later: a Catmull-Clark cube with a hole, a 6 x 6 open grid under edge_only
-// (one-face corners) and under edge_and_corner, a Loop open fan and a Loop octahedron with
-// infinitely sharp creases and a corner. Every certified row reports triangles, bound, leaves,
-// depth, and faces_certified of faces as counters.
+// BM_CertifiedLoopOctahedron a closed Loop cage. The rows with an argument (2: 1e-2, 3: 1e-3):
+// data/cages/torus.obj (every cell regular) and the cages certified later: a Catmull-Clark cube
+// with a hole, a 6 x 6 open grid under edge_only (one-face corners) and under edge_and_corner, a
+// Loop open fan and a Loop octahedron with infinitely sharp creases and a corner. Every certified
+// row reports triangles, bound, leaves, depth, and faces_certified of faces as counters.
 //
 //   build/bin/bench_subdivision --benchmark_min_time=1
 
@@ -190,6 +190,27 @@ void BM_CertifiedLoopOctahedron(benchmark::State& state)
     certified(state, octahedronCage(), 1e-3, freeform::SubdivisionScheme::Loop);
 }
 BENCHMARK(BM_CertifiedLoopOctahedron)->Unit(benchmark::kMillisecond);
+
+// data/cages/torus.obj (scripts/make_cages.py): an 8 x 4 quad cage, radii 2 and 0.75, every vertex
+// regular, so every cell is a bicubic patch split by de Casteljau (docs/subdivision.md, the
+// one-direction last split: 65,536 -> 35,264 triangles at 1e-3). Argument as below.
+void BM_CertifiedTorus(benchmark::State& state)
+{
+    freeform::SubdivisionCage cage;
+    const int nMajor = 8, nMinor = 4;
+    const double pi = 3.14159265358979323846;
+    cage.mesh.positions.resize(3, nMajor * nMinor);
+    for (int i = 0; i < nMajor; ++i)
+        for (int j = 0; j < nMinor; ++j) {
+            const double a = 2 * pi * i / nMajor, b = 2 * pi * j / nMinor, r = 2.0 + 0.75 * std::cos(b);
+            cage.mesh.positions.col(i * nMinor + j) = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 0.75 * std::sin(b));
+        }
+    auto idx = [&](int i, int j) { return (i % nMajor) * nMinor + (j % nMinor); };
+    for (int i = 0; i < nMajor; ++i)
+        for (int j = 0; j < nMinor; ++j) cage.mesh.addFace({idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)});
+    certified(state, cage, std::pow(10.0, -static_cast<double>(state.range(0))));
+}
+BENCHMARK(BM_CertifiedTorus)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
 // The cages certified since (docs/subdivision.md: "Holes", "Smooth boundary corners", "Loop
 // cages"), each at 1e-2 and 1e-3 (the argument: 2 or 3, the tolerance 10^-arg).
