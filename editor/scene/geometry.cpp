@@ -140,6 +140,27 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
                     g.patchTolerance.push_back(view.tolerance(box));
                 }
                 options.patchTolerance = g.patchTolerance;
+            } else if (const auto* sub = std::get_if<SubdivisionObject>(&object.geometry())) {
+                // Per region to the view (SubdivisionTessellationOptions::toleranceOf): every cell
+                // to the pixel size at its own nearest depth. For the staleness test one box per
+                // cage face: its vertices and their neighbours (the faces around its vertices),
+                // which hold the face's limit surface.
+                const PolygonMesh& cage = sub->cage().mesh;
+                std::vector<std::vector<int>> facesAt(static_cast<std::size_t>(cage.vertexCount()));
+                for (int f = 0; f < cage.faceCount(); ++f)
+                    for (int k = 0; k < cage.faceSize(f); ++k) facesAt[static_cast<std::size_t>(cage.face(f)[k])].push_back(f);
+                for (int f = 0; f < cage.faceCount(); ++f) {
+                    Eigen::AlignedBox3d box;
+                    box.setEmpty();
+                    for (int k = 0; k < cage.faceSize(f); ++k)
+                        for (int n : facesAt[static_cast<std::size_t>(cage.face(f)[k])])
+                            for (int j = 0; j < cage.faceSize(n); ++j) box.extend(Eigen::Vector3d(cage.positions.col(cage.face(n)[j])));
+                    g.patchBoxes.push_back(box);
+                    g.patchTolerance.push_back(view.tolerance(box));
+                }
+                // No cell gets more than the coarsest face asks for (the tolerance caps toleranceOf).
+                if (!g.patchTolerance.empty()) options.tolerance = *std::max_element(g.patchTolerance.begin(), g.patchTolerance.end());
+                options.toleranceOf = [view](const Eigen::AlignedBox3d& box) { return view.tolerance(box); };
             }
         }
         if (auto mesh = tessellateObject(object, options)) g.surface = withNormals(std::move(*mesh));

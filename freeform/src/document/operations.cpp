@@ -106,8 +106,10 @@ std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const Obj
     }
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry())) {
         SubdivisionTessellationOptions o;
-        if (options.tolerance > 0) o.tolerance = options.tolerance;
-        else o.level = std::clamp(options.segments, 1, o.maxLevel);
+        if (options.tolerance > 0) {
+            o.tolerance = options.tolerance;
+            o.toleranceOf = options.toleranceOf;
+        } else o.level = std::clamp(options.segments, 1, o.maxLevel);
         PolygonMesh mesh = s->surface.tessellate(o);
         if (options.flip) {
             for (int f = 0; f < mesh.faceCount(); ++f) std::swap(mesh.faceVertices[3 * f + 1], mesh.faceVertices[3 * f + 2]);

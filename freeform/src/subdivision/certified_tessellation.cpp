@@ -24,7 +24,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <string>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -227,6 +229,7 @@ struct Leaf {
     Int u0 = 0, v0 = 0, u1 = 0, v1 = 0;
     int patch = -1; // index into the regular leaf patches; -1: irregular
     double bound = 0;
+    double tol = 0; // its own tolerance (SubdivisionTessellationOptions::toleranceOf)
 };
 
 class Builder {
@@ -436,6 +439,7 @@ struct Irregular {
     Int u0 = 0, v0 = 0, size = 0;
     std::array<Eigen::Vector3d, 4> corner, normal; // at (u0, v0), (u1, v0), (u1, v1), (u0, v1)
     double bound = 0;
+    double tol = 0; // its own tolerance (SubdivisionTessellationOptions::toleranceOf)
 };
 /// A regular cell: its exact bicubic Bézier patch, in base-face coordinates.
 struct Regular {
@@ -463,9 +467,28 @@ int firstDepthOf(const QuadBase& m, int maxDepth)
     return std::clamp(static_cast<int>(std::ceil(semiSharp)) + 1, 1, maxDepth);
 }
 
-struct CellSearch {
-    osd::Sdc::Options sdc;
+/// A cell's own tolerance: min(tol, toleranceOf(box)) of the points whose hull bounds it, or tol
+/// without toleranceOf (SubdivisionTessellationOptions::toleranceOf).
+struct CellTolerance {
     double tol = 0;
+    std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
+    /// Of the points at(0), ..., at(n - 1).
+    template <class At>
+    double of(std::size_t n, At at) const
+    {
+        if (!toleranceOf) return tol;
+        Eigen::AlignedBox3d box;
+        box.setEmpty();
+        for (std::size_t i = 0; i < n; ++i) box.extend(Eigen::Vector3d(at(i)));
+        const double t = toleranceOf(box);
+        if (!(t > 0) || !std::isfinite(t))
+            throw Error("subdivision tessellation: toleranceOf gave " + std::to_string(t) + " (must be finite and > 0)");
+        return std::min(tol, t);
+    }
+};
+
+struct CellSearch : CellTolerance {
+    osd::Sdc::Options sdc;
     int maxDepth = kOsdMaxDepth;
     bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
     std::vector<Irregular> irregular;
@@ -624,8 +647,9 @@ void refineTainted(CellSearch& s, const QuadBase& local, const Frame& frame)
         bound = std::min(bound, far);
     }
     cell.bound = bound;
+    cell.tol = s.of(local.positions.size(), [&](std::size_t i) { return local.positions[i].vec(); });
     // Room for the children and their own cells (10 levels and 10 halvings) in the 2^40 keys.
-    if (bound <= s.tol || (frame.size >> 1 >> kOsdMaxDepth) < (Int(1) << 10)) {
+    if (bound <= cell.tol || (frame.size >> 1 >> kOsdMaxDepth) < (Int(1) << 10)) {
         s.irregular.push_back(cell);
         return;
     }
@@ -729,7 +753,7 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
         primvar.Limit(fineSrc, limit, tan1, tan2);
         takeOsdError();
 
-        double worst = 0;
+        bool over = false; // an irregular cell above its own tolerance
         for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
             const auto type = table->GetPatchArrayDescriptor(array).GetType();
             for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
@@ -791,19 +815,22 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
                     bound = std::min(bound, far);
                 }
                 cell.bound = bound;
-                worst = std::max(worst, bound);
+                cell.tol = s.of(ring.size(), [&](std::size_t i) {
+                    return all[offset[static_cast<std::size_t>(d)] + static_cast<std::size_t>(ring[i])].vec();
+                });
+                over = over || bound > cell.tol;
                 irregular.push_back(cell);
                 irregularCorners.push_back(corner);
             }
         }
-        if (worst > s.tol && depth < s.maxDepth) continue;
+        if (over && depth < s.maxDepth) continue;
 
         s.regular.insert(s.regular.end(), std::make_move_iterator(regular.begin()), std::make_move_iterator(regular.end()));
         for (std::size_t i = 0; i < irregular.size(); ++i) {
             const Irregular& cell = irregular[i];
             // Past the deepest level: a local cage, while the cell leaves room for 10 more levels and
             // 10 halvings of its regular cells in the 2^40 resolution of the keys.
-            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > s.tol && (cell.size >> kOsdMaxDepth) >= (Int(1) << 10))) {
+            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > cell.tol && (cell.size >> kOsdMaxDepth) >= (Int(1) << 10))) {
                 s.irregular.push_back(cell);
                 continue;
             }
@@ -832,6 +859,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
     if (options.maxSplits < 0 || options.maxSplits > 28)
         throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
     const double tol = options.tolerance;
+    const CellTolerance cellTol{tol, options.toleranceOf};
     const osd::Sdc::Options sdc = sdcOptions(cage_, boundary());
     const QuadBase base = quadBase(cage_, sdc);
 
@@ -840,6 +868,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
     CellSearch search;
     search.sdc = sdc;
     search.tol = tol;
+    search.toleranceOf = options.toleranceOf;
     search.maxDepth = options.maxDepth;
     search.deeper = options.maxDepth == kOsdMaxDepth;
     std::vector<Frame> frames(static_cast<std::size_t>(base.faces()));
@@ -858,7 +887,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
     std::vector<Patch> leafPatch;
     for (std::size_t i = 0; i < irregular.size(); ++i) {
         const auto& c = irregular[i];
-        leaves.push_back({c.face, c.u0, c.v0, c.u0 + c.size, c.v0 + c.size, -1 - static_cast<int>(i), c.bound});
+        leaves.push_back({c.face, c.u0, c.v0, c.u0 + c.size, c.v0 + c.size, -1 - static_cast<int>(i), c.bound, c.tol});
     }
     struct Task {
         Patch patch;
@@ -872,9 +901,11 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         Task t = std::move(stack.back());
         stack.pop_back();
         const double bound = netErrorBound(t.patch);
+        const auto& net = t.patch.controlPoints();
+        const double own = cellTol.of(static_cast<std::size_t>(net.cols()), [&](std::size_t k) { return net.col(static_cast<Eigen::Index>(k)); });
         const bool canU = t.su_splits < options.maxSplits && t.su > 1, canV = t.sv_splits < options.maxSplits && t.sv > 1;
-        if (bound <= tol || (!canU && !canV)) {
-            leaves.push_back({t.face, t.u0, t.v0, t.u0 + t.su, t.v0 + t.sv, static_cast<int>(leafPatch.size()), bound});
+        if (bound <= own || (!canU && !canV)) {
+            leaves.push_back({t.face, t.u0, t.v0, t.u0 + t.su, t.v0 + t.sv, static_cast<int>(leafPatch.size()), bound, own});
             leafPatch.push_back(std::move(t.patch));
             continue;
         }
@@ -890,7 +921,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
             // that one. The halves' bounds are computed again, so this choice never weakens the
             // bound; it saves the overshoot of halving both.
             const double afterU = terms[0] / 4 + terms[1] / 2 + terms[2], afterV = terms[0] + terms[1] / 2 + terms[2] / 4;
-            if (std::min(afterU, afterV) <= tol) (afterU <= afterV ? splitV : splitU) = false;
+            if (std::min(afterU, afterV) <= own) (afterU <= afterV ? splitV : splitU) = false;
         }
         std::vector<Task> parts{t};
         if (splitU) {
@@ -976,6 +1007,8 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
     std::vector<std::array<int, 3>> tris;
     const int baseFaces = base.faces();
     std::vector<double> faceBound(static_cast<std::size_t>(faceCount()), 0.0);
+    std::vector<double> faceTol(static_cast<std::size_t>(faceCount()), tol);
+    std::vector<char> faceWithin(static_cast<std::size_t>(faceCount()), 1);
     std::vector<int> faceRate(static_cast<std::size_t>(faceCount()), 0);
     double worst = 0;
     for (const Leaf& l : leaves) {
@@ -995,6 +1028,8 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
             }
         const int cageFace = base.cageFace[static_cast<std::size_t>(l.face)];
         faceBound[static_cast<std::size_t>(cageFace)] = std::max(faceBound[static_cast<std::size_t>(cageFace)], l.bound);
+        faceTol[static_cast<std::size_t>(cageFace)] = std::min(faceTol[static_cast<std::size_t>(cageFace)], l.tol);
+        if (!(l.bound <= l.tol)) faceWithin[static_cast<std::size_t>(cageFace)] = 0;
         const Int narrowest = std::min(l.u1 - l.u0, l.v1 - l.v0);
         int& rate = faceRate[static_cast<std::size_t>(cageFace)];
         rate = std::max(rate, static_cast<int>(std::min<Int>(kR / narrowest, Int(1) << 30)));
@@ -1022,11 +1057,12 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         report->leaves = static_cast<long long>(leaves.size());
         report->depth = depth;
         report->faceBounds = faceBound;
+        report->faceTolerance = faceTol;
         report->faceCertified.assign(static_cast<std::size_t>(faceCount()), 0);
         for (int f = 0; f < faceCount(); ++f)
             // A face without a limit surface (a hole, a boundary face under `none`) has nothing to
             // approximate and no triangle: certified (vacuously), with bound 0.
-            report->faceCertified[static_cast<std::size_t>(f)] = !hasLimitSurface(f) || faceBound[static_cast<std::size_t>(f)] <= tol;
+            report->faceCertified[static_cast<std::size_t>(f)] = !hasLimitSurface(f) || faceWithin[static_cast<std::size_t>(f)];
     }
     return out;
 }

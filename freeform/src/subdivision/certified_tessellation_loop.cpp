@@ -26,7 +26,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <string>
 #include <map>
 #include <memory>
 #include <unordered_map>
@@ -323,6 +325,7 @@ struct Leaf {
     std::array<UV, 3> c; // counter-clockwise in (u, v); the net's corners 0, 1, 2
     int net = -1;        // index into the leaf nets; -1 - i: irregular cell i
     double bound = 0;
+    double tol = 0;      // its own tolerance (SubdivisionTessellationOptions::toleranceOf)
 };
 
 /// A cell's corners in the face's integer (u, v) from OpenSubdiv's PatchParam (local (0,0), (1,0),
@@ -409,6 +412,7 @@ struct LoopIrregular {
     std::array<UV, 3> c;
     std::array<Eigen::Vector3d, 3> corner, normal;
     double bound = 0;
+    double tol = 0; // its own tolerance (SubdivisionTessellationOptions::toleranceOf)
 };
 /// A regular cell: its quartic Bézier net, in base-face coordinates.
 struct LoopRegular {
@@ -520,9 +524,28 @@ UV toBase(const TriFrame& frame, const UV& x)
             c0[1] + (frame.c[1][1] - c0[1]) / size * a + (frame.c[2][1] - c0[1]) / size * b};
 }
 
-struct LoopSearch {
-    osd::Sdc::Options sdc;
+/// A cell's own tolerance: min(tol, toleranceOf(box)) of the points whose hull bounds it, or tol
+/// without toleranceOf (SubdivisionTessellationOptions::toleranceOf).
+struct CellTolerance {
     double tol = 0;
+    std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
+    /// Of the points at(0), ..., at(n - 1).
+    template <class At>
+    double of(std::size_t n, At at) const
+    {
+        if (!toleranceOf) return tol;
+        Eigen::AlignedBox3d box;
+        box.setEmpty();
+        for (std::size_t i = 0; i < n; ++i) box.extend(Eigen::Vector3d(at(i)));
+        const double t = toleranceOf(box);
+        if (!(t > 0) || !std::isfinite(t))
+            throw Error("subdivision tessellation: toleranceOf gave " + std::to_string(t) + " (must be finite and > 0)");
+        return std::min(tol, t);
+    }
+};
+
+struct LoopSearch : CellTolerance {
+    osd::Sdc::Options sdc;
     int maxDepth = kOsdMaxDepth;
     bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
     std::vector<LoopIrregular> irregular;
@@ -577,13 +600,14 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
         bound = std::min(bound, far);
     }
     leaf.bound = bound;
+    leaf.tol = s.of(m.points.size(), [&](std::size_t i) { return m.points[i].vec(); });
     const Int size = std::max(std::abs(cell.c[1][0] - cell.c[0][0]), std::abs(cell.c[1][1] - cell.c[0][1]));
     int level = 0;
     while ((kR >> level) > size) ++level;
     // Split while the children leave room for 10 levels of OpenSubdiv and 10 halvings of their
     // regular cells in the 2^40 resolution of the keys; below maxDepth 10, no deeper than maxDepth.
     const int finest = s.deeper ? 40 - 21 : s.maxDepth;
-    if (bound <= s.tol || level >= finest) {
+    if (bound <= leaf.tol || level >= finest) {
         s.irregular.push_back(leaf);
         return;
     }
@@ -709,7 +733,7 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
         }
         std::vector<Vertex3> limit, tan1, tan2; // of the finest level's vertices, computed when needed
 
-        double worst = 0;
+        bool over = false; // an irregular cell above its own tolerance
         for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
             const auto type = table->GetPatchArrayDescriptor(array).GetType();
             for (int patch = 0; patch < table->GetNumPatches(array); ++patch) {
@@ -771,12 +795,13 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
                     bound = std::min(bound, far);
                 }
                 cell.bound = bound;
-                worst = std::max(worst, bound);
+                cell.tol = s.of(ring.size(), [&](std::size_t i) { return all[offset[D] + static_cast<std::size_t>(ring[i])].vec(); });
+                over = over || bound > cell.tol;
                 irregular.push_back(cell);
                 irregularCorners.push_back(local);
             }
         }
-        if (worst > s.tol && depth < s.maxDepth) continue;
+        if (over && depth < s.maxDepth) continue;
 
         s.regular.insert(s.regular.end(), std::make_move_iterator(regular.begin()), std::make_move_iterator(regular.end()));
         for (std::size_t i = 0; i < irregular.size(); ++i) {
@@ -784,7 +809,7 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
             const Int size = std::max(std::abs(cell.c[1][0] - cell.c[0][0]), std::abs(cell.c[1][1] - cell.c[0][1]));
             // Past the deepest level: a local cage, while the cell leaves room for 10 more levels and
             // 10 halvings of its regular cells in the 2^40 resolution of the keys.
-            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > s.tol && (size >> kOsdMaxDepth) >= (Int(1) << 10))) {
+            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > cell.tol && (size >> kOsdMaxDepth) >= (Int(1) << 10))) {
                 s.irregular.push_back(cell);
                 continue;
             }
@@ -839,6 +864,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
     if (options.maxSplits < 0 || options.maxSplits > 28)
         throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
     const double tol = options.tolerance;
+    const CellTolerance cellTol{tol, options.toleranceOf};
     const PolygonMesh& mesh = cage_.mesh;
     const int faces = mesh.faceCount();
     std::vector<Vertex3> cagePoints(static_cast<std::size_t>(mesh.vertexCount()));
@@ -852,6 +878,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
                                                                                             : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
     search.sdc.SetCreasingMethod(cage_.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
     search.tol = tol;
+    search.toleranceOf = options.toleranceOf;
     search.maxDepth = options.maxDepth;
     search.deeper = options.maxDepth == kOsdMaxDepth;
     TriCage base{cagePoints, mesh.faceVertices, {}, {}, {}, {}};
@@ -884,7 +911,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
     std::vector<Leaf> leaves;
     std::vector<Net> leafNet;
     for (std::size_t i = 0; i < irregular.size(); ++i)
-        leaves.push_back({irregular[i].face, irregular[i].c, -1 - static_cast<int>(i), irregular[i].bound});
+        leaves.push_back({irregular[i].face, irregular[i].c, -1 - static_cast<int>(i), irregular[i].bound, irregular[i].tol});
     struct Task {
         int face;
         std::array<UV, 3> c;
@@ -898,9 +925,14 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
         Task t = std::move(stack.back());
         stack.pop_back();
         const double bound = netBound(t.net);
+        const double own = cellTol.of(15, [&](std::size_t i) {
+            int j = 0, k = static_cast<int>(i);
+            while (k > 4 - j) k -= 5 - j++; // i runs over (j, k), k = 0..4 - j, j = 0..4
+            return t.net[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+        });
         const Int side = std::max(std::abs(t.c[1][0] - t.c[0][0]), std::abs(t.c[1][1] - t.c[0][1]));
-        if (bound <= tol || t.splits >= options.maxSplits || side < 2) {
-            leaves.push_back({t.face, t.c, static_cast<int>(leafNet.size()), bound});
+        if (bound <= own || t.splits >= options.maxSplits || side < 2) {
+            leaves.push_back({t.face, t.c, static_cast<int>(leafNet.size()), bound, own});
             leafNet.push_back(t.net);
             continue;
         }
@@ -959,6 +991,8 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
     std::vector<UV> poly, side;
     std::vector<std::array<int, 3>> tris;
     std::vector<double> faceBound(static_cast<std::size_t>(faces), 0.0);
+    std::vector<double> faceTol(static_cast<std::size_t>(faces), tol);
+    std::vector<char> faceWithin(static_cast<std::size_t>(faces), 1);
     std::vector<int> faceRate(static_cast<std::size_t>(faces), 0);
     double worst = 0;
     for (const Leaf& l : leaves) {
@@ -977,6 +1011,8 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
             }
         const auto f = static_cast<std::size_t>(l.face);
         faceBound[f] = std::max(faceBound[f], l.bound);
+        faceTol[f] = std::min(faceTol[f], l.tol);
+        if (!(l.bound <= l.tol)) faceWithin[f] = 0;
         const Int size = std::max(std::abs(l.c[1][0] - l.c[0][0]), std::abs(l.c[1][1] - l.c[0][1]));
         faceRate[f] = std::max(faceRate[f], static_cast<int>(std::min<Int>(kR / std::max<Int>(size, 1), Int(1) << 30)));
         worst = std::max(worst, l.bound);
@@ -1002,8 +1038,9 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
         report->leaves = static_cast<long long>(leaves.size());
         report->depth = depth;
         report->faceBounds = faceBound;
+        report->faceTolerance = faceTol;
         report->faceCertified.assign(static_cast<std::size_t>(faces), 0);
-        for (int f = 0; f < faces; ++f) report->faceCertified[static_cast<std::size_t>(f)] = faceBound[static_cast<std::size_t>(f)] <= tol;
+        for (int f = 0; f < faces; ++f) report->faceCertified[static_cast<std::size_t>(f)] = faceWithin[static_cast<std::size_t>(f)];
     }
     return out;
 }

@@ -5,8 +5,10 @@
 // freeform::Error prefixed `source: object "name": `.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,6 +75,10 @@ struct ObjectTessellation {
     /// patch complex (TessellationOptions::patchTolerance; empty: `tolerance` everywhere); other
     /// types use `tolerance`.
     std::vector<double> patchTolerance;
+    /// subdivision_surface in adaptive mode (the certified path): a tolerance per region, each
+    /// cell's min(tolerance, toleranceOf(box)) (SubdivisionTessellationOptions::toleranceOf;
+    /// empty: `tolerance` everywhere); other types ignore it.
+    std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
 };
 
 /// The triangle mesh of a bezier_surface, deboor_surface (tessellate()) or subdivision_surface

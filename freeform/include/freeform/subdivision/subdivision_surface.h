@@ -20,8 +20,10 @@
 // Bézier patches, cage deformation) is in docs/subdivision.md.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -123,6 +125,14 @@ struct SubdivisionTessellationOptions {
     /// Certified path: how often a regular cell may be halved by de Casteljau (per direction; Loop:
     /// how many generations of four-way splits).
     int maxSplits = 16;
+    /// Certified path only (ignored by the estimate path and in uniform mode): a tolerance per
+    /// region, e.g. the editor's pixel size at a region's nearest depth (docs/subdivision.md,
+    /// "A tolerance per region"). When set, every cell's own tolerance is
+    /// min(tolerance, toleranceOf(box)), where box bounds the points whose convex hull the cell's
+    /// bound uses (the Bézier net of a regular cell or leaf, the 1-ring of an irregular cell), so
+    /// it bounds the cell's limit surface; each cell is refined until its bound is within its own
+    /// tolerance. Must return a value > 0 (a non-positive or non-finite value is an Error).
+    std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
 };
 
 struct SubdivisionTessellationReport {
@@ -136,7 +146,9 @@ struct SubdivisionTessellationReport {
     long long leaves = 0;            ///< leaves after de Casteljau splitting
     int depth = 0;                   ///< refinement level of the irregular cells
     std::vector<double> faceBounds;  ///< per cage face: its largest leaf bound (0: no limit surface)
-    std::vector<char> faceCertified; ///< per cage face: 1 when its bound is certified and within the tolerance
+    std::vector<char> faceCertified; ///< per cage face: 1 when every leaf's bound is certified and within the leaf's own
+                                     ///< tolerance (the tolerance, or with toleranceOf the cell's min(tolerance, toleranceOf(box)))
+    std::vector<double> faceTolerance; ///< per cage face: the smallest own tolerance of its leaves (the tolerance without toleranceOf)
 };
 
 class SubdivisionSurface {
