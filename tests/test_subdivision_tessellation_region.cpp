@@ -268,7 +268,7 @@ TEST_CASE("a tolerance per region: every cell within its own tolerance, far part
 
             const Reference ref = reference(c.cage, c.scheme, c.level);
             const double slack = referenceError(reference(c.cage, c.scheme, c.level - 1), ref);
-            const Ratios r = ratios(mesh, ref, region, slack, 0.2);
+            const Ratios r = ratios(mesh, ref, region, slack, 0.03); // deviations stay under 0.013 here; none found within 0.03 reads as infinity and fails
 
             // The near tolerance everywhere, for comparison.
             SubdivisionTessellationOptions near;
