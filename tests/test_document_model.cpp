@@ -194,7 +194,7 @@ TEST_CASE("tessellate: surfaces, cages, curves; control nets", "[document]")
 {
     const TypedDocument doc = load();
     TessellationReport report;
-    const auto patch = tessellateObject(doc.object("p"), {0, 2, false, {}}, &report);
+    const auto patch = tessellateObject(doc.object("p"), {0, 2, false, {}, {}}, &report);
     REQUIRE(patch);
     CHECK(patch->vertexCount() == 9);
     CHECK(patch->faceCount() == 8);
@@ -202,14 +202,14 @@ TEST_CASE("tessellate: surfaces, cages, curves; control nets", "[document]")
         const V3 q = patch->positions.col(i);
         CHECK(std::abs(q.z() - q.x() * q.y()) < 1e-15);
     }
-    const auto grid = tessellateObject(doc.object("g"), {1e-3, 8, false, {}});
+    const auto grid = tessellateObject(doc.object("g"), {1e-3, 8, false, {}, {}});
     REQUIRE(grid);
     for (Eigen::Index i = 0; i < grid->positions.cols(); ++i) {
         const V3 q = grid->positions.col(i);
         CHECK(std::abs(q.z() - q.x() * q.y()) < 1e-13);
     }
     CHECK(documentPatches(doc).patches.size() == 2);
-    const auto cube = tessellateObject(doc.object("cube"), {0, 2, false, {}});
+    const auto cube = tessellateObject(doc.object("cube"), {0, 2, false, {}, {}});
     REQUIRE(cube);
     CHECK(cube->faceCount() == 6 * 2 * 2 * 2); // 2 x 2 quads per face, two triangles each
     for (Eigen::Index i = 0; i < cube->positions.cols(); ++i)
