@@ -38,8 +38,10 @@
 #include <thread>
 
 #include "interaction/selection.h"
+#include "render/recording_renderer.h"
 #include "scene/overlay.h"
 #include "scene/scene.h"
+#include "scene/scene_drawer.h"
 #include "tools/tools.h"
 
 namespace {
@@ -151,6 +153,39 @@ void BM_DragFrameFromDeformed(benchmark::State& state)
     if (!links.empty()) state.counters["approximate"] = links.begin()->second.approximate;
 }
 BENCHMARK(BM_DragFrameFromDeformed)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
+
+/// BM_DragFrameFromDeformed with the drawer: each frame also goes through SceneDrawer::draw, which
+/// hands the renderer the vertices it uploads (here the recording renderer, whose copy of them
+/// stands for the driver's glBufferSubData copy; nothing is rasterised). This is the whole CPU
+/// side of a frame of the drag but the driver's own work. Process CPU of every thread.
+void BM_DragFrameDrawn(benchmark::State& state)
+{
+    static DragScene& d = *new DragScene;
+    static RecordingRenderer renderer;
+    static SceneDrawer drawer(renderer);
+    ToolContext context{d.scene, d.selection};
+    const int first = 42, k = 21;
+    d.scene.beginMerge();
+    d.scene.setControlPoint(d.lattice, first, d.scene.controlPoints(d.lattice).col(first) + Eigen::Vector3d(0.05, -0.04, 0.03));
+    d.scene.updateGeometry();
+    d.scene.endMerge();
+    drawer.draw(d.scene, 1280, 800, d.lattice, &d.overlay); // the full evaluation, uploaded: the base of the drag below
+    const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
+    d.scene.beginMerge();
+    int frame = 0;
+    for (auto _ : state) {
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        d.overlay = Overlay{};
+        d.tools.update(context, d.overlay);
+        drawer.draw(d.scene, 1280, 800, d.lattice, &d.overlay);
+        benchmark::DoNotOptimize(renderer.counters());
+    }
+    d.scene.endMerge();
+    const auto& links = d.scene.ffdLinks();
+    if (!links.empty()) state.counters["approximate"] = links.begin()->second.approximate;
+}
+BENCHMARK(BM_DragFrameDrawn)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
 
 /// A short drag (frames frames, not timed) of point k, then its release (endMerge): what the
 /// release benchmarks below start from.

@@ -156,33 +156,21 @@ public:
         return handle;
     }
 
-    void updateVertices(BufferHandle handle, const MeshData& mesh) override
+    using Renderer::updateVertices;
+    void updateVertices(BufferHandle handle, const VertexView& vertices) override
     {
-        if (mesh.normals.cols() != mesh.positions.cols()) throw Error("renderer: a mesh needs one normal per vertex");
+        if (!vertices.positions || !vertices.normals) throw Error("renderer: a mesh needs one normal per vertex");
         Buffers& b = buffers_.at(handle.id);
-        const auto bytes = static_cast<GLsizeiptr>(sizeof(float) * static_cast<std::size_t>(mesh.positions.size()));
+        const auto bytes = static_cast<GLsizeiptr>(sizeof(float) * 3 * vertices.count);
         glBindBuffer(GL_ARRAY_BUFFER, b.positions);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, mesh.positions.data());
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, vertices.positions);
         glBindBuffer(GL_ARRAY_BUFFER, b.normals);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, mesh.normals.data());
+        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, vertices.normals);
         glBindBuffer(GL_ARRAY_BUFFER, 0);
-        uploadScalars(handle, mesh.scalars);
+        scalars(handle, vertices.scalars, vertices.scalarCount);
     }
 
-    void uploadScalars(BufferHandle handle, const std::vector<float>& scalars) override
-    {
-        Buffers& b = buffers_.at(handle.id);
-        glBindVertexArray(b.vao);
-        if (scalars.empty()) {
-            glDisableVertexAttribArray(2);
-            b.hasScalars = false;
-        } else {
-            upload(b.scalars, GL_ARRAY_BUFFER, scalars.data(), sizeof(float) * scalars.size());
-            attribute(2, b.scalars, 1);
-            b.hasScalars = true;
-        }
-        glBindVertexArray(0);
-    }
+    void uploadScalars(BufferHandle handle, const std::vector<float>& values) override { scalars(handle, values.data(), values.size()); }
 
     BufferHandle uploadLines(BufferHandle handle, const LineData& lines) override
     {
@@ -398,6 +386,22 @@ private:
         Buffers& b = buffers_.at(handle.id);
         if (b.kind != kind) throw Error("renderer: a buffer handle was reused for another kind of data");
         return b;
+    }
+
+    /// The mesh's scalars (count values), or none (count 0).
+    void scalars(BufferHandle handle, const float* values, std::size_t count)
+    {
+        Buffers& b = buffers_.at(handle.id);
+        glBindVertexArray(b.vao);
+        if (count == 0) {
+            glDisableVertexAttribArray(2);
+            b.hasScalars = false;
+        } else {
+            upload(b.scalars, GL_ARRAY_BUFFER, values, sizeof(float) * count);
+            attribute(2, b.scalars, 1);
+            b.hasScalars = true;
+        }
+        glBindVertexArray(0);
     }
 
     BufferHandle uploadColored(BufferHandle handle, Buffers::Kind kind, const Eigen::Matrix<float, 3, Eigen::Dynamic>& positions,

@@ -49,15 +49,20 @@ BufferHandle RecordingRenderer::uploadMesh(BufferHandle handle, const MeshData& 
     return handle;
 }
 
-void RecordingRenderer::updateVertices(BufferHandle handle, const MeshData& mesh)
+void RecordingRenderer::updateVertices(BufferHandle handle, const VertexView& vertices)
 {
     Buffer& b = live(handle, Kind::Mesh, "updateVertices");
-    if (mesh.positions.cols() != b.mesh.positions.cols())
-        throw Error("recording renderer: updateVertices with " + std::to_string(mesh.positions.cols()) + " vertices for a mesh of " +
+    const auto count = static_cast<Eigen::Index>(vertices.count);
+    if (count != b.mesh.positions.cols())
+        throw Error("recording renderer: updateVertices with " + std::to_string(count) + " vertices for a mesh of " +
                     std::to_string(b.mesh.positions.cols()));
-    b.mesh.positions = mesh.positions;
-    b.mesh.normals = mesh.normals;
-    b.mesh.scalars = mesh.scalars;
+    if (vertices.scalarCount != 0 && vertices.scalarCount != vertices.count)
+        throw Error("recording renderer: updateVertices with " + std::to_string(vertices.scalarCount) + " scalars for " +
+                    std::to_string(count) + " vertices");
+    // Copied, as a driver copies them (the same size: no new memory).
+    b.mesh.positions = Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>>(vertices.positions, 3, count);
+    b.mesh.normals = Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>>(vertices.normals, 3, count);
+    b.mesh.scalars.assign(vertices.scalars, vertices.scalars + vertices.scalarCount);
     ++counters_.vertexUpdates;
 }
 

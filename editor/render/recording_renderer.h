@@ -48,7 +48,8 @@ public:
     };
 
     BufferHandle uploadMesh(BufferHandle handle, const MeshData& mesh) override;
-    void updateVertices(BufferHandle handle, const MeshData& mesh) override;
+    using Renderer::updateVertices;
+    void updateVertices(BufferHandle handle, const VertexView& vertices) override;
     void uploadScalars(BufferHandle handle, const std::vector<float>& scalars) override;
     BufferHandle uploadLines(BufferHandle handle, const LineData& lines) override;
     BufferHandle uploadPoints(BufferHandle handle, const PointData& points) override;

@@ -56,6 +56,23 @@ struct MeshData {
     std::vector<std::uint32_t> triangles;
 };
 
+/// Vertex data its caller keeps, for Renderer::updateVertices: 3 x count positions and normals
+/// (column-major, as MeshData's), and count per-vertex scalars or none (scalarCount 0). The
+/// renderer copies what it needs before the call returns.
+struct VertexView {
+    const float* positions = nullptr;
+    const float* normals = nullptr;
+    std::size_t count = 0;
+    const float* scalars = nullptr;
+    std::size_t scalarCount = 0;
+    /// A view of a MeshData's vertices (its triangles are not part of it).
+    static VertexView of(const MeshData& mesh)
+    {
+        return {mesh.positions.data(), mesh.normals.data(), static_cast<std::size_t>(mesh.positions.cols()), mesh.scalars.data(),
+                mesh.scalars.size()};
+    }
+};
+
 /// Coloured line segments: 3 x 2S positions, one RGB colour per vertex.
 struct LineData {
     Eigen::Matrix<float, 3, Eigen::Dynamic> positions;

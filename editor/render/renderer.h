@@ -22,8 +22,11 @@ public:
     /// Uploads a mesh (new handle when `handle` is empty, else replaces its contents).
     virtual BufferHandle uploadMesh(BufferHandle handle, const MeshData& mesh) = 0;
     /// Replaces the positions, normals and scalars of a mesh uploaded before with the same vertex
-    /// count, keeping its triangles (`mesh.triangles` is ignored): the path of live deformation.
-    virtual void updateVertices(BufferHandle handle, const MeshData& mesh) = 0;
+    /// count, keeping its triangles: the path of live deformation. The view's arrays are read
+    /// during the call only (the scene's own float copies of a deformed mesh: no conversion).
+    virtual void updateVertices(BufferHandle handle, const VertexView& vertices) = 0;
+    /// The same from a MeshData (`mesh.triangles` is ignored).
+    void updateVertices(BufferHandle handle, const MeshData& mesh) { updateVertices(handle, VertexView::of(mesh)); }
     /// Replaces only the per-vertex scalars of a mesh (size V, or empty to drop them).
     virtual void uploadScalars(BufferHandle handle, const std::vector<float>& scalars) = 0;
     virtual BufferHandle uploadLines(BufferHandle handle, const LineData& lines) = 0;

@@ -97,7 +97,8 @@ void Scene::updateDerived()
                 std::vector<float> scalars = std::move(mesh.scalars);
                 std::optional<DeformReport> report;
                 try {
-                    report = link.session->takeBackground(*mesh.geometry.surface, scalars, mesh.geometry.bounds, waitDeformation_);
+                    report = link.session->takeBackground(*mesh.geometry.surface, scalars, mesh.geometry.bounds, waitDeformation_,
+                                                          &mesh.geometry.drawn);
                 } catch (...) {
                     mesh.scalars = std::move(scalars);
                     link.pending = false;
@@ -112,6 +113,7 @@ void Scene::updateDerived()
                 link.pending = false;
                 setScalars(m, std::move(scalars)); // a new revision: the drawer uploads the exact mesh
                 link.appliedRevision = mesh.revision;
+                mesh.geometry.drawn.revision = mesh.revision;
                 link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
                 link.certificate.reset();
                 link.error.clear();
@@ -134,11 +136,15 @@ void Scene::updateDerived()
             // det J straight into the colour scalars, in the last frame's memory (no fresh pages).
             std::vector<float> scalars = std::move(mesh.scalars);
             // The bounds come from the same pass that writes the double positions.
-            link.report = link.session->deform(lattice, strength, *mesh.geometry.surface, &scalars, &mesh.geometry.bounds, live);
+            // The float copies the GPU takes, from the same pass (the drawer converts nothing).
+            link.report = link.session->deform(lattice, strength, *mesh.geometry.surface, &scalars, &mesh.geometry.bounds, live,
+                                               &mesh.geometry.drawn);
             link.approximate = link.session->approximate();
             link.deformMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             setScalars(m, std::move(scalars)); // also a new revision: the drawer uploads the vertices
             link.appliedRevision = mesh.revision;
+            const bool normals = mesh.geometry.surface->normals.cols() == mesh.geometry.surface->positions.cols();
+            mesh.geometry.drawn.revision = normals ? mesh.revision : -1; // (deform writes them only with normals)
             link.appliedPoints = data.points;
             link.appliedStrength = strength;
             link.certificate.reset();

@@ -19,16 +19,38 @@ namespace {
 // The frame's per-vertex data (FfdSession: coords_ and base_): fields per block of lanes.
 constexpr int FfdCoordFields = 6, FfdBaseFields = 13;
 
-/// Four float lanes (SSE2 at the baseline; GCC's vector extension).
-typedef float V4 __attribute__((vector_size(16)));
-typedef int V4i __attribute__((vector_size(16)));
-inline V4 load4(const float* p)
+// The frame's pass is compiled for x86-64-v4, v3 and the baseline, chosen at run time (as the
+// library's FFD kernel is: freeform/src/volume/ffd_binding.cpp); no -march in the build.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(FREEFORM_NO_CPU_DISPATCH)
+#define FREEFORM_FRAME_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define FREEFORM_FRAME_CLONES
+#endif
+#define FREEFORM_INLINE inline __attribute__((always_inline))
+
+// The lane vectors below never cross a call boundary (everything is inlined into the clones).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+/// Sixteen float lanes, one block (GCC's vector extension: one AVX-512 register, two AVX or four
+/// SSE ones, whichever the clone has).
+typedef float V16 __attribute__((vector_size(64)));
+typedef int V16i __attribute__((vector_size(64)));
+FREEFORM_INLINE V16 load16(const float* p)
 {
-    V4 v;
+    V16 v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-inline void store4(float* p, V4 v) { std::memcpy(p, &v, sizeof v); }
+FREEFORM_INLINE void store16(float* p, V16 v) { std::memcpy(p, &v, sizeof v); }
+
+/// dst[0..n) = src[0..n) widened to double, and copy[0..n) = src when given. (Non-temporal
+/// stores for the doubles, which nothing reads in the frame, were tried: the frame with its
+/// upload took 10.2 ms of CPU against 9.2 ms with these plain stores.)
+FREEFORM_INLINE void storeOut(double* dst, float* copy, const float* src, int n)
+{
+    if (copy) std::memcpy(copy, src, sizeof(float) * std::size_t(n));
+    for (int i = 0; i < n; ++i) dst[i] = double(src[i]);
+}
 
 /// What one drag frame reads and writes (FfdSession::dragFrame), and what it finds.
 struct FrameArgs {
@@ -44,6 +66,8 @@ struct FrameArgs {
     float u[3] = {};
     double* pos = nullptr;
     double* nor = nullptr;
+    float* fpos = nullptr; // the float copies (FloatVertices), or null
+    float* fnor = nullptr;
     float* det = nullptr;
     // Found: det J's range and folds, the box in float.
     double lo = 1, hi = 1;
@@ -54,7 +78,7 @@ struct FrameArgs {
 /// Bernstein values b[0..n] and derivatives db of degree n at the W lanes t, by the triangle
 /// (no binomials); the cubic in closed form.
 template <int W>
-inline void laneBernstein(int n, const float* t, float (*b)[W], float (*db)[W])
+FREEFORM_INLINE void laneBernstein(int n, const float* t, float (*b)[W], float (*db)[W])
 {
     if (n == 3) {
         for (int w = 0; w < W; ++w) {
@@ -81,12 +105,13 @@ inline void laneBernstein(int n, const float* t, float (*b)[W], float (*db)[W])
     }
 }
 
-/// The frame's pass (FfdSession::dragFrame), W lanes at a time in loops the compiler vectorises
-/// (SSE2 baseline): Identity reads the rest mesh as the base (A = I, det A = 1), Masked applies
-/// the per-vertex masks of the outside policy.
+/// The frame's pass (FfdSession::dragFrame), a block of W = 16 lanes at a time in vectors of 16
+/// and loops the compiler vectorises: Identity reads the rest mesh as the base (A = I, det A = 1),
+/// Masked applies the per-vertex masks of the outside policy.
 template <int W, bool Identity, bool Masked>
-void framePass(FrameArgs& f)
+FREEFORM_INLINE void framePassBody(FrameArgs& f)
 {
+    static_assert(W == 16, "a block is one V16");
     const std::size_t count = f.count;
     float mn[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
     float mx[3] = {-mn[0], -mn[1], -mn[2]};
@@ -94,8 +119,8 @@ void framePass(FrameArgs& f)
     const float u0 = f.u[0], u1 = f.u[1], u2 = f.u[2];
     const float* dual = f.dual;
     float b[3][kMaxDegree + 1][W], db[3][kMaxDegree + 1][W];
-    const V4 inf = V4{} + std::numeric_limits<float>::infinity();
-    V4 vmn[3] = {inf, inf, inf}, vmx[3] = {-inf, -inf, -inf}, vlo = inf, vhi = -inf;
+    const V16 inf = V16{} + std::numeric_limits<float>::infinity();
+    V16 vmn[3] = {inf, inf, inf}, vmx[3] = {-inf, -inf, -inf}, vlo = inf, vhi = -inf;
     for (std::size_t base = 0; base < count; base += W) {
         const std::size_t lanes = std::min<std::size_t>(W, count - base);
         const float* q = f.coords + (base / W) * FfdCoordFields * W;
@@ -122,40 +147,40 @@ void framePass(FrameArgs& f)
                 for (int x = 0; x < 3; ++x) g[x][w] = (m & 8u) && (m >> x & 1u) ? g[x][w] : 0.0f;
             }
         }
-        float p[3][W], n[3][W], d[W], len2[W], inv[W];
+        alignas(64) float p[3][W], n[3][W], d[W], len2[W], inv[W];
         const float* cb = f.coords + (base / W) * FfdCoordFields * W;
         const float* bb = Identity ? nullptr : f.base + (base / W) * FfdBaseFields * W; // (no base blocks at the identity)
-        float rp[3][W]; // Identity: the rest positions in float
+        alignas(64) float rp[3][W]; // Identity: the rest positions in float
         if constexpr (Identity)
             for (int w = 0; w < W; ++w) {
                 const std::size_t v = std::min(base + std::size_t(w), count - 1); // padding repeats the last vertex
                 for (int x = 0; x < 3; ++x) rp[x][w] = float(f.rest[3 * v + std::size_t(x)]);
             }
-        // Four lanes at a time (SSE2; the base and the coordinates are structures of arrays).
-        for (int w = 0; w < W; w += 4) {
-            const V4 g0 = load4(g[0] + w), g1 = load4(g[1] + w), g2 = load4(g[2] + w), b4 = load4(bs + w);
-            const V4 nx = load4(cb + 3 * W + w), ny = load4(cb + 4 * W + w), nz = load4(cb + 5 * W + w);
+        // The block at once (the base and the coordinates are structures of arrays).
+        {
+            const V16 g0 = load16(g[0]), g1 = load16(g[1]), g2 = load16(g[2]), b4 = load16(bs);
+            const V16 nx = load16(cb + 3 * W), ny = load16(cb + 4 * W), nz = load16(cb + 5 * W);
             // v = dual^T g
-            const V4 v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
-            const V4 v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
-            const V4 v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
-            const V4 mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0; // n x v
-            V4 px, py, pz, cx, cy, cz, ex, ey, ez, hx, hy, hz, d0;
+            const V16 v0 = dual[0] * g0 + dual[3] * g1 + dual[6] * g2;
+            const V16 v1 = dual[1] * g0 + dual[4] * g1 + dual[7] * g2;
+            const V16 v2 = dual[2] * g0 + dual[5] * g1 + dual[8] * g2;
+            const V16 mxv = ny * v2 - nz * v1, myv = nz * v0 - nx * v2, mzv = nx * v1 - ny * v0; // n x v
+            V16 px, py, pz, cx, cy, cz, ex, ey, ez, hx, hy, hz, d0;
             if constexpr (Identity) {
-                px = load4(rp[0] + w), py = load4(rp[1] + w), pz = load4(rp[2] + w);
+                px = load16(rp[0]), py = load16(rp[1]), pz = load16(rp[2]);
                 cx = nx, cy = ny, cz = nz;           // cof(I) n
                 ex = v0, ey = v1, ez = v2;           // cof(I) v
                 hx = mxv, hy = myv, hz = mzv;        // I (n x v)
-                d0 = V4{} + 1.0f;
+                d0 = V16{} + 1.0f;
             } else {
-                px = load4(bb + w), py = load4(bb + W + w), pz = load4(bb + 2 * W + w);
-                V4 a[9];
-                for (int c = 0; c < 9; ++c) a[c] = load4(bb + (3 + c) * W + w);
-                d0 = load4(bb + 12 * W + w);
+                px = load16(bb), py = load16(bb + W), pz = load16(bb + 2 * W);
+                V16 a[9];
+                for (int c = 0; c < 9; ++c) a[c] = load16(bb + (3 + c) * W);
+                d0 = load16(bb + 12 * W);
                 // cof(A)'s columns k0 = a1 x a2, k1 = a2 x a0, k2 = a0 x a1 (A column-major, a[3 c + r]).
-                const V4 k0x = a[4] * a[8] - a[5] * a[7], k0y = a[5] * a[6] - a[3] * a[8], k0z = a[3] * a[7] - a[4] * a[6];
-                const V4 k1x = a[7] * a[2] - a[8] * a[1], k1y = a[8] * a[0] - a[6] * a[2], k1z = a[6] * a[1] - a[7] * a[0];
-                const V4 k2x = a[1] * a[5] - a[2] * a[4], k2y = a[2] * a[3] - a[0] * a[5], k2z = a[0] * a[4] - a[1] * a[3];
+                const V16 k0x = a[4] * a[8] - a[5] * a[7], k0y = a[5] * a[6] - a[3] * a[8], k0z = a[3] * a[7] - a[4] * a[6];
+                const V16 k1x = a[7] * a[2] - a[8] * a[1], k1y = a[8] * a[0] - a[6] * a[2], k1z = a[6] * a[1] - a[7] * a[0];
+                const V16 k2x = a[1] * a[5] - a[2] * a[4], k2y = a[2] * a[3] - a[0] * a[5], k2z = a[0] * a[4] - a[1] * a[3];
                 cx = nx * k0x + ny * k1x + nz * k2x, cy = nx * k0y + ny * k1y + nz * k2y, cz = nx * k0z + ny * k1z + nz * k2z;
                 ex = v0 * k0x + v1 * k1x + v2 * k2x, ey = v0 * k0y + v1 * k1y + v2 * k2y, ez = v0 * k0z + v1 * k1z + v2 * k2z;
                 hx = a[0] * mxv + a[3] * myv + a[6] * mzv;
@@ -163,15 +188,15 @@ void framePass(FrameArgs& f)
                 hz = a[2] * mxv + a[5] * myv + a[8] * mzv;
             }
             // det J = det A + (cof(A) v) . u;  cof(J) n = cof(A) n + u x (A (n x v));  p = p0 + B u
-            store4(d + w, d0 + (ex * u0 + ey * u1 + ez * u2));
-            const V4 qx = cx + (u1 * hz - u2 * hy), qy = cy + (u2 * hx - u0 * hz), qz = cz + (u0 * hy - u1 * hx);
-            store4(n[0] + w, qx);
-            store4(n[1] + w, qy);
-            store4(n[2] + w, qz);
-            store4(len2 + w, qx * qx + qy * qy + qz * qz);
-            store4(p[0] + w, px + b4 * u0);
-            store4(p[1] + w, py + b4 * u1);
-            store4(p[2] + w, pz + b4 * u2);
+            store16(d, d0 + (ex * u0 + ey * u1 + ez * u2));
+            const V16 qx = cx + (u1 * hz - u2 * hy), qy = cy + (u2 * hx - u0 * hz), qz = cz + (u0 * hy - u1 * hx);
+            store16(n[0], qx);
+            store16(n[1], qy);
+            store16(n[2], qz);
+            store16(len2, qx * qx + qy * qy + qz * qz);
+            store16(p[0], px + b4 * u0);
+            store16(p[1], py + b4 * u1);
+            store16(p[2], pz + b4 * u2);
         }
 #if defined(__SSE2__)
         for (int w = 0; w < W; w += 4) {
@@ -185,29 +210,33 @@ void framePass(FrameArgs& f)
         if (lanes == std::size_t(W)) {
             // A whole block: the box and det J's range in vectors (min and max in float, then
             // widened: the same values as in double), folds looked for only where a lane has one.
-            for (int w = 0; w < W; w += 4) {
+            {
                 for (int x = 0; x < 3; ++x) {
-                    const V4 px = load4(p[x] + w);
+                    const V16 px = load16(p[x]);
                     vmn[x] = px < vmn[x] ? px : vmn[x];
                     vmx[x] = vmx[x] < px ? px : vmx[x];
-                    store4(n[x] + w, load4(n[x] + w) * load4(inv + w));
+                    store16(n[x], load16(n[x]) * load16(inv));
                 }
-                const V4 dv = load4(d + w);
+                const V16 dv = load16(d);
                 vlo = dv < vlo ? dv : vlo;
                 vhi = vhi < dv ? dv : vhi;
-                const V4i positive = dv > 0.0f;
-                if ((positive[0] & positive[1] & positive[2] & positive[3]) == 0)
-                    for (int k = w; k < w + 4; ++k)
+                const V16i positive = dv > 0.0f;
+                int all = -1;
+                for (int k = 0; k < W; ++k) all &= positive[k];
+                if (all == 0)
+                    for (int k = 0; k < W; ++k)
                         if (!(d[k] > 0)) f.folds->push_back(static_cast<int>(base + std::size_t(k)));
             }
-            double* po = f.pos + 3 * base;
-            double* no = f.nor + 3 * base;
+            // Interleaved (x y z per vertex), then out: double, float copies, det J.
+            alignas(16) float pi[3 * W], ni[3 * W];
             for (int w = 0; w < W; ++w)
                 for (int x = 0; x < 3; ++x) {
-                    po[3 * w + x] = double(p[x][w]);
-                    no[3 * w + x] = double(n[x][w]);
+                    pi[3 * w + x] = p[x][w];
+                    ni[3 * w + x] = n[x][w];
                 }
-            if (f.det) std::memcpy(f.det + base, d, sizeof d);
+            storeOut(f.pos + 3 * base, f.fpos ? f.fpos + 3 * base : nullptr, pi, 3 * W);
+            storeOut(f.nor + 3 * base, f.fnor ? f.fnor + 3 * base : nullptr, ni, 3 * W);
+            if (f.det) std::memcpy(f.det + base, d, sizeof d); // (read by the upload: cached)
             continue;
         }
         for (std::size_t w = 0; w < lanes; ++w) {
@@ -216,7 +245,12 @@ void framePass(FrameArgs& f)
                 mn[x] = p[x][w] < mn[x] ? p[x][w] : mn[x];
                 mx[x] = p[x][w] > mx[x] ? p[x][w] : mx[x];
             }
-            for (int x = 0; x < 3; ++x) f.nor[3 * (base + w) + std::size_t(x)] = double(n[x][w] * inv[w]);
+            for (int x = 0; x < 3; ++x) {
+                const float nx = n[x][w] * inv[w];
+                f.nor[3 * (base + w) + std::size_t(x)] = double(nx);
+                if (f.fpos) f.fpos[3 * (base + w) + std::size_t(x)] = p[x][w];
+                if (f.fnor) f.fnor[3 * (base + w) + std::size_t(x)] = nx;
+            }
             if (f.det) f.det[base + w] = d[w];
             const double dd = double(d[w]);
             lo = std::min(lo, dd);
@@ -224,7 +258,7 @@ void framePass(FrameArgs& f)
             if (!(dd > 0)) f.folds->push_back(static_cast<int>(base + w));
         }
     }
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < W; ++k) {
         for (int x = 0; x < 3; ++x) {
             mn[x] = vmn[x][k] < mn[x] ? vmn[x][k] : mn[x];
             mx[x] = vmx[x][k] > mx[x] ? vmx[x][k] : mx[x];
@@ -239,6 +273,12 @@ void framePass(FrameArgs& f)
         f.mx[x] = mx[x];
     }
 }
+
+// The four variants, each compiled for every clone target.
+FREEFORM_FRAME_CLONES void framePassIdentity(FrameArgs& f) { framePassBody<16, true, false>(f); }
+FREEFORM_FRAME_CLONES void framePassIdentityMasked(FrameArgs& f) { framePassBody<16, true, true>(f); }
+FREEFORM_FRAME_CLONES void framePassEvaluated(FrameArgs& f) { framePassBody<16, false, false>(f); }
+FREEFORM_FRAME_CLONES void framePassEvaluatedMasked(FrameArgs& f) { framePassBody<16, false, true>(f); }
 
 } // namespace
 
@@ -299,7 +339,7 @@ void FfdSession::settle()
 }
 
 DeformReport FfdSession::deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ,
-                                Eigen::AlignedBox3d* bounds, bool live)
+                                Eigen::AlignedBox3d* bounds, bool live, FloatVertices* drawn)
 {
     settle(); // a background evaluation in flight becomes the base of this call
     approximate_ = false;
@@ -307,10 +347,13 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
     const bool normals = rest_.normals.cols() == count;
     if (out.positions.cols() != count) out.positions.resize(3, count);
     if (normals && out.normals.cols() != count) out.normals.resize(3, count);
+    if (!normals) drawn = nullptr;
+    if (drawn && drawn->positions.cols() != count) drawn->positions.resize(3, count);
+    if (drawn && drawn->normals.cols() != count) drawn->normals.resize(3, count);
     if (detJ) detJ->resize(static_cast<std::size_t>(count));
     DeformReport report;
     if (lattice.isRest() || strength == 0) {
-        identity(lattice, strength, out, detJ, report, bounds);
+        identity(lattice, strength, out, detJ, report, bounds, drawn);
         return report;
     }
     if (live && base_ != Base::None && normals) {
@@ -335,24 +378,28 @@ DeformReport FfdSession::deform(const Lattice& lattice, double strength, Polygon
             }
         }
         if (const auto delta = dragDelta(lattice, strength)) {
-            dragFrame(lattice, *delta, out, detJ ? detJ->data() : nullptr, report, bounds);
+            dragFrame(lattice, *delta, out, drawn, detJ ? detJ->data() : nullptr, report, bounds);
             approximate_ = true;
             return report;
         }
         drag_.reset();
     }
-    evaluate(lattice, strength, out, detJ, report, bounds, 0);
+    evaluate(lattice, strength, out, detJ, report, bounds, 0, drawn);
     return report;
 }
 
 void FfdSession::identity(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
-                          Eigen::AlignedBox3d* bounds)
+                          Eigen::AlignedBox3d* bounds, FloatVertices* drawn)
 {
     // The identity: the file's own vertices, bit for bit (float would round them), det J 1.
     const Eigen::Index count = rest_.positions.cols();
     const bool normals = rest_.normals.cols() == count;
     out.positions = rest_.positions;
     if (normals) out.normals = rest_.normals;
+    if (normals && drawn) {
+        drawn->positions = rest_.positions.cast<float>();
+        drawn->normals = restNormals_;
+    }
     if (detJ) detJ->assign(static_cast<std::size_t>(count), 1.0f);
     drag_.reset();
     // The base of the next grab: the identity (no copy: the frames read the rest mesh).
@@ -369,7 +416,7 @@ void FfdSession::identity(const Lattice& lattice, double strength, PolygonMesh& 
 }
 
 void FfdSession::evaluate(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
-                          Eigen::AlignedBox3d* bounds, int threads)
+                          Eigen::AlignedBox3d* bounds, int threads, FloatVertices* drawn)
 {
     // The library's evaluation in float into the base (the Jacobians A kept with normals: the
     // next drag starts from them), then the report, the double copy and the bounds in one pass.
@@ -395,7 +442,7 @@ void FfdSession::evaluate(const Lattice& lattice, double strength, PolygonMesh& 
     binding_.deform(lattice, o, options, nullptr);
     if (out.positions.cols() != count) out.positions.resize(3, count);
     if (normals && out.normals.cols() != count) out.normals.resize(3, count);
-    finish(baseDet_.data(), normals, out, report, bounds, threads);
+    finish(baseDet_.data(), normals, out, normals ? drawn : nullptr, report, bounds, threads);
     if (detJ) detJ->assign(baseDet_.begin(), baseDet_.end());
     base_ = normals ? Base::Evaluated : Base::None;
     basePoints_ = lattice.controlPoints();
@@ -412,9 +459,9 @@ void FfdSession::deformInBackground(const Lattice& lattice, double strength)
     job_ = std::thread([this, lattice, strength, threads] {
         try {
             if (lattice.isRest() || strength == 0) {
-                identity(lattice, strength, jobMesh_, &jobDet_, jobReport_, &jobBounds_);
+                identity(lattice, strength, jobMesh_, &jobDet_, jobReport_, &jobBounds_, &jobDrawn_);
             } else {
-                evaluate(lattice, strength, jobMesh_, &jobDet_, jobReport_, &jobBounds_, threads);
+                evaluate(lattice, strength, jobMesh_, &jobDet_, jobReport_, &jobBounds_, threads, &jobDrawn_);
             }
         } catch (...) {
             jobError_ = std::current_exception();
@@ -424,7 +471,8 @@ void FfdSession::deformInBackground(const Lattice& lattice, double strength)
     });
 }
 
-std::optional<DeformReport> FfdSession::takeBackground(PolygonMesh& out, std::vector<float>& detJ, Eigen::AlignedBox3d& bounds, bool wait)
+std::optional<DeformReport> FfdSession::takeBackground(PolygonMesh& out, std::vector<float>& detJ, Eigen::AlignedBox3d& bounds, bool wait,
+                                                      FloatVertices* drawn)
 {
     if (!job_.joinable()) return std::nullopt;
     if (!wait && !jobDone_.load(std::memory_order_acquire)) return std::nullopt;
@@ -436,7 +484,13 @@ std::optional<DeformReport> FfdSession::takeBackground(PolygonMesh& out, std::ve
     }
     // Swapped, not copied: the scene's buffers come back here for the next release.
     out.positions.swap(jobMesh_.positions);
-    if (rest_.normals.cols() == rest_.positions.cols()) out.normals.swap(jobMesh_.normals);
+    if (rest_.normals.cols() == rest_.positions.cols()) {
+        out.normals.swap(jobMesh_.normals);
+        if (drawn) {
+            drawn->positions.swap(jobDrawn_.positions);
+            drawn->normals.swap(jobDrawn_.normals);
+        }
+    }
     detJ.swap(jobDet_);
     bounds = jobBounds_;
     approximate_ = false;
@@ -468,8 +522,8 @@ std::optional<Eigen::Vector3d> FfdSession::dragDelta(const Lattice& lattice, dou
     return delta;
 }
 
-void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta, PolygonMesh& out, float* det, DeformReport& report,
-                           Eigen::AlignedBox3d* bounds) const
+void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta, PolygonMesh& out, FloatVertices* drawn, float* det,
+                           DeformReport& report, Eigen::AlignedBox3d* bounds) const
 {
     // One thread, one pass from the base (docs/architecture.md, "A lattice drag"): with every
     // point of the set moved by the same delta since the base, D changes by w B delta and J by
@@ -492,18 +546,21 @@ void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta,
     for (int x = 0; x < 3; ++x) f.u[x] = u[x];
     f.pos = out.positions.data();
     f.nor = out.normals.data();
+    f.fpos = drawn ? drawn->positions.data() : nullptr;
+    f.fnor = drawn ? drawn->normals.data() : nullptr;
     f.det = det;
     report = DeformReport{};
     report.vertices = f.count;
     report.outside = binding_.outsideVertices().size();
     f.folds = &report.folds;
     const bool identity = base_ == Base::Identity;
+    static_assert(W == 16);
     if (identity) {
-        if (f.masks) framePass<W, true, true>(f);
-        else framePass<W, true, false>(f);
+        if (f.masks) framePassIdentityMasked(f);
+        else framePassIdentity(f);
     } else {
-        if (f.masks) framePass<W, false, true>(f);
-        else framePass<W, false, false>(f);
+        if (f.masks) framePassEvaluatedMasked(f);
+        else framePassEvaluated(f);
     }
     report.minDetJ = f.lo;
     report.maxDetJ = f.hi;
@@ -514,8 +571,8 @@ void FfdSession::dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta,
     }
 }
 
-void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds,
-                        int threads)
+void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, FloatVertices* drawn, DeformReport& report,
+                        Eigen::AlignedBox3d* bounds, int threads)
 {
     // One pass over the float results, on the same threads as before, in chunks combined in chunk
     // order: the scene's double mesh (exact widening), the report from det J as FfdBinding::deform
@@ -531,11 +588,19 @@ void FfdSession::finish(const float* det, bool normals, PolygonMesh& out, Deform
     constexpr int W = kLanes;
     static_assert(kGrain % W == 0);
     if (normals) baseBlocks_.resize(((static_cast<std::size_t>(count) + W - 1) / W) * kBaseFields * W);
+    if (drawn) {
+        if (drawn->positions.cols() != count) drawn->positions.resize(3, count);
+        if (drawn->normals.cols() != count) drawn->normals.resize(3, count);
+    }
     std::vector<Part> parts(static_cast<std::size_t>(parallelChunkCount(0, static_cast<std::size_t>(count), kGrain, threads)));
     parallelFor(0, static_cast<std::size_t>(count), kGrain, threads, [&](int c, std::size_t first, std::size_t last) {
         const auto n = static_cast<Eigen::Index>(last - first), f = static_cast<Eigen::Index>(first);
         out.positions.middleCols(f, n) = positions_.middleCols(f, n).cast<double>();
         if (normals) out.normals.middleCols(f, n) = normals_.middleCols(f, n).cast<double>();
+        if (drawn) {
+            drawn->positions.middleCols(f, n) = positions_.middleCols(f, n);
+            drawn->normals.middleCols(f, n) = normals_.middleCols(f, n);
+        }
         Part& part = parts[static_cast<std::size_t>(c)];
         // The base's blocks for the drag frames (chunks start at whole blocks: kGrain % W == 0).
         if (normals)

@@ -26,6 +26,15 @@
 
 namespace freeform::editor {
 
+/// A deformed mesh's positions and normals in float (3 x V each), as the GPU takes them: written
+/// by the pass that writes the double mesh, so that drawing needs no conversion (the double values
+/// are these widened, so they are also the double mesh's values rounded to float). `revision`: the
+/// scene item's revision they belong to (-1: none; the scene sets it).
+struct FloatVertices {
+    Eigen::Matrix<float, 3, Eigen::Dynamic> positions, normals;
+    int revision = -1;
+};
+
 class FfdSession {
 public:
     /// Binds `rest` (triangles with per-vertex normals, as the scene draws meshes) to the frame,
@@ -48,8 +57,10 @@ public:
     /// equal to the full evaluation up to float rounding (docs/performance.md gives the measured
     /// bound), and approximate() says so. Otherwise, and always when !live, the full evaluation
     /// (bit for bit the same as FfdBinding<float>), which becomes the base.
+    ///
+    /// `drawn` (with normals only): the same positions and normals in float, resized as `out`.
     DeformReport deform(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ = nullptr,
-                        Eigen::AlignedBox3d* bounds = nullptr, bool live = false);
+                        Eigen::AlignedBox3d* bounds = nullptr, bool live = false, FloatVertices* drawn = nullptr);
     /// Whether the last deform() was a linear drag update rather than the full evaluation.
     bool approximate() const { return approximate_; }
 
@@ -68,8 +79,9 @@ public:
     /// pending, or when it is still running and !wait): its positions and normals are swapped into
     /// `out` (resized to the rest mesh's vertex count), det J into detJ and the box into bounds, as
     /// deform() writes them; the buffers swapped out are kept for the next one. Rethrows the
-    /// evaluation's Error.
-    std::optional<DeformReport> takeBackground(PolygonMesh& out, std::vector<float>& detJ, Eigen::AlignedBox3d& bounds, bool wait);
+    /// evaluation's Error. `drawn` (with normals): its float positions and normals, swapped likewise.
+    std::optional<DeformReport> takeBackground(PolygonMesh& out, std::vector<float>& detJ, Eigen::AlignedBox3d& bounds, bool wait,
+                                               FloatVertices* drawn = nullptr);
 
     FfdSession(const FfdSession&) = delete;
     FfdSession& operator=(const FfdSession&) = delete;
@@ -80,13 +92,14 @@ private:
     /// The full evaluation into the kept base (positions_, normals_, jacobians_ with normals,
     /// baseDet_), then its outputs: out (double), detJ, report, bounds. `threads` as DeformOptions.
     void evaluate(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
-                  Eigen::AlignedBox3d* bounds, int threads);
+                  Eigen::AlignedBox3d* bounds, int threads, FloatVertices* drawn);
     /// The identity (the rest lattice or strength 0): the rest mesh itself; the base is the identity.
     void identity(const Lattice& lattice, double strength, PolygonMesh& out, std::vector<float>* detJ, DeformReport& report,
-                  Eigen::AlignedBox3d* bounds);
-    /// positions_/normals_ (and det J) -> out (double), report, bounds: one pass.
+                  Eigen::AlignedBox3d* bounds, FloatVertices* drawn);
+    /// positions_/normals_ (and det J) -> out (double), drawn (float), report, bounds: one pass.
     /// With normals, also the base's blocks (baseBlocks_) from positions_, jacobians_ and det.
-    void finish(const float* det, bool normals, PolygonMesh& out, DeformReport& report, Eigen::AlignedBox3d* bounds, int threads);
+    void finish(const float* det, bool normals, PolygonMesh& out, FloatVertices* drawn, DeformReport& report, Eigen::AlignedBox3d* bounds,
+                int threads);
     /// Waits for a background evaluation and drops its result (its base stays).
     void settle();
 
@@ -103,8 +116,8 @@ private:
     /// base: p = p0 + B u, det J = det A + (cof(A) v) . u, cof(J) n = cof(A) n + u x (A (n x v)),
     /// with B and v = dual^T grad B of the moved points at the vertex's lattice coordinates
     /// (coords_, the outside policy folded in), u = strength * delta.
-    void dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta, PolygonMesh& out, float* det, DeformReport& report,
-                   Eigen::AlignedBox3d* bounds) const;
+    void dragFrame(const Lattice& lattice, const Eigen::Vector3d& delta, PolygonMesh& out, FloatVertices* drawn, float* det,
+                   DeformReport& report, Eigen::AlignedBox3d* bounds) const;
 
     Lattice frame_;
     PolygonMesh rest_;
@@ -135,6 +148,7 @@ private:
     std::thread job_;
     std::atomic<bool> jobDone_{false};
     PolygonMesh jobMesh_;
+    FloatVertices jobDrawn_;
     std::vector<float> jobDet_;
     Eigen::AlignedBox3d jobBounds_;
     DeformReport jobReport_;

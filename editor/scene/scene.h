@@ -65,6 +65,10 @@ struct ItemGeometry {
     std::vector<std::pair<int, int>> netEdges;       // control net / polygon edges into netPoints
     Eigen::Matrix<double, 3, Eigen::Dynamic> netPoints; // control points (3 x N; 2D padded with z = 0)
     Eigen::AlignedBox3d bounds;
+    /// The surface's positions and normals in float as drawn, when the pass that wrote the surface
+    /// wrote them too (a mesh an FFD lattice deforms); current while drawn.revision equals the
+    /// item's revision, else the drawer converts the surface itself.
+    FloatVertices drawn;
     std::string error;                    // set when the geometry could not be built
 };
 

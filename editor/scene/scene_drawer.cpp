@@ -105,7 +105,15 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
             // the vertex data alone.
             if (gpu.mesh && gpu.topology == item.topology && gpu.vertices == g.surface->vertexCount() &&
                 gpu.faces == g.surface->faceCount()) {
-                renderer_.updateVertices(gpu.mesh, meshData(*g.surface, item.scalars, false));
+                if (g.drawn.revision == item.revision && g.drawn.positions.cols() == g.surface->positions.cols() &&
+                    g.drawn.normals.cols() == g.surface->positions.cols()) {
+                    // The deformation's own float copies (a lattice drag): nothing to convert.
+                    renderer_.updateVertices(gpu.mesh, VertexView{g.drawn.positions.data(), g.drawn.normals.data(),
+                                                                  static_cast<std::size_t>(g.drawn.positions.cols()),
+                                                                  item.scalars.data(), item.scalars.size()});
+                } else {
+                    renderer_.updateVertices(gpu.mesh, meshData(*g.surface, item.scalars, false));
+                }
             } else {
                 gpu.mesh = renderer_.uploadMesh(gpu.mesh, meshData(*g.surface, item.scalars));
                 gpu.topology = item.topology;

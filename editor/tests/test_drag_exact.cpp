@@ -122,8 +122,21 @@ struct Drag {
 struct Difference {
     double positions = 0, normals = 0, det = 0;
 };
+/// The float copies the drawer uploads (ItemGeometry::drawn) are current and are the scene's
+/// mesh rounded to float, bit for bit (the mesh is their widening).
+void requireDrawnCurrent(const Drag& d)
+{
+    const SceneItem& item = d.scene.item(d.mesh);
+    REQUIRE(item.geometry.drawn.revision == item.revision);
+    CHECK(item.geometry.drawn.positions == d.deformed().positions.cast<float>());
+    CHECK(item.geometry.drawn.normals == d.deformed().normals.cast<float>());
+    CHECK(item.geometry.drawn.positions.cast<double>() == d.deformed().positions);
+    CHECK(item.geometry.drawn.normals.cast<double>() == d.deformed().normals);
+}
+
 Difference difference(const Drag& d, const Reference& r)
 {
+    requireDrawnCurrent(d);
     Difference out;
     out.positions = (d.deformed().positions - r.positions).cwiseAbs().maxCoeff();
     out.normals = (d.deformed().normals - r.normals).cwiseAbs().maxCoeff();
@@ -136,6 +149,7 @@ Difference difference(const Drag& d, const Reference& r)
 /// Exactly the reference: every coordinate, normal and det J, the report and the box.
 void requireExact(const Drag& d, const Reference& r)
 {
+    requireDrawnCurrent(d);
     CHECK(d.deformed().positions == r.positions);
     CHECK(d.deformed().normals == r.normals);
     CHECK(d.scene.item(d.mesh).scalars == r.det);
@@ -351,6 +365,59 @@ TEST_CASE("Lattice drag: the normals overlay is built only while shown, from the
     drawer.draw(d.scene, 320, 240, -1);
     CHECK(r.buffer(handle).lines.positions.cols() == 0);
     d.scene.endMerge();
+}
+
+TEST_CASE("Lattice drag: the drawer uploads the deformation's own float copies, the mesh rounded to float", "[ffd][drag][drawer]")
+{
+    // Each frame of a drag, its release (on the worker) and an undo: the vertices the renderer
+    // holds are the scene's mesh rounded to float and its det J, uploaded as vertex updates (same
+    // triangles), with no conversion of the double mesh by the drawer.
+    Drag d(ellipsoidFile("drag_drawn.obj", 30), 3);
+    d.scene.setBackgroundTessellation(true);
+    RecordingRenderer r;
+    SceneDrawer drawer(r);
+    drawer.draw(d.scene, 320, 240, -1);
+    const Eigen::Index count = d.rest.positions.cols();
+    auto meshBuffer = [&]() -> const MeshData& {
+        for (const auto& call : r.calls(RecordingRenderer::Kind::Mesh))
+            if (call.vertices == count) return r.buffer(call.handle).mesh;
+        FAIL("the deformed mesh was not drawn");
+        throw;
+    };
+    auto requireUploaded = [&] {
+        const MeshData& gpu = meshBuffer();
+        CHECK(gpu.positions == d.deformed().positions.cast<float>());
+        CHECK(gpu.normals == d.deformed().normals.cast<float>());
+        CHECK(gpu.scalars == d.scene.item(d.mesh).scalars);
+    };
+    requireUploaded();
+    const Lattice rest = d.current();
+    const int k = rest.index(1, 2, 1);
+    r.clearCounters();
+    d.scene.beginMerge();
+    for (int f = 1; f <= 3; ++f) {
+        d.scene.setControlPoint(d.lattice, k, rest.controlPoints().col(k) + 0.05 * f * Eigen::Vector3d(1, 0.5, -0.2));
+        d.update();
+        drawer.draw(d.scene, 320, 240, -1);
+        REQUIRE(d.scene.ffdLink(d.lattice)->approximate);
+        requireDrawnCurrent(d);
+        requireUploaded();
+    }
+    CHECK(r.counters().vertexUpdates == 3);
+    CHECK(r.counters().meshUploads == 0);
+    d.scene.endMerge();
+    d.update(); // the release: the worker starts; the last linear frame stays
+    d.scene.finishDeformation();
+    drawer.draw(d.scene, 320, 240, -1);
+    REQUIRE_FALSE(d.scene.ffdLink(d.lattice)->approximate);
+    requireExact(d, fullEvaluation(d.current(), 1, d.rest));
+    requireUploaded();
+    d.scene.undo();
+    d.update();
+    drawer.draw(d.scene, 320, 240, -1);
+    requireUploaded();
+    CHECK(d.deformed().positions == d.rest.positions); // back at the rest lattice: the file's own vertices
+    CHECK(r.counters().meshUploads == 0);
 }
 
 namespace {
