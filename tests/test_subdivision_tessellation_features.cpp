@@ -18,20 +18,16 @@
 
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
-#include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <memory>
-#include <unordered_map>
 
 #include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
 using namespace freeform;
@@ -42,209 +38,15 @@ namespace {
 namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 const std::string kCages = std::string(FREEFORM_SOURCE_DIR) + "/data/cages/";
 
-struct P3 {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const P3& s, double w)
-    {
-        for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
-    }
-};
-
-using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-
-/// OpenSubdiv's own topology of the cage, with every tag the library passes (holes, boundary,
-/// triangle rule), built here independently of the library.
+/// OpenSubdiv's own topology of a Catmull-Clark cage, with every tag the library passes (holes,
+/// boundary, triangle rule), built independently of the library.
 std::unique_ptr<osd::Far::TopologyRefiner> refinerOf(const SubdivisionCage& cage, BoundaryInterpolation boundary)
 {
-    static thread_local std::vector<int> counts, pairs, corners;
-    static thread_local std::vector<float> creaseW, cornerW;
-    counts.clear(), pairs.clear(), corners.clear(), creaseW.clear(), cornerW.clear();
-    for (int f = 0; f < cage.mesh.faceCount(); ++f) counts.push_back(cage.mesh.faceSize(f));
-    for (const auto& c : cage.creases) {
-        pairs.insert(pairs.end(), {c.v0, c.v1});
-        creaseW.push_back(static_cast<float>(c.sharpness));
-    }
-    for (const auto& c : cage.corners) {
-        corners.push_back(c.vertex);
-        cornerW.push_back(static_cast<float>(c.sharpness));
-    }
-    osd::Far::TopologyDescriptor desc;
-    desc.numVertices = cage.mesh.vertexCount();
-    desc.numFaces = static_cast<int>(counts.size());
-    desc.numVertsPerFace = counts.data();
-    desc.vertIndicesPerFace = cage.mesh.faceVertices.data();
-    desc.numCreases = static_cast<int>(creaseW.size());
-    desc.creaseVertexIndexPairs = pairs.data();
-    desc.creaseWeights = creaseW.data();
-    desc.numCorners = static_cast<int>(cornerW.size());
-    desc.cornerVertexIndices = corners.data();
-    desc.cornerWeights = cornerW.data();
-    desc.numHoles = static_cast<int>(cage.holes.size());
-    desc.holeIndices = cage.holes.data();
-    osd::Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                    : boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
-                                                                                     : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    sdc.SetTriangleSubdivision(cage.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
-    std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
-    REQUIRE(refiner);
-    return refiner;
-}
-
-/// The reference: exact limit points of the uniform level-N refinement on the faces that have a
-/// limit surface (not holes), and those points joined as triangles.
-struct Reference {
-    std::vector<V3> points;
-    PolygonMesh mesh;
-};
-
-Reference reference(const SubdivisionCage& cage, BoundaryInterpolation boundary, int level)
-{
-    auto refiner = refinerOf(cage, boundary);
-    osd::Far::TopologyRefiner::UniformOptions uniform(level);
-    uniform.fullTopologyInLastLevel = true;
-    refiner->RefineUniform(uniform);
-    std::vector<P3> buffer(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-    for (int v = 0; v < cage.mesh.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) buffer[static_cast<std::size_t>(v)].p[k] = cage.mesh.positions(k, v);
-    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-    P3* src = buffer.data();
-    for (int l = 1; l <= level; ++l) {
-        P3* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
-        primvar.Interpolate(l, src, dst);
-        src = dst;
-    }
-    const osd::Far::TopologyLevel& last = refiner->GetLevel(level);
-    std::vector<P3> limit(static_cast<std::size_t>(last.GetNumVertices()));
-    primvar.Limit(src, limit);
-    Reference r;
-    r.mesh.positions.resize(3, last.GetNumVertices());
-    std::vector<char> used(static_cast<std::size_t>(last.GetNumVertices()), 0);
-    for (int v = 0; v < last.GetNumVertices(); ++v)
-        r.mesh.positions.col(v) = V3(limit[static_cast<std::size_t>(v)].p[0], limit[static_cast<std::size_t>(v)].p[1],
-                                     limit[static_cast<std::size_t>(v)].p[2]);
-    for (int f = 0; f < last.GetNumFaces(); ++f) {
-        if (last.IsFaceHole(f)) continue;
-        const auto fv = last.GetFaceVertices(f);
-        r.mesh.addFace({fv[0], fv[1], fv[2]});
-        r.mesh.addFace({fv[0], fv[2], fv[3]});
-        for (int k = 0; k < 4; ++k) used[static_cast<std::size_t>(fv[k])] = 1;
-    }
-    for (int v = 0; v < last.GetNumVertices(); ++v)
-        if (used[static_cast<std::size_t>(v)]) r.points.push_back(r.mesh.positions.col(v));
-    return r;
-}
-
-struct Deviation {
-    double surfaceToMesh = 0, meshToSurface = 0, vertexOff = 0;
-};
-
-/// The distance from p to the grid's nearest triangle: first searched within r0 (exact when the
-/// nearest is that close: every triangle within r0 has a cell in the box), else within radius
-/// (infinity beyond it). Most points are close, so most queries look at a few cells only.
-double nearest(const test::TriangleGrid& grid, const V3& p, double r0, double radius)
-{
-    const double d = grid.distance(p, r0);
-    return d <= r0 ? d : grid.distance(p, radius);
-}
-
-Deviation deviation(const PolygonMesh& mesh, const Reference& ref, double tol)
-{
-    Deviation d;
-    const double radius = 2 * tol, r0 = tol / 4;
-    const test::TriangleGrid meshGrid(mesh, tol);
-    for (const V3& p : ref.points) d.surfaceToMesh = std::max(d.surfaceToMesh, nearest(meshGrid, p, r0, radius));
-    const test::TriangleGrid refGrid(ref.mesh, tol);
-    for (int v = 0; v < mesh.vertexCount(); ++v)
-        d.vertexOff = std::max(d.vertexOff, nearest(refGrid, mesh.positions.col(v), r0, radius));
-    for (int f = 0; f < mesh.faceCount(); ++f) {
-        const int* t = mesh.face(f);
-        const V3 a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
-        for (int i = 0; i <= 4; ++i)
-            for (int j = 0; i + j <= 4; ++j) {
-                if (i == 4 || j == 4 || i + j == 0) continue; // the corners are vertices
-                const double x = i / 4.0, y = j / 4.0;
-                d.meshToSurface = std::max(d.meshToSurface, nearest(refGrid, x * a + y * b + (1 - x - y) * c, r0, radius));
-            }
-    }
-    return d;
-}
-
-/// The reference triangles' own distance to the limit surface, bounded by the coarser level's
-/// triangles' centroids against the finer level's triangles (searched within tol / 2).
-double referenceError(const Reference& coarse, const Reference& fine, double tol)
-{
-    const test::TriangleGrid grid(fine.mesh, tol);
-    double worst = 0;
-    for (int f = 0; f < coarse.mesh.faceCount(); ++f) {
-        const int* t = coarse.mesh.face(f);
-        const V3 c = (V3(coarse.mesh.positions.col(t[0])) + V3(coarse.mesh.positions.col(t[1])) + V3(coarse.mesh.positions.col(t[2]))) / 3;
-        worst = std::max(worst, nearest(grid, c, tol / 16, tol / 2));
-    }
-    return worst;
-}
-
-/// Vertices lying inside another triangle's edge: vertices bucketed in cubes of side 0.02, each edge
-/// walked in steps of half a cube, every vertex of the buckets around each step tested once.
-long tJunctions(const PolygonMesh& mesh)
-{
-    std::map<std::pair<int, int>, int> edges;
-    for (int f = 0; f < mesh.faceCount(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % 3];
-            edges[{std::min(a, b), std::max(a, b)}]++;
-        }
-    const double cell = 0.02;
-    auto index = [&](double x) { return static_cast<long>(std::floor(x / cell)) + 4096; };
-    auto key = [&](long x, long y, long z) { return (x * 8192 + y) * 8192 + z; };
-    std::unordered_map<long, std::vector<int>> buckets;
-    for (int v = 0; v < mesh.vertexCount(); ++v)
-        buckets[key(index(mesh.positions(0, v)), index(mesh.positions(1, v)), index(mesh.positions(2, v)))].push_back(v);
-    long found = 0;
-    std::vector<int> seen;
-    for (const auto& [e, n] : edges) {
-        const V3 a = mesh.positions.col(e.first), b = mesh.positions.col(e.second);
-        const double len = (b - a).norm();
-        const int steps = static_cast<int>(std::ceil(2 * len / cell));
-        seen.clear();
-        for (int s = 0; s <= steps; ++s) {
-            const V3 p = a + (b - a) * (static_cast<double>(s) / std::max(steps, 1));
-            const long x = index(p.x()), y = index(p.y()), z = index(p.z());
-            for (long dx = -1; dx <= 1; ++dx)
-                for (long dy = -1; dy <= 1; ++dy)
-                    for (long dz = -1; dz <= 1; ++dz) {
-                        const auto it = buckets.find(key(x + dx, y + dy, z + dz));
-                        if (it == buckets.end()) continue;
-                        seen.insert(seen.end(), it->second.begin(), it->second.end());
-                    }
-        }
-        std::sort(seen.begin(), seen.end());
-        seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-        for (int v : seen) {
-            if (v == e.first || v == e.second) continue;
-            const V3 p = mesh.positions.col(v);
-            const double t = (p - a).dot(b - a) / (len * len);
-            if (t <= 0 || t >= 1) continue;
-            if ((a + t * (b - a) - p).norm() <= 1e-12 * std::max(1.0, len)) ++found;
-        }
-    }
-    return found;
+    return test::farRefiner(cage, SubdivisionScheme::Catmark, boundary);
 }
 
 /// A 6 x 6 open grid with random heights (25 quads; its four corner vertices have one face each).
-SubdivisionCage openGrid()
-{
-    SubdivisionCage cage;
-    const int n = 6;
-    cage.mesh.positions.resize(3, n * n);
-    for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c)
-            cage.mesh.positions.col(r * n + c) = V3(0.4 * r, 0.4 * c, 0.3 * std::sin(1.3 * r + 0.7 * c * c));
-    for (int r = 0; r + 1 < n; ++r)
-        for (int c = 0; c + 1 < n; ++c) cage.mesh.addFace({r * n + c, (r + 1) * n + c, (r + 1) * n + c + 1, r * n + c + 1});
-    return cage;
-}
+SubdivisionCage openGrid() { return test::wavyGrid(6, 6); }
 
 /// The open grid with its centre quad (face 12) cut into two triangles: not all quads, so the
 /// library works on the cage refined once, where holes and one-face corners must be carried.
@@ -299,11 +101,13 @@ void checkCase(const Case& c)
     SubdivisionTessellationReport report;
     const PolygonMesh mesh = s.tessellate(o, &report);
     // Level 7 at 1e-3, level 6 at 1e-2 (a quarter of the points; its own chord error, against the
-    // next level, is still under a twentieth of the tolerance).
+    // next level, is still under a twentieth of the tolerance). The reference's grid has cells of
+    // the tolerance; its chord error is searched within tol / 2 (first within tol / 16), the
+    // deviation within 2 tol (first within tol / 4).
     const int level = c.tol < 5e-3 ? 7 : 6;
-    const Reference ref = reference(c.cage, c.boundary, level);
-    const double slack = referenceError(reference(c.cage, c.boundary, level - 1), ref, c.tol);
-    const Deviation d = deviation(mesh, ref, c.tol);
+    const test::MeasuredReference ref(c.cage, SubdivisionScheme::Catmark, c.boundary, level, c.tol, c.tol / 16, c.tol / 2);
+    const double slack = ref.slack;
+    const test::Deviation d = test::deviation(mesh, ref.ref, ref.grid, c.tol / 4, 2 * c.tol, c.tol);
     int certified = 0, limitFaces = 0;
     for (char f : report.faceCertified) certified += f;
     for (int f = 0; f < s.faceCount(); ++f) limitFaces += s.hasLimitSurface(f) ? 1 : 0;
@@ -328,11 +132,9 @@ void checkCase(const Case& c)
     CHECK(t.nonManifoldEdges == 0);
     CHECK(t.vertices == mesh.vertexCount());
     CHECK(t.euler() == c.euler);
-    CHECK(tJunctions(mesh) == 0);
-    std::map<std::array<double, 3>, int> at;
-    for (int v = 0; v < mesh.vertexCount(); ++v) at[{mesh.positions(0, v), mesh.positions(1, v), mesh.positions(2, v)}]++;
-    CHECK(at.size() == static_cast<std::size_t>(mesh.vertexCount()));
-    for (int v = 0; v < mesh.normals.cols(); ++v) CHECK(std::abs(mesh.normals.col(v).norm() - 1) < 1e-9);
+    CHECK(test::tJunctions(mesh) == 0);
+    CHECK(test::distinctPositions(mesh) == mesh.vertexCount());
+    test::checkUnitNormals(mesh);
     CHECK(mesh.faceCount() <= c.maxTriangles);
 }
 
@@ -468,16 +270,7 @@ TEST_CASE("OpenSubdiv's corner patch under edge_only misses the limit at a one-f
     po.useInfSharpPatch = true;
     std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
     REQUIRE(table);
-    std::vector<P3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-    for (int v = 0; v < cage.mesh.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) all[static_cast<std::size_t>(v)].p[k] = cage.mesh.positions(k, v);
-    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-    P3* src = all.data();
-    for (int l = 1; l <= refiner->GetMaxLevel(); ++l) {
-        P3* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
-        primvar.Interpolate(l, src, dst);
-        src = dst;
-    }
+    const std::vector<test::FarPoint> all = test::refinedPoints(*refiner, cage.mesh);
     const osd::Far::PatchMap map(*table);
     const osd::Far::PatchTable::PatchHandle* handle = map.FindPatch(0, 0.0, 0.0);
     REQUIRE(handle);
@@ -485,9 +278,7 @@ TEST_CASE("OpenSubdiv's corner patch under edge_only misses the limit at a one-f
     table->EvaluateBasis(*handle, 0.0f, 0.0f, w);
     const auto cvs = table->GetPatchVertices(*handle);
     V3 patch = V3::Zero();
-    for (int k = 0; k < cvs.size(); ++k)
-        patch += static_cast<double>(w[k]) * V3(all[static_cast<std::size_t>(cvs[k])].p[0], all[static_cast<std::size_t>(cvs[k])].p[1],
-                                                all[static_cast<std::size_t>(cvs[k])].p[2]);
+    for (int k = 0; k < cvs.size(); ++k) patch += static_cast<double>(w[k]) * all[static_cast<std::size_t>(cvs[k])].vec();
     // The crease limit mask by hand: vertex 0's boundary neighbours are 1 and 6.
     const V3 X = cage.mesh.positions.col(0), A = cage.mesh.positions.col(1), B = cage.mesh.positions.col(6);
     const V3 limit = (A + 4 * X + B) / 6;

@@ -21,21 +21,18 @@
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/patchTableFactory.h>
-#include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/stencilTableFactory.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <random>
-#include <unordered_map>
 
 #include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/loop_bezier.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
 using namespace freeform;
@@ -44,200 +41,26 @@ using freeform::test::V3;
 namespace {
 
 namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
-using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
 const std::string kCages = std::string(FREEFORM_SOURCE_DIR) + "/data/cages/";
 
-struct P3 {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const P3& s, double w)
-    {
-        for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
-    }
-    V3 vec() const { return {p[0], p[1], p[2]}; }
-};
+SubdivisionCage cageOf(const PolygonMesh& mesh)
+{
+    SubdivisionCage cage;
+    cage.mesh = mesh;
+    return cage;
+}
 
 /// OpenSubdiv's own refiner of a Loop cage with its creases, corners, holes and boundary rule,
 /// built here from the cage (not through the library).
 std::unique_ptr<osd::Far::TopologyRefiner> loopRefiner(const SubdivisionCage& cage,
                                                        BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly)
 {
-    const PolygonMesh& mesh = cage.mesh;
-    std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()), 3);
-    std::vector<int> pairs, cornerVerts;
-    std::vector<float> creaseWeights, cornerWeights;
-    for (const EdgeCrease& c : cage.creases) {
-        pairs.insert(pairs.end(), {c.v0, c.v1});
-        creaseWeights.push_back(static_cast<float>(c.sharpness));
-    }
-    for (const VertexCorner& c : cage.corners) {
-        cornerVerts.push_back(c.vertex);
-        cornerWeights.push_back(static_cast<float>(c.sharpness));
-    }
-    osd::Far::TopologyDescriptor desc;
-    desc.numVertices = mesh.vertexCount();
-    desc.numFaces = mesh.faceCount();
-    desc.numVertsPerFace = counts.data();
-    desc.vertIndicesPerFace = mesh.faceVertices.data();
-    desc.numCreases = static_cast<int>(creaseWeights.size());
-    desc.creaseVertexIndexPairs = pairs.data();
-    desc.creaseWeights = creaseWeights.data();
-    desc.numCorners = static_cast<int>(cornerWeights.size());
-    desc.cornerVertexIndices = cornerVerts.data();
-    desc.cornerWeights = cornerWeights.data();
-    desc.numHoles = static_cast<int>(cage.holes.size());
-    desc.holeIndices = cage.holes.data();
-    osd::Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                    : boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
-                                                                                    : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    sdc.SetCreasingMethod(cage.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
-    std::unique_ptr<osd::Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, sdc)));
-    REQUIRE(r);
-    return r;
+    return test::farRefiner(cage, SubdivisionScheme::Loop, boundary);
 }
 
-std::unique_ptr<osd::Far::TopologyRefiner> loopRefiner(const PolygonMesh& mesh)
-{
-    SubdivisionCage cage;
-    cage.mesh = mesh;
-    return loopRefiner(cage);
-}
-
-/// Limit points of the uniform level-N Loop refinement, and those points joined as its triangles.
-struct Reference {
-    std::vector<V3> points;
-    PolygonMesh mesh;
-};
-
-Reference reference(const SubdivisionCage& subdivisionCage, int level, BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly)
-{
-    const PolygonMesh& cage = subdivisionCage.mesh;
-    auto refiner = loopRefiner(subdivisionCage, boundary);
-    osd::Far::TopologyRefiner::UniformOptions uniform(level);
-    uniform.fullTopologyInLastLevel = true;
-    refiner->RefineUniform(uniform);
-    std::vector<P3> buffer(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-    for (int v = 0; v < cage.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) buffer[static_cast<std::size_t>(v)].p[k] = cage.positions(k, v);
-    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-    P3* src = buffer.data();
-    for (int l = 1; l <= level; ++l) {
-        P3* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
-        primvar.Interpolate(l, src, dst);
-        src = dst;
-    }
-    const osd::Far::TopologyLevel& last = refiner->GetLevel(level);
-    std::vector<P3> limit(static_cast<std::size_t>(last.GetNumVertices()));
-    primvar.Limit(src, limit);
-    Reference r;
-    r.mesh.positions.resize(3, last.GetNumVertices());
-    std::vector<char> used(static_cast<std::size_t>(last.GetNumVertices()), 0);
-    for (int f = 0; f < last.GetNumFaces(); ++f) {
-        if (last.IsFaceHole(f)) continue; // no limit surface
-        const auto fv = last.GetFaceVertices(f);
-        r.mesh.addFace({fv[0], fv[1], fv[2]});
-        for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(fv[k])] = 1;
-    }
-    for (int v = 0; v < last.GetNumVertices(); ++v) {
-        r.mesh.positions.col(v) = limit[static_cast<std::size_t>(v)].vec();
-        if (used[static_cast<std::size_t>(v)]) r.points.push_back(limit[static_cast<std::size_t>(v)].vec());
-    }
-    return r;
-}
-
-Reference reference(const PolygonMesh& mesh, int level)
-{
-    SubdivisionCage cage;
-    cage.mesh = mesh;
-    return reference(cage, level);
-}
-
-/// The grid's distance from p to its nearest triangle within radius: first searched within a small
-/// box (a triangle nearer than the box's half-width meets the box, so a hit there is the nearest),
-/// then, only when nothing is that near, within the whole radius. Equal to grid.distance(p, radius),
-/// much faster where the dense grids hold many triangles per searched cell.
-double nearest(const test::TriangleGrid& grid, const V3& p, double radius)
-{
-    const double small = std::min(radius, 0.004);
-    const double d = grid.distance(p, small);
-    return d <= small ? d : grid.distance(p, radius);
-}
-
-/// The reference triangles' own distance to the limit surface, estimated at their centroids
-/// against a finer reference (the slack of the mesh-to-surface and vertex checks).
-double referenceError(const Reference& coarse, const test::TriangleGrid& grid)
-{
-    double worst = 0;
-    for (int f = 0; f < coarse.mesh.faceCount(); ++f) {
-        const int* t = coarse.mesh.face(f);
-        const V3 c = (V3(coarse.mesh.positions.col(t[0])) + V3(coarse.mesh.positions.col(t[1])) + V3(coarse.mesh.positions.col(t[2]))) / 3;
-        worst = std::max(worst, nearest(grid, c, 0.01));
-    }
-    return worst;
-}
-
-struct Deviation {
-    double surfaceToMesh = 0, meshToSurface = 0, vertexOff = 0;
-};
-
-Deviation deviation(const PolygonMesh& mesh, const Reference& ref, const test::TriangleGrid& refGrid, double radius)
-{
-    Deviation d;
-    const test::TriangleGrid meshGrid(mesh, 0.02);
-    for (const V3& p : ref.points) d.surfaceToMesh = std::max(d.surfaceToMesh, nearest(meshGrid, p, radius));
-    for (int v = 0; v < mesh.vertexCount(); ++v) d.vertexOff = std::max(d.vertexOff, nearest(refGrid, mesh.positions.col(v), radius));
-    for (int f = 0; f < mesh.faceCount(); ++f) {
-        const int* t = mesh.face(f);
-        const V3 a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
-        for (int i = 0; i <= 4; ++i)
-            for (int j = 0; i + j <= 4; ++j) {
-                if (i == 4 || j == 4 || i + j == 0) continue; // the corners are vertices
-                const double x = i / 4.0, y = j / 4.0;
-                d.meshToSurface = std::max(d.meshToSurface, nearest(refGrid, x * a + y * b + (1 - x - y) * c, radius));
-            }
-    }
-    return d;
-}
-
-/// Vertices strictly inside another edge (within 1e-12 of it), vertices bucketed by the longest edge.
-long tJunctions(const PolygonMesh& mesh)
-{
-    std::map<std::pair<int, int>, int> edges;
-    for (int f = 0; f < mesh.faceCount(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % 3];
-            edges[{std::min(a, b), std::max(a, b)}]++;
-        }
-    double cell = 0; // the longest edge: every edge is checked
-    for (const auto& [e, n] : edges) cell = std::max(cell, (V3(mesh.positions.col(e.first)) - V3(mesh.positions.col(e.second))).norm());
-    cell *= 1.01;
-    auto key = [&](const V3& p) {
-        return (static_cast<long>(std::floor(p.x() / cell)) + 512) * 1048576 + (static_cast<long>(std::floor(p.y() / cell)) + 512) * 1024 +
-               (static_cast<long>(std::floor(p.z() / cell)) + 512);
-    };
-    std::unordered_map<long, std::vector<int>> buckets;
-    for (int v = 0; v < mesh.vertexCount(); ++v) buckets[key(mesh.positions.col(v))].push_back(v);
-    long found = 0;
-    for (const auto& [e, n] : edges) {
-        const V3 a = mesh.positions.col(e.first), b = mesh.positions.col(e.second);
-        const double len = (b - a).norm();
-        const V3 m = (a + b) / 2;
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const auto it = buckets.find(key(m + cell * V3(dx, dy, dz)));
-                    if (it == buckets.end()) continue;
-                    for (int v : it->second) {
-                        if (v == e.first || v == e.second) continue;
-                        const V3 p = mesh.positions.col(v);
-                        const double t = (p - a).dot(b - a) / (len * len);
-                        if (t > 0 && t < 1 && (a + t * (b - a) - p).norm() <= 1e-12 * std::max(1.0, len)) ++found;
-                    }
-                }
-    }
-    return found;
-}
+/// The reference grid's cell, and the distance searches' first radius (test::nearest): the dense
+/// grids hold many triangles per searched cell.
+constexpr double kCell = 0.02, kNear = 0.004;
 
 /// A triangle cage from vertices and faces, each face turned to run counter-clockwise seen from
 /// outside (the cages are convex around the origin).
@@ -306,24 +129,13 @@ TEST_CASE("Loop patch to Bézier: equals OpenSubdiv's Loop patch evaluation", "[
                 grid.addFace({a, d, c});
             }
         }
-    auto refiner = loopRefiner(grid);
+    auto refiner = loopRefiner(cageOf(grid));
     refiner->RefineAdaptive(osd::Far::TopologyRefiner::AdaptiveOptions(3));
     osd::Far::PatchTableFactory::Options po(3);
     po.SetEndCapType(osd::Far::PatchTableFactory::Options::ENDCAP_BILINEAR_BASIS);
     std::unique_ptr<osd::Far::PatchTable> table(osd::Far::PatchTableFactory::Create(*refiner, po));
     REQUIRE(table);
-    std::vector<P3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-    for (int v = 0; v < grid.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) all[static_cast<std::size_t>(v)].p[k] = grid.positions(k, v);
-    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-    std::size_t offset = 0;
-    for (int l = 1; l <= refiner->GetMaxLevel(); ++l) {
-        const std::size_t next = offset + static_cast<std::size_t>(refiner->GetLevel(l - 1).GetNumVertices());
-        const P3* src = all.data() + offset;
-        P3* dst = all.data() + next;
-        primvar.Interpolate(l, src, dst);
-        offset = next;
-    }
+    const std::vector<test::FarPoint> all = test::refinedPoints(*refiner, grid);
     const osd::Far::PatchMap map(*table);
     int tested = 0, rotated = 0;
     double worst = 0;
@@ -419,34 +231,25 @@ TEST_CASE("certified Loop tessellation: the bound holds both ways and the mesh i
         {"octahedron (valence 4)", readCage(kCages + "octahedron.obj").mesh, {1890, 11440}},
         {"icosahedron (valence 5)", icosahedron(), {6690, 31110}},
     };
-    // The references, their grids and slacks, built once per cage (Catch runs this body once per section).
-    struct Cached {
-        Reference level7;
-        std::unique_ptr<test::TriangleGrid> grid;
-        double slack = 0;
-    };
-    static std::map<std::string, Cached> references;
+    // The references, their grids and slacks (level 6 against 7, centroids searched within 0.01),
+    // built once per cage (Catch runs this body once per section).
+    static std::map<std::string, test::MeasuredReference> references;
     for (const Case& c : cases)
         for (int ti = 0; ti < 2; ++ti) {
             const double tol = ti == 0 ? 1e-2 : 1e-3;
             DYNAMIC_SECTION(c.name << " at " << tol)
             {
-                auto found = references.find(c.name);
-                if (found == references.end()) {
-                    found = references.emplace(c.name, Cached{reference(c.cage, 7), nullptr, 0}).first;
-                    found->second.grid = std::make_unique<test::TriangleGrid>(found->second.level7.mesh, 0.02);
-                    found->second.slack = referenceError(reference(c.cage, 6), *found->second.grid);
-                }
-                const Reference& ref = found->second.level7;
-                const double slack = found->second.slack;
-                SubdivisionCage cage;
-                cage.mesh = c.cage;
+                const SubdivisionCage cage = cageOf(c.cage);
+                const test::MeasuredReference& ref =
+                    references.try_emplace(c.name, cage, SubdivisionScheme::Loop, BoundaryInterpolation::EdgeOnly, 7, kCell, kNear, 0.01)
+                        .first->second;
+                const double slack = ref.slack;
                 const SubdivisionSurface s(cage, SubdivisionScheme::Loop);
                 SubdivisionTessellationOptions o;
                 o.tolerance = tol;
                 SubdivisionTessellationReport report;
                 const PolygonMesh mesh = s.tessellate(o, &report);
-                const Deviation d = deviation(mesh, ref, *found->second.grid, 4 * tol);
+                const test::Deviation d = test::deviation(mesh, ref.ref, ref.grid, kNear, 4 * tol, kCell);
                 int certified = 0;
                 for (char f : report.faceCertified) certified += f;
                 std::printf("%-26s tol %.0e: %7d triangles, %6lld leaves, %5lld cells (%lld irregular, depth %d), bound %.3g, "
@@ -473,26 +276,13 @@ TEST_CASE("certified Loop tessellation: the bound holds both ways and the mesh i
                 // Only the icosahedron at 1e-3 needs cells past OpenSubdiv's level 10.
                 CHECK((report.depth > 10) == (ti == 1 && c.name.rfind("icosahedron", 0) == 0));
                 // Closed, genus 0, every vertex used.
-                const auto t = test::topology(mesh);
-                CHECK(t.boundaryEdges == 0);
-                CHECK(t.nonManifoldEdges == 0);
-                CHECK(t.euler() == 2);
-                CHECK(t.vertices == mesh.vertexCount());
-                CHECK(tJunctions(mesh) == 0);
+                test::checkClosed(mesh);
+                CHECK(test::tJunctions(mesh) == 0);
                 // Unit normals, on the side of every triangle at the vertex, and outward (the limit
                 // surfaces of these cages are convex around the origin).
-                int against = 0, inward = 0;
-                for (int f = 0; f < mesh.faceCount(); ++f) {
-                    const int* tri = mesh.face(f);
-                    const V3 a = mesh.positions.col(tri[0]), b = mesh.positions.col(tri[1]), cc = mesh.positions.col(tri[2]);
-                    const V3 n = (b - a).cross(cc - a);
-                    for (int k = 0; k < 3; ++k) against += n.dot(V3(mesh.normals.col(tri[k]))) > 0 ? 0 : 1;
-                }
-                for (int v = 0; v < mesh.vertexCount(); ++v) {
-                    CHECK(std::abs(mesh.normals.col(v).norm() - 1) < 1e-9);
-                    inward += mesh.normals.col(v).dot(mesh.positions.col(v)) > 0 ? 0 : 1;
-                }
-                CHECK(against == 0);
+                test::checkNormals(mesh, false);
+                int inward = 0;
+                for (int v = 0; v < mesh.vertexCount() && v < mesh.normals.cols(); ++v) inward += mesh.normals.col(v).dot(mesh.positions.col(v)) > 0 ? 0 : 1;
                 CHECK(inward == 0);
                 CHECK(mesh.faceCount() <= c.maxTriangles[ti]);
             }
@@ -612,15 +402,14 @@ TEST_CASE("certified Loop tessellation: boundaries, holes, creases and corners",
             CHECK(negative == 0);
             CHECK(sumOff < 1e-12);
 
-            const Reference ref = reference(c.cage, c.level, c.boundary);
-            const test::TriangleGrid grid(ref.mesh, 0.02);
-            const double slack = referenceError(reference(c.cage, c.level - 1, c.boundary), grid);
+            const test::MeasuredReference ref(c.cage, SubdivisionScheme::Loop, c.boundary, c.level, kCell, kNear, 0.01);
+            const double slack = ref.slack;
             const SubdivisionSurface s(c.cage, SubdivisionScheme::Loop, c.boundary);
             SubdivisionTessellationOptions o;
             o.tolerance = tol;
             SubdivisionTessellationReport report;
             const PolygonMesh mesh = s.tessellate(o, &report);
-            const Deviation d = deviation(mesh, ref, grid, 4 * tol);
+            const test::Deviation d = test::deviation(mesh, ref.ref, ref.grid, kNear, 4 * tol, kCell);
             int certified = 0;
             for (char f : report.faceCertified) certified += f;
             const auto t = test::topology(mesh);
@@ -641,11 +430,11 @@ TEST_CASE("certified Loop tessellation: boundaries, holes, creases and corners",
             // Conforming: no edge of three faces, no vertex inside another edge; boundary edges only
             // where the surface has a boundary (Euler characteristic 2 - loops for these spheres and discs).
             CHECK(t.nonManifoldEdges == 0);
-            CHECK(tJunctions(mesh) == 0);
+            CHECK(test::tJunctions(mesh) == 0);
             CHECK((t.boundaryEdges == 0) == (c.boundaryLoops == 0));
             CHECK(t.euler() == 2 - c.boundaryLoops);
             CHECK(t.vertices == mesh.vertexCount());
-            for (int v = 0; v < mesh.vertexCount(); ++v) CHECK(std::abs(mesh.normals.col(v).norm() - 1) < 1e-9);
+            test::checkUnitNormals(mesh);
             CHECK(mesh.faceCount() <= c.maxTriangles);
         }
 }

@@ -19,18 +19,12 @@
 
 #include <catch2/catch.hpp>
 
-#include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
-
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <memory>
-#include <unordered_map>
 
 #include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
 using namespace freeform;
@@ -38,85 +32,7 @@ using freeform::test::V3;
 
 namespace {
 
-namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 const std::string kCages = std::string(FREEFORM_SOURCE_DIR) + "/data/cages/";
-
-struct P3 {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const P3& s, double w)
-    {
-        for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
-    }
-};
-
-/// Limit points of the uniform level-N refinement, and those points joined as triangles.
-struct Reference {
-    std::vector<V3> points;
-    PolygonMesh mesh;
-};
-
-Reference reference(const SubdivisionCage& cage, SubdivisionScheme scheme, int level)
-{
-    std::vector<int> counts, pairs, corners;
-    std::vector<float> creaseW, cornerW;
-    for (int f = 0; f < cage.mesh.faceCount(); ++f) counts.push_back(cage.mesh.faceSize(f));
-    for (const auto& c : cage.creases) {
-        pairs.insert(pairs.end(), {c.v0, c.v1});
-        creaseW.push_back(static_cast<float>(c.sharpness));
-    }
-    for (const auto& c : cage.corners) {
-        corners.push_back(c.vertex);
-        cornerW.push_back(static_cast<float>(c.sharpness));
-    }
-    osd::Far::TopologyDescriptor desc;
-    desc.numVertices = cage.mesh.vertexCount();
-    desc.numFaces = static_cast<int>(counts.size());
-    desc.numVertsPerFace = counts.data();
-    desc.vertIndicesPerFace = cage.mesh.faceVertices.data();
-    desc.numCreases = static_cast<int>(creaseW.size());
-    desc.creaseVertexIndexPairs = pairs.data();
-    desc.creaseWeights = creaseW.data();
-    desc.numCorners = static_cast<int>(cornerW.size());
-    desc.cornerVertexIndices = corners.data();
-    desc.cornerWeights = cornerW.data();
-    osd::Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(cage.boundary == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                                                                          : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-    std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(
-        desc, Factory::Options(scheme == SubdivisionScheme::Loop ? osd::Sdc::SCHEME_LOOP : osd::Sdc::SCHEME_CATMARK, sdc)));
-    REQUIRE(refiner);
-    osd::Far::TopologyRefiner::UniformOptions uniform(level);
-    uniform.fullTopologyInLastLevel = true;
-    refiner->RefineUniform(uniform);
-    std::vector<P3> buffer(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-    for (int v = 0; v < cage.mesh.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) buffer[static_cast<std::size_t>(v)].p[k] = cage.mesh.positions(k, v);
-    const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-    P3* src = buffer.data();
-    for (int l = 1; l <= level; ++l) {
-        P3* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
-        primvar.Interpolate(l, src, dst);
-        src = dst;
-    }
-    const osd::Far::TopologyLevel& last = refiner->GetLevel(level);
-    std::vector<P3> limit(static_cast<std::size_t>(last.GetNumVertices()));
-    primvar.Limit(src, limit);
-    Reference r;
-    r.mesh.positions.resize(3, last.GetNumVertices());
-    for (int v = 0; v < last.GetNumVertices(); ++v) {
-        const V3 p(limit[static_cast<std::size_t>(v)].p[0], limit[static_cast<std::size_t>(v)].p[1], limit[static_cast<std::size_t>(v)].p[2]);
-        r.points.push_back(p);
-        r.mesh.positions.col(v) = p;
-    }
-    for (int f = 0; f < last.GetNumFaces(); ++f) {
-        const auto fv = last.GetFaceVertices(f);
-        r.mesh.addFace({fv[0], fv[1], fv[2]});
-        if (fv.size() == 4) r.mesh.addFace({fv[0], fv[2], fv[3]});
-    }
-    return r;
-}
 
 /// The region tolerance: t0 at x0, growing linearly with the box's smallest x (a pixel's size
 /// grows with depth the same way).
@@ -133,12 +49,12 @@ struct Ratios {
     double surfaceToMesh = 0, meshToSurface = 0;
 };
 
-Ratios ratios(const PolygonMesh& mesh, const Reference& ref, const Region& region, double slack, double radius)
+Ratios ratios(const PolygonMesh& mesh, const test::Reference& ref, const test::TriangleGrid& refGrid, const Region& region, double slack,
+              double radius)
 {
     Ratios r;
     const test::TriangleGrid meshGrid(mesh, 0.05);
     for (const V3& p : ref.points) r.surfaceToMesh = std::max(r.surfaceToMesh, meshGrid.distance(p, radius) / region.at(p));
-    const test::TriangleGrid refGrid(ref.mesh, 0.05);
     for (int f = 0; f < mesh.faceCount(); ++f) {
         const int* t = mesh.face(f);
         const V3 a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
@@ -152,88 +68,16 @@ Ratios ratios(const PolygonMesh& mesh, const Reference& ref, const Region& regio
     return r;
 }
 
-/// The reference triangles' distance to the limit surface, estimated at their centroids against
-/// the next level's triangles.
-double referenceError(const Reference& coarse, const Reference& fine)
-{
-    const test::TriangleGrid grid(fine.mesh, 0.05);
-    double worst = 0;
-    for (int f = 0; f < coarse.mesh.faceCount(); ++f) {
-        const int* t = coarse.mesh.face(f);
-        const V3 c = (V3(coarse.mesh.positions.col(t[0])) + V3(coarse.mesh.positions.col(t[1])) + V3(coarse.mesh.positions.col(t[2]))) / 3;
-        worst = std::max(worst, grid.distance(c, 0.05));
-    }
-    return worst;
-}
-
-/// Vertices lying inside another edge (every edge, vertices bucketed).
-long tJunctions(const PolygonMesh& mesh)
-{
-    std::map<std::pair<int, int>, int> edges;
-    for (int f = 0; f < mesh.faceCount(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % 3];
-            edges[{std::min(a, b), std::max(a, b)}]++;
-        }
-    std::unordered_map<long, std::vector<int>> buckets;
-    double cell = 0; // the longest edge: every vertex inside an edge is in a bucket next to its midpoint's
-    for (const auto& [e, n] : edges) cell = std::max(cell, (V3(mesh.positions.col(e.first)) - V3(mesh.positions.col(e.second))).norm());
-    auto key = [&](const V3& p) {
-        return (static_cast<long>(std::floor(p.x() / cell)) + 512) * 1048576 + (static_cast<long>(std::floor(p.y() / cell)) + 512) * 1024 +
-               (static_cast<long>(std::floor(p.z() / cell)) + 512);
-    };
-    for (int v = 0; v < mesh.vertexCount(); ++v) buckets[key(mesh.positions.col(v))].push_back(v);
-    long found = 0;
-    for (const auto& [e, n] : edges) {
-        const V3 a = mesh.positions.col(e.first), b = mesh.positions.col(e.second);
-        const double len = (b - a).norm();
-        const V3 m = (a + b) / 2;
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const auto it = buckets.find(key(m + cell * V3(dx, dy, dz)));
-                    if (it == buckets.end()) continue;
-                    for (int v : it->second) {
-                        if (v == e.first || v == e.second) continue;
-                        const V3 p = mesh.positions.col(v);
-                        const double t = (p - a).dot(b - a) / (len * len);
-                        if (t <= 0 || t >= 1) continue;
-                        if ((a + t * (b - a) - p).norm() <= 1e-12 * std::max(1.0, len)) ++found;
-                    }
-                }
-    }
-    return found;
-}
-
 /// A long wavy open grid along x (17 x 3 quads, x in [0, 6.8]) under edge_and_corner.
 SubdivisionCage longGrid()
 {
-    SubdivisionCage cage;
-    const int nx = 18, ny = 4;
-    cage.mesh.positions.resize(3, nx * ny);
-    for (int r = 0; r < nx; ++r)
-        for (int c = 0; c < ny; ++c) cage.mesh.positions.col(r * ny + c) = V3(0.4 * r, 0.4 * c, 0.3 * std::sin(1.3 * r + 0.7 * c * c));
-    for (int r = 0; r + 1 < nx; ++r)
-        for (int c = 0; c + 1 < ny; ++c) cage.mesh.addFace({r * ny + c, (r + 1) * ny + c, (r + 1) * ny + c + 1, r * ny + c + 1});
+    SubdivisionCage cage = test::wavyGrid(18, 4);
     cage.boundary = BoundaryInterpolation::EdgeAndCorner;
     return cage;
 }
 
 /// A pentagonal prism stretched along x (valence-5 extraordinary vertices: irregular cells).
-SubdivisionCage longPrism()
-{
-    SubdivisionCage cage;
-    cage.mesh.positions.resize(3, 10);
-    for (int k = 0; k < 5; ++k) {
-        const double a = 2 * M_PI * k / 5;
-        cage.mesh.positions.col(k) = V3(3 * std::cos(a), std::sin(a), -0.6);
-        cage.mesh.positions.col(k + 5) = V3(3 * std::cos(a), std::sin(a), 0.6);
-    }
-    cage.mesh.addFace({4, 3, 2, 1, 0});
-    cage.mesh.addFace({5, 6, 7, 8, 9});
-    for (int k = 0; k < 5; ++k) cage.mesh.addFace({k, (k + 1) % 5, (k + 1) % 5 + 5, k + 5});
-    return cage;
-}
+SubdivisionCage longPrism() { return test::pentagonalPrism(3); }
 
 double minX(const PolygonMesh& m) { return m.positions.row(0).minCoeff(); }
 
@@ -266,9 +110,10 @@ TEST_CASE("a tolerance per region: every cell within its own tolerance, far part
             SubdivisionTessellationReport report;
             const PolygonMesh mesh = surface.tessellate(o, &report);
 
-            const Reference ref = reference(c.cage, c.scheme, c.level);
-            const double slack = referenceError(reference(c.cage, c.scheme, c.level - 1), ref);
-            const Ratios r = ratios(mesh, ref, region, slack, 0.03); // deviations stay under 0.013 here; none found within 0.03 reads as infinity and fails
+            // The reference's grid has cells of 0.05; its chord error is searched within 0.05.
+            const test::MeasuredReference ref(c.cage, c.scheme, test::boundaryOf(c.cage), c.level, 0.05, 0.05, 0.05);
+            const double slack = ref.slack;
+            const Ratios r = ratios(mesh, ref.ref, ref.grid, region, slack, 0.03); // deviations stay under 0.013 here; none found within 0.03 reads as infinity and fails
 
             // The near tolerance everywhere, for comparison.
             SubdivisionTessellationOptions near;
@@ -307,13 +152,8 @@ TEST_CASE("a tolerance per region: every cell within its own tolerance, far part
             // Fewer triangles far away than near, and fewer than the near tolerance everywhere.
             CHECK(farHalf < nearHalf);
             CHECK(mesh.faceCount() < uniformMesh.faceCount());
-            if (c.closed) {
-                const auto t = test::topology(mesh);
-                CHECK(t.boundaryEdges == 0);
-                CHECK(t.nonManifoldEdges == 0);
-                CHECK(t.euler() == 2);
-            }
-            CHECK(tJunctions(mesh) == 0);
+            if (c.closed) test::checkClosed(mesh);
+            CHECK(test::tJunctions(mesh) == 0);
         }
 }
 
