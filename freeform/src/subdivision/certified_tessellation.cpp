@@ -18,47 +18,22 @@
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
-#include <limits>
-#include <string>
-#include <map>
 #include <memory>
 #include <tuple>
 #include <unordered_map>
 
+#include "certified_tessellation_common.h"
 #include "freeform/tessellate/tessellate.h"
-#include "osd_errors.h"
 
 namespace freeform {
 
-namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+using namespace detail;
 
 namespace {
-
-using Index = osd::Far::Index;
-using Int = std::int64_t;
-constexpr int kResolutionBits = 40;           // dyadic parameters are integers over 2^40
-constexpr Int kR = Int(1) << kResolutionBits; // the face's side
-constexpr int kOsdMaxDepth = 10;              // OpenSubdiv's PatchParam holds no deeper level
-
-/// A point of a primvar buffer for OpenSubdiv's refiners.
-struct Point3 {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Point3& s, double w)
-    {
-        p[0] += w * s.p[0];
-        p[1] += w * s.p[1];
-        p[2] += w * s.p[2];
-    }
-    Eigen::Vector3d vec() const { return {p[0], p[1], p[2]}; }
-};
 
 /// The all-quad base mesh the cells live on: the cage itself when every face is a quad, else the
 /// cage refined once (every Catmark face then has quads; each base face records its cage face).
@@ -67,66 +42,25 @@ struct QuadBase {
     std::vector<int> faceVerts; // 4 per face
     std::vector<int> cageFace;  // per base face
     std::vector<Point3> positions;
-    std::vector<int> creasePairs, cornerIdx;
-    std::vector<float> creaseW, cornerW;
+    Sharpness sharp;
     std::vector<int> holes;  // faces without a limit surface (the cage's holes, boundary `none`'s faces)
     std::vector<char> taint; // per vertex (or empty): a boundary vertex of one face under edge_only
     int faces() const { return static_cast<int>(faceVerts.size() / 4); }
 };
 
-osd::Sdc::Options sdcOptions(const SubdivisionCage& cage, BoundaryInterpolation boundary)
+/// OpenSubdiv's Catmark refiner of a cage (a base, a local cage).
+std::unique_ptr<osd::Far::TopologyRefiner> catmarkRefiner(int vertices, const std::vector<int>& counts, const std::vector<int>& faceVerts,
+                                                          const Sharpness& sharp, const std::vector<int>& holes, const osd::Sdc::Options& sdc)
 {
-    osd::Sdc::Options sdc;
-    sdc.SetCreasingMethod(cage.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
-    // The triangle rule acts only where a face is a triangle: in the one refinement that makes the
-    // quad base (below); every later level is quads.
-    sdc.SetTriangleSubdivision(cage.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
-    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
-                                    : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                                                                   : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    return sdc;
-}
-
-std::unique_ptr<osd::Far::TopologyRefiner> makeRefiner(int vertices, const std::vector<int>& counts, const std::vector<int>& indices,
-                                                       const std::vector<int>& creasePairs, const std::vector<float>& creaseW,
-                                                       const std::vector<int>& cornerIdx, const std::vector<float>& cornerW,
-                                                       const std::vector<int>& holes, const osd::Sdc::Options& sdc)
-{
-    osd::Far::TopologyDescriptor desc;
-    desc.numVertices = vertices;
-    desc.numFaces = static_cast<int>(counts.size());
-    desc.numVertsPerFace = counts.data();
-    desc.vertIndicesPerFace = indices.data();
-    desc.numCreases = static_cast<int>(creaseW.size());
-    desc.creaseVertexIndexPairs = creasePairs.data();
-    desc.creaseWeights = creaseW.data();
-    desc.numCorners = static_cast<int>(cornerW.size());
-    desc.cornerVertexIndices = cornerIdx.data();
-    desc.cornerWeights = cornerW.data();
-    desc.numHoles = static_cast<int>(holes.size());
-    desc.holeIndices = holes.data();
-    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-    clearOsdError();
-    std::unique_ptr<osd::Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_CATMARK, sdc)));
-    takeOsdError();
-    if (!r) throw Error("subdivision tessellation: OpenSubdiv could not build the topology");
-    return r;
+    return makeRefiner(topologyDescriptor(vertices, counts, faceVerts, sharp, &holes), osd::Sdc::SCHEME_CATMARK, sdc,
+                       "subdivision tessellation: OpenSubdiv could not build the topology");
 }
 
 QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
 {
     const PolygonMesh& mesh = cage.mesh;
     QuadBase b;
-    std::vector<int> creasePairs, cornerIdx;
-    std::vector<float> creaseW, cornerW;
-    for (const EdgeCrease& c : cage.creases) {
-        creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
-        creaseW.push_back(static_cast<float>(c.sharpness));
-    }
-    for (const VertexCorner& c : cage.corners) {
-        cornerIdx.push_back(c.vertex);
-        cornerW.push_back(static_cast<float>(c.sharpness));
-    }
+    Sharpness sharp = cageSharpness(cage, false);
     bool quads = true;
     for (int f = 0; f < mesh.faceCount(); ++f) quads = quads && mesh.faceSize(f) == 4;
     // Under edge_only, a boundary vertex of one face (a smooth corner: its rule is the crease rule)
@@ -142,18 +76,13 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
             anyOneFace = anyOneFace || oneFace[v];
         }
     }
-    b.positions.resize(static_cast<std::size_t>(mesh.vertexCount()));
-    for (int v = 0; v < mesh.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) b.positions[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
+    b.positions = cagePoints(mesh);
     if (quads) {
         b.vertices = mesh.vertexCount();
         b.faceVerts = mesh.faceVertices;
         b.cageFace.resize(static_cast<std::size_t>(mesh.faceCount()));
         for (int f = 0; f < mesh.faceCount(); ++f) b.cageFace[static_cast<std::size_t>(f)] = f;
-        b.creasePairs = std::move(creasePairs);
-        b.creaseW = std::move(creaseW);
-        b.cornerIdx = std::move(cornerIdx);
-        b.cornerW = std::move(cornerW);
+        b.sharp = std::move(sharp);
         b.holes = cage.holes;
         if (anyOneFace) b.taint = std::move(oneFace);
         return b;
@@ -161,7 +90,7 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
     // One uniform level: every face becomes quads; sharpness as OpenSubdiv carries it to level 1.
     std::vector<int> counts(static_cast<std::size_t>(mesh.faceCount()));
     for (int f = 0; f < mesh.faceCount(); ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
-    auto refiner = makeRefiner(mesh.vertexCount(), counts, mesh.faceVertices, creasePairs, creaseW, cornerIdx, cornerW, cage.holes, sdc);
+    auto refiner = catmarkRefiner(mesh.vertexCount(), counts, mesh.faceVertices, sharp, cage.holes, sdc);
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
@@ -188,41 +117,19 @@ QuadBase quadBase(const SubdivisionCage& cage, const osd::Sdc::Options& sdc)
         const float s = level.GetEdgeSharpness(e);
         if (s > 0 && level.GetEdgeFaces(e).size() == 2) {
             const auto ev = level.GetEdgeVertices(e);
-            b.creasePairs.insert(b.creasePairs.end(), {ev[0], ev[1]});
-            b.creaseW.push_back(s);
+            b.sharp.creasePairs.insert(b.sharp.creasePairs.end(), {ev[0], ev[1]});
+            b.sharp.creaseWeights.push_back(s);
         }
     }
     for (int v = 0; v < level.GetNumVertices(); ++v) {
         const float s = level.GetVertexSharpness(v);
         if (s > 0) {
-            b.cornerIdx.push_back(v);
-            b.cornerW.push_back(s);
+            b.sharp.cornerVerts.push_back(v);
+            b.sharp.cornerWeights.push_back(s);
         }
     }
     return b;
 }
-
-/// A canonical point: kind 0 a base vertex (a), 1 a point inside a base edge (a < b, x from a),
-/// 2 a point inside a base face (a, x = u, y = v).
-struct Key {
-    int kind = 0, a = 0, b = 0;
-    Int x = 0, y = 0;
-    bool operator==(const Key& o) const { return kind == o.kind && a == o.a && b == o.b && x == o.x && y == o.y; }
-};
-struct KeyHash {
-    std::size_t operator()(const Key& k) const
-    {
-        std::uint64_t h = static_cast<std::uint64_t>(k.kind) * 0x9E3779B97F4A7C15ull;
-        for (std::uint64_t v : {static_cast<std::uint64_t>(k.a), static_cast<std::uint64_t>(k.b), static_cast<std::uint64_t>(k.x),
-                                static_cast<std::uint64_t>(k.y)})
-            h = (h ^ v) * 0x100000001B3ull + (h >> 29);
-        return static_cast<std::size_t>(h);
-    }
-};
-
-/// A line that leaf sides lie on: kind 0 a base edge (a < b), 1 the line v = c of face a, 2 the
-/// line u = c of face a.
-using LineKey = std::array<Int, 3>;
 
 struct Leaf {
     int face = 0;
@@ -257,20 +164,14 @@ public:
     {
         const Key k = key(f, iu, iv);
         if (k.kind == 2) {
-            lines_[{1, f, iv}].push_back(iu);
-            lines_[{2, f, iu}].push_back(iv);
+            lines_.add({1, f, iv}, iu);
+            lines_.add({2, f, iu}, iv);
         } else if (k.kind == 1) {
-            lines_[{0, k.a * Int(1 << 30) + k.b, 0}].push_back(k.x);
+            lines_.add(edgeLine(k.a, k.b), k.x);
         }
     }
 
-    void sortLines()
-    {
-        for (auto& [line, xs] : lines_) {
-            std::sort(xs.begin(), xs.end());
-            xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-        }
-    }
+    void sortLines() { lines_.sort(); }
 
     /// The registered points strictly inside the side from (pu, pv) to (qu, qv) of face f (an
     /// axis-parallel segment), in order from p to q, as face coordinates.
@@ -291,13 +192,8 @@ public:
                 return kk.a == lo ? 0 : kR; // a vertex: the edge's end
             };
             const Int tp = canonical(kp), tq = canonical(kq);
-            const auto it = lines_.find({0, lo * Int(1 << 30) + hi, 0});
-            if (it == lines_.end()) return;
-            const Int tmin = std::min(tp, tq), tmax = std::max(tp, tq);
-            auto first = std::upper_bound(it->second.begin(), it->second.end(), tmin);
-            auto last = std::lower_bound(it->second.begin(), it->second.end(), tmax);
-            for (auto i = first; i != last; ++i) {
-                const Int tLocal = a < b ? *i : kR - *i; // from a along edge k
+            lines_.inside(edgeLine(lo, hi), tp, tq, [&](Int x) {
+                const Int tLocal = a < b ? x : kR - x; // from a along edge k
                 std::array<Int, 2> uv{};
                 switch (k) {
                 case 0: uv = {tLocal, 0}; break;
@@ -306,14 +202,10 @@ public:
                 default: uv = {0, kR - tLocal}; break;
                 }
                 out.push_back(uv);
-            }
+            });
         } else {
-            const auto it = lines_.find({horizontal ? 1 : 2, f, c});
-            if (it == lines_.end()) return;
-            const Int p = horizontal ? pu : pv, q = horizontal ? qu : qv;
-            auto first = std::upper_bound(it->second.begin(), it->second.end(), std::min(p, q));
-            auto last = std::lower_bound(it->second.begin(), it->second.end(), std::max(p, q));
-            for (auto i = first; i != last; ++i) out.push_back(horizontal ? std::array<Int, 2>{*i, c} : std::array<Int, 2>{c, *i});
+            lines_.inside({horizontal ? 1 : 2, f, c}, horizontal ? pu : pv, horizontal ? qu : qv,
+                          [&](Int x) { out.push_back(horizontal ? UV{x, c} : UV{c, x}); });
         }
         const Int p = horizontal ? pu : pv, q = horizontal ? qu : qv;
         const bool forward = q > p;
@@ -323,7 +215,7 @@ public:
 
 private:
     const QuadBase& base_;
-    std::map<LineKey, std::vector<Int>> lines_;
+    SideLines lines_;
 };
 
 /// max |second differences| terms of a bicubic net: (u, uv, v) parts of netErrorBound.
@@ -340,58 +232,6 @@ std::array<double, 3> boundTerms(const Patch& p)
             if (i + 1 <= m && j + 1 <= n) uv = std::max(uv, (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)).norm());
         }
     return {m * (m - 1) * uu / 8, 2.0 * m * n * uv / 8, n * (n - 1) * vv / 8};
-}
-
-/// Twice the signed area of (a, b, c) in (u, v) (integers as long double: exact enough at 2^40).
-long double cross2(const std::array<Int, 2>& a, const std::array<Int, 2>& b, const std::array<Int, 2>& c)
-{
-    return static_cast<long double>(b[0] - a[0]) * static_cast<long double>(c[1] - a[1]) -
-           static_cast<long double>(b[1] - a[1]) * static_cast<long double>(c[0] - a[0]);
-}
-
-/// Whether x lies in the closed triangle abc (counter-clockwise).
-bool inTriangle(const std::array<Int, 2>& x, const std::array<Int, 2>& a, const std::array<Int, 2>& b, const std::array<Int, 2>& c)
-{
-    return cross2(a, b, x) >= 0 && cross2(b, c, x) >= 0 && cross2(c, a, x) >= 0;
-}
-
-/// Ear clipping of a convex polygon (counter-clockwise, collinear points allowed) in (u, v): every
-/// ear has positive area and no other polygon point in it; appends triangles of polygon indices.
-void earClip(const std::vector<std::array<Int, 2>>& poly, std::vector<std::array<int, 3>>& out)
-{
-    std::vector<int> ring(poly.size());
-    for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = static_cast<int>(i);
-    std::size_t guard = 0;
-    std::size_t start = 0;
-    while (ring.size() > 3 && guard < 4 * poly.size() * poly.size() + 16) {
-        ++guard;
-        bool clipped = false;
-        for (std::size_t s = 0; s < ring.size() && !clipped; ++s) {
-            const std::size_t i = (start + s) % ring.size();
-            const int a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], c = ring[(i + 1) % ring.size()];
-            const auto& pa = poly[static_cast<std::size_t>(a)];
-            const auto& pb = poly[static_cast<std::size_t>(b)];
-            const auto& pc = poly[static_cast<std::size_t>(c)];
-            if (!(cross2(pa, pb, pc) > 0)) continue;
-            bool empty = true;
-            for (int o : ring)
-                if (o != a && o != b && o != c && inTriangle(poly[static_cast<std::size_t>(o)], pa, pb, pc)) {
-                    empty = false;
-                    break;
-                }
-            if (!empty) continue;
-            out.push_back({a, b, c});
-            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-            start = i % ring.size();
-            clipped = true;
-        }
-        if (!clipped) break;
-    }
-    if (ring.size() == 3 && cross2(poly[static_cast<std::size_t>(ring[0])], poly[static_cast<std::size_t>(ring[1])],
-                                   poly[static_cast<std::size_t>(ring[2])]) > 0)
-        out.push_back({ring[0], ring[1], ring[2]});
-    else if (ring.size() > 3)
-        throw Error("subdivision tessellation: a leaf polygon could not be triangulated (internal)");
 }
 
 /// The Bézier patch of a regular B-spline patch of the patch table (16 points, OpenSubdiv's order:
@@ -460,40 +300,14 @@ struct Frame {
 int firstDepthOf(const QuadBase& m, int maxDepth)
 {
     double semiSharp = 0;
-    for (float s : m.creaseW)
+    for (float s : m.sharp.creaseWeights)
         if (s < kInfiniteSharpness) semiSharp = std::max(semiSharp, static_cast<double>(s));
-    for (float s : m.cornerW)
+    for (float s : m.sharp.cornerWeights)
         if (s < kInfiniteSharpness) semiSharp = std::max(semiSharp, static_cast<double>(s));
     return std::clamp(static_cast<int>(std::ceil(semiSharp)) + 1, 1, maxDepth);
 }
 
-/// A cell's own tolerance: min(tol, toleranceOf(box)) of the points whose hull bounds it, or tol
-/// without toleranceOf (SubdivisionTessellationOptions::toleranceOf).
-struct CellTolerance {
-    double tol = 0;
-    std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
-    /// Of the points at(0), ..., at(n - 1).
-    template <class At>
-    double of(std::size_t n, At at) const
-    {
-        if (!toleranceOf) return tol;
-        Eigen::AlignedBox3d box;
-        box.setEmpty();
-        for (std::size_t i = 0; i < n; ++i) box.extend(Eigen::Vector3d(at(i)));
-        const double t = toleranceOf(box);
-        if (!(t > 0) || !std::isfinite(t))
-            throw Error("subdivision tessellation: toleranceOf gave " + std::to_string(t) + " (must be finite and > 0)");
-        return std::min(tol, t);
-    }
-};
-
-struct CellSearch : CellTolerance {
-    osd::Sdc::Options sdc;
-    int maxDepth = kOsdMaxDepth;
-    bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
-    std::vector<Irregular> irregular;
-    std::vector<Regular> regular;
-};
+using CatmarkSearch = CellSearch<Irregular, Regular>;
 
 /// The child of face `current` on level l in quadrant (qa, qb) of its (u, v), and the vertices at
 /// its corners on level l + 1 (slot 2 b + a at corner (a, b); `corner` holds the parent's so).
@@ -528,18 +342,6 @@ std::pair<Index, std::array<Index, 4>> childFace(const osd::Far::TopologyRefiner
     return {child, next};
 }
 
-/// The 1-ring of a cell on a level: every vertex of every face at one of its corners.
-std::vector<Index> ringOf(const osd::Far::TopologyLevel& level, const std::array<Index, 4>& corner)
-{
-    std::vector<Index> ring;
-    for (Index v : corner)
-        for (Index f : level.GetVertexFaces(v))
-            for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    return ring;
-}
-
 /// The local cage of a cell (docs/subdivision.md, "Deeper than level 10"): every face of the level
 /// at a corner of the cell (its 1-ring), the cell first with its corners in (u, v) order, edge and
 /// vertex sharpness and holes as on that level; `taint` (or null) marks the level's one-face
@@ -547,11 +349,7 @@ std::vector<Index> ringOf(const osd::Far::TopologyLevel& level, const std::array
 QuadBase localCage(const osd::Far::TopologyLevel& level, const std::array<Index, 4>& corner, const Point3* positions,
                    const std::vector<char>* taint)
 {
-    std::vector<Index> faces;
-    for (Index v : corner)
-        for (Index f : level.GetVertexFaces(v)) faces.push_back(f);
-    std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    const std::vector<Index> faces = facesAround(level, corner);
     QuadBase local;
     std::unordered_map<Index, int> localOf;
     bool tainted = false;
@@ -584,15 +382,15 @@ QuadBase localCage(const osd::Far::TopologyLevel& level, const std::array<Index,
         const float sharp = level.GetEdgeSharpness(e);
         if (sharp > 0 && level.GetEdgeFaces(e).size() == 2) {
             const auto ev = level.GetEdgeVertices(e);
-            local.creasePairs.insert(local.creasePairs.end(), {localVertex(ev[0]), localVertex(ev[1])});
-            local.creaseW.push_back(sharp);
+            local.sharp.creasePairs.insert(local.sharp.creasePairs.end(), {localVertex(ev[0]), localVertex(ev[1])});
+            local.sharp.creaseWeights.push_back(sharp);
         }
     }
     for (const auto& [v, lv] : localOf) {
         const float sharp = level.GetVertexSharpness(v);
         if (sharp > 0) {
-            local.cornerIdx.push_back(lv);
-            local.cornerW.push_back(sharp);
+            local.sharp.cornerVerts.push_back(lv);
+            local.sharp.cornerWeights.push_back(sharp);
         }
     }
     local.vertices = static_cast<int>(local.positions.size());
@@ -600,7 +398,7 @@ QuadBase localCage(const osd::Far::TopologyLevel& level, const std::array<Index,
     return local;
 }
 
-int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth);
+int collectCells(CatmarkSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth);
 
 /// A cell whose 1-ring holds a boundary vertex of one face under edge_only (docs/subdivision.md,
 /// "Smooth boundary corners"): OpenSubdiv's patch there is not the limit surface, so the cell is
@@ -608,11 +406,10 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
 /// by one level; the cell is an irregular leaf with its 1-ring hull bound when that is within the
 /// tolerance, else each of its four children is handled again: as such a cell when its 1-ring
 /// still holds such a vertex, else as an ordinary local cage (collectCells).
-void refineTainted(CellSearch& s, const QuadBase& local, const Frame& frame)
+void refineTainted(CatmarkSearch& s, const QuadBase& local, const Frame& frame)
 {
     const std::vector<int> counts(static_cast<std::size_t>(local.faces()), 4);
-    auto refiner = makeRefiner(local.vertices, counts, local.faceVerts, local.creasePairs, local.creaseW, local.cornerIdx, local.cornerW,
-                               local.holes, s.sdc);
+    auto refiner = catmarkRefiner(local.vertices, counts, local.faceVerts, local.sharp, local.holes, s.sdc);
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
@@ -635,21 +432,16 @@ void refineTainted(CellSearch& s, const QuadBase& local, const Frame& frame)
     cell.u0 = frame.u0;
     cell.v0 = frame.v0;
     cell.size = frame.size;
-    double bound = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 4; ++k) {
         const Index v = level0.GetVertexChildVertex(local.faceVerts[static_cast<std::size_t>(k)]);
-        const Eigen::Vector3d c = limit[static_cast<std::size_t>(v)].vec();
-        const Eigen::Vector3d n = tan1[static_cast<std::size_t>(v)].vec().cross(tan2[static_cast<std::size_t>(v)].vec());
-        cell.corner[static_cast<std::size_t>(k)] = c;
-        cell.normal[static_cast<std::size_t>(k)] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
-        double far = 0;
-        for (const Point3& x : local.positions) far = std::max(far, (x.vec() - c).norm());
-        bound = std::min(bound, far);
+        cell.corner[static_cast<std::size_t>(k)] = limit[static_cast<std::size_t>(v)].vec();
+        cell.normal[static_cast<std::size_t>(k)] = limitNormal(tan1, tan2, static_cast<std::size_t>(v));
     }
-    cell.bound = bound;
-    cell.tol = s.of(local.positions.size(), [&](std::size_t i) { return local.positions[i].vec(); });
+    auto ringPoint = [&](std::size_t i) { return local.positions[i].vec(); };
+    cell.bound = hullBound(cell.corner, local.positions.size(), ringPoint);
+    cell.tol = s.of(local.positions.size(), ringPoint);
     // Room for the children and their own cells (10 levels and 10 halvings) in the 2^40 keys.
-    if (bound <= cell.tol || (frame.size >> 1 >> kOsdMaxDepth) < (Int(1) << 10)) {
+    if (cell.bound <= cell.tol || (frame.size >> 1 >> kOsdMaxDepth) < (Int(1) << 10)) {
         s.irregular.push_back(cell);
         return;
     }
@@ -684,7 +476,7 @@ void refineTainted(CellSearch& s, const QuadBase& local, const Frame& frame)
 /// that level, docs/subdivision.md "Deeper than level 10"), found the same way. A cell whose 1-ring
 /// holds a one-face boundary vertex under edge_only (m.taint) goes to refineTainted instead.
 /// Returns the level reached on m.
-int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth)
+int collectCells(CatmarkSearch& s, const QuadBase& m, const std::vector<Frame>& frames, int firstDepth)
 {
     const std::vector<int> counts(static_cast<std::size_t>(m.faces()), 4);
     const bool hasTaint = std::find(m.taint.begin(), m.taint.end(), char(1)) != m.taint.end();
@@ -702,7 +494,7 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
         irregularCorners.clear();
         regular.clear();
         tainted.clear();
-        auto refiner = makeRefiner(m.vertices, counts, m.faceVerts, m.creasePairs, m.creaseW, m.cornerIdx, m.cornerW, m.holes, s.sdc);
+        auto refiner = catmarkRefiner(m.vertices, counts, m.faceVerts, m.sharp, m.holes, s.sdc);
         osd::Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
         adaptive.SetSecondaryLevel(depth);
         adaptive.useInfSharpPatch = true;
@@ -716,18 +508,10 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
         if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the patch table");
 
         // Positions on every level.
-        std::vector<Point3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-        std::copy(m.positions.begin(), m.positions.end(), all.begin());
-        std::vector<std::size_t> offset(static_cast<std::size_t>(refiner->GetMaxLevel()) + 2, 0);
         const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-        for (int l = 0; l <= refiner->GetMaxLevel(); ++l)
-            offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] +
-                                                      static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices());
-        for (int l = 1; l <= refiner->GetMaxLevel(); ++l) {
-            const Point3* src = all.data() + offset[static_cast<std::size_t>(l) - 1];
-            Point3* dst = all.data() + offset[static_cast<std::size_t>(l)];
-            primvar.Interpolate(l, src, dst);
-        }
+        std::vector<Point3> all;
+        std::vector<std::size_t> offset;
+        interpolateLevels(*refiner, primvar, m.positions, all, offset);
         // The one-face boundary vertices on every level: the vertex children of the base's (no
         // other vertex has one face: edge and face children have two or more).
         std::vector<std::vector<char>> taintAt;
@@ -803,22 +587,15 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
                 cell.v0 = v0;
                 cell.size = size;
                 const std::array<int, 4> order{0, 1, 3, 2}; // slots at (0,0), (1,0), (1,1), (0,1)
-                double bound = std::numeric_limits<double>::infinity();
                 for (int k = 0; k < 4; ++k) {
                     const Index v = corner[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
-                    const Eigen::Vector3d c = limit[static_cast<std::size_t>(v)].vec();
-                    const Eigen::Vector3d n = tan1[static_cast<std::size_t>(v)].vec().cross(tan2[static_cast<std::size_t>(v)].vec());
-                    cell.corner[static_cast<std::size_t>(k)] = c;
-                    cell.normal[static_cast<std::size_t>(k)] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
-                    double far = 0;
-                    for (Index w : ring) far = std::max(far, (all[offset[static_cast<std::size_t>(d)] + static_cast<std::size_t>(w)].vec() - c).norm());
-                    bound = std::min(bound, far);
+                    cell.corner[static_cast<std::size_t>(k)] = limit[static_cast<std::size_t>(v)].vec();
+                    cell.normal[static_cast<std::size_t>(k)] = limitNormal(tan1, tan2, static_cast<std::size_t>(v));
                 }
-                cell.bound = bound;
-                cell.tol = s.of(ring.size(), [&](std::size_t i) {
-                    return all[offset[static_cast<std::size_t>(d)] + static_cast<std::size_t>(ring[i])].vec();
-                });
-                over = over || bound > cell.tol;
+                auto ringPoint = [&](std::size_t i) { return all[offset[static_cast<std::size_t>(d)] + static_cast<std::size_t>(ring[i])].vec(); };
+                cell.bound = hullBound(cell.corner, ring.size(), ringPoint);
+                cell.tol = s.of(ring.size(), ringPoint);
+                over = over || cell.bound > cell.tol;
                 irregular.push_back(cell);
                 irregularCorners.push_back(corner);
             }
@@ -828,9 +605,8 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
         s.regular.insert(s.regular.end(), std::make_move_iterator(regular.begin()), std::make_move_iterator(regular.end()));
         for (std::size_t i = 0; i < irregular.size(); ++i) {
             const Irregular& cell = irregular[i];
-            // Past the deepest level: a local cage, while the cell leaves room for 10 more levels and
-            // 10 halvings of its regular cells in the 2^40 resolution of the keys.
-            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > cell.tol && (cell.size >> kOsdMaxDepth) >= (Int(1) << 10))) {
+            // Past the deepest level: a local cage (CellSearch::localCageFor).
+            if (!s.localCageFor(depth, cell, cell.size)) {
                 s.irregular.push_back(cell);
                 continue;
             }
@@ -854,33 +630,20 @@ int collectCells(CellSearch& s, const QuadBase& m, const std::vector<Frame>& fra
 PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellationOptions& options,
                                                     SubdivisionTessellationReport* report) const
 {
-    if (options.maxDepth < 1 || options.maxDepth > 10)
-        throw Error("subdivision tessellation: maxDepth " + std::to_string(options.maxDepth) + " is outside 1..10");
-    if (options.maxSplits < 0 || options.maxSplits > 28)
-        throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
+    checkCertifiedOptions(options);
     const double tol = options.tolerance;
-    const CellTolerance cellTol{tol, options.toleranceOf};
     const osd::Sdc::Options sdc = sdcOptions(cage_, boundary());
     const QuadBase base = quadBase(cage_, sdc);
 
     // Cells: the base's faces at increasing isolation levels, past OpenSubdiv's deepest by local
     // cages where maxDepth is at that maximum.
-    CellSearch search;
-    search.sdc = sdc;
-    search.tol = tol;
-    search.toleranceOf = options.toleranceOf;
-    search.maxDepth = options.maxDepth;
-    search.deeper = options.maxDepth == kOsdMaxDepth;
+    CatmarkSearch search(options, sdc);
     std::vector<Frame> frames(static_cast<std::size_t>(base.faces()));
     for (int f = 0; f < base.faces(); ++f) frames[static_cast<std::size_t>(f)] = {f, 0, 0, kR};
     int depth = collectCells(search, base, frames, firstDepthOf(base, options.maxDepth));
     const std::vector<Irregular>& irregular = search.irregular;
     const std::vector<Regular>& regular = search.regular;
-    for (const Irregular& c : irregular) {
-        int d = 0;
-        while ((kR >> d) > c.size) ++d;
-        depth = std::max(depth, d);
-    }
+    for (const Irregular& c : irregular) depth = std::max(depth, levelOfSize(c.size));
 
     // Leaves: irregular cells as they are, regular cells split by de Casteljau.
     std::vector<Leaf> leaves;
@@ -902,7 +665,7 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
         stack.pop_back();
         const double bound = netErrorBound(t.patch);
         const auto& net = t.patch.controlPoints();
-        const double own = cellTol.of(static_cast<std::size_t>(net.cols()), [&](std::size_t k) { return net.col(static_cast<Eigen::Index>(k)); });
+        const double own = search.of(static_cast<std::size_t>(net.cols()), [&](std::size_t k) { return net.col(static_cast<Eigen::Index>(k)); });
         const bool canU = t.su_splits < options.maxSplits && t.su > 1, canV = t.sv_splits < options.maxSplits && t.sv > 1;
         if (bound <= own || (!canU && !canV)) {
             leaves.push_back({t.face, t.u0, t.v0, t.u0 + t.su, t.v0 + t.sv, static_cast<int>(leafPatch.size()), bound, own});
@@ -1003,67 +766,20 @@ PolygonMesh SubdivisionSurface::tessellateCertified(const SubdivisionTessellatio
 
     // Triangulate every leaf as the polygon of its corners and side points.
     std::vector<int> triangles;
-    std::vector<std::array<Int, 2>> poly, side;
-    std::vector<std::array<int, 3>> tris;
-    const int baseFaces = base.faces();
-    std::vector<double> faceBound(static_cast<std::size_t>(faceCount()), 0.0);
-    std::vector<double> faceTol(static_cast<std::size_t>(faceCount()), tol);
-    std::vector<char> faceWithin(static_cast<std::size_t>(faceCount()), 1);
-    std::vector<int> faceRate(static_cast<std::size_t>(faceCount()), 0);
-    double worst = 0;
+    LeafPolygon polygon;
+    LeafTally tally(faceCount(), tol);
+    auto sidePoints = [&](int face) {
+        return [&builder, face](const UV& p, const UV& q, std::vector<UV>& out) { builder.sidePoints(face, p[0], p[1], q[0], q[1], out); };
+    };
+    auto vertexAt = [&](int face) { return [&, face](const UV& uv) { return vertexOf.at(builder.key(face, uv[0], uv[1])); }; };
     for (const Leaf& l : leaves) {
-        poly.clear();
-        for (int k = 0; k < 4; ++k) {
-            const auto p = cornerUV(l, k), q = cornerUV(l, (k + 1) % 4);
-            poly.push_back(p);
-            builder.sidePoints(l.face, p[0], p[1], q[0], q[1], side);
-            poly.insert(poly.end(), side.begin(), side.end());
-        }
-        tris.clear();
-        earClip(poly, tris);
-        for (const auto& t : tris)
-            for (int k : t) {
-                const auto& uv = poly[static_cast<std::size_t>(k)];
-                triangles.push_back(vertexOf.at(builder.key(l.face, uv[0], uv[1])));
-            }
-        const int cageFace = base.cageFace[static_cast<std::size_t>(l.face)];
-        faceBound[static_cast<std::size_t>(cageFace)] = std::max(faceBound[static_cast<std::size_t>(cageFace)], l.bound);
-        faceTol[static_cast<std::size_t>(cageFace)] = std::min(faceTol[static_cast<std::size_t>(cageFace)], l.tol);
-        if (!(l.bound <= l.tol)) faceWithin[static_cast<std::size_t>(cageFace)] = 0;
-        const Int narrowest = std::min(l.u1 - l.u0, l.v1 - l.v0);
-        int& rate = faceRate[static_cast<std::size_t>(cageFace)];
-        rate = std::max(rate, static_cast<int>(std::min<Int>(kR / narrowest, Int(1) << 30)));
-        worst = std::max(worst, l.bound);
+        triangulateLeaf(std::array<UV, 4>{cornerUV(l, 0), cornerUV(l, 1), cornerUV(l, 2), cornerUV(l, 3)}, sidePoints(l.face),
+                        vertexAt(l.face), polygon, triangles);
+        tally.add(base.cageFace[static_cast<std::size_t>(l.face)], l.bound, l.tol, std::min(l.u1 - l.u0, l.v1 - l.v0));
     }
-    (void)baseFaces;
 
-    PolygonMesh out;
-    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
-    out.normals.resize(3, static_cast<Eigen::Index>(normals.size()));
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
-        out.normals.col(static_cast<Eigen::Index>(i)) = normals[i];
-    }
-    out.faceVertices = std::move(triangles);
-    out.faceStart.resize(out.faceVertices.size() / 3 + 1);
-    for (std::size_t i = 0; i < out.faceStart.size(); ++i) out.faceStart[i] = static_cast<int>(3 * i);
-    if (report) {
-        report->certifiedPath = true;
-        report->rates = faceRate;
-        report->regularFaces = 0;
-        report->errorBound = worst;
-        report->cells = static_cast<long long>(regular.size() + irregular.size());
-        report->irregularCells = static_cast<long long>(irregular.size());
-        report->leaves = static_cast<long long>(leaves.size());
-        report->depth = depth;
-        report->faceBounds = faceBound;
-        report->faceTolerance = faceTol;
-        report->faceCertified.assign(static_cast<std::size_t>(faceCount()), 0);
-        for (int f = 0; f < faceCount(); ++f)
-            // A face without a limit surface (a hole, a boundary face under `none`) has nothing to
-            // approximate and no triangle: certified (vacuously), with bound 0.
-            report->faceCertified[static_cast<std::size_t>(f)] = !hasLimitSurface(f) || faceWithin[static_cast<std::size_t>(f)];
-    }
+    PolygonMesh out = triangleMesh(positions, normals, std::move(triangles));
+    if (report) certifiedReport(*report, *this, tally, regular.size(), irregular.size(), leaves.size(), depth);
     return out;
 }
 

@@ -20,46 +20,23 @@
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <limits>
-#include <string>
-#include <map>
 #include <memory>
 #include <unordered_map>
 
+#include "certified_tessellation_common.h"
 #include "freeform/core/error.h"
 #include "freeform/subdivision/loop_bezier.h"
-#include "osd_errors.h"
 
 namespace freeform {
 
-namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
+using namespace detail;
 
 namespace {
-
-using Index = osd::Far::Index;
-using Int = std::int64_t;
-using UV = std::array<Int, 2>;
-constexpr Int kR = Int(1) << 40; // dyadic parameters are integers over 2^40
-
-/// A point of a primvar buffer for OpenSubdiv's refiners.
-struct Vertex3 {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Vertex3& s, double w)
-    {
-        p[0] += w * s.p[0];
-        p[1] += w * s.p[1];
-        p[2] += w * s.p[2];
-    }
-    Eigen::Vector3d vec() const { return {p[0], p[1], p[2]}; }
-};
 
 /// A quartic triangular Bézier net: b[j][k] is the point of multi-index (4 - j - k, j, k), i.e.
 /// weight (1-s-t)^i s^j t^k in the local coordinates (s, t) of the cell's corners 0, 1, 2.
@@ -78,7 +55,7 @@ constexpr int kLoopToBezier[15][12] = {
     {0, 3, 1, 0, 4, 12, 0, 0, 3, 1, 0, 0},  {0, 1, 0, 0, 3, 12, 1, 0, 4, 3, 0, 0}, {0, 2, 2, 0, 2, 12, 2, 0, 2, 2, 0, 0},
 };
 
-Net bezierOfLoop(const std::vector<Vertex3>& all, osd::Far::ConstIndexArray cvs)
+Net bezierOfLoop(const std::vector<Point3>& all, osd::Far::ConstIndexArray cvs)
 {
     Net b;
     int row = 0;
@@ -167,24 +144,6 @@ Eigen::Vector3d cornerNormal(const Net& b, int k)
     return len > 1e-300 && std::isfinite(len) ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
-/// A canonical point: kind 0 a cage vertex (a), 1 a point inside a cage edge (a < b, x from a),
-/// 2 a point inside a cage face (a, x = u, y = v).
-struct Key {
-    int kind = 0, a = 0, b = 0;
-    Int x = 0, y = 0;
-    bool operator==(const Key& o) const { return kind == o.kind && a == o.a && b == o.b && x == o.x && y == o.y; }
-};
-struct KeyHash {
-    std::size_t operator()(const Key& k) const
-    {
-        std::uint64_t h = static_cast<std::uint64_t>(k.kind) * 0x9E3779B97F4A7C15ull;
-        for (std::uint64_t v : {static_cast<std::uint64_t>(k.a), static_cast<std::uint64_t>(k.b), static_cast<std::uint64_t>(k.x),
-                                static_cast<std::uint64_t>(k.y)})
-            h = (h ^ v) * 0x100000001B3ull + (h >> 29);
-        return static_cast<std::size_t>(h);
-    }
-};
-
 /// Canonical keys and the lines leaf sides lie on, for a triangle cage (face (u, v): corner 0 at
 /// (0, 0), corner 1 at (kR, 0), corner 2 at (0, kR)). Lines: {0, edge, 0} a cage edge (canonical
 /// parameter), {1, f, v} horizontal (u along it), {2, f, u} vertical (v), {3, f, u + v} diagonal (u).
@@ -218,21 +177,15 @@ public:
     {
         const Key k = key(f, iu, iv);
         if (k.kind == 2) {
-            lines_[{1, f, iv}].push_back(iu);
-            lines_[{2, f, iu}].push_back(iv);
-            lines_[{3, f, iu + iv}].push_back(iu);
+            lines_.add({1, f, iv}, iu);
+            lines_.add({2, f, iu}, iv);
+            lines_.add({3, f, iu + iv}, iu);
         } else if (k.kind == 1) {
-            lines_[{0, Int(k.a) * (Int(1) << 31) + k.b, 0}].push_back(k.x);
+            lines_.add(edgeLine(k.a, k.b), k.x);
         }
     }
 
-    void sortLines()
-    {
-        for (auto& [line, xs] : lines_) {
-            std::sort(xs.begin(), xs.end());
-            xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-        }
-    }
+    void sortLines() { lines_.sort(); }
 
     /// The registered points strictly inside the side p -> q of face f (a segment along one of the
     /// three directions), in order from p to q.
@@ -241,32 +194,27 @@ public:
         out.clear();
         // The line of the side: a cage edge k (v = 0, u + v = 1, u = 0) or a line inside the face.
         int k = -1;
-        std::array<Int, 3> line;
+        LineKey line;
         Int cp, cq;
         if (p[1] == q[1]) k = p[1] == 0 ? 0 : -1, line = {1, f, p[1]}, cp = p[0], cq = q[0];
         else if (p[0] == q[0]) k = p[0] == 0 ? 2 : -1, line = {2, f, p[0]}, cp = p[1], cq = q[1];
         else k = p[0] + p[1] == kR ? 1 : -1, line = {3, f, p[0] + p[1]}, cp = p[0], cq = q[0];
         if (k >= 0) {
             const int a = vert(f, k), b = vert(f, (k + 1) % 3);
-            const int lo = std::min(a, b), hi = std::max(a, b);
-            line = {0, Int(lo) * (Int(1) << 31) + hi, 0};
+            const int lo = std::min(a, b);
+            line = edgeLine(a, b);
             const Int tp = localOnEdge(p, k), tq = localOnEdge(q, k);
             cp = a == lo ? tp : kR - tp;
             cq = a == lo ? tq : kR - tq;
         }
-        const auto it = lines_.find(line);
-        if (it != lines_.end()) {
-            auto first = std::upper_bound(it->second.begin(), it->second.end(), std::min(cp, cq));
-            auto last = std::lower_bound(it->second.begin(), it->second.end(), std::max(cp, cq));
-            for (auto i = first; i != last; ++i) {
-                if (k >= 0) {
-                    const Int t = vert(f, k) == std::min(vert(f, k), vert(f, (k + 1) % 3)) ? *i : kR - *i;
-                    out.push_back(k == 0 ? UV{t, 0} : k == 1 ? UV{kR - t, t} : UV{0, kR - t});
-                } else if (line[0] == 1) out.push_back({*i, line[2]});
-                else if (line[0] == 2) out.push_back({line[2], *i});
-                else out.push_back({*i, line[2] - *i});
-            }
-        }
+        lines_.inside(line, cp, cq, [&](Int x) {
+            if (k >= 0) {
+                const Int t = vert(f, k) == std::min(vert(f, k), vert(f, (k + 1) % 3)) ? x : kR - x;
+                out.push_back(k == 0 ? UV{t, 0} : k == 1 ? UV{kR - t, t} : UV{0, kR - t});
+            } else if (line[0] == 1) out.push_back({x, line[2]});
+            else if (line[0] == 2) out.push_back({line[2], x});
+            else out.push_back({x, line[2] - x});
+        });
         auto dist = [&](const UV& x) { return std::abs(x[0] - p[0]) + std::abs(x[1] - p[1]); };
         std::sort(out.begin(), out.end(), [&](const UV& x, const UV& y) { return dist(x) < dist(y); });
     }
@@ -277,48 +225,8 @@ private:
     static Int localOnEdge(const UV& x, int k) { return k == 0 ? x[0] : k == 1 ? x[1] : kR - x[1]; }
 
     const std::vector<int>& fv_;
-    std::map<std::array<Int, 3>, std::vector<Int>> lines_;
+    SideLines lines_;
 };
-
-/// Twice the signed area of (a, b, c) in (u, v).
-long double cross2(const UV& a, const UV& b, const UV& c)
-{
-    return static_cast<long double>(b[0] - a[0]) * static_cast<long double>(c[1] - a[1]) -
-           static_cast<long double>(b[1] - a[1]) * static_cast<long double>(c[0] - a[0]);
-}
-
-/// Ear clipping of a convex counter-clockwise polygon with collinear points: every ear has positive
-/// area and no other polygon point in it (closed), so no vertex ends inside another triangle's edge.
-void clipEars(const std::vector<UV>& poly, std::vector<std::array<int, 3>>& out)
-{
-    std::vector<int> ring(poly.size());
-    for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = static_cast<int>(i);
-    auto P = [&](int i) -> const UV& { return poly[static_cast<std::size_t>(i)]; };
-    std::size_t start = 0;
-    while (ring.size() > 3) {
-        bool clipped = false;
-        for (std::size_t s = 0; s < ring.size() && !clipped; ++s) {
-            const std::size_t i = (start + s) % ring.size();
-            const int a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], c = ring[(i + 1) % ring.size()];
-            if (!(cross2(P(a), P(b), P(c)) > 0)) continue;
-            bool empty = true;
-            for (int o : ring)
-                if (o != a && o != b && o != c && cross2(P(a), P(b), P(o)) >= 0 && cross2(P(b), P(c), P(o)) >= 0 &&
-                    cross2(P(c), P(a), P(o)) >= 0) {
-                    empty = false;
-                    break;
-                }
-            if (!empty) continue;
-            out.push_back({a, b, c});
-            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-            start = i % ring.size();
-            clipped = true;
-        }
-        if (!clipped) throw Error("subdivision tessellation: a Loop leaf polygon could not be triangulated (internal)");
-    }
-    if (cross2(P(ring[0]), P(ring[1]), P(ring[2])) > 0) out.push_back({ring[0], ring[1], ring[2]});
-    else throw Error("subdivision tessellation: a Loop leaf polygon could not be triangulated (internal)");
-}
 
 struct Leaf {
     int face = 0;
@@ -403,8 +311,6 @@ std::array<Index, 3> descend(const osd::Far::TopologyRefiner& refiner, const std
     return out;
 }
 
-constexpr int kOsdMaxDepth = 10; // OpenSubdiv's PatchParam holds no deeper level
-
 /// An irregular cell (an end cap on the finest level): its corners' limit points and normals and
 /// its 1-ring hull bound, in base-face coordinates.
 struct LoopIrregular {
@@ -424,42 +330,26 @@ struct LoopRegular {
 /// A triangle cage handed to OpenSubdiv: the base cage, or a local cage (docs/subdivision.md,
 /// "Deeper than level 10").
 struct TriCage {
-    std::vector<Vertex3> points;
+    std::vector<Point3> points;
     std::vector<int> faceVerts;
-    std::vector<int> creasePairs;     // the sharp edges, vertex pairs
-    std::vector<float> creaseWeights; // their sharpness
-    std::vector<int> cornerVerts;     // the sharp vertices
-    std::vector<float> cornerWeights; // their sharpness
+    Sharpness sharp; // the sharp edges and vertices
 };
 
-/// The descriptor of a TriCage for OpenSubdiv (pointing into it).
-osd::Far::TopologyDescriptor describe(const TriCage& m, const std::vector<int>& counts)
+/// OpenSubdiv's Loop refiner of a TriCage; `failure` where it builds none.
+std::unique_ptr<osd::Far::TopologyRefiner> loopRefiner(const TriCage& m, const osd::Sdc::Options& sdc, const char* failure)
 {
-    osd::Far::TopologyDescriptor desc;
-    desc.numVertices = static_cast<int>(m.points.size());
-    desc.numFaces = static_cast<int>(m.faceVerts.size() / 3);
-    desc.numVertsPerFace = counts.data();
-    desc.vertIndicesPerFace = m.faceVerts.data();
-    desc.numCreases = static_cast<int>(m.creaseWeights.size());
-    desc.creaseVertexIndexPairs = m.creasePairs.data();
-    desc.creaseWeights = m.creaseWeights.data();
-    desc.numCorners = static_cast<int>(m.cornerWeights.size());
-    desc.cornerVertexIndices = m.cornerVerts.data();
-    desc.cornerWeights = m.cornerWeights.data();
-    return desc;
+    const std::vector<int> counts(m.faceVerts.size() / 3, 3);
+    return makeRefiner(topologyDescriptor(static_cast<int>(m.points.size()), counts, m.faceVerts, m.sharp, nullptr), osd::Sdc::SCHEME_LOOP, sdc,
+                       failure);
 }
 
 /// The local cage of a cell (docs/subdivision.md, "Deeper than level 10", "Loop cages"): every face
 /// of `level` at one of the cell's corners (its 1-ring), the cell first with its corners in the
 /// cell's order (counter-clockwise, as the level's faces), with the level's points (`points`,
 /// indexed by the level's vertices) and its edge and vertex sharpness.
-TriCage localCage(const osd::Far::TopologyLevel& level, const Vertex3* points, const std::array<Index, 3>& corner)
+TriCage localCage(const osd::Far::TopologyLevel& level, const Point3* points, const std::array<Index, 3>& corner)
 {
-    std::vector<Index> ringFaces;
-    for (Index v : corner)
-        for (Index f : level.GetVertexFaces(v)) ringFaces.push_back(f);
-    std::sort(ringFaces.begin(), ringFaces.end());
-    ringFaces.erase(std::unique(ringFaces.begin(), ringFaces.end()), ringFaces.end());
+    const std::vector<Index> ringFaces = facesAround(level, corner);
     TriCage out;
     std::unordered_map<Index, int> localOf;
     auto localVertex = [&](Index v) {
@@ -468,8 +358,8 @@ TriCage localCage(const osd::Far::TopologyLevel& level, const Vertex3* points, c
             out.points.push_back(points[static_cast<std::size_t>(v)]);
             const float sharp = level.GetVertexSharpness(v);
             if (sharp > 0) {
-                out.cornerVerts.push_back(it->second);
-                out.cornerWeights.push_back(sharp);
+                out.sharp.cornerVerts.push_back(it->second);
+                out.sharp.cornerWeights.push_back(sharp);
             }
         }
         return it->second;
@@ -495,8 +385,8 @@ TriCage localCage(const osd::Far::TopologyLevel& level, const Vertex3* points, c
         for (int k = 0; k < 3; ++k) {
             const float sharp = level.GetEdgeSharpness(fe[k]);
             if (!(sharp > 0) || !edgeSeen.emplace(fe[k], 1).second) continue;
-            out.creasePairs.insert(out.creasePairs.end(), {localOf.at(fv[k]), localOf.at(fv[(k + 1) % 3])});
-            out.creaseWeights.push_back(sharp);
+            out.sharp.creasePairs.insert(out.sharp.creasePairs.end(), {localOf.at(fv[k]), localOf.at(fv[(k + 1) % 3])});
+            out.sharp.creaseWeights.push_back(sharp);
         }
     }
     if (!own) throw Error("subdivision tessellation: a Loop cell's face is not around its corners (internal)");
@@ -524,33 +414,7 @@ UV toBase(const TriFrame& frame, const UV& x)
             c0[1] + (frame.c[1][1] - c0[1]) / size * a + (frame.c[2][1] - c0[1]) / size * b};
 }
 
-/// A cell's own tolerance: min(tol, toleranceOf(box)) of the points whose hull bounds it, or tol
-/// without toleranceOf (SubdivisionTessellationOptions::toleranceOf).
-struct CellTolerance {
-    double tol = 0;
-    std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
-    /// Of the points at(0), ..., at(n - 1).
-    template <class At>
-    double of(std::size_t n, At at) const
-    {
-        if (!toleranceOf) return tol;
-        Eigen::AlignedBox3d box;
-        box.setEmpty();
-        for (std::size_t i = 0; i < n; ++i) box.extend(Eigen::Vector3d(at(i)));
-        const double t = toleranceOf(box);
-        if (!(t > 0) || !std::isfinite(t))
-            throw Error("subdivision tessellation: toleranceOf gave " + std::to_string(t) + " (must be finite and > 0)");
-        return std::min(tol, t);
-    }
-};
-
-struct LoopSearch : CellTolerance {
-    osd::Sdc::Options sdc;
-    int maxDepth = kOsdMaxDepth;
-    bool deeper = false; // past OpenSubdiv's deepest level by local cages (maxDepth at that maximum)
-    std::vector<LoopIrregular> irregular;
-    std::vector<LoopRegular> regular;
-};
+using LoopSearch = CellSearch<LoopIrregular, LoopRegular>;
 
 int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame>& frames);
 
@@ -562,24 +426,18 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
 /// faces around the children (their 1-rings).
 void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
 {
-    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-    const std::vector<int> counts(m.faceVerts.size() / 3, 3);
-    const osd::Far::TopologyDescriptor desc = describe(m, counts);
-    clearOsdError();
-    std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, s.sdc)));
-    takeOsdError();
-    if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build a Loop local cage");
+    const auto refiner = loopRefiner(m, s.sdc, "subdivision tessellation: OpenSubdiv could not build a Loop local cage");
     osd::Far::TopologyRefiner::UniformOptions uniform(1);
     uniform.fullTopologyInLastLevel = true;
     refiner->RefineUniform(uniform);
     const osd::Far::TopologyLevel& l0 = refiner->GetLevel(0);
     const osd::Far::TopologyLevel& l1 = refiner->GetLevel(1);
     const auto n1 = static_cast<std::size_t>(l1.GetNumVertices());
-    std::vector<Vertex3> fine(n1), limit(n1), tan1(n1), tan2(n1);
+    std::vector<Point3> fine(n1), limit(n1), tan1(n1), tan2(n1);
     const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
     clearOsdError();
-    const Vertex3* src = m.points.data();
-    Vertex3* dst = fine.data();
+    const Point3* src = m.points.data();
+    Point3* dst = fine.data();
     primvar.Interpolate(1, src, dst);
     primvar.Limit(fine, limit, tan1, tan2);
     takeOsdError();
@@ -589,25 +447,20 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
     LoopIrregular leaf;
     leaf.face = cell.face;
     leaf.c = cell.c;
-    double bound = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < 3; ++k) {
         const auto v = static_cast<std::size_t>(l0.GetVertexChildVertex(fv[static_cast<int>(k)]));
         leaf.corner[k] = limit[v].vec();
-        const Eigen::Vector3d n = tan1[v].vec().cross(tan2[v].vec());
-        leaf.normal[k] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
-        double far = 0;
-        for (const Vertex3& w : m.points) far = std::max(far, (w.vec() - leaf.corner[k]).norm());
-        bound = std::min(bound, far);
+        leaf.normal[k] = limitNormal(tan1, tan2, v);
     }
-    leaf.bound = bound;
-    leaf.tol = s.of(m.points.size(), [&](std::size_t i) { return m.points[i].vec(); });
+    auto ringPoint = [&](std::size_t i) { return m.points[i].vec(); };
+    leaf.bound = hullBound(leaf.corner, m.points.size(), ringPoint);
+    leaf.tol = s.of(m.points.size(), ringPoint);
     const Int size = std::max(std::abs(cell.c[1][0] - cell.c[0][0]), std::abs(cell.c[1][1] - cell.c[0][1]));
-    int level = 0;
-    while ((kR >> level) > size) ++level;
+    const int level = levelOfSize(size);
     // Split while the children leave room for 10 levels of OpenSubdiv and 10 halvings of their
     // regular cells in the 2^40 resolution of the keys; below maxDepth 10, no deeper than maxDepth.
     const int finest = s.deeper ? 40 - 21 : s.maxDepth;
-    if (bound <= leaf.tol || level >= finest) {
+    if (leaf.bound <= leaf.tol || level >= finest) {
         s.irregular.push_back(leaf);
         return;
     }
@@ -634,8 +487,8 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
             next.points.push_back(fine[static_cast<std::size_t>(v)]);
             const float sharp = l1.GetVertexSharpness(v);
             if (sharp > 0) {
-                next.cornerVerts.push_back(it->second);
-                next.cornerWeights.push_back(sharp);
+                next.sharp.cornerVerts.push_back(it->second);
+                next.sharp.cornerWeights.push_back(sharp);
             }
         }
         return it->second;
@@ -657,8 +510,8 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
         for (int k = 0; k < 3; ++k) {
             const float sharp = l1.GetEdgeSharpness(e[k]);
             if (!(sharp > 0) || !edgeSeen.emplace(e[k], 1).second) continue;
-            next.creasePairs.insert(next.creasePairs.end(), {localOf.at(v[k]), localOf.at(v[(k + 1) % 3])});
-            next.creaseWeights.push_back(sharp);
+            next.sharp.creasePairs.insert(next.sharp.creasePairs.end(), {localOf.at(v[k]), localOf.at(v[(k + 1) % 3])});
+            next.sharp.creaseWeights.push_back(sharp);
         }
         TriFrame frame;
         if (std::find(children.begin(), children.end(), f) != children.end() && !onFeature(f))
@@ -685,9 +538,6 @@ void splitFeature(LoopSearch& s, const TriCage& m, const TriFrame& cell)
 /// reached on m.
 int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame>& frames)
 {
-    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
-    const int faces = static_cast<int>(m.faceVerts.size() / 3);
-    const std::vector<int> counts(static_cast<std::size_t>(faces), 3);
     for (int depth = 1;; ++depth) {
         std::vector<LoopIrregular> irregular;
         std::vector<LoopRegular> regular;
@@ -699,11 +549,7 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
             int d;
         };
         std::vector<Feature> features;
-        const osd::Far::TopologyDescriptor desc = describe(m, counts);
-        clearOsdError();
-        std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(osd::Sdc::SCHEME_LOOP, s.sdc)));
-        takeOsdError();
-        if (!refiner) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop topology");
+        const auto refiner = loopRefiner(m, s.sdc, "subdivision tessellation: OpenSubdiv could not build the Loop topology");
         // Infinitely sharp creases as boundaries: their cells are regular patches with a boundary
         // mask (feature cells, split by splitFeature where needed) rather than isolated to the
         // finest level all along the crease.
@@ -719,19 +565,12 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
         if (!table) throw Error("subdivision tessellation: OpenSubdiv could not build the Loop patch table");
 
         // Positions on every level, and the limit points and tangents of every level's vertices.
-        std::vector<Vertex3> all(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-        std::copy(m.points.begin(), m.points.end(), all.begin());
         const int maxLevel = refiner->GetMaxLevel();
-        std::vector<std::size_t> offset(static_cast<std::size_t>(maxLevel) + 2, 0);
-        for (int l = 0; l <= maxLevel; ++l)
-            offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] + static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices());
         const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-        for (int l = 1; l <= maxLevel; ++l) {
-            const Vertex3* src = all.data() + offset[static_cast<std::size_t>(l) - 1];
-            Vertex3* dst = all.data() + offset[static_cast<std::size_t>(l)];
-            primvar.Interpolate(l, src, dst);
-        }
-        std::vector<Vertex3> limit, tan1, tan2; // of the finest level's vertices, computed when needed
+        std::vector<Point3> all;
+        std::vector<std::size_t> offset;
+        interpolateLevels(*refiner, primvar, m.points, all, offset);
+        std::vector<Point3> limit, tan1, tan2; // of the finest level's vertices, computed when needed
 
         bool over = false; // an irregular cell above its own tolerance
         for (int array = 0; array < table->GetNumPatchArrays(); ++array) {
@@ -768,35 +607,25 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
                     tan1.resize(n);
                     tan2.resize(n);
                     clearOsdError();
-                    const Vertex3* src = all.data() + offset[D];
+                    const Point3* src = all.data() + offset[D];
                     primvar.Limit(src, limit, tan1, tan2);
                     takeOsdError();
                 }
                 const std::array<Index, 3> local = descend(*refiner, m.faceVerts, param.GetFaceId(), corners, d);
                 const osd::Far::TopologyLevel& level = refiner->GetLevel(d);
-                // The 1-ring: every vertex of every face at one of the cell's corners.
-                std::vector<Index> ring;
-                for (Index v : local)
-                    for (Index f : level.GetVertexFaces(v))
-                        for (Index w : level.GetFaceVertices(f)) ring.push_back(w);
-                std::sort(ring.begin(), ring.end());
-                ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+                const std::vector<Index> ring = ringOf(level, local);
                 LoopIrregular cell;
                 cell.face = frame.face;
                 cell.c = baseCorners;
-                double bound = std::numeric_limits<double>::infinity();
                 for (std::size_t k = 0; k < 3; ++k) {
                     const auto v = static_cast<std::size_t>(local[k]);
                     cell.corner[k] = limit[v].vec();
-                    const Eigen::Vector3d n = tan1[v].vec().cross(tan2[v].vec());
-                    cell.normal[k] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
-                    double far = 0;
-                    for (Index w : ring) far = std::max(far, (all[offset[D] + static_cast<std::size_t>(w)].vec() - cell.corner[k]).norm());
-                    bound = std::min(bound, far);
+                    cell.normal[k] = limitNormal(tan1, tan2, v);
                 }
-                cell.bound = bound;
-                cell.tol = s.of(ring.size(), [&](std::size_t i) { return all[offset[D] + static_cast<std::size_t>(ring[i])].vec(); });
-                over = over || bound > cell.tol;
+                auto ringPoint = [&](std::size_t i) { return all[offset[D] + static_cast<std::size_t>(ring[i])].vec(); };
+                cell.bound = hullBound(cell.corner, ring.size(), ringPoint);
+                cell.tol = s.of(ring.size(), ringPoint);
+                over = over || cell.bound > cell.tol;
                 irregular.push_back(cell);
                 irregularCorners.push_back(local);
             }
@@ -807,9 +636,8 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
         for (std::size_t i = 0; i < irregular.size(); ++i) {
             const LoopIrregular& cell = irregular[i];
             const Int size = std::max(std::abs(cell.c[1][0] - cell.c[0][0]), std::abs(cell.c[1][1] - cell.c[0][1]));
-            // Past the deepest level: a local cage, while the cell leaves room for 10 more levels and
-            // 10 halvings of its regular cells in the 2^40 resolution of the keys.
-            if (!(s.deeper && depth == kOsdMaxDepth && cell.bound > cell.tol && (size >> kOsdMaxDepth) >= (Int(1) << 10))) {
+            // Past the deepest level: a local cage (CellSearch::localCageFor).
+            if (!s.localCageFor(depth, cell, size)) {
                 s.irregular.push_back(cell);
                 continue;
             }
@@ -859,39 +687,19 @@ double triangleNetErrorBound(const QuarticTriangleNet& net) { return netBound(to
 PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessellationOptions& options,
                                                         SubdivisionTessellationReport* report) const
 {
-    if (options.maxDepth < 1 || options.maxDepth > 10)
-        throw Error("subdivision tessellation: maxDepth " + std::to_string(options.maxDepth) + " is outside 1..10");
-    if (options.maxSplits < 0 || options.maxSplits > 28)
-        throw Error("subdivision tessellation: maxSplits " + std::to_string(options.maxSplits) + " is outside 0..28");
+    checkCertifiedOptions(options);
     const double tol = options.tolerance;
-    const CellTolerance cellTol{tol, options.toleranceOf};
     const PolygonMesh& mesh = cage_.mesh;
     const int faces = mesh.faceCount();
-    std::vector<Vertex3> cagePoints(static_cast<std::size_t>(mesh.vertexCount()));
-    for (int v = 0; v < mesh.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) cagePoints[static_cast<std::size_t>(v)].p[k] = mesh.positions(k, v);
 
-    LoopSearch search;
     // The cage's own rules (boundary none: the faces without a limit surface are left out below,
     // and the rest refine as under edge_only, docs/subdivision.md "Loop cages").
-    search.sdc.SetVtxBoundaryInterpolation(boundary() == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                                                                            : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    search.sdc.SetCreasingMethod(cage_.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
-    search.tol = tol;
-    search.toleranceOf = options.toleranceOf;
-    search.maxDepth = options.maxDepth;
-    search.deeper = options.maxDepth == kOsdMaxDepth;
-    TriCage base{cagePoints, mesh.faceVertices, {}, {}, {}, {}};
-    for (const EdgeCrease& c : cage_.creases) {
-        if (!(c.sharpness > 0)) continue;
-        base.creasePairs.insert(base.creasePairs.end(), {c.v0, c.v1});
-        base.creaseWeights.push_back(static_cast<float>(c.sharpness));
-    }
-    for (const VertexCorner& c : cage_.corners) {
-        if (!(c.sharpness > 0)) continue;
-        base.cornerVerts.push_back(c.vertex);
-        base.cornerWeights.push_back(static_cast<float>(c.sharpness));
-    }
+    osd::Sdc::Options sdc;
+    sdc.SetVtxBoundaryInterpolation(boundary() == BoundaryInterpolation::EdgeAndCorner ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                                                                     : osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetCreasingMethod(cage_.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
+    LoopSearch search(options, sdc);
+    const TriCage base{cagePoints(mesh), mesh.faceVertices, cageSharpness(cage_, true)};
     // Holes, and under boundary none the faces touching the boundary, have no limit surface: they
     // stay in the cage (their points shape their neighbours) without a frame.
     std::vector<TriFrame> frames(static_cast<std::size_t>(faces));
@@ -902,9 +710,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
     const std::vector<LoopRegular>& regular = search.regular;
     for (const LoopIrregular& c : irregular) {
         const Int size = std::max(std::abs(c.c[1][0] - c.c[0][0]), std::abs(c.c[1][1] - c.c[0][1]));
-        int d = 0;
-        while ((kR >> d) > size) ++d;
-        depth = std::max(depth, d);
+        depth = std::max(depth, levelOfSize(size));
     }
 
     // Leaves: irregular cells as they are, regular cells split into four by de Casteljau.
@@ -925,7 +731,7 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
         Task t = std::move(stack.back());
         stack.pop_back();
         const double bound = netBound(t.net);
-        const double own = cellTol.of(15, [&](std::size_t i) {
+        const double own = search.of(15, [&](std::size_t i) {
             int j = 0, k = static_cast<int>(i);
             while (k > 4 - j) k -= 5 - j++; // i runs over (j, k), k = 0..4 - j, j = 0..4
             return t.net[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
@@ -988,60 +794,17 @@ PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessell
 
     // Triangulate every leaf as the polygon of its corners and side points.
     std::vector<int> triangles;
-    std::vector<UV> poly, side;
-    std::vector<std::array<int, 3>> tris;
-    std::vector<double> faceBound(static_cast<std::size_t>(faces), 0.0);
-    std::vector<double> faceTol(static_cast<std::size_t>(faces), tol);
-    std::vector<char> faceWithin(static_cast<std::size_t>(faces), 1);
-    std::vector<int> faceRate(static_cast<std::size_t>(faces), 0);
-    double worst = 0;
+    LeafPolygon polygon;
+    LeafTally tally(faces, tol);
     for (const Leaf& l : leaves) {
-        poly.clear();
-        for (std::size_t k = 0; k < 3; ++k) {
-            poly.push_back(l.c[k]);
-            keys.sidePoints(l.face, l.c[k], l.c[(k + 1) % 3], side);
-            poly.insert(poly.end(), side.begin(), side.end());
-        }
-        tris.clear();
-        clipEars(poly, tris);
-        for (const auto& t : tris)
-            for (int k : t) {
-                const UV& uv = poly[static_cast<std::size_t>(k)];
-                triangles.push_back(vertexOf.at(keys.key(l.face, uv[0], uv[1])));
-            }
-        const auto f = static_cast<std::size_t>(l.face);
-        faceBound[f] = std::max(faceBound[f], l.bound);
-        faceTol[f] = std::min(faceTol[f], l.tol);
-        if (!(l.bound <= l.tol)) faceWithin[f] = 0;
-        const Int size = std::max(std::abs(l.c[1][0] - l.c[0][0]), std::abs(l.c[1][1] - l.c[0][1]));
-        faceRate[f] = std::max(faceRate[f], static_cast<int>(std::min<Int>(kR / std::max<Int>(size, 1), Int(1) << 30)));
-        worst = std::max(worst, l.bound);
+        triangulateLeaf(
+            l.c, [&](const UV& p, const UV& q, std::vector<UV>& out) { keys.sidePoints(l.face, p, q, out); },
+            [&](const UV& uv) { return vertexOf.at(keys.key(l.face, uv[0], uv[1])); }, polygon, triangles);
+        tally.add(l.face, l.bound, l.tol, std::max(std::abs(l.c[1][0] - l.c[0][0]), std::abs(l.c[1][1] - l.c[0][1])));
     }
 
-    PolygonMesh out;
-    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
-    out.normals.resize(3, static_cast<Eigen::Index>(normals.size()));
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
-        out.normals.col(static_cast<Eigen::Index>(i)) = normals[i];
-    }
-    out.faceVertices = std::move(triangles);
-    out.faceStart.resize(out.faceVertices.size() / 3 + 1);
-    for (std::size_t i = 0; i < out.faceStart.size(); ++i) out.faceStart[i] = static_cast<int>(3 * i);
-    if (report) {
-        report->certifiedPath = true;
-        report->rates = faceRate;
-        report->regularFaces = 0;
-        report->errorBound = worst;
-        report->cells = static_cast<long long>(regular.size() + irregular.size());
-        report->irregularCells = static_cast<long long>(irregular.size());
-        report->leaves = static_cast<long long>(leaves.size());
-        report->depth = depth;
-        report->faceBounds = faceBound;
-        report->faceTolerance = faceTol;
-        report->faceCertified.assign(static_cast<std::size_t>(faces), 0);
-        for (int f = 0; f < faces; ++f) report->faceCertified[static_cast<std::size_t>(f)] = faceWithin[static_cast<std::size_t>(f)];
-    }
+    PolygonMesh out = triangleMesh(positions, normals, std::move(triangles));
+    if (report) certifiedReport(*report, *this, tally, regular.size(), irregular.size(), leaves.size(), depth);
     return out;
 }
 

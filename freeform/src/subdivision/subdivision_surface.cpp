@@ -21,13 +21,12 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "certified_tessellation_common.h"
 #include "freeform/mesh/topology.h"
 #include "freeform/tessellate/tessellate.h"
 #include "osd_errors.h"
 
 namespace freeform {
-
-namespace osd = OpenSubdiv::OPENSUBDIV_VERSION;
 
 namespace {
 thread_local std::string osdErrorMessage;
@@ -212,29 +211,8 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme s
 
     std::vector<int> counts(static_cast<std::size_t>(faces));
     for (int f = 0; f < faces; ++f) counts[static_cast<std::size_t>(f)] = mesh.faceSize(f);
-    std::vector<int> creasePairs, cornerIndices;
-    std::vector<float> creaseWeights, cornerWeights;
-    for (const EdgeCrease& c : cage_.creases) {
-        creasePairs.insert(creasePairs.end(), {c.v0, c.v1});
-        creaseWeights.push_back(static_cast<float>(c.sharpness));
-    }
-    for (const VertexCorner& c : cage_.corners) {
-        cornerIndices.push_back(c.vertex);
-        cornerWeights.push_back(static_cast<float>(c.sharpness));
-    }
-    osd::Far::TopologyDescriptor desc;
-    desc.numVertices = mesh.vertexCount();
-    desc.numFaces = faces;
-    desc.numVertsPerFace = counts.data();
-    desc.vertIndicesPerFace = mesh.faceVertices.data();
-    desc.numCreases = static_cast<int>(creaseWeights.size());
-    desc.creaseVertexIndexPairs = creasePairs.data();
-    desc.creaseWeights = creaseWeights.data();
-    desc.numCorners = static_cast<int>(cornerWeights.size());
-    desc.cornerVertexIndices = cornerIndices.data();
-    desc.cornerWeights = cornerWeights.data();
-    desc.numHoles = static_cast<int>(cage_.holes.size());
-    desc.holeIndices = cage_.holes.data();
+    const detail::Sharpness sharp = detail::cageSharpness(cage_, false);
+    const osd::Far::TopologyDescriptor desc = detail::topologyDescriptor(mesh.vertexCount(), counts, mesh.faceVertices, sharp, &cage_.holes);
     // The cage's interpolateboundary tag stands in for the default; an explicit other choice that
     // contradicts it is an Error rather than a silent pick.
     if (cage_.boundary && *cage_.boundary != boundary) {
@@ -247,18 +225,8 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionCage cage, SubdivisionScheme s
     if (cage_.smoothTriangles && scheme != SubdivisionScheme::Catmark)
         throw Error("cage: the smoothtriangles tag applies to Catmark only");
 
-    osd::Sdc::Options sdc;
-    sdc.SetCreasingMethod(cage_.chaikin ? osd::Sdc::Options::CREASE_CHAIKIN : osd::Sdc::Options::CREASE_UNIFORM);
-    sdc.SetTriangleSubdivision(cage_.smoothTriangles ? osd::Sdc::Options::TRI_SUB_SMOOTH : osd::Sdc::Options::TRI_SUB_CATMARK);
-    sdc.SetVtxBoundaryInterpolation(boundary == BoundaryInterpolation::None        ? osd::Sdc::Options::VTX_BOUNDARY_NONE
-                                    : boundary == BoundaryInterpolation::EdgeOnly ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                                                                   : osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
     const osd::Sdc::SchemeType type = scheme == SubdivisionScheme::Loop ? osd::Sdc::SCHEME_LOOP : osd::Sdc::SCHEME_CATMARK;
-    clearOsdError();
-    topo->refiner.reset(Factory::Create(desc, Factory::Options(type, sdc)));
-    takeOsdError(); // after the refiner is owned, so nothing leaks
-    if (!topo->refiner) throw Error("cage: OpenSubdiv could not build the topology");
+    topo->refiner = detail::makeRefiner(desc, type, detail::sdcOptions(cage_, boundary), "cage: OpenSubdiv could not build the topology");
     topo->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*topo->refiner);
 
     topo->surfaces.resize(static_cast<std::size_t>(faces));
@@ -591,17 +559,7 @@ PolygonMesh SubdivisionSurface::tessellate(const SubdivisionTessellationOptions&
         for (int i : facets) triangles.push_back(index[static_cast<std::size_t>(i)]);
     }
 
-    PolygonMesh out;
-    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
-    out.normals.resize(3, static_cast<Eigen::Index>(normals.size()));
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
-        out.normals.col(static_cast<Eigen::Index>(i)) = normals[i];
-    }
-    std::vector<int> starts(triangles.size() / 3 + 1);
-    for (std::size_t i = 0; i < starts.size(); ++i) starts[i] = static_cast<int>(3 * i);
-    out.faceVertices = std::move(triangles);
-    out.faceStart = std::move(starts);
+    PolygonMesh out = detail::triangleMesh(positions, normals, std::move(triangles));
     if (report) {
         *report = SubdivisionTessellationReport{};
         report->rates = std::move(rate);
