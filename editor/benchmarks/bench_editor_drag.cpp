@@ -21,8 +21,9 @@
 // drag (the grab), all with the CPU time of every thread.
 // Spline and patch drags (issue 12): a handle of a cubic spline of 4, 16 and 64 segments dragged, its joints
 // all C2, all mirrored, or mixed; each frame the spline tool enforces every joint's mode.
-// Uploading to the GPU is not included (the driver's work). A second benchmark times the
-// FfdSession::deform call alone. Nothing here is a test: docs/performance.md has the figures.
+// BM_DragFrameDrawn adds SceneDrawer::draw (what the drawer hands the renderer, the recording
+// renderer's copy standing for the driver's); the driver's own work is not included. Nothing here
+// is a test: docs/performance.md has the figures.
 //
 //   build/bin/bench_editor_drag --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
