@@ -41,7 +41,7 @@ FREEFORM_INLINE V16 load16(const float* p)
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-FREEFORM_INLINE void store16(float* p, V16 v) { std::memcpy(p, &v, sizeof v); }
+FREEFORM_INLINE void store16(float* p, const V16& v) { std::memcpy(p, &v, sizeof v); } // (by reference: no -Wpsabi note where it is not inlined)
 
 /// dst[0..n) = src[0..n) widened to double, and copy[0..n) = src when given. (Non-temporal
 /// stores for the doubles, which nothing reads in the frame, were tried: the frame with its
