@@ -97,21 +97,37 @@ struct DragScene {
         tools.update(context, overlay);
         scene.updateGeometry(); // binds the mesh once, as the first frame after the fit does
     }
+    /// A frame's input: point k moved to its next place on the drag's path from `rest`, the
+    /// tools' update and overlays (not the geometry update).
+    void moveAlongPath(int k, const Eigen::Vector3d& rest, int& frame)
+    {
+        const double offset = 0.1 * std::sin(0.05 * ++frame);
+        scene.setControlPoint(lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
+        overlay = Overlay{};
+        ToolContext context{scene, selection};
+        tools.update(context, overlay);
+    }
+    /// A first drag of another point (42), released: its full evaluation becomes the base of the
+    /// drags measured after it (a deformed lattice rather than the rest one).
+    void deformOnce()
+    {
+        const int first = 42;
+        scene.beginMerge();
+        scene.setControlPoint(lattice, first, scene.controlPoints(lattice).col(first) + Eigen::Vector3d(0.05, -0.04, 0.03));
+        scene.updateGeometry();
+        scene.endMerge();
+    }
 };
 
 void BM_DragFrame(benchmark::State& state)
 {
     static DragScene d; // made once: reading the mesh and binding it are not what is measured
-    ToolContext context{d.scene, d.selection};
     const int k = 21; // an inner control point of the 4 x 4 x 4 lattice
     const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
     d.scene.beginMerge();
     int frame = 0;
     for (auto _ : state) {
-        const double offset = 0.1 * std::sin(0.05 * ++frame);
-        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
-        d.overlay = Overlay{};
-        d.tools.update(context, d.overlay);
+        d.moveAlongPath(k, rest, frame);
         d.scene.updateGeometry();
         benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
     }
@@ -131,21 +147,14 @@ BENCHMARK(BM_DragFrameProcessCpu)->Unit(benchmark::kMillisecond)->UseRealTime()-
 void BM_DragFrameFromDeformed(benchmark::State& state)
 {
     static DragScene& d = *new DragScene;
-    ToolContext context{d.scene, d.selection};
-    const int first = 42, k = 21;
-    d.scene.beginMerge();
-    d.scene.setControlPoint(d.lattice, first, d.scene.controlPoints(d.lattice).col(first) + Eigen::Vector3d(0.05, -0.04, 0.03));
-    d.scene.updateGeometry();
-    d.scene.endMerge();
+    const int k = 21;
+    d.deformOnce();
     d.scene.updateGeometry(); // the full evaluation: the base of the drag below
     const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
     d.scene.beginMerge();
     int frame = 0;
     for (auto _ : state) {
-        const double offset = 0.1 * std::sin(0.05 * ++frame);
-        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
-        d.overlay = Overlay{};
-        d.tools.update(context, d.overlay);
+        d.moveAlongPath(k, rest, frame);
         d.scene.updateGeometry();
         benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
     }
@@ -164,21 +173,14 @@ void BM_DragFrameDrawn(benchmark::State& state)
     static DragScene& d = *new DragScene;
     static RecordingRenderer renderer;
     static SceneDrawer drawer(renderer);
-    ToolContext context{d.scene, d.selection};
-    const int first = 42, k = 21;
-    d.scene.beginMerge();
-    d.scene.setControlPoint(d.lattice, first, d.scene.controlPoints(d.lattice).col(first) + Eigen::Vector3d(0.05, -0.04, 0.03));
-    d.scene.updateGeometry();
-    d.scene.endMerge();
+    const int k = 21;
+    d.deformOnce();
     drawer.draw(d.scene, 1280, 800, d.lattice, &d.overlay); // the full evaluation, uploaded: the base of the drag below
     const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
     d.scene.beginMerge();
     int frame = 0;
     for (auto _ : state) {
-        const double offset = 0.1 * std::sin(0.05 * ++frame);
-        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
-        d.overlay = Overlay{};
-        d.tools.update(context, d.overlay);
+        d.moveAlongPath(k, rest, frame);
         drawer.draw(d.scene, 1280, 800, d.lattice, &d.overlay);
         benchmark::DoNotOptimize(renderer.counters());
     }
@@ -312,7 +314,6 @@ void BM_DragGrab(benchmark::State& state)
 {
     static DragScene& d = *new DragScene;
     d.scene.setBackgroundTessellation(true);
-    ToolContext context{d.scene, d.selection};
     const int k = 21;
     const Eigen::Vector3d rest = d.scene.controlPoints(d.lattice).col(k);
     int frame = 0;
@@ -324,10 +325,7 @@ void BM_DragGrab(benchmark::State& state)
         d.scene.finishDeformation();
         d.scene.beginMerge();
         state.ResumeTiming();
-        const double offset = 0.1 * std::sin(0.05 * ++frame);
-        d.scene.setControlPoint(d.lattice, k, rest + Eigen::Vector3d(offset, 0.5 * offset, 0));
-        d.overlay = Overlay{};
-        d.tools.update(context, d.overlay);
+        d.moveAlongPath(k, rest, frame);
         d.scene.updateGeometry();
         benchmark::DoNotOptimize(d.scene.item(d.mesh).geometry.surface->positions.data());
         state.PauseTiming();
