@@ -40,8 +40,6 @@ const char* kDoc = R"({"format": "freeform", "version": 1, "objects": [
    "weights": [[1, 1], [0.7071067811865476, 0.7071067811865476], [1, 1], [0.7071067811865476, 0.7071067811865476], [1, 1]]}
 ]})";
 
-const double kW = 0.7071067811865476;
-
 std::string replaced(std::string text, const std::string& from, const std::string& to)
 {
     const auto at = text.find(from);

@@ -157,8 +157,8 @@ void SplineTool::drawPanel(ToolContext& c)
         static const char* headTips[] = {"The joint's number along the spline (0: its start)",
                                          "The joint's handle mode (keys 1-4 with a point of it selected)",
                                          "The continuity the joint has: C (derivatives equal) and G (geometric) orders",
-                                         "k: |f_R^(k) - f_L^(k)|, the jump of the lowest derivative order k that is not continuous\n"
-                                         "(k = C + 1, at most 3); hover a value for the jumps of orders 1, 2 and 3"};
+                                         ("k: |f_R^(k) - f_L^(k)|, the jump of the lowest derivative order k that is not continuous\n"
+                                          "(k = C + 1, at most 3); hover a value for the jumps of orders 1, 2 and 3")};
         for (const char* h : heads) ImGui::TableSetupColumn(h);
         ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
         for (int column = 0; column < 4; ++column) {
