@@ -21,6 +21,7 @@
 
 #include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "support/sanitizers.h"
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
@@ -116,6 +117,12 @@ TEST_CASE("certified tessellation: the bound holds both ways and the mesh is clo
     // built once per cage (the first section that needs them), not on every run.
     static std::map<std::string, test::MeasuredReference> references;
     for (const Case& c : cases) {
+        // Under the sanitizers (support/sanitizers.h) two cases are left out: the open grid, whose
+        // level-7 reference alone took 53 s of ASan + UBSan (open boundaries run in the star case),
+        // and the cube with one sharp corner (16 s; the local cages past depth 10 run in the next
+        // test case). Every case runs in Release.
+        if (test::underSanitizers && (c.name.rfind("open grid", 0) == 0 || c.name.rfind("cube with one sharp corner", 0) == 0))
+            continue;
         for (int t = 0; t < 2; ++t) {
             const double tol = t == 0 ? 1e-2 : 1e-3;
             DYNAMIC_SECTION(c.name << " at " << tol)

@@ -32,6 +32,7 @@
 #include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/loop_bezier.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "support/sanitizers.h"
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
@@ -237,6 +238,10 @@ TEST_CASE("certified Loop tessellation: the bound holds both ways and the mesh i
     for (const Case& c : cases)
         for (int ti = 0; ti < 2; ++ti) {
             const double tol = ti == 0 ? 1e-2 : 1e-3;
+            // Under the sanitizers (support/sanitizers.h) 1e-3 runs on the octahedron only: the
+            // tetrahedron's and the icosahedron's at 1e-3 took 26 s and more of ASan + UBSan each.
+            // All three cages run at 1e-2 there, and every case runs in Release.
+            if (test::underSanitizers && ti == 1 && c.name.rfind("octahedron", 0) != 0) continue;
             DYNAMIC_SECTION(c.name << " at " << tol)
             {
                 const SubdivisionCage cage = cageOf(c.cage);

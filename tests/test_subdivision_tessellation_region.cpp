@@ -24,6 +24,7 @@
 
 #include "freeform/io/geometry_data.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "support/sanitizers.h"
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
@@ -102,6 +103,11 @@ TEST_CASE("a tolerance per region: every cell within its own tolerance, far part
     for (const Case& c : cases)
         DYNAMIC_SECTION(c.name)
         {
+            // Under the sanitizers (support/sanitizers.h) the long open grid is left out: it took
+            // 105 of this test's 140 s of ASan + UBSan (its level-6 reference and the sampled
+            // ratios over 40 faces); the prism and the octahedron keep the region code on
+            // irregular Catmull-Clark and Loop cells there. Every case runs in Release.
+            if (test::underSanitizers && c.name.rfind("long open grid", 0) == 0) continue;
             const SubdivisionSurface surface(c.cage, c.scheme, c.cage.boundary.value_or(BoundaryInterpolation::EdgeOnly));
             const Region region{1e-3, minX(c.cage.mesh)};
             SubdivisionTessellationOptions o;

@@ -12,6 +12,7 @@
 
 #include "support/cli_errors.h"
 #include "support/process.h"
+#include "support/sanitizers.h"
 
 using freeform::test::cli;
 using freeform::test::requireError;
@@ -37,11 +38,17 @@ TEST_CASE("tessellate reports the measured deviations beside the certified bound
     CHECK(a["measured_parametric"].get<double>() <= a["error_bound"].get<double>());
     CHECK(a["measured_geometric"].get<double>() <= a["measured_parametric"].get<double>());
     CHECK(a["measured_geometric"].get<double>() >= 0.5e-3);
-    const auto grid = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --refinement patch-grid");
-    REQUIRE(grid.status == 0);
-    const Json b = Json::parse(grid.out);
-    CHECK(b["error_bound"].get<double>() <= 1e-3);
-    CHECK(b["triangles"].get<long>() > a["triangles"].get<long>());
+    // Under the sanitizers (support/sanitizers.h) the patch-grid run is left out: it measures the
+    // deviations of about twice the triangles, the larger part of this test's 73 s of ASan + UBSan
+    // (the tool runs instrumented too). It runs in Release; the library's patch-grid refinement is
+    // tested under the sanitizers in test_tessellate.
+    if (!freeform::test::underSanitizers) {
+        const auto grid = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --refinement patch-grid");
+        REQUIRE(grid.status == 0);
+        const Json b = Json::parse(grid.out);
+        CHECK(b["error_bound"].get<double>() <= 1e-3);
+        CHECK(b["triangles"].get<long>() > a["triangles"].get<long>());
+    }
     // --measure geometric: every mesh point within the tolerance of the surface, fewer triangles.
     const auto geo = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --measure geometric");
     REQUIRE(geo.status == 0);
