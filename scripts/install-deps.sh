@@ -9,6 +9,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config      # toolchain
+  ninja-build                           # the Ninja generator (scripts/test.sh)
   libeigen3-dev                         # vectors and matrices (header-only)
   nlohmann-json3-dev                    # the JSON document format (header-only)
   libcli11-dev                          # command-line parsing of the freeform tool (header-only)
@@ -22,7 +23,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy   # the Python module (python/, docs/python.md)
   python3-pytest                        # its tests (run by ctest)
   xdotool                               # editor test driving the real window under Xvfb (x11 label)
-  clang libfuzzer-14-dev                # fuzzing stage (scripts/fuzz.sh): clang 14 + libFuzzer
+  clang libfuzzer-14-dev                # sanitizer + fuzzing build (scripts/test.sh, fuzz.sh): clang 14 + libFuzzer
   assimp-testmodels                     # files other tools wrote: fuzz seeds, reader tests
 )
 
