@@ -9,6 +9,7 @@
 
 #include "command.h"
 #include "freeform/core/error.h"
+#include "freeform/core/warning.h"
 
 namespace freeform::cli {
 
@@ -159,6 +160,9 @@ const DocumentObject& findLattice(const Document& doc, const std::optional<std::
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
 {
+    // The library's warnings (freeform/core/warning.h): one "warning:" line each on stderr, as the
+    // errors; stdout keeps only the JSON.
+    const ScopedWarningHandler warnings([&err](const std::string& message) { err << "warning: " << message << '\n'; });
     CLI::App app("freeform - Bézier curves, splines, surfaces and free-form deformation", "freeform");
     app.footer("Results are printed as JSON on stdout. Errors are one line starting \"error:\" on stderr;\n"
                "the exit status is 1 for bad input and 2 for bad usage. Documents: docs/format.md.\n"

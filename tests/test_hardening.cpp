@@ -17,8 +17,10 @@
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "freeform/core/error.h"
+#include "freeform/core/warning.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/document.h"
 #include "freeform/io/geometry_data.h"
@@ -35,6 +37,10 @@
 
 using freeform::Error;
 using freeform::MeshFile;
+using freeform::ScopedWarningHandler;
+using freeform::setWarningHandler;
+using freeform::warn;
+using freeform::WarningHandler;
 using freeform::test::putBytes;
 using freeform::test::slurp;
 using freeform::test::writeText;
@@ -413,7 +419,15 @@ TEST_CASE("A PLY header line written by Blender 2.47 is kept as a comment", "[ha
                             "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
                             "property list uchar uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     writeText(tmp("blender.ply"), ply);
-    const MeshFile file = MeshFile::read(tmp("blender.ply"));
+    // The reader says so through the caller's warning handler (freeform/core/warning.h), once; the
+    // library prints nothing itself.
+    std::vector<std::string> warnings;
+    const MeshFile file = [&warnings] {
+        const ScopedWarningHandler capture([&warnings](const std::string& m) { warnings.push_back(m); });
+        return MeshFile::read(tmp("blender.ply"));
+    }();
+    REQUIRE(warnings.size() == 1);
+    CHECK_THAT(warnings[0], Contains("blender.ply") && Contains("unknown header line 'Created' kept as a comment"));
     CHECK(file.positions().cols() == 3);
     file.write(tmp("blender_out.ply"));
     CHECK(slurp(tmp("blender_out.ply")) == ply);
@@ -762,4 +776,24 @@ TEST_CASE("Integer PLY coordinates stay integers when written back", "[hardening
     CHECK(MeshFile::read(tmp("int_out.ply")).positions()(0, 1) == 13.0);
     file.positions()(0, 1) = 3e9; // beyond int
     CHECK_THROWS_AS(file.write(tmp("int_out2.ply")), Error);
+}
+
+TEST_CASE("The warning handler: set, replaced, scoped, and nothing without one", "[hardening][warning]")
+{
+    std::vector<std::string> a, b;
+    const WarningHandler before = setWarningHandler({});
+    warn("dropped: no handler"); // nothing to call, nothing printed
+    CHECK(!setWarningHandler([&a](const std::string& m) { a.push_back(m); }));
+    warn("one");
+    {
+        const ScopedWarningHandler scoped([&b](const std::string& m) { b.push_back(m); });
+        warn("two");
+    }
+    warn("three");
+    CHECK(a == std::vector<std::string>{"one", "three"});
+    CHECK(b == std::vector<std::string>{"two"});
+    const WarningHandler mine = setWarningHandler(before);
+    REQUIRE(mine);
+    mine("four"); // the returned handler is the one that was set
+    CHECK(a.back() == "four");
 }

@@ -467,9 +467,22 @@ void App::validateSelection()
     }
 }
 
+std::string App::takeWarnings()
+{
+    std::vector<std::string> taken;
+    {
+        std::lock_guard lock(warningsMutex_);
+        taken.swap(warnings_);
+    }
+    std::string text;
+    for (const std::string& w : taken) text += (text.empty() ? "warning: " : "; warning: ") + w;
+    return text;
+}
+
 void App::frame(int width, int height, bool withUi, bool stillImage)
 {
     const auto t0 = std::chrono::steady_clock::now();
+    if (std::string warnings = takeWarnings(); !warnings.empty()) ui_.notice = std::move(warnings);
     if (withUi) buildUi();
     validateSelection();
     // The tools' follow-up (joint modes), then the geometry of what changed and the derived items
@@ -671,6 +684,8 @@ void App::importFile(const std::string& path)
             ui_.notice = std::string("imported ") + fs::path(path).filename().string() + " as " + (up == UpAxis::Y ? "Y" : "Z") +
                          " up (" + (format ? "the glTF convention" : "the Import dialog's choice") +
                          "); Properties > up axis changes it";
+        if (const std::string warnings = takeWarnings(); !warnings.empty())
+            ui_.notice += (ui_.notice.empty() ? "" : "; ") + warnings;
     } catch (const Error& e) {
         ui_.error = e.what();
     }

@@ -12,11 +12,13 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/options.h"
+#include "freeform/core/warning.h"
 #include "app/recent_files.h"
 #include "app/tooltip_audit.h"
 #include "interaction/interaction.h"
@@ -145,9 +147,21 @@ private:
     void addRecent(const std::string& path);
     double aspect() const;
 
+    /// The library's warnings since the last call, as the status line shows them ("warning: ...",
+    /// joined by "; "; empty: none). They may arrive from the background tessellation's thread.
+    std::string takeWarnings();
+
     Options options_;
     Scene scene_;
     UiState ui_;
+    std::mutex warningsMutex_;
+    std::vector<std::string> warnings_;
+    // The library's warnings (freeform/core/warning.h) go to the status line, not to a terminal:
+    // collected here, shown by the next frame (or at once by the action that caused them).
+    ScopedWarningHandler warningHandler_{[this](const std::string& message) {
+        std::lock_guard lock(warningsMutex_);
+        warnings_.push_back(message);
+    }};
     GLFWwindow* window_ = nullptr;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<SceneDrawer> drawer_;

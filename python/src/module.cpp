@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include <freeform/core/error.h>
+#include <freeform/core/warning.h>
 
 namespace ffpy {
 void bindLattice(pybind11::module_& m);
@@ -20,6 +21,16 @@ PYBIND11_MODULE(freeform, m)
     // freeform::Error -> freeform.Error (a ValueError, carrying the library's message as is).
     pybind11::register_exception<freeform::Error>(m, "Error", PyExc_ValueError);
     m.attr("__version__") = "0.1.0";
+    // The library's warnings (freeform/core/warning.h) become Python warnings (UserWarning), so
+    // `warnings` filters and pytest see them. The GIL is taken here: library code may warn while a
+    // call has released it. A filter that turns the warning into an error cannot raise through
+    // the library (it may be inside an OpenSubdiv callback), so that error is reported as
+    // unraisable instead.
+    freeform::setWarningHandler([](const std::string& message) {
+        if (!Py_IsInitialized()) return;
+        pybind11::gil_scoped_acquire gil;
+        if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) PyErr_WriteUnraisable(nullptr);
+    });
     ffpy::bindLattice(m);
     ffpy::bindGeometry(m);
     ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve

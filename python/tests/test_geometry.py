@@ -208,3 +208,16 @@ def test_subdivision_limit_evaluation_equals_the_cli():
         np.testing.assert_allclose(e["normal"], out["normal"], rtol=1e-15, atol=1e-15)
         np.testing.assert_allclose(e["derivatives"][0], out["derivatives"]["u"], rtol=1e-15, atol=1e-15)
         np.testing.assert_allclose(e["derivatives"][1], out["derivatives"]["v"], rtol=1e-15, atol=1e-15)
+
+
+def test_a_reader_warning_is_a_python_warning(tmp_path):
+    # A PLY header line Blender 2.47 wrote is kept as a comment (docs/mesh-io.md); the library's
+    # warning reaches Python as a UserWarning naming the file and the line, and nothing is printed.
+    path = tmp_path / "blender.ply"
+    path.write_text("ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org\nelement vertex 3\n"
+                    "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                    "property list uchar uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    with pytest.warns(UserWarning, match=r"blender\.ply.*unknown header line 'Created' kept as a comment") as record:
+        mesh = ff.MeshFile.read(str(path))
+    assert len(record) == 1
+    assert mesh.positions.shape == (3, 3)

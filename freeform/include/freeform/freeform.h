@@ -9,6 +9,7 @@
 #include "freeform/core/quadrature.h"
 #include "freeform/core/transform.h"
 #include "freeform/core/types.h"
+#include "freeform/core/warning.h"
 #include "freeform/curve/aframe.h"
 #include "freeform/curve/batch.h"
 #include "freeform/curve/bezier_curve.h"

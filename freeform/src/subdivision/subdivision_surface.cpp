@@ -5,6 +5,8 @@
 
 #include "freeform/subdivision/subdivision_surface.h"
 
+#include "freeform/core/warning.h"
+
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 #include <opensubdiv/bfr/tessellation.h>
@@ -16,7 +18,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <iostream>
 #include <mutex>
 #include <sstream>
 #include <unordered_map>
@@ -52,8 +53,9 @@ void takeOsdError()
 namespace {
 
 // OpenSubdiv's default callbacks print "Warning: ..." / "Error: ..." on stdout, where the CLI's
-// one JSON object goes (docs/cli.md). Its warnings go to stderr; its errors become Errors.
-void osdWarning(const char* message) { std::cerr << "warning: OpenSubdiv: " << message << '\n'; }
+// one JSON object goes (docs/cli.md). Its warnings go to the caller's warning handler
+// (freeform/core/warning.h); its errors become Errors.
+void osdWarning(const char* message) { warn(std::string("OpenSubdiv: ") + message); }
 void installOsdCallbacks()
 {
     static std::once_flag once;

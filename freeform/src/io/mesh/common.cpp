@@ -5,7 +5,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <iostream>
 #include <limits>
 #include <ostream>
 
@@ -53,11 +52,6 @@ bool parseInteger(std::string_view token, long long& value)
     if (token.empty() || token.front() == '+') return false;
     const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
     return result.ec == std::errc() && result.ptr == token.data() + token.size();
-}
-
-void warnMesh(const std::string& message)
-{
-    std::cerr << "warning: " << message << '\n';
 }
 
 void requireText(const std::string& path, const std::string& text, const char* format)

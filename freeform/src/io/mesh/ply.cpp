@@ -9,6 +9,7 @@
 #include <cctype>
 #include <ostream>
 
+#include "freeform/core/warning.h"
 #include "freeform/io/file.h"
 #include "source.h"
 
@@ -275,7 +276,7 @@ std::unique_ptr<Source> readPly(const std::string& path, std::string bytes)
             // Not a PLY keyword: old exporters wrote free text here (Blender 2.4x: "Created by
             // Blender3D 247 - www.blender.org, source file: ..."). Like the widely used readers, the
             // line is kept as a comment (written back unchanged) with one warning on stderr.
-            warnMesh(where + ": unknown header line '" + w[0] + "' kept as a comment");
+            warn(where + ": unknown header line '" + w[0] + "' kept as a comment");
         }
     }
     if (!ended) throw Error(path + ": the PLY header has no end_header line");

@@ -100,10 +100,6 @@ struct Token {
     std::size_t offset = 0;
 };
 
-/// One warning about a file the reader accepted all the same, on stderr (never stdout: the CLI's
-/// stdout holds only its JSON).
-void warnMesh(const std::string& message);
-
 /// Error when a text format's bytes are not text: a NUL byte (binary data, a JPEG, UTF-16) or a
 /// UTF-16/32 byte order mark. `format` names the format for the message ("OBJ").
 void requireText(const std::string& path, const std::string& text, const char* format);
