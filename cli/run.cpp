@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <memory>
+#include <mutex>
 
 #include "command.h"
 #include "freeform/core/error.h"
@@ -162,7 +163,11 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
 {
     // The library's warnings (freeform/core/warning.h): one "warning:" line each on stderr, as the
     // errors; stdout keeps only the JSON.
-    const ScopedWarningHandler warnings([&err](const std::string& message) { err << "warning: " << message << '\n'; });
+    std::mutex errMutex; // warnings may come from worker threads
+    const ScopedWarningHandler warnings([&err, &errMutex](const std::string& message) {
+        const std::lock_guard lock(errMutex);
+        err << "warning: " << message << '\n';
+    });
     CLI::App app("freeform - Bézier curves, splines, surfaces and free-form deformation", "freeform");
     app.footer("Results are printed as JSON on stdout. Errors are one line starting \"error:\" on stderr;\n"
                "the exit status is 1 for bad input and 2 for bad usage. Documents: docs/format.md.\n"

@@ -18,13 +18,6 @@ WarningHandler& currentHandler()
     static WarningHandler h;
     return h;
 }
-// Held while a message is delivered, so that the handler sees one call at a time; separate from
-// handlerMutex so that a handler may itself call setWarningHandler.
-std::mutex& deliveryMutex()
-{
-    static std::mutex m;
-    return m;
-}
 } // namespace
 
 WarningHandler setWarningHandler(WarningHandler handler)
@@ -40,9 +33,9 @@ void warn(const std::string& message)
         std::lock_guard lock(handlerMutex());
         handler = currentHandler();
     }
-    if (!handler) return;
-    std::lock_guard delivery(deliveryMutex());
-    handler(message);
+    // Called without a lock held: a handler may take its own (the GIL, in Python) and may set
+    // another handler.
+    if (handler) handler(message);
 }
 
 } // namespace freeform

@@ -12,8 +12,9 @@
 namespace freeform {
 
 /// Receives one warning message (no "warning:" prefix, no newline). It may be called from any
-/// thread that runs library code (a worker of parallelFor, an editor's background thread), one
-/// call at a time.
+/// thread that runs library code (a worker of parallelFor, an editor's background thread), and
+/// from several at once: a handler guards what it writes to. The library holds no lock while it
+/// calls the handler.
 using WarningHandler = std::function<void(const std::string& message)>;
 
 /// Sets the process's handler (an empty one drops the messages) and returns the previous one.
