@@ -8,7 +8,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Ninja, as scripts/test.sh builds build/ (a folder configured before keeps its generator), and
+# the same warnings-as-errors setting, so the test command later reuses what this one built.
+generator=()
+if [ ! -f build/CMakeCache.txt ] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DFREEFORM_WARNINGS_AS_ERRORS=ON >/dev/null
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)" --target freeform-editor
 
 scene=examples/data/demo-scene.json
