@@ -354,6 +354,16 @@ Eigen::Vector3d FfdBinding<Scalar>::parameters(std::size_t v) const
 }
 
 template <typename Scalar>
+void FfdBinding<Scalar>::copyPositions(Scalar* out) const
+{
+    constexpr int W = kLanes;
+    for (std::size_t v = 0; v < count_; ++v) {
+        const Scalar* b = data_.get() + (v / W) * 6 * W + v % W;
+        for (int x = 0; x < 3; ++x) out[3 * v + std::size_t(x)] = b[x * W];
+    }
+}
+
+template <typename Scalar>
 void FfdBinding<Scalar>::deform(const Lattice& lattice, const FfdOutputs<Scalar>& out, const DeformOptions& options,
                                 DeformReport* report) const
 {

@@ -75,6 +75,12 @@ public:
     const std::vector<int>& outsideVertices() const { return outside_; }
     /// The cached lattice coordinates of vertex v (before the outside policy).
     Eigen::Vector3d parameters(std::size_t v) const;
+    /// The bound positions as stored (3 x size(), column-major, in Scalar) into out: with the
+    /// bound lattice, what a copy of the binding is rebuilt from (the Python module's pickling).
+    void copyPositions(Scalar* out) const;
+    /// The lattice the points were bound to (its degrees, frame and outside policy are the ones
+    /// deform() accepts).
+    const Lattice& boundLattice() const { return lattice_; }
 
     /// Deforms every bound point through `lattice` (control points may differ from the bound one).
     /// Fills report (when given) from det J, which is then computed even without `determinants`.
