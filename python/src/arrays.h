@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -21,6 +22,17 @@ namespace ffpy {
 namespace py = pybind11;
 
 using Points3 = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+
+/// A number as Python's repr() writes it (the shortest text that reads back to the same double),
+/// so a message shows the problem: 1.000000001, not 1.000000 (as %f would).
+inline std::string num(double x)
+{
+    if (std::isnan(x)) return "nan";
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, x);
+    return std::string(buf, r.ptr);
+}
 
 inline std::string shapeText(const py::array& a)
 {
@@ -46,9 +58,44 @@ inline py::array numericArray(py::handle h, const std::string& what)
     return a;
 }
 
-inline bool isDouble(const py::array& a) { return a.dtype().is(py::dtype::of<double>()); }
-inline bool isFloat(const py::array& a) { return a.dtype().is(py::dtype::of<float>()); }
+// Equivalent dtypes, not the same dtype object: an unpickled array has its own float64 descriptor.
+inline bool isDouble(const py::array& a) { return py::isinstance<py::array_t<double>>(a); }
+inline bool isFloat(const py::array& a) { return py::isinstance<py::array_t<float>>(a); }
 inline bool isCContiguous(const py::array& a) { return (a.flags() & py::array::c_style) != 0; }
+
+/// Error unless `a` has exactly the shape `expected` (the argument named, the shape expected and
+/// the shape given, before any element is read).
+inline void requireShape(const py::array& a, const std::string& what, std::initializer_list<py::ssize_t> expected,
+                         const std::string& note = "")
+{
+    bool ok = a.ndim() == static_cast<py::ssize_t>(expected.size());
+    std::string e = "(";
+    py::ssize_t d = 0;
+    for (const py::ssize_t x : expected) {
+        if (ok && a.shape(d) != x) ok = false;
+        e += (d ? ", " : "") + std::to_string(x);
+        ++d;
+    }
+    e += expected.size() == 1 ? ",)" : ")";
+    if (!ok)
+        throw freeform::Error(what + ": expected an array of shape " + e + note + ", got shape " + shapeText(a));
+}
+
+/// A Python int for threads= (0: the hardware concurrency); Error for anything else, a negative
+/// count or one above kMaxThreads (no TypeError listing the other arguments).
+constexpr long long kMaxThreads = 4096;
+inline int threadCount(py::handle h)
+{
+    if (!py::isinstance<py::int_>(h) || py::isinstance<py::bool_>(h))
+        throw freeform::Error("threads: expected an int (0: one per hardware thread), got " +
+                              std::string(py::str(py::type::handle_of(h).attr("__name__"))));
+    int overflow = 0;
+    const long long t = PyLong_AsLongLongAndOverflow(h.ptr(), &overflow);
+    if (overflow != 0 || t < 0 || t > kMaxThreads)
+        throw freeform::Error("threads: " + std::string(py::str(h)) + " is outside [0, " + std::to_string(kMaxThreads) +
+                              "] (0: one per hardware thread)");
+    return static_cast<int>(t);
+}
 
 /// An (N, cols) array: float64/float32 C-contiguous as given (no copy) when allowFloat, float64
 /// C-contiguous as given; anything else converted once to float64 C-contiguous.
@@ -78,7 +125,7 @@ void requireFiniteRows(const Scalar* data, std::size_t n, std::size_t cols, cons
     for (std::size_t i = 0; i < n * cols; ++i)
         if (!std::isfinite(data[i]))
             throw freeform::Error(what + ": row " + std::to_string(i / cols) + " is not finite (" +
-                                  std::to_string(static_cast<double>(data[i])) + ")");
+                                  num(static_cast<double>(data[i])) + ")");
 }
 
 /// An (N, 3) float64 array copied into a 3 x N Eigen matrix (checked finite).

@@ -54,6 +54,19 @@ void bindGeometry(py::module_& m)
                  return PyCurve{Curve3(columns<3>(a, "points"))};
              }),
              py::arg("points"))
+        .def(py::pickle(
+            [](const PyCurve& s) {
+                return py::make_tuple(std::visit([](const auto& c) { return fromColumns(c.controlPoints()); }, s.c));
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 1) throw freeform::Error("BezierCurve.__setstate__: expected 1 field");
+                int dim = 0;
+                py::array a = pointsAnyDim(t[0], "points", dim);
+                if (dim == 2) return PyCurve{Curve2(columns<2>(a, "points"))};
+                return PyCurve{Curve3(columns<3>(a, "points"))};
+            }))
+        .def("__copy__", [](const PyCurve& s) { return s; })
+        .def("__deepcopy__", [](const PyCurve& s, py::handle) { return s; }, py::arg("memo"))
         .def_property_readonly("degree", [](const PyCurve& s) { return std::visit([](const auto& c) { return c.degree(); }, s.c); })
         .def_property_readonly("dimension", [](const PyCurve& s) { return s.c.index() == 0 ? 2 : 3; })
         .def_property_readonly(
@@ -73,7 +86,8 @@ void bindGeometry(py::module_& m)
                     s.c);
             },
             py::arg("t"), "Points at many parameters t in [0, 1] at once (SIMD batch de Casteljau): (T, D).")
-        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); })
+        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); }, py::arg("t"),
+             "The same as evaluate(t).")
         .def(
             "derivatives",
             [](const PyCurve& s, py::handle t, int order) {
@@ -121,6 +135,26 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                  return PySpline{Spline3(degree, closed, columns<3>(a, "points"), iv)};
              }),
              py::arg("degree"), py::arg("points"), py::arg("closed") = false, py::arg("intervals") = py::none())
+        .def(py::pickle(
+            [](const PySpline& s) {
+                return std::visit(
+                    [](const auto& c) {
+                        return py::make_tuple(c.degree(), fromColumns(c.controlPoints()), c.closed(), c.intervals());
+                    },
+                    s.s);
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 4) throw freeform::Error("Spline.__setstate__: expected 4 fields");
+                const int degree = t[0].cast<int>();
+                const bool closed = t[2].cast<bool>();
+                const auto iv = t[3].cast<std::vector<double>>();
+                int dim = 0;
+                py::array a = pointsAnyDim(t[1], "points", dim);
+                if (dim == 2) return PySpline{Spline2(degree, closed, columns<2>(a, "points"), iv)};
+                return PySpline{Spline3(degree, closed, columns<3>(a, "points"), iv)};
+            }))
+        .def("__copy__", [](const PySpline& s) { return s; })
+        .def("__deepcopy__", [](const PySpline& s, py::handle) { return s; }, py::arg("memo"))
         .def_static(
             "interpolate",
             [](py::handle points, const std::string& end, const std::string& parametrization, py::handle params,
@@ -190,7 +224,8 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                     s.s);
             },
             py::arg("T"), "Points at many global parameters: (T, D).")
-        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); })
+        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); }, py::arg("T"),
+             "The same as evaluate(T).")
         .def(
             "derivatives",
             [](const PySpline& s, py::handle t, int order) {
@@ -251,6 +286,18 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                  return PyPatch{freeform::BezierSurface<double, 3>(p, q, cols)};
              }),
              py::arg("points"))
+        .def(py::pickle(
+            [](const PyPatch& s) {
+                return py::make_tuple(s.p.degreeU(), s.p.degreeV(), fromColumns(s.p.controlPoints()));
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 3) throw freeform::Error("Patch.__setstate__: expected 3 fields");
+                const int p = t[0].cast<int>(), q = t[1].cast<int>();
+                const py::array a = rows(t[2], "points", 3, false);
+                return PyPatch{freeform::BezierSurface<double, 3>(p, q, columns<3>(a, "points"))};
+            }))
+        .def("__copy__", [](const PyPatch& s) { return s; })
+        .def("__deepcopy__", [](const PyPatch& s, py::handle) { return s; }, py::arg("memo"))
         .def_property_readonly("degree", [](const PyPatch& s) { return py::make_tuple(s.p.degreeU(), s.p.degreeV()); })
         .def_property_readonly("control_points", [](const PyPatch& s) {
             return fromColumns(s.p.controlPoints()).attr("reshape")(s.p.degreeU() + 1, s.p.degreeV() + 1, 3);
@@ -310,8 +357,10 @@ stores them, docs/splines.md) and intervals; global parameter T in [0, sum of in
                 return fromColumns(out);
             },
             py::arg("uv"))
-        .def("split_u", [](const PyPatch& s, double t) { auto [a, b] = s.p.splitU(t); return py::make_tuple(PyPatch{a}, PyPatch{b}); })
-        .def("split_v", [](const PyPatch& s, double t) { auto [a, b] = s.p.splitV(t); return py::make_tuple(PyPatch{a}, PyPatch{b}); })
+        .def("split_u", [](const PyPatch& s, double t) { auto [a, b] = s.p.splitU(t); return py::make_tuple(PyPatch{a}, PyPatch{b}); },
+             py::arg("t"), "The pieces over [0, t] and [t, 1] in u, each on [0, 1]^2.")
+        .def("split_v", [](const PyPatch& s, double t) { auto [a, b] = s.p.splitV(t); return py::make_tuple(PyPatch{a}, PyPatch{b}); },
+             py::arg("t"), "The pieces over [0, t] and [t, 1] in v, each on [0, 1]^2.")
         .def("elevated", [](const PyPatch& s, int du, int dv) { return PyPatch{s.p.elevatedU(du).elevatedV(dv)}; },
              py::arg("du") = 1, py::arg("dv") = 1)
         .def(
@@ -345,6 +394,24 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
             },
             py::arg("path"))
         .def(py::init([]() { return freeform::TypedDocument(); }), "An empty document (add objects, then save).")
+        .def(py::pickle(
+            // Its defining fields: the document as its own JSON text (every number in shortest
+            // round-trip form, so the objects come back bit for bit; editor settings kept), the
+            // source name and the folder that resolves relative mesh paths.
+            [](const freeform::TypedDocument& d) {
+                return py::make_tuple(freeform::formatDocument(d.toDocument()), d.source, d.directory);
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 3) throw freeform::Error("Document.__setstate__: expected 3 fields");
+                const auto source = t[1].cast<std::string>();
+                freeform::Document doc = freeform::parseDocument(t[0].cast<std::string>(), source);
+                doc.source = source;
+                freeform::TypedDocument typed(doc, t[2].cast<std::string>());
+                typed.source = source;
+                return typed;
+            }))
+        .def("__copy__", [](const freeform::TypedDocument& d) { return d; })
+        .def("__deepcopy__", [](const freeform::TypedDocument& d, py::handle) { return d; }, py::arg("memo"))
         .def(
             "save",
             [](const freeform::TypedDocument& d, const std::string& path) {
@@ -361,7 +428,8 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
         .def("type", [](const freeform::TypedDocument& d, const std::string& name) { return d.object(name).type(); },
              py::arg("name"), "The object's type string ('bezier_curve', 'lattice', ...).")
         .def("__len__", [](const freeform::TypedDocument& d) { return d.objects().size(); })
-        .def("__contains__", [](const freeform::TypedDocument& d, const std::string& n) { return d.find(n) != nullptr; })
+        .def("__contains__", [](const freeform::TypedDocument& d, const std::string& n) { return d.find(n) != nullptr; },
+             py::arg("name"), "Whether the document has an object called name.")
         .def(
             "evaluate",
             [](const freeform::TypedDocument& d, const std::string& name, std::vector<double> at, int order) {
@@ -445,6 +513,9 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
                     return to;
                 }
                 if (end) throw freeform::Error("end: goes with to='deboor_spline' only");
+                // An object of the requested kind already: nothing to convert, the object is kept
+                // as it is (bit for bit), as converting a bezier_spline to bezier_spline does.
+                if (o.type() == to) return to;
                 const bool toNurbs = to == "nurbs_curve" || to == "nurbs_surface";
                 freeform::ObjectData data = toNurbs ? freeform::toNurbsData(d, o) : freeform::fromNurbsData(d, o);
                 const std::string got = freeform::objectType(data);
@@ -456,7 +527,8 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
             py::arg("name"), py::arg("to"), py::arg("end") = py::none(),
             "As `freeform convert --object NAME --to TO`: bezier_spline <-> deboor_spline (end for de Boor), "
             "curves/splines/patches -> nurbs_curve / nurbs_surface, a nurbs object -> its Bézier form "
-            "(bezier_spline, rational_bezier_curve, bezier_surface, rational_bezier_surface). Returns the new type.")
+            "(bezier_spline, rational_bezier_curve, bezier_surface, rational_bezier_surface). Returns the new type. "
+            "An object already of type `to` is left as it is (no error).")
         .def(
             "patch",
             [](const freeform::TypedDocument& d, const std::string& name) {
@@ -539,6 +611,13 @@ else of the file as read.)doc")
                 return PyMesh{freeform::MeshFile::read(path)};
             },
             py::arg("path"))
+        .def("__copy__", [](const PyMesh& m) { return m; })
+        .def("__deepcopy__", [](const PyMesh& m, py::handle) { return m; }, py::arg("memo"))
+        .def("__reduce__", [](const PyMesh& m) -> py::object {
+            throw py::type_error("cannot pickle 'freeform.MeshFile' (" + m.file.path() +
+                                 "): it holds the file as read, which only its path reproduces; send the path and read "
+                                 "it where it is used (docs/python.md, \"Scaling out\")");
+        })
         .def_property(
             "positions",
             [](py::object self) {
@@ -583,7 +662,8 @@ else of the file as read.)doc")
              "(V (n, 3), faces ((F, k) int32 when every face has k corners, else a list), normals or None).")
         .def(
             "deform",
-            [](PyMesh& m, PyLattice& lat, const std::string& normals, int threads) {
+            [](PyMesh& m, PyLattice& lat, const std::string& normals, py::handle threadsArg) {
+                const int threads = threadCount(threadsArg);
                 const freeform::Lattice l = lat.snapshot();
                 const auto mode = freeform::parseNormalMode(normals, "normals");
                 freeform::DeformOptions opt;

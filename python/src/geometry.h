@@ -83,8 +83,8 @@ inline void requireInDomain(const py::array_t<double, py::array::c_style>& ts, d
     for (py::ssize_t i = 0; i < ts.size(); ++i) {
         const double t = ts.data()[i];
         if (!(t >= 0 && t <= end))
-            throw freeform::Error(what + ": parameter " + std::to_string(t) + " (index " + std::to_string(i) +
-                                  ") outside [0, " + std::to_string(end) + "]");
+            throw freeform::Error(what + ": parameter " + num(t) + " (index " + std::to_string(i) + ") outside [0, " +
+                                  num(end) + "]");
     }
 }
 
@@ -167,8 +167,8 @@ inline void requireInRange(const py::array_t<double, py::array::c_style>& ts, do
     for (py::ssize_t i = 0; i < ts.size(); ++i) {
         const double t = ts.data()[i];
         if (!(t >= start && t <= end))
-            throw freeform::Error(what + ": parameter " + std::to_string(t) + " (index " + std::to_string(i) +
-                                  ") outside [" + std::to_string(start) + ", " + std::to_string(end) + "]");
+            throw freeform::Error(what + ": parameter " + num(t) + " (index " + std::to_string(i) + ") outside [" +
+                                  num(start) + ", " + num(end) + "]");
     }
 }
 

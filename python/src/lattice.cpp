@@ -13,6 +13,7 @@
 #include <freeform/volume/deform.h>
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 #include <optional>
 #include <variant>
@@ -153,18 +154,167 @@ constexpr std::size_t kGrain = 2048; // points per chunk of the matrix-free prod
 
 // ---------------------------------------------------------------- deform
 
+/// Points (N, 3) as the deformation calls read them: float64 or float32 with any strides (read
+/// chunk by chunk, no copy of the whole array), anything else converted once to float64.
+struct PointsIn {
+    py::array array; // keeps the data alive
+    const char* data = nullptr;
+    py::ssize_t rowStride = 0, colStride = 0;
+    std::size_t n = 0;
+    bool isFloat = false;
+    bool contiguous = false;
+};
+
+PointsIn pointsIn(py::handle h, const std::string& what)
+{
+    py::array a = numericArray(h, what);
+    if (a.ndim() != 2 || a.shape(1) != 3)
+        throw freeform::Error(what + ": expected an array of shape (N, 3), got shape " + shapeText(a));
+    if (!isDouble(a) && !isFloat(a)) a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    PointsIn p;
+    p.array = a;
+    p.data = static_cast<const char*>(a.data());
+    p.rowStride = a.strides(0);
+    p.colStride = a.strides(1);
+    p.n = static_cast<std::size_t>(a.shape(0));
+    p.isFloat = isFloat(a);
+    p.contiguous = isCContiguous(a);
+    return p;
+}
+
+/// A non-finite output of the deformation: under outside='extrapolate' the polynomial far outside
+/// the box overflows the output type (float64 near 1e308, float32 near 3e38).
 template <typename Scalar>
-py::array deformTyped(const Lattice& lat, const py::array& in, double strength, int threads, const py::handle normals,
+[[noreturn]] void overflowError(const char* what, std::size_t row, const Lattice& lat)
+{
+    throw freeform::Error(std::string("deform: ") + what + " of point row " + std::to_string(row) +
+                          " is not finite: the deformation overflows " +
+                          (sizeof(Scalar) == 4 ? "float32" : "float64") +
+                          (lat.outside() == freeform::OutsidePolicy::Extrapolate
+                               ? " (outside='extrapolate' continues the lattice polynomial, which grows as the cube of "
+                                 "the distance for a cubic lattice: use 'clamp', or points nearer the box)"
+                               : ""));
+}
+
+template <typename Scalar>
+void requireFiniteOutput(const Scalar* v, std::size_t rows, std::size_t cols, std::size_t first, const char* what,
+                         const Lattice& lat)
+{
+    for (std::size_t i = 0; i < rows * cols; ++i)
+        if (!std::isfinite(v[i])) overflowError<Scalar>(what, first + i / cols, lat);
+}
+
+/// What deformChunks fills (null: not wanted); arrays of n rows, C order.
+template <typename Scalar>
+struct ChunkOutputs {
+    Scalar* positions = nullptr;     // (n, 3); null: a per-thread scratch (report only)
+    const Scalar* normalsIn = nullptr;
+    Scalar* normalsOut = nullptr;
+    Scalar* determinants = nullptr;  // (n,)
+    bool wantDet = false;            // det J into a scratch when determinants is null (report)
+};
+
+/// Per-chunk results for report(): outside count, det J range and folds.
+struct ChunkReport {
+    std::size_t outside = 0;
+    double lo = 1, hi = 1;
+    bool any = false;
+    std::vector<int> folds;
+};
+
+/// The one-call deformation without a binding of all points: the points are bound and deformed
+/// in chunks of kChunk (the library's FfdBinding and kernel on each chunk, one chunk per thread at
+/// a time, so its 48 bytes per point of lattice coordinates stay in cache and only kChunk of them
+/// exist per thread), written straight into the output arrays. Results equal one FfdBinding of
+/// all points bit for bit (the kernel is point by point). Every output is checked finite.
+template <typename Scalar>
+void deformChunks(const Lattice& lat, const PointsIn& in, double strength, int threads, const ChunkOutputs<Scalar>& o,
+                  std::vector<ChunkReport>* reports)
+{
+    // 256 blocks: the binding's own parallel grain, so binding a chunk never starts a thread.
+    constexpr std::size_t kChunk = 256 * static_cast<std::size_t>(freeform::FfdBinding<Scalar>::kLanes);
+    const std::size_t n = in.n;
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    if (reports) reports->assign(chunks, ChunkReport{});
+    freeform::parallelFor(0, chunks, 1, threads, [&](int, std::size_t firstChunk, std::size_t lastChunk) {
+        std::vector<Scalar> gathered, scratchPos, scratchDet;
+        freeform::DeformOptions options;
+        options.strength = strength;
+        options.threads = 1;
+        for (std::size_t c = firstChunk; c < lastChunk; ++c) {
+            const std::size_t first = c * kChunk, len = std::min(kChunk, n - first);
+            const Scalar* p;
+            if (in.contiguous) {
+                p = reinterpret_cast<const Scalar*>(in.data) + 3 * first;
+            } else {
+                gathered.resize(3 * len);
+                for (std::size_t i = 0; i < len; ++i)
+                    for (int x = 0; x < 3; ++x)
+                        gathered[3 * i + std::size_t(x)] = *reinterpret_cast<const Scalar*>(
+                            in.data + static_cast<py::ssize_t>(first + i) * in.rowStride + x * in.colStride);
+                p = gathered.data();
+            }
+            for (std::size_t i = 0; i < 3 * len; ++i)
+                if (!std::isfinite(p[i]))
+                    throw freeform::Error("points: row " + std::to_string(first + i / 3) + " is not finite (" +
+                                          num(static_cast<double>(p[i])) + ")");
+            if (o.normalsIn) {
+                const Scalar* nin = o.normalsIn + 3 * first;
+                for (std::size_t i = 0; i < 3 * len; ++i)
+                    if (!std::isfinite(nin[i]))
+                        throw freeform::Error("normals: row " + std::to_string(first + i / 3) + " is not finite (" +
+                                              num(static_cast<double>(nin[i])) + ")");
+            }
+            const freeform::FfdBinding<Scalar> binding(lat, p, len);
+            freeform::FfdOutputs<Scalar> out;
+            if (o.positions) {
+                out.positions = o.positions + 3 * first;
+            } else {
+                scratchPos.resize(3 * len);
+                out.positions = scratchPos.data();
+            }
+            if (o.normalsOut) {
+                out.normalsIn = o.normalsIn + 3 * first;
+                out.normalsOut = o.normalsOut + 3 * first;
+            }
+            if (o.determinants) {
+                out.determinants = o.determinants + first;
+            } else if (o.wantDet) {
+                scratchDet.resize(len);
+                out.determinants = scratchDet.data();
+            }
+            binding.deform(lat, out, options);
+            requireFiniteOutput(out.positions, len, 3, first, "the position", lat);
+            if (out.normalsOut) requireFiniteOutput(out.normalsOut, len, 3, first, "the normal", lat);
+            if (out.determinants) requireFiniteOutput(out.determinants, len, 1, first, "det J", lat);
+            if (reports) {
+                ChunkReport& r = (*reports)[c];
+                r.outside = binding.outsideVertices().size();
+                for (std::size_t i = 0; i < len; ++i) {
+                    const double det = static_cast<double>(out.determinants[i]);
+                    if (!r.any) r.lo = r.hi = det, r.any = true;
+                    r.lo = std::min(r.lo, det);
+                    r.hi = std::max(r.hi, det);
+                    if (!(det > 0)) r.folds.push_back(static_cast<int>(first + i));
+                }
+            }
+        }
+    });
+}
+
+template <typename Scalar>
+py::array deformTyped(const Lattice& lat, const PointsIn& in, double strength, int threads, const py::handle normals,
                       bool wantDet, py::array* normalsOut, py::array* detOut)
 {
-    const auto n = static_cast<std::size_t>(in.shape(0));
-    const auto* p = static_cast<const Scalar*>(in.data());
+    const std::size_t n = in.n;
     py::array_t<Scalar> out({static_cast<py::ssize_t>(n), py::ssize_t{3}});
-    freeform::FfdOutputs<Scalar> o;
+    ChunkOutputs<Scalar> o;
     o.positions = out.mutable_data();
     py::array_t<Scalar, py::array::c_style> nin;
     if (!normals.is_none()) {
-        py::array a = rows(normals, "normals", 3);
+        py::array a = numericArray(normals, "normals");
+        if (a.ndim() != 2 || a.shape(1) != 3)
+            throw freeform::Error("normals: expected an array of shape (N, 3), got shape " + shapeText(a));
         if (static_cast<std::size_t>(a.shape(0)) != n)
             throw freeform::Error("normals: " + std::to_string(a.shape(0)) + " rows for " + std::to_string(n) +
                                   " points");
@@ -179,21 +329,15 @@ py::array deformTyped(const Lattice& lat, const py::array& in, double strength, 
     }
     {
         py::gil_scoped_release release;
-        requireFiniteRows(p, n, 3, "points");
-        if (o.normalsIn) requireFiniteRows(o.normalsIn, n, 3, "normals");
-        freeform::FfdBinding<Scalar> binding(lat, p, n);
-        freeform::DeformOptions options;
-        options.strength = strength;
-        options.threads = threads;
-        binding.deform(lat, o, options);
+        deformChunks<Scalar>(lat, in, strength, threads, o, nullptr);
     }
     return out;
 }
 
-py::array deformAny(const Lattice& lat, const py::array& a, double strength, int threads, py::handle normals,
+py::array deformAny(const Lattice& lat, const PointsIn& a, double strength, int threads, py::handle normals,
                     bool wantDet, py::array* normalsOut, py::array* detOut)
 {
-    if (isFloat(a)) return deformTyped<float>(lat, a, strength, threads, normals, wantDet, normalsOut, detOut);
+    if (a.isFloat) return deformTyped<float>(lat, a, strength, threads, normals, wantDet, normalsOut, detOut);
     return deformTyped<double>(lat, a, strength, threads, normals, wantDet, normalsOut, detOut);
 }
 
@@ -276,6 +420,55 @@ struct PyBinding {
     std::size_t count = 0;
 };
 
+/// The state of a Lattice for pickling: its defining fields (the control points as edited).
+py::tuple latticeState(PyLattice& l)
+{
+    const Lattice lat = l.snapshot();
+    const auto& d = lat.degrees();
+    py::array_t<double> axes({py::ssize_t{3}, py::ssize_t{3}});
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) axes.mutable_at(r, c) = lat.axes()(r, c);
+    return py::make_tuple(py::make_tuple(d[0], d[1], d[2]), fromVector(lat.origin()), axes,
+                          pointArray(lat.controlPoints()), freeform::toString(lat.outside()), l.strength, l.name);
+}
+
+
+
+/// The frame (origin, axes) of a Lattice call, checked before any element is read.
+Eigen::Vector3d originArg(py::handle h)
+{
+    py::array a = numericArray(h, "origin");
+    requireShape(a, "origin", {3});
+    const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    requireFiniteRows(d.data(), 1, 3, "origin");
+    return Eigen::Map<const Eigen::Vector3d>(d.data());
+}
+
+Eigen::Matrix3d axesArg(py::handle h)
+{
+    py::array a = numericArray(h, "axes");
+    requireShape(a, "axes", {3, 3}, " (columns S, T, U)");
+    const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    requireFiniteRows(d.data(), 3, 3, "axes");
+    Eigen::Matrix3d m;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m(r, c) = d.data()[3 * r + c];
+    return m;
+}
+
+PyLattice latticeFromState(const py::tuple& t)
+{
+    if (t.size() != 7) throw freeform::Error("Lattice.__setstate__: expected 7 fields, got " + std::to_string(t.size()));
+    const auto d = degreeOf(t[0]);
+    const Eigen::Vector3d o = originArg(t[1]);
+    const Eigen::Matrix3d ax = axesArg(t[2]);
+    const auto policy = freeform::parseOutsidePolicy(t[4].cast<std::string>(), "outside");
+    PyLattice l(Lattice(d, o, ax, toPoints(t[3], "control_points"), policy), t[6].cast<std::string>());
+    l.strength = t[5].cast<double>();
+    if (!std::isfinite(l.strength)) throw freeform::Error("Lattice.strength: not finite");
+    return l;
+}
+
 template <typename Scalar>
 py::array bindingDeform(const freeform::FfdBinding<Scalar>& b, const Lattice& lat, double strength, int threads,
                         py::handle outArg)
@@ -286,7 +479,7 @@ py::array bindingDeform(const freeform::FfdBinding<Scalar>& b, const Lattice& la
         out = py::array_t<Scalar>({n, py::ssize_t{3}});
     } else {
         py::array a = py::array::ensure(outArg);
-        if (!a || !a.dtype().is(py::dtype::of<Scalar>()) || !isCContiguous(a) || a.ndim() != 2 || a.shape(0) != n ||
+        if (!a || !py::isinstance<py::array_t<Scalar>>(a) || !isCContiguous(a) || a.ndim() != 2 || a.shape(0) != n ||
             a.shape(1) != 3 || !a.writeable())
             throw freeform::Error("out: expected a writable C-contiguous (" + std::to_string(n) + ", 3) array of " +
                                   std::string(py::str(py::dtype::of<Scalar>())));
@@ -300,8 +493,26 @@ py::array bindingDeform(const freeform::FfdBinding<Scalar>& b, const Lattice& la
     {
         py::gil_scoped_release release;
         b.deform(lat, o, options);
+        // Only extrapolation (or an enormous displacement) can overflow: check the output then,
+        // not on every call of the fast path.
+        const double limit = static_cast<double>(std::numeric_limits<Scalar>::max()) / 8;
+        if (lat.outside() == freeform::OutsidePolicy::Extrapolate ||
+            std::abs(strength) * lat.displacements().cwiseAbs().maxCoeff() > limit)
+            freeform::parallelFor(0, b.size(), kGrain, threads, [&](int, std::size_t first, std::size_t last) {
+                requireFiniteOutput(o.positions + 3 * first, last - first, 3, first, "the position", lat);
+            });
     }
     return out;
+}
+
+template <typename Scalar>
+py::tuple bindingState(const freeform::FfdBinding<Scalar>& b)
+{
+    const Lattice& lat = b.boundLattice();
+    py::array_t<Scalar> positions({static_cast<py::ssize_t>(b.size()), py::ssize_t{3}});
+    b.copyPositions(positions.mutable_data());
+    PyLattice frame(lat);
+    return py::make_tuple(latticeState(frame), positions);
 }
 
 } // namespace
@@ -313,12 +524,28 @@ Points bound to a lattice (Lattice.bind): their lattice coordinates are computed
 deform(lattice) re-evaluates only the deformation, for any lattice with the same degrees, frame and
 outside policy (control points and strength may change).)doc")
         .def_property_readonly("size", [](const PyBinding& b) { return b.count; })
+        .def(py::pickle(
+            [](const PyBinding& b) { return std::visit([](const auto& x) { return bindingState(x); }, b.binding); },
+            [](const py::tuple& t) {
+                if (t.size() != 2) throw freeform::Error("Binding.__setstate__: expected 2 fields");
+                PyLattice frame = latticeFromState(t[0].cast<py::tuple>());
+                const py::array a = t[1].cast<py::array>();
+                if (a.ndim() != 2 || a.shape(1) != 3 || !isCContiguous(a) || (!isDouble(a) && !isFloat(a)))
+                    throw freeform::Error("Binding.__setstate__: expected C-contiguous (N, 3) float64 or float32 positions");
+                const auto n = static_cast<std::size_t>(a.shape(0));
+                if (isFloat(a))
+                    return PyBinding{freeform::FfdBinding<float>(frame.lattice, static_cast<const float*>(a.data()), n), true, n};
+                return PyBinding{freeform::FfdBinding<double>(frame.lattice, static_cast<const double*>(a.data()), n), false, n};
+            }))
+        .def("__copy__", [](const PyBinding& b) { return b; })
+        .def("__deepcopy__", [](const PyBinding& b, py::handle) { return b; }, py::arg("memo"))
         .def_property_readonly("dtype", [](const PyBinding& b) {
             return b.isFloat ? py::dtype::of<float>() : py::dtype::of<double>();
         })
         .def(
             "deform",
-            [](const PyBinding& b, PyLattice& lat, int threads, py::handle out) {
+            [](const PyBinding& b, PyLattice& lat, py::handle threadsArg, py::handle out) {
+                const int threads = threadCount(threadsArg);
                 const Lattice l = lat.snapshot();
                 return std::visit([&](const auto& x) { return bindingDeform(x, l, lat.strength, threads, out); },
                                   b.binding);
@@ -341,8 +568,8 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
         .def(py::init([](py::handle degree, py::handle origin, py::handle axes, py::handle points,
                          const std::string& outside) {
                  const auto d = degreeOf(degree);
-                 Eigen::Vector3d o = toPoints(numericArray(origin, "origin").attr("reshape")(1, 3), "origin").col(0);
-                 const Points3 ax = toPoints(numericArray(axes, "axes").attr("T"), "axes");
+                 const Eigen::Vector3d o = originArg(origin);
+                 const Eigen::Matrix3d ax = axesArg(axes);
                  const auto policy = freeform::parseOutsidePolicy(outside, "outside");
                  if (points.is_none()) return PyLattice(Lattice::identity(d, o, ax, policy));
                  return PyLattice(Lattice(d, o, ax, toPoints(points, "points"), policy));
@@ -419,15 +646,31 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             "w in p' = p + w sum B (P - R) (default 1).")
         .def_readwrite("name", &PyLattice::name, "The object name save() writes.")
         .def_property_readonly("point_count", [](const PyLattice& s) { return s.lattice.pointCount(); })
-        .def("index", [](const PyLattice& s, int i, int j, int k) { return s.lattice.index(i, j, k); },
-             "Row of control point (i, j, k).")
+        .def(
+            "index",
+            [](const PyLattice& s, int i, int j, int k) {
+                const auto& d = s.lattice.degrees();
+                const int ijk[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a)
+                    if (ijk[a] < 0 || ijk[a] > d[a])
+                        throw freeform::Error("Lattice.index: " + std::string(1, "ijk"[a]) + " = " + std::to_string(ijk[a]) +
+                                              " is outside [0, " + std::to_string(d[a]) + "] (degree (" +
+                                              std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " +
+                                              std::to_string(d[2]) + "))");
+                return s.lattice.index(i, j, k);
+            },
+            py::arg("i"), py::arg("j"), py::arg("k"),
+            "Row of control point (i, j, k) in control_points: i*(m+1)*(n+1) + j*(n+1) + k; freeform.Error when i, j "
+            "or k is outside [0, degree].")
         .def("copy", [](PyLattice& s) {
             PyLattice c(s.snapshot(), s.name);
             c.strength = s.strength;
             return c;
-        })
+        }, "An independent copy (control points, frame, outside policy, strength, name).")
         .def("__copy__", [](PyLattice& s) { PyLattice c(s.snapshot(), s.name); c.strength = s.strength; return c; })
-        .def("__deepcopy__", [](PyLattice& s, py::dict) { PyLattice c(s.snapshot(), s.name); c.strength = s.strength; return c; })
+        .def("__deepcopy__", [](PyLattice& s, py::handle) { PyLattice c(s.snapshot(), s.name); c.strength = s.strength; return c; },
+             py::arg("memo"))
+        .def(py::pickle([](PyLattice& s) { return latticeState(s); }, [](const py::tuple& t) { return latticeFromState(t); }))
         .def("__repr__", &repr)
         .def("is_rest", [](PyLattice& s) { return s.snapshot().isRest(); })
         .def(
@@ -445,14 +688,16 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             py::arg("points"), "Lattice coordinates (s, t, u) of world points (N, 3) (no outside policy).")
         .def(
             "deform",
-            [](PyLattice& self, py::handle points, int threads) {
+            [](PyLattice& self, py::handle points, py::handle threadsArg) {
+                const int threads = threadCount(threadsArg);
                 const Lattice lat = self.snapshot();
-                const py::array a = rows(points, "points", 3);
+                const PointsIn a = pointsIn(points, "points");
                 return deformAny(lat, a, self.strength, threads, py::none(), false, nullptr, nullptr);
             },
             py::arg("points"), py::arg("threads") = 0,
-            "The deformed points (N, 3), same dtype as points (float32 stays float32; other dtypes and layouts "
-            "are converted once to float64). threads=0: the library's default (hardware concurrency).")
+            "The deformed points (N, 3), same dtype as points (float32 stays float32, any strides read in place; "
+            "other dtypes are converted once to float64). threads=0: the library's default (hardware "
+            "concurrency). freeform.Error when a result overflows (outside='extrapolate' far outside the box).")
         .def(
             "bind",
             [](PyLattice& self, py::handle points) {
@@ -475,9 +720,10 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             "skips the lattice coordinates (the fast path for loops that move control points).")
         .def(
             "deform_normals",
-            [](PyLattice& self, py::handle points, py::handle normals, int threads) {
+            [](PyLattice& self, py::handle points, py::handle normals, py::handle threadsArg) {
+                const int threads = threadCount(threadsArg);
                 const Lattice lat = self.snapshot();
-                const py::array a = rows(points, "points", 3);
+                const PointsIn a = pointsIn(points, "points");
                 py::array nOut;
                 py::array out = deformAny(lat, a, self.strength, threads, normals, false, &nOut, nullptr);
                 return py::make_tuple(out, nOut);
@@ -486,9 +732,10 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             "(deformed points, normals mapped by cof(J) and renormalised), both (N, 3) in the points' dtype.")
         .def(
             "det_j",
-            [](PyLattice& self, py::handle points, int threads) {
+            [](PyLattice& self, py::handle points, py::handle threadsArg) {
+                const int threads = threadCount(threadsArg);
                 const Lattice lat = self.snapshot();
-                const py::array a = rows(points, "points", 3);
+                const PointsIn a = pointsIn(points, "points");
                 py::array det;
                 deformAny(lat, a, self.strength, threads, py::none(), true, nullptr, &det);
                 return det;
@@ -499,26 +746,42 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             "report",
             [](PyLattice& self, py::handle points) {
                 const Lattice lat = self.snapshot();
-                Points3 p = toPoints(points, "points");
-                freeform::DeformOptions options;
-                options.strength = self.strength;
-                freeform::DeformReport r;
+                py::array a = rows(points, "points", 3, false); // float64, as `freeform ffd` computes
+                const PointsIn in = pointsIn(a, "points");
+                std::vector<ChunkReport> parts;
                 {
                     py::gil_scoped_release release;
-                    r = freeform::deformPoints(lat, p, options);
+                    ChunkOutputs<double> o;
+                    o.wantDet = true;
+                    deformChunks<double>(lat, in, self.strength, 0, o, &parts);
+                }
+                // As FfdBinding::deform's report (volume/deform.h): 1 and 1 for no points.
+                std::size_t outside = 0;
+                double lo = 1, hi = 1;
+                bool any = false;
+                std::vector<int> folds;
+                for (const auto& p : parts) {
+                    outside += p.outside;
+                    if (p.any) {
+                        lo = any ? std::min(lo, p.lo) : p.lo;
+                        hi = any ? std::max(hi, p.hi) : p.hi;
+                        any = true;
+                    }
+                    folds.insert(folds.end(), p.folds.begin(), p.folds.end());
                 }
                 py::dict d;
-                d["vertices"] = r.vertices;
-                d["outside"] = r.outside;
-                d["min_det_j"] = r.minDetJ;
-                d["max_det_j"] = r.maxDetJ;
-                d["fold_count"] = r.foldCount;
-                d["folds"] = r.folds;
+                d["vertices"] = in.n;
+                d["outside"] = outside;
+                d["min_det_j"] = lo;
+                d["max_det_j"] = hi;
+                d["fold_count"] = folds.size();
+                d["folds"] = folds;
                 return d;
             },
             py::arg("points"),
             "What deforming points does (the fields of `freeform ffd`'s report): vertices, outside, min_det_j, "
-            "max_det_j, fold_count, folds.")
+            "max_det_j, fold_count, folds (det J <= 0). freeform.Error when det J or a position overflows "
+            "(outside='extrapolate' far outside the box), instead of counting NaN as a fold.")
         .def(
             "certify",
             [](PyLattice& self, int maxDepth) {
@@ -596,7 +859,8 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             "(the same for x, y and z; strength and outside policy included).")
         .def(
             "weights_matvec",
-            [](PyLattice& self, py::handle points, py::handle dP, int threads) {
+            [](PyLattice& self, py::handle points, py::handle dP, py::handle threadsArg) {
+                const int threads = threadCount(threadsArg);
                 const Lattice lat = self.snapshot();
                 const py::array a = rows(points, "points", 3, false);
                 const auto d = controlBlock(dP, lat, "dP");
@@ -642,7 +906,8 @@ i*(m+1)*(n+1) + j*(n+1) + k; edits are picked up (and checked) by the next call.
             "deform(points).")
         .def(
             "weights_rmatvec",
-            [](PyLattice& self, py::handle points, py::handle g, int threads) {
+            [](PyLattice& self, py::handle points, py::handle g, py::handle threadsArg) {
+                const int threads = threadCount(threadsArg);
                 const Lattice lat = self.snapshot();
                 const py::array a = rows(points, "points", 3, false);
                 const py::array gb = rows(g, "g", 3, false);

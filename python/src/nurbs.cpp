@@ -100,9 +100,9 @@ py::array uvArg(py::handle h, const std::string& what, double u0, double u1, dou
     const double* p = static_cast<const double*>(a.data());
     for (py::ssize_t i = 0; i < a.shape(0); ++i)
         if (!(p[2 * i] >= u0 && p[2 * i] <= u1 && p[2 * i + 1] >= v0 && p[2 * i + 1] <= v1))
-            throw freeform::Error(what + ": uv row " + std::to_string(i) + " (" + std::to_string(p[2 * i]) + ", " +
-                                  std::to_string(p[2 * i + 1]) + ") outside [" + std::to_string(u0) + ", " +
-                                  std::to_string(u1) + "] x [" + std::to_string(v0) + ", " + std::to_string(v1) + "]");
+            throw freeform::Error(what + ": uv row " + std::to_string(i) + " (" + num(p[2 * i]) + ", " +
+                                  num(p[2 * i + 1]) + ") outside [" + num(u0) + ", " + num(u1) + "] x [" + num(v0) + ", " +
+                                  num(v1) + "]");
     return a;
 }
 
@@ -331,7 +331,10 @@ void curveCommon(py::class_<Py>& cls, const char* name)
                     s.c);
             },
             py::arg("t"), "Points at many parameters at once (the batch path): (T,) -> (T, D).")
-        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); })
+        .def("__call__", [](py::object self, py::handle t) { return self.attr("evaluate")(t); }, py::arg("t"),
+             "The same as evaluate(t).")
+        .def("__copy__", [](const Py& s) { return s; })
+        .def("__deepcopy__", [](const Py& s, py::handle) { return s; }, py::arg("memo"))
         .def(
             "closest_point", [](const Py& s, py::handle p) { return std::visit([&](const auto& c) { return closest(c, p); }, s.c); },
             py::arg("points"),
@@ -342,6 +345,39 @@ void curveCommon(py::class_<Py>& cls, const char* name)
         .def(
             "control_box", [](const Py& s) { return std::visit([](const auto& c) { return boxTuple(c.controlBox()); }, s.c); },
             "(min, max) of the control points (contains the curve: positive weights).");
+}
+
+/// Homogeneous points (n, D+1) of a pickled state as a (D+1) x n matrix, checked.
+template <int D>
+freeform::PointMatrix<double, D + 1> homogeneousArg(py::handle h, const std::string& what)
+{
+    const py::array a = rows(h, what, D + 1, false);
+    const auto n = static_cast<std::size_t>(a.shape(0));
+    const double* p = static_cast<const double*>(a.data());
+    requireFiniteRows(p, n, D + 1, what);
+    return Eigen::Map<const freeform::PointMatrix<double, D + 1>>(p, D + 1, static_cast<Eigen::Index>(n));
+}
+
+/// The dimension (2 or 3) of pickled homogeneous points (n, 3) or (n, 4).
+int homogeneousDim(py::handle h, const std::string& what)
+{
+    const py::array a = numericArray(h, what);
+    if (a.ndim() != 2 || (a.shape(1) != 3 && a.shape(1) != 4))
+        throw freeform::Error(what + ": expected an array of shape (n, 3) or (n, 4), got shape " + shapeText(a));
+    return static_cast<int>(a.shape(1)) - 1;
+}
+
+/// A NURBS result of an operation on a polynomial curve stays polynomial: the operations act on
+/// the homogeneous points linearly, and the weight row (all 1) can come back as 1 +- rounding,
+/// which would make the result rational (is_rational True). The weight row is set back to 1; the
+/// other rows are the operation's own result on the polynomial points.
+template <int D>
+freeform::NurbsCurve<double, D> keepPolynomial(const freeform::NurbsCurve<double, D>& in, freeform::NurbsCurve<double, D> out)
+{
+    if (in.isRational() || !out.isRational()) return out;
+    auto h = out.homogeneousPoints();
+    h.row(D).setOnes();
+    return freeform::NurbsCurve<double, D>(out.knotVector(), std::move(h));
 }
 
 } // namespace
@@ -499,6 +535,17 @@ f(t) = sum w_i P_i B_i^n(t) / sum w_i B_i^n(t), control points (n+1, D), weights
                return PyRationalCurve{RCurve3(columns<3>(a, "points"), w)};
            }),
            py::arg("points"), py::arg("weights"));
+    rc.def(py::pickle(
+        // The homogeneous points (w P, w) the curve is stored as: the same curve bit for bit.
+        [](const PyRationalCurve& s) {
+            return py::make_tuple(std::visit([](const auto& c) { return fromColumns(c.homogeneous().controlPoints()); }, s.c));
+        },
+        [](const py::tuple& t) {
+            if (t.size() != 1) throw freeform::Error("RationalBezierCurve.__setstate__: expected 1 field");
+            if (homogeneousDim(t[0], "homogeneous_points") == 2)
+                return PyRationalCurve{RCurve2(RCurve2::Homogeneous(homogeneousArg<2>(t[0], "homogeneous_points")))};
+            return PyRationalCurve{RCurve3(RCurve3::Homogeneous(homogeneousArg<3>(t[0], "homogeneous_points")))};
+        }));
     curveCommon(rc, "RationalBezierCurve");
     rc.def_static(
           "circle_arc",
@@ -530,7 +577,7 @@ f(t) = sum w_i P_i B_i^n(t) / sum w_i B_i^n(t), control points (n+1, D), weights
         .def(
             "split",
             [](const PyRationalCurve& s, double t) {
-                if (!(t > 0 && t < 1)) throw freeform::Error("RationalBezierCurve.split: t " + std::to_string(t) + " is not inside (0, 1)");
+                if (!(t > 0 && t < 1)) throw freeform::Error("RationalBezierCurve.split: t " + num(t) + " is not inside (0, 1)");
                 return std::visit([&](const auto& c) {
                     auto [a, b] = c.split(t);
                     return py::make_tuple(PyRationalCurve{a}, PyRationalCurve{b});
@@ -587,6 +634,21 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
                return PyNurbsCurve{NCurve3(degree, std::move(k), columns<3>(a, "points"), w)};
            }),
            py::arg("degree"), py::arg("knots"), py::arg("points"), py::arg("weights") = py::none());
+    nc.def(py::pickle(
+        [](const PyNurbsCurve& s) {
+            return std::visit(
+                [](const auto& c) { return py::make_tuple(c.degree(), c.knots(), fromColumns(c.homogeneousPoints())); }, s.c);
+        },
+        [](const py::tuple& t) {
+            if (t.size() != 3) throw freeform::Error("NurbsCurve.__setstate__: expected 3 fields");
+            const int degree = t[0].cast<int>();
+            auto knots = t[1].cast<std::vector<double>>();
+            if (homogeneousDim(t[2], "homogeneous_points") == 2)
+                return PyNurbsCurve{NCurve2(NCurve2::Knots(std::move(knots), degree, "NurbsCurve"),
+                                            homogeneousArg<2>(t[2], "homogeneous_points"))};
+            return PyNurbsCurve{NCurve3(NCurve3::Knots(std::move(knots), degree, "NurbsCurve"),
+                                        homogeneousArg<3>(t[2], "homogeneous_points"))};
+        }));
     curveCommon(nc, "NurbsCurve");
     nc.def_static(
           "circle",
@@ -680,7 +742,7 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
             [](const PyNurbsCurve& s, double u, int times) {
                 return std::visit([&](const auto& c) {
                     py::gil_scoped_release release;
-                    return PyNurbsCurve{c.insertKnot(u, times)};
+                    return PyNurbsCurve{keepPolynomial(c, c.insertKnot(u, times))};
                 }, s.c);
             },
             py::arg("u"), py::arg("times") = 1, "Boehm's insertion of u, `times` times; the curve is unchanged.")
@@ -690,7 +752,7 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
                 const std::vector<double> k = numberList(knots, "knots");
                 return std::visit([&](const auto& c) {
                     py::gil_scoped_release release;
-                    return PyNurbsCurve{c.refined(k)};
+                    return PyNurbsCurve{keepPolynomial(c, c.refined(k))};
                 }, s.c);
             },
             py::arg("knots"), "Knot refinement (Oslo algorithm): every value added; the curve is unchanged.")
@@ -702,18 +764,20 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
                         py::gil_scoped_release release;
                         return c.removeKnot(u);
                     }();
-                    return py::make_tuple(PyNurbsCurve{std::move(r.curve)}, r.error);
+                    return py::make_tuple(PyNurbsCurve{keepPolynomial(c, std::move(r.curve))}, r.error);
                 }, s.c);
             },
             py::arg("u"),
             "(curve, error): one occurrence of the interior knot u removed; error bounds max |new - old| "
-            "(homogeneous for rational curves), 0 up to rounding when u is removable.")
+            "(homogeneous for rational curves), 0 up to rounding when u is removable. freeform.Error when u is "
+            "not an interior knot, or (rational curves) when the removal would give a weight that is not "
+            "positive: such a knot cannot be removed.")
         .def(
             "elevated",
             [](const PyNurbsCurve& s, int times) {
                 return std::visit([&](const auto& c) {
                     py::gil_scoped_release release;
-                    return PyNurbsCurve{c.elevated(times)};
+                    return PyNurbsCurve{keepPolynomial(c, c.elevated(times))};
                 }, s.c);
             },
             py::arg("times") = 1, "The same curve with degree p + times (each interior knot's multiplicity + times).")
@@ -725,10 +789,13 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
                         py::gil_scoped_release release;
                         return c.reduced(tolerance);
                     }();
-                    return py::make_tuple(PyNurbsCurve{std::move(r.curve)}, r.error);
+                    return py::make_tuple(PyNurbsCurve{keepPolynomial(c, std::move(r.curve))}, r.error);
                 }, s.c);
             },
-            py::arg("tolerance") = 0.0, "(curve of degree p - 1, error bound).")
+            py::arg("tolerance") = 0.0,
+            "(curve of degree p - 1, error bound); a polynomial curve gives a polynomial curve (is_rational "
+            "False). freeform.Error for degree 1, a curve broken at a knot, or (rational curves) a reduced weight "
+            "that is not positive.")
         .def(
             "split",
             [](const PyNurbsCurve& s, double u) {
@@ -737,7 +804,7 @@ NurbsCurve(degree, knots (n+p+2,), points (n+1, D), weights (n+1,) or None = all
                         py::gil_scoped_release release;
                         return c.split(u);
                     }();
-                    return py::make_tuple(PyNurbsCurve{a}, PyNurbsCurve{b});
+                    return py::make_tuple(PyNurbsCurve{keepPolynomial(c, a)}, PyNurbsCurve{keepPolynomial(c, b)});
                 }, s.c);
             },
             py::arg("u"), "The pieces over [start, u] and [u, end] (u strictly inside the domain).")
@@ -791,6 +858,18 @@ A rational Bézier patch in 3D on [0, 1]^2 (docs/nurbs.md): control points (m+1,
                  return PyRationalSurface{RSurface(r - 1, c - 1, p, w)};
              }),
              py::arg("points"), py::arg("weights"))
+        .def(py::pickle(
+            [](const PyRationalSurface& s) {
+                const auto& h = s.s.homogeneous();
+                return py::make_tuple(h.degreeU(), h.degreeV(), fromColumns(h.controlPoints()));
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 3) throw freeform::Error("RationalBezierSurface.__setstate__: expected 3 fields");
+                return PyRationalSurface{RSurface(RSurface::Homogeneous(t[0].cast<int>(), t[1].cast<int>(),
+                                                                        homogeneousArg<3>(t[2], "homogeneous_points")))};
+            }))
+        .def("__copy__", [](const PyRationalSurface& s) { return s; })
+        .def("__deepcopy__", [](const PyRationalSurface& s, py::handle) { return s; }, py::arg("memo"))
         .def_property_readonly("degree", [](const PyRationalSurface& s) { return py::make_tuple(s.s.degreeU(), s.s.degreeV()); })
         .def_property_readonly("control_points", [](const PyRationalSurface& s) {
             const auto d = freeform::rationalSurfaceData(s.s);
@@ -865,6 +944,19 @@ NurbsSurface(degree (p, q) or p, knots_u, knots_v, points (nu, nv, 3), weights (
                  return PyNurbsSurface{std::move(s)};
              }),
              py::arg("degree"), py::arg("knots_u"), py::arg("knots_v"), py::arg("points"), py::arg("weights") = py::none())
+        .def(py::pickle(
+            [](const PyNurbsSurface& s) {
+                return py::make_tuple(s.s.degreeU(), s.s.degreeV(), s.s.knotsU().knots(), s.s.knotsV().knots(),
+                                      fromColumns(s.s.homogeneousPoints()));
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 5) throw freeform::Error("NurbsSurface.__setstate__: expected 5 fields");
+                return PyNurbsSurface{NSurface(NSurface::Knots(t[2].cast<std::vector<double>>(), t[0].cast<int>(), "NurbsSurface (knots in u)"),
+                                               NSurface::Knots(t[3].cast<std::vector<double>>(), t[1].cast<int>(), "NurbsSurface (knots in v)"),
+                                               homogeneousArg<3>(t[4], "homogeneous_points"))};
+            }))
+        .def("__copy__", [](const PyNurbsSurface& s) { return s; })
+        .def("__deepcopy__", [](const PyNurbsSurface& s, py::handle) { return s; }, py::arg("memo"))
         .def_static("sphere", [](py::handle center, double radius) {
             if (!(radius > 0) || !std::isfinite(radius)) throw freeform::Error("NurbsSurface.sphere: radius must be positive and finite");
             return PyNurbsSurface{NSurface::sphere(pointArg<3>(center, "center"), radius)};
@@ -1035,6 +1127,20 @@ per control point (index as Lattice.control_points; None: all 1, the polynomial 
                  return r;
              }),
              py::arg("lattice"), py::arg("weights") = py::none())
+        .def(py::pickle(
+            [](const PyRationalLattice& r) {
+                PyLattice l(r.lattice.lattice());
+                return py::make_tuple(py::cast(std::move(l)), fromVector(r.lattice.weights()), r.strength);
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 3) throw freeform::Error("RationalLattice.__setstate__: expected 3 fields");
+                const freeform::Lattice l = t[0].cast<PyLattice&>().snapshot();
+                const Eigen::VectorXd w = weightVector(t[1], "weights");
+                PyRationalLattice r{freeform::RationalLattice(l, w), t[2].cast<double>()};
+                return r;
+            }))
+        .def("__copy__", [](const PyRationalLattice& r) { return r; })
+        .def("__deepcopy__", [](const PyRationalLattice& r, py::handle) { return r; }, py::arg("memo"))
         .def_property_readonly("weights", [](const PyRationalLattice& r) { return fromVector(r.lattice.weights()); },
                                "(K,) float64 (a copy).")
         .def_property_readonly("lattice", [](const PyRationalLattice& r) {
@@ -1045,7 +1151,8 @@ per control point (index as Lattice.control_points; None: all 1, the polynomial 
         .def_readwrite("strength", &PyRationalLattice::strength)
         .def_property_readonly("is_polynomial", [](const PyRationalLattice& r) { return r.lattice.isPolynomial(); },
                                "True when every weight is exactly 1.")
-        .def("deform", [](const PyRationalLattice& r, py::handle points, int threads) {
+        .def("deform", [](const PyRationalLattice& r, py::handle points, py::handle threadsArg) {
+            const int threads = threadCount(threadsArg);
             Points3 p = toPoints(points, "points");
             if (!std::isfinite(r.strength)) throw freeform::Error("RationalLattice.strength: not finite");
             freeform::DeformOptions o;

@@ -335,3 +335,124 @@ def test_results_do_not_depend_on_the_thread_count():
         assert np.array_equal(lat.det_j(big, threads=t), lat.det_j(big, threads=1))
     rl = ff.RationalLattice(lat, np.linspace(0.5, 2, lat.point_count))
     assert np.array_equal(rl.deform(big, threads=3), rl.deform(big, threads=1))
+
+
+# ---------------------------------------------------------------- issue 26
+
+@pytest.mark.parametrize("shape", [(3, 2), (3, 1), (2, 3), (9,), (3, 3, 1), (4, 3)])
+def test_axes_of_a_wrong_shape_are_refused_by_name(shape):
+    # before: a (3, 2) array filled the third column from past its end, or the error spoke of
+    # linearly dependent edges, and (2, 3) said "expected (N, 3), got shape (3, 2)" (transposed)
+    axes = np.arange(1.0, 1.0 + np.prod(shape)).reshape(shape)
+    text = "(" + ", ".join(map(str, shape)) + ("," if len(shape) == 1 else "") + ")"
+    with pytest.raises(ff.Error) as e:
+        ff.Lattice(1, origin=[0, 0, 0], axes=axes)
+    assert str(e.value) == f"axes: expected an array of shape (3, 3) (columns S, T, U), got shape {text}"
+
+
+def test_origin_of_a_wrong_shape_is_refused_by_name():
+    for origin, text in [([0, 0], "(2,)"), ([[0, 0, 0]], "(1, 3)"), (np.zeros(4), "(4,)")]:
+        with pytest.raises(ff.Error) as e:
+            ff.Lattice(1, origin=origin, axes=np.eye(3))
+        assert str(e.value) == f"origin: expected an array of shape (3,), got shape {text}"
+    with pytest.raises(ff.Error, match="origin: row 0 is not finite"):
+        ff.Lattice(1, origin=[0, np.nan, 0], axes=np.eye(3))
+    # a Fortran-order or integer frame is read as given (column c of axes is edge c)
+    axes = np.asfortranarray([[2, 0, 1], [0, 3, 0], [0, 0, 4]])
+    lat = ff.Lattice(1, origin=np.array([1, 2, 3], dtype=np.int32), axes=axes)
+    np.testing.assert_array_equal(lat.axes, axes)
+    np.testing.assert_array_equal(lat.origin, [1, 2, 3])
+    np.testing.assert_array_equal(lat.rest_points[lat.index(1, 0, 0)], [3, 2, 3])  # origin + S
+
+
+def test_index_is_bounds_checked_and_takes_keywords():
+    lat = ff.Lattice((3, 2, 4), origin=[0, 0, 0], axes=np.eye(3))
+    # (i*(m+1) + j)*(n+1) + k with m+1 = 3, n+1 = 5
+    assert lat.index(1, 0, 0) == 15 and lat.index(0, 2, 4) == 14 and lat.index(3, 2, 4) == 59
+    assert lat.index(i=1, j=2, k=0) == 25 and lat.index(k=3, j=1, i=2) == 38
+    for bad, name in [((0, 3, 0), "j = 3"), ((-1, 0, 0), "i = -1"), ((4, 0, 0), "i = 4"), ((0, 0, 5), "k = 5")]:
+        with pytest.raises(ff.Error, match=f"Lattice.index: {name} is outside"):
+            lat.index(*bad)
+
+
+def test_extrapolation_that_overflows_raises_instead_of_nan():
+    lat = random_lattice(ff, outside="extrapolate")
+    far = np.full((1, 3), 1e100)
+    with pytest.raises(ff.Error, match=r"point row 0 is not finite: the deformation overflows float64 \(outside='extrapolate'"):
+        lat.deform(far)
+    with pytest.raises(ff.Error, match="overflows float32"):
+        lat.deform(np.array([[0.0, 0.0, 0.0], [1e30, 1e30, 1e30]], dtype=np.float32))
+    with pytest.raises(ff.Error, match="point row 1 is not finite"):
+        lat.det_j(np.array([[0.0, 0.0, 0.0], [1e100, 0, 0]]))
+    with pytest.raises(ff.Error, match="not finite"):
+        lat.report(far)  # before: the NaN det J values were counted as folds
+    with pytest.raises(ff.Error, match="not finite"):
+        lat.bind(far).deform(lat)
+    with pytest.raises(ff.Error, match="not finite"):
+        lat.deform_normals(far, np.ones((1, 3)))
+    # moderately far points still extrapolate, as the NumPy sum does
+    near = np.array([[3.0, -2.5, 2.0], [10.0, 10.0, 10.0]])
+    np.testing.assert_allclose(lat.deform(near), reference_deform(lat, near), rtol=1e-12)
+    r = lat.report(near)
+    assert r["vertices"] == 2 and r["outside"] == 2
+    assert all(np.isfinite([r["min_det_j"], r["max_det_j"]]))
+
+
+@pytest.mark.parametrize("bad", [2**40, -1, 1.5, True, "2", None])
+def test_threads_must_be_a_count(bad):
+    lat = random_lattice(ff)
+    pts = np.random.default_rng(0).uniform(-1, 1, (1000, 3))
+    calls = [lambda: lat.deform(pts, threads=bad), lambda: lat.det_j(pts, threads=bad),
+             lambda: lat.deform_normals(pts, pts, threads=bad), lambda: lat.weights_matvec(pts, lat.control_points, threads=bad),
+             lambda: lat.weights_rmatvec(pts, pts, threads=bad), lambda: lat.bind(pts).deform(lat, threads=bad),
+             lambda: ff.RationalLattice(lat).deform(pts, threads=bad)]
+    for call in calls:
+        with pytest.raises(ff.Error) as e:
+            call()
+        message = str(e.value)
+        assert message.startswith("threads: ") and len(message) < 120, message  # no dump of the points
+
+
+def test_one_call_deform_equals_the_bound_kernel_across_chunks():
+    # Lattice.deform binds and deforms chunk by chunk (no binding of all points): its results are the
+    # bound kernel's, bit for bit, for sizes around the chunk length, both dtypes and every policy
+    rng = np.random.default_rng(21)
+    for outside in ("clamp", "keep", "extrapolate"):
+        lat = random_lattice(ff, outside=outside, seed=2)
+        lat.strength = 0.9
+        for n in (0, 1, 2047, 2048, 2049, 4096 * 2 + 5):
+            for dtype in (np.float64, np.float32):
+                p = rng.uniform(-1.4, 1.4, (n, 3)).astype(dtype)
+                out = lat.deform(p)
+                assert out.dtype == dtype and out.shape == (n, 3)
+                assert out.tobytes() == lat.bind(p).deform(lat).tobytes()
+
+
+def test_strided_points_are_read_in_place_with_the_same_results():
+    lat = random_lattice(ff, seed=8)
+    base = np.random.default_rng(2).uniform(-1.2, 1.2, (6000, 6))
+    for dtype in (np.float64, np.float32):
+        b = base.astype(dtype)
+        for view in (b[:, ::2], b[::2, 3:], np.asfortranarray(b[:, :3])):
+            dense = np.ascontiguousarray(view)
+            assert lat.deform(view).dtype == dtype
+            assert lat.deform(view).tobytes() == lat.deform(dense).tobytes()
+            assert lat.det_j(view).tobytes() == lat.det_j(dense).tobytes()
+    bad = base[:, ::2].copy()
+    bad[4321, 2] = np.inf
+    with pytest.raises(ff.Error, match="points: row 4321 is not finite \\(inf\\)"):
+        lat.deform(np.asfortranarray(bad))
+
+
+def test_report_matches_a_numpy_count():
+    lat = random_lattice(ff, seed=3, scale=0.6)  # strong enough to fold somewhere
+    pts = np.random.default_rng(4).uniform(-1.5, 1.5, (20_000, 3))
+    det = lat.det_j(pts)
+    r = lat.report(pts)
+    stu = np.linalg.solve(lat.axes, (pts - lat.origin).T).T
+    assert r["vertices"] == len(pts)
+    assert r["outside"] == int(np.sum(~np.all((stu >= 0) & (stu <= 1), axis=1)))
+    assert r["folds"] == np.flatnonzero(det <= 0).tolist() and r["fold_count"] == len(r["folds"]) > 0
+    assert r["min_det_j"] == det.min() and r["max_det_j"] == det.max()
+    assert lat.report(np.zeros((0, 3))) == {"vertices": 0, "outside": 0, "min_det_j": 1.0, "max_det_j": 1.0,
+                                            "fold_count": 0, "folds": []}

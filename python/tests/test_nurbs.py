@@ -626,7 +626,7 @@ def test_bad_input_raises_clear_errors():
     with pytest.raises(TypeError):
         ff.NurbsCurve(2, [0, 0, 0, 1, 1, 1], "points")
     c = ff.NurbsCurve(2, [0, 0, 0, 0.5, 1, 1, 1], np.array([[0, 0], [1, 1], [2, 0], [3, 1]], dtype=float))
-    with pytest.raises(ff.Error, match=r"outside \[0\.0+, 1\.0+\]"):
+    with pytest.raises(ff.Error, match=r"parameter 1\.5 \(index 1\) outside \[0, 1\]"):
         c.evaluate([0.5, 1.5])
     with pytest.raises(ff.Error, match="index 0"):
         c.derivatives([np.nan], 1)
@@ -683,3 +683,59 @@ def test_gil_is_released_during_nurbs_evaluation():
 
     # with the GIL held for the whole call the other thread could not tick during it
     assert ticks_during(work) >= 3
+
+
+# ---------------------------------------------------------------- issue 26
+
+def test_parameters_in_messages_show_the_problem():
+    c = ff.BezierCurve([[0, 0], [1, 1], [2, 0]])
+    with pytest.raises(ff.Error) as e:
+        c.evaluate([0.5, 1 + 1e-9])
+    assert str(e.value) == "BezierCurve.evaluate: parameter 1.000000001 (index 1) outside [0, 1]"
+    tiny = ff.NurbsCurve(1, [0, 0, 1e-8, 1e-8], [[0, 0], [1, 0]])  # a domain of size 1e-8
+    with pytest.raises(ff.Error) as e:
+        tiny.evaluate([2e-8])
+    assert str(e.value) == "NurbsCurve.evaluate: parameter 2e-08 (index 0) outside [0, 1e-08]"
+    s = ff.NurbsSurface.sphere()
+    with pytest.raises(ff.Error, match=r"uv row 0 \(0\.5, 1\.0000000000000002\) outside \[0, 1\] x \[0, 1\]"):
+        s.evaluate([[0.5, np.nextafter(1.0, 2.0)]])
+
+
+def test_reduced_and_other_operations_keep_a_polynomial_curve_polynomial():
+    # a quadratic elevated to a cubic: reducing it gives the quadratic back, and weights of exactly 1
+    knots = [0, 0, 0, 0.4, 1, 1, 1]
+    pts = np.array([[0.0, 0.0, 0.0], [1.0, 2.0, 0.5], [2.0, -1.0, 1.0], [3.0, 0.5, -0.5]])
+    quad = ff.NurbsCurve(2, knots, pts)
+    cubic = quad.elevated()
+    assert not cubic.is_rational and cubic.degree == 3
+    red, err = cubic.reduced(1e-9)
+    assert red.degree == 2 and not red.is_rational and err < 1e-12
+    assert np.all(red.weights == 1.0)
+    u = np.linspace(0, 1, 33)
+    np.testing.assert_allclose(red.evaluate(u), quad.evaluate(u), atol=1e-12)
+    # elevation doubled the knot 0.4; removing the extra one gives the quadratic's own points
+    back, e = red.remove_knot(0.4)
+    assert not back.is_rational and e < 1e-12 and back.knots.tolist() == knots
+    np.testing.assert_allclose(back.control_points, pts, atol=1e-12)
+    for other in (cubic.insert_knot(0.7), cubic.refined([0.2, 0.55]), cubic.remove_knot(0.4)[0], *cubic.split(0.3)):
+        assert not other.is_rational
+    # a rational curve stays rational
+    circle = ff.NurbsCurve.circle([0.0, 0.0])
+    assert circle.is_rational and circle.insert_knot(0.1).is_rational
+
+
+def test_convert_to_the_kind_an_object_has_is_a_no_op():
+    doc = ff.Document()
+    doc.add("c", ff.NurbsCurve.circle([0.5, 0.25], 2.0))
+    before = doc.object("c").homogeneous_points
+    assert doc.convert("c", "nurbs_curve") == "nurbs_curve"  # before: "already a nurbs_curve" error
+    assert doc.type("c") == "nurbs_curve"
+    assert doc.object("c").homogeneous_points.tobytes() == before.tobytes()
+    doc.add("p", ff.NurbsSurface.sphere())
+    assert doc.convert("p", "nurbs_surface") == "nurbs_surface"
+    with pytest.raises(ff.Error, match='object "c" is already a nurbs_curve'):
+        doc.convert("c", "nurbs_surface")
+
+
+def test_remove_knot_documents_that_it_can_raise():
+    assert "freeform.Error" in ff.NurbsCurve.remove_knot.__doc__ and "weight" in ff.NurbsCurve.remove_knot.__doc__
