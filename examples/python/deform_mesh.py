@@ -5,16 +5,19 @@
 
 Reads MESH (default data/meshes/sphere.obj) losslessly, fits a cubic lattice around it, lifts the
 top layer of control points, deforms the file (positions, and normals by cof(J)) and writes OUT
-(default build/sphere-deformed.obj): everything else in the file stays as read.
+(default: deformed-sphere.obj in freeform-examples/ of the system's temporary folder, never the
+source tree), and the lattice next to it: everything else in the file stays as read.
 """
 import pathlib
 import sys
+import tempfile
 
 import freeform as ff
 
 root = pathlib.Path(__file__).resolve().parents[2]
 src = sys.argv[1] if len(sys.argv) > 1 else str(root / "data" / "meshes" / "sphere.obj")
-dst = sys.argv[2] if len(sys.argv) > 2 else str(root / "build" / ("deformed-" + pathlib.Path(src).name))
+dst = sys.argv[2] if len(sys.argv) > 2 else str(pathlib.Path(tempfile.gettempdir()) / "freeform-examples" /
+                                                ("deformed-" + pathlib.Path(src).name))
 
 mesh = ff.MeshFile.read(src)
 lat = ff.Lattice.fit(mesh.positions, degree=(3, 3, 3), margin=0.05)

@@ -3,10 +3,13 @@
 
     PYTHONPATH=build/python python3 examples/python/spline_plot.py [OUT.png]
 
-Without matplotlib (Debian: python3-matplotlib) the plot is skipped and the numbers are printed.
+Writes OUT.png (default: spline.png in freeform-examples/ of the system's temporary folder, never
+the source tree). Without matplotlib (Debian: python3-matplotlib) the plot is skipped and the numbers
+are printed.
 """
 import pathlib
 import sys
+import tempfile
 
 import numpy as np
 
@@ -30,7 +33,7 @@ except ImportError:
     print("matplotlib not installed: plot skipped; curve from", curve[0], "to", curve[-1])
     sys.exit(0)
 
-out = sys.argv[1] if len(sys.argv) > 1 else str(pathlib.Path(__file__).resolve().parents[2] / "build" / "spline.png")
+out = sys.argv[1] if len(sys.argv) > 1 else str(pathlib.Path(tempfile.gettempdir()) / "freeform-examples" / "spline.png")
 fig, ax = plt.subplots(figsize=(7, 4))
 ax.plot(curve[:, 0], curve[:, 1], label="C2 spline")
 ax.plot(spline.control_points[:, 0], spline.control_points[:, 1], ":o", ms=3, label="Bézier points")
