@@ -22,6 +22,9 @@ packages=(
   xvfb xauth libgl1-mesa-dri            # headless rendering (render tests, screenshots)
   pybind11-dev python3-dev python3-numpy   # the Python module (python/, docs/python.md)
   python3-pytest                        # its tests (run by ctest)
+  python3-dask python3-distributed      # Python: scaling out on Dask (examples/python/batch_ffd_dask.py, its test)
+  python3-mypy                          # Python: mypy.stubtest checks python/freeform.pyi in the tests
+  valgrind                              # Python: the memcheck test of the module's shape checks
   xdotool                               # editor test driving the real window under Xvfb (x11 label)
   clang libfuzzer-14-dev                # sanitizer + fuzzing build (scripts/test.sh, fuzz.sh): clang 14 + libFuzzer
   assimp-testmodels                     # files other tools wrote: fuzz seeds, reader tests
