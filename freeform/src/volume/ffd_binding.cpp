@@ -17,6 +17,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <optional>
 
 #include "freeform/core/bernstein.h"
 #include "freeform/core/parallel.h"
@@ -279,6 +281,134 @@ void displacementJet(const Lattice& lattice, const Eigen::Vector3d& q, Eigen::Ve
             }
 }
 
+/// The frame as Lattice::toLattice uses it: rows of the numerator (T x U, S x U, S x T) and the
+/// denominators, formed by the same Eigen expressions as Lattice's constructor (so the same bits).
+struct BindFrame {
+    double origin[3];
+    double num[3][3];
+    double den[3];
+    bool clamp;
+};
+
+/// Binds blocks [firstBlock, lastBlock): positions and lattice coordinates (toLattice's arithmetic,
+/// the same operations in the same order: (n0 q0 + (n1 q1 + n2 q2)) / den, as Eigen's unrolled dot
+/// product of 3 sums them), lane by lane so that the divisions vectorise. Vertices outside the box
+/// are appended to `outside` in order; returns the first vertex that is not finite, or count.
+template <typename Scalar, typename In>
+inline __attribute__((always_inline)) std::size_t bindBlocks(const BindFrame& f, const In* positions, std::size_t count,
+                                                              Scalar* data, std::size_t firstBlock, std::size_t lastBlock,
+                                                              std::vector<int>& outside)
+{
+    constexpr int W = FfdBinding<Scalar>::kLanes;
+    for (std::size_t blk = firstBlock; blk < lastBlock; ++blk) {
+        Scalar* b = data + blk * 6 * W;
+        alignas(64) double q[3][W];
+        alignas(64) double stu[3][W];
+        if ((blk + 1) * W <= count) {
+            const In* p = positions + 3 * blk * W;
+            for (int w = 0; w < W; ++w)
+                for (int x = 0; x < 3; ++x) {
+                    const In c = p[3 * w + x];
+                    b[x * W + w] = static_cast<Scalar>(c);
+                    q[x][w] = double(c) - f.origin[x];
+                }
+        } else {
+            for (int w = 0; w < W; ++w) {
+                // Padding lanes repeat the last vertex (finite numbers; never written out).
+                const std::size_t v = std::min(blk * W + std::size_t(w), count - 1);
+                for (int x = 0; x < 3; ++x) {
+                    const In c = positions[3 * v + std::size_t(x)];
+                    b[x * W + w] = static_cast<Scalar>(c);
+                    q[x][w] = double(c) - f.origin[x];
+                }
+            }
+        }
+        for (int a = 0; a < 3; ++a)
+            for (int w = 0; w < W; ++w)
+                stu[a][w] = (f.num[a][0] * q[0][w] + (f.num[a][1] * q[1][w] + f.num[a][2] * q[2][w])) / f.den[a];
+        unsigned bad = 0, out = 0;
+        for (int w = 0; w < W; ++w) {
+            bad |= !(std::abs(q[0][w]) <= std::numeric_limits<double>::max()) |
+                   !(std::abs(q[1][w]) <= std::numeric_limits<double>::max()) |
+                   !(std::abs(q[2][w]) <= std::numeric_limits<double>::max());
+            out |= !(stu[0][w] >= 0.0 && stu[0][w] <= 1.0 && stu[1][w] >= 0.0 && stu[1][w] <= 1.0 && stu[2][w] >= 0.0 &&
+                     stu[2][w] <= 1.0);
+        }
+        if (bad) {
+            for (int w = 0; w < W; ++w) {
+                const std::size_t v = std::min(blk * W + std::size_t(w), count - 1);
+                for (int x = 0; x < 3; ++x)
+                    if (!std::isfinite(double(positions[3 * v + std::size_t(x)]))) return v;
+            }
+        }
+        if (out) {
+            for (int w = 0; w < W; ++w) {
+                const bool o = !(stu[0][w] >= 0.0 && stu[0][w] <= 1.0 && stu[1][w] >= 0.0 && stu[1][w] <= 1.0 &&
+                                 stu[2][w] >= 0.0 && stu[2][w] <= 1.0);
+                if (!o) continue;
+                if (blk * W + std::size_t(w) < count) outside.push_back(static_cast<int>(blk * W + std::size_t(w)));
+                if (f.clamp)
+                    for (int a = 0; a < 3; ++a) stu[a][w] = std::min(std::max(stu[a][w], 0.0), 1.0); // as cwiseMax/Min
+            }
+        }
+        for (int a = 0; a < 3; ++a)
+            for (int w = 0; w < W; ++w) b[(3 + a) * W + w] = static_cast<Scalar>(stu[a][w]);
+    }
+    return count;
+}
+
+// Cloned like the kernels, without contraction into fused multiply-adds (which would change the
+// bits of the lattice coordinates against Lattice::toLattice).
+#define FREEFORM_BIND_KERNEL(Scalar, In, name)                                                                        \
+    FREEFORM_FFD_CLONES __attribute__((optimize("fp-contract=off"))) std::size_t name(                                 \
+        const BindFrame& f, const In* positions, std::size_t count, Scalar* data, std::size_t first, std::size_t last, \
+        std::vector<int>& outside)                                                                                     \
+    {                                                                                                                  \
+        return bindBlocks<Scalar, In>(f, positions, count, data, first, last, outside);                                \
+    }
+FREEFORM_BIND_KERNEL(double, double, bind_dd)
+FREEFORM_BIND_KERNEL(double, float, bind_df)
+FREEFORM_BIND_KERNEL(float, double, bind_fd)
+FREEFORM_BIND_KERNEL(float, float, bind_ff)
+#undef FREEFORM_BIND_KERNEL
+
+inline std::size_t bindKernel(const BindFrame& f, const double* p, std::size_t n, double* d, std::size_t a, std::size_t b,
+                              std::vector<int>& o) { return bind_dd(f, p, n, d, a, b, o); }
+inline std::size_t bindKernel(const BindFrame& f, const float* p, std::size_t n, double* d, std::size_t a, std::size_t b,
+                              std::vector<int>& o) { return bind_df(f, p, n, d, a, b, o); }
+inline std::size_t bindKernel(const BindFrame& f, const double* p, std::size_t n, float* d, std::size_t a, std::size_t b,
+                              std::vector<int>& o) { return bind_fd(f, p, n, d, a, b, o); }
+inline std::size_t bindKernel(const BindFrame& f, const float* p, std::size_t n, float* d, std::size_t a, std::size_t b,
+                              std::vector<int>& o) { return bind_ff(f, p, n, d, a, b, o); }
+
+/// The BindFrame of a lattice, or nullopt when it does not reproduce the lattice's own dual() and
+/// toLattice() bit for bit (then bind() takes the point-by-point path through toLattice).
+std::optional<BindFrame> bindFrame(const Lattice& lattice, const Eigen::Vector3d& probe)
+{
+    const Eigen::Matrix3d& axes = lattice.axes();
+    const Eigen::Vector3d s = axes.col(0), t = axes.col(1), u = axes.col(2);
+    Eigen::Matrix3d num;
+    num.row(0) = t.cross(u).transpose();
+    num.row(1) = s.cross(u).transpose();
+    num.row(2) = s.cross(t).transpose();
+    const Eigen::Vector3d den(num.row(0).dot(s), num.row(1).dot(t), num.row(2).dot(u));
+    BindFrame f{};
+    for (int a = 0; a < 3; ++a) {
+        if (num.row(a) / den[a] != lattice.dual().row(a)) return std::nullopt;
+        f.origin[a] = lattice.origin()[a];
+        f.den[a] = den[a];
+        for (int c = 0; c < 3; ++c) f.num[a][c] = num(a, c);
+    }
+    f.clamp = lattice.outside() != OutsidePolicy::Extrapolate;
+    const Eigen::Vector3d q = probe - lattice.origin();
+    const Eigen::Vector3d expected = lattice.toLattice(probe);
+    for (int a = 0; a < 3; ++a) {
+        const double mine = (f.num[a][0] * q[0] + (f.num[a][1] * q[1] + f.num[a][2] * q[2])) / f.den[a];
+        if (std::memcmp(&mine, &expected[a], sizeof mine) != 0) return std::nullopt;
+    }
+    return f;
+}
+
 template <typename Scalar>
 Scalar* alignedArray(std::size_t count)
 {
@@ -314,6 +444,19 @@ void FfdBinding<Scalar>::bind(const Lattice& lattice, const In* positions, std::
     Scalar* data = data_.get();
     const OutsidePolicy policy = lattice.outside();
     std::vector<std::vector<int>> outsideChunks(static_cast<std::size_t>(parallelChunkCount(0, blocks_, 256, 0)));
+    const Eigen::Vector3d probe = count ? Eigen::Vector3d(double(positions[0]), double(positions[1]), double(positions[2]))
+                                        : Eigen::Vector3d(0.25, 0.5, 0.75);
+    const std::optional<detail::BindFrame> frame =
+        probe.allFinite() ? detail::bindFrame(lattice, probe) : std::optional<detail::BindFrame>();
+    if (frame && count) {
+        std::vector<std::size_t> bad(outsideChunks.size(), count);
+        parallelFor(0, blocks_, 256, 0, [&](int chunk, std::size_t first, std::size_t last) {
+            bad[static_cast<std::size_t>(chunk)] =
+                detail::bindKernel(*frame, positions, count, data, first, last, outsideChunks[static_cast<std::size_t>(chunk)]);
+        });
+        for (const std::size_t v : bad)
+            if (v < count) throw Error("ffd: vertex " + std::to_string(v) + " is not finite");
+    } else
     parallelFor(0, blocks_, 256, 0, [&](int chunk, std::size_t first, std::size_t last) {
         auto& outside = outsideChunks[static_cast<std::size_t>(chunk)];
         for (std::size_t blk = first; blk < last; ++blk) {
