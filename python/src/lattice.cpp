@@ -13,6 +13,9 @@
 #include <freeform/volume/deform.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <limits>
 #include <sstream>
 #include <optional>
@@ -196,12 +199,42 @@ template <typename Scalar>
                                : ""));
 }
 
+/// Whether v[0..count) are all finite: one branch-free pass the compiler vectorises (the slow
+/// scan for the row runs only when one is not).
+template <typename Scalar>
+bool allFinite(const Scalar* v, std::size_t count)
+{
+    // Not finite <=> every exponent bit set: integer compares, which vectorise (a floating-point
+    // compare with an early exit does not).
+    using Bits = std::conditional_t<sizeof(Scalar) == 8, std::uint64_t, std::uint32_t>;
+    constexpr Bits kExponent = sizeof(Scalar) == 8 ? Bits(0x7ff0000000000000ull) : Bits(0x7f800000u);
+    Bits bad = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        Bits b;
+        std::memcpy(&b, v + i, sizeof b);
+        bad |= Bits((b & kExponent) == kExponent);
+    }
+    return bad == 0;
+}
+
 template <typename Scalar>
 void requireFiniteOutput(const Scalar* v, std::size_t rows, std::size_t cols, std::size_t first, const char* what,
                          const Lattice& lat)
 {
+    if (allFinite(v, rows * cols)) return;
     for (std::size_t i = 0; i < rows * cols; ++i)
         if (!std::isfinite(v[i])) overflowError<Scalar>(what, first + i / cols, lat);
+}
+
+/// Error naming the first row of a block that is not finite (global row numbers).
+template <typename Scalar>
+void requireFiniteInput(const Scalar* v, std::size_t rows, std::size_t first, const char* what)
+{
+    if (allFinite(v, 3 * rows)) return;
+    for (std::size_t i = 0; i < 3 * rows; ++i)
+        if (!std::isfinite(v[i]))
+            throw freeform::Error(std::string(what) + ": row " + std::to_string(first + i / 3) + " is not finite (" +
+                                  num(static_cast<double>(v[i])) + ")");
 }
 
 /// What deformChunks fills (null: not wanted); arrays of n rows, C order.
@@ -254,18 +287,17 @@ void deformChunks(const Lattice& lat, const PointsIn& in, double strength, int t
                             in.data + static_cast<py::ssize_t>(first + i) * in.rowStride + x * in.colStride);
                 p = gathered.data();
             }
-            for (std::size_t i = 0; i < 3 * len; ++i)
-                if (!std::isfinite(p[i]))
-                    throw freeform::Error("points: row " + std::to_string(first + i / 3) + " is not finite (" +
-                                          num(static_cast<double>(p[i])) + ")");
-            if (o.normalsIn) {
-                const Scalar* nin = o.normalsIn + 3 * first;
-                for (std::size_t i = 0; i < 3 * len; ++i)
-                    if (!std::isfinite(nin[i]))
-                        throw freeform::Error("normals: row " + std::to_string(first + i / 3) + " is not finite (" +
-                                              num(static_cast<double>(nin[i])) + ")");
-            }
-            const freeform::FfdBinding<Scalar> binding(lat, p, len);
+            if (o.normalsIn) requireFiniteInput(o.normalsIn + 3 * first, len, first, "normals");
+            // Binding checks the points (one pass over them instead of two); its message counts
+            // from the chunk's start, so a failure is reported again here with the row in the array.
+            const freeform::FfdBinding<Scalar> binding = [&] {
+                try {
+                    return freeform::FfdBinding<Scalar>(lat, p, len);
+                } catch (const freeform::Error&) {
+                    requireFiniteInput(p, len, first, "points");
+                    throw;
+                }
+            }();
             freeform::FfdOutputs<Scalar> out;
             if (o.positions) {
                 out.positions = o.positions + 3 * first;
