@@ -34,9 +34,10 @@ PYBIND11_MODULE(freeform, m)
     ffpy::bindLattice(m);
     ffpy::bindGeometry(m);
     ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve
-    // For the tests of docs/python.md "Arrays": the array Lattice.deform / bind / det_j /
-    // deform_normals read for their points (ffpy::rows, the helper they call): the argument itself
-    // for float64/float32 C-contiguous (N, 3) arrays, a float64 copy made once otherwise.
+    // For the tests of docs/python.md "Arrays": the array Lattice.bind, report and the other point
+    // calls read for their points (ffpy::rows): the argument itself for float64/float32
+    // C-contiguous (N, 3) arrays, a float64 copy made once otherwise. (deform, det_j and
+    // deform_normals also read float64/float32 arrays of any strides in place, chunk by chunk.)
     m.def(
         "_points_as_read", [](pybind11::handle points) { return ffpy::rows(points, "points", 3); }, pybind11::arg("points"),
         "The array the deformation calls read for `points` (the argument itself when its layout allows).");
