@@ -328,11 +328,10 @@ inline __attribute__((always_inline)) std::size_t bindBlocks(const BindFrame& f,
                 stu[a][w] = (f.num[a][0] * q[0][w] + (f.num[a][1] * q[1][w] + f.num[a][2] * q[2][w])) / f.den[a];
         unsigned bad = 0, out = 0;
         for (int w = 0; w < W; ++w) {
-            bad |= !(std::abs(q[0][w]) <= std::numeric_limits<double>::max()) |
-                   !(std::abs(q[1][w]) <= std::numeric_limits<double>::max()) |
-                   !(std::abs(q[2][w]) <= std::numeric_limits<double>::max());
-            out |= !(stu[0][w] >= 0.0 && stu[0][w] <= 1.0 && stu[1][w] >= 0.0 && stu[1][w] <= 1.0 && stu[2][w] >= 0.0 &&
-                     stu[2][w] <= 1.0);
+            for (int x = 0; x < 3; ++x)
+                bad |= static_cast<unsigned>(!(std::abs(q[x][w]) <= std::numeric_limits<double>::max()));
+            out |= static_cast<unsigned>(!(stu[0][w] >= 0.0 && stu[0][w] <= 1.0 && stu[1][w] >= 0.0 &&
+                                           stu[1][w] <= 1.0 && stu[2][w] >= 0.0 && stu[2][w] <= 1.0));
         }
         if (bad) {
             for (int w = 0; w < W; ++w) {
@@ -358,12 +357,24 @@ inline __attribute__((always_inline)) std::size_t bindBlocks(const BindFrame& f,
 }
 
 // Cloned like the kernels, without contraction into fused multiply-adds (which would change the
-// bits of the lattice coordinates against Lattice::toLattice).
+// bits of the lattice coordinates against Lattice::toLattice): GCC's optimize attribute, clang's
+// fp pragma (clang contracts within an expression by default where the target has FMA).
+#if defined(__clang__)
+#define FREEFORM_NO_CONTRACT
+#define FREEFORM_NO_CONTRACT_BODY _Pragma("clang fp contract(off)")
+#elif defined(__GNUC__)
+#define FREEFORM_NO_CONTRACT __attribute__((optimize("fp-contract=off")))
+#define FREEFORM_NO_CONTRACT_BODY
+#else
+#define FREEFORM_NO_CONTRACT
+#define FREEFORM_NO_CONTRACT_BODY
+#endif
 #define FREEFORM_BIND_KERNEL(Scalar, In, name)                                                                        \
-    FREEFORM_FFD_CLONES __attribute__((optimize("fp-contract=off"))) std::size_t name(                                 \
-        const BindFrame& f, const In* positions, std::size_t count, Scalar* data, std::size_t first, std::size_t last, \
-        std::vector<int>& outside)                                                                                     \
+    FREEFORM_FFD_CLONES FREEFORM_NO_CONTRACT std::size_t name(const BindFrame& f, const In* positions,                  \
+                                                              std::size_t count, Scalar* data, std::size_t first,       \
+                                                              std::size_t last, std::vector<int>& outside)              \
     {                                                                                                                  \
+        FREEFORM_NO_CONTRACT_BODY                                                                                      \
         return bindBlocks<Scalar, In>(f, positions, count, data, first, last, outside);                                \
     }
 FREEFORM_BIND_KERNEL(double, double, bind_dd)
@@ -382,9 +393,17 @@ inline std::size_t bindKernel(const BindFrame& f, const float* p, std::size_t n,
                               std::vector<int>& o) { return bind_ff(f, p, n, d, a, b, o); }
 
 /// The BindFrame of a lattice, or nullopt when it does not reproduce the lattice's own dual() and
-/// toLattice() bit for bit (then bind() takes the point-by-point path through toLattice).
-std::optional<BindFrame> bindFrame(const Lattice& lattice, const Eigen::Vector3d& probe)
+/// toLattice() bit for bit at the probe points (then bind() takes the point-by-point path through
+/// toLattice). Only on x86-64, where Lattice::toLattice (baseline code, no FMA) and the lanes
+/// compute the same operations; elsewhere always the point-by-point path.
+FREEFORM_NO_CONTRACT std::optional<BindFrame> bindFrame(const Lattice& lattice, const std::vector<Eigen::Vector3d>& probes)
 {
+    FREEFORM_NO_CONTRACT_BODY
+#if !defined(__x86_64__)
+    (void)lattice;
+    (void)probes;
+    return std::nullopt;
+#else
     const Eigen::Matrix3d& axes = lattice.axes();
     const Eigen::Vector3d s = axes.col(0), t = axes.col(1), u = axes.col(2);
     Eigen::Matrix3d num;
@@ -400,13 +419,16 @@ std::optional<BindFrame> bindFrame(const Lattice& lattice, const Eigen::Vector3d
         for (int c = 0; c < 3; ++c) f.num[a][c] = num(a, c);
     }
     f.clamp = lattice.outside() != OutsidePolicy::Extrapolate;
-    const Eigen::Vector3d q = probe - lattice.origin();
-    const Eigen::Vector3d expected = lattice.toLattice(probe);
-    for (int a = 0; a < 3; ++a) {
-        const double mine = (f.num[a][0] * q[0] + (f.num[a][1] * q[1] + f.num[a][2] * q[2])) / f.den[a];
-        if (std::memcmp(&mine, &expected[a], sizeof mine) != 0) return std::nullopt;
+    for (const Eigen::Vector3d& probe : probes) {
+        const Eigen::Vector3d q = probe - lattice.origin();
+        const Eigen::Vector3d expected = lattice.toLattice(probe);
+        for (int a = 0; a < 3; ++a) {
+            const double mine = (f.num[a][0] * q[0] + (f.num[a][1] * q[1] + f.num[a][2] * q[2])) / f.den[a];
+            if (std::memcmp(&mine, &expected[a], sizeof mine) != 0) return std::nullopt;
+        }
     }
     return f;
+#endif
 }
 
 template <typename Scalar>
@@ -444,10 +466,17 @@ void FfdBinding<Scalar>::bind(const Lattice& lattice, const In* positions, std::
     Scalar* data = data_.get();
     const OutsidePolicy policy = lattice.outside();
     std::vector<std::vector<int>> outsideChunks(static_cast<std::size_t>(parallelChunkCount(0, blocks_, 256, 0)));
-    const Eigen::Vector3d probe = count ? Eigen::Vector3d(double(positions[0]), double(positions[1]), double(positions[2]))
-                                        : Eigen::Vector3d(0.25, 0.5, 0.75);
-    const std::optional<detail::BindFrame> frame =
-        probe.allFinite() ? detail::bindFrame(lattice, probe) : std::optional<detail::BindFrame>();
+    // Probes: the first, middle and last points (when finite) and three points of the box.
+    std::vector<Eigen::Vector3d> probes;
+    for (const std::size_t v : {std::size_t(0), count / 2, count ? count - 1 : 0}) {
+        if (v >= count) continue;
+        const Eigen::Vector3d p{double(positions[3 * v]), double(positions[3 * v + 1]), double(positions[3 * v + 2])};
+        if (p.allFinite()) probes.push_back(p);
+    }
+    for (const Eigen::Vector3d& stu : {Eigen::Vector3d(0.3, 0.7, 0.1), Eigen::Vector3d(1.7, -0.2, 0.6),
+                                      Eigen::Vector3d(0.123, 0.456, 0.789)})
+        probes.push_back(lattice.toWorld(stu));
+    const std::optional<detail::BindFrame> frame = detail::bindFrame(lattice, probes);
     if (frame && count) {
         std::vector<std::size_t> bad(outsideChunks.size(), count);
         parallelFor(0, blocks_, 256, 0, [&](int chunk, std::size_t first, std::size_t last) {
