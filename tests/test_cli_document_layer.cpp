@@ -80,7 +80,7 @@ TEST_CASE("evaluate equals freeform eval bit for bit", "[cli][document]")
     };
     for (const Case& c : cases) {
         INFO(c.object);
-        const Json j = run("eval " + path + " --object " + c.object + " --at " + c.at + " --derivatives " + std::to_string(c.order));
+        const Json j = run("eval " + freeform::test::shellQuote(path) + " --object " + c.object + " --at " + c.at + " --derivatives " + std::to_string(c.order));
         const Evaluation e = evaluate(doc, doc.object(c.object), c.values, c.order);
         checkVector(j["point"], e.point);
         if (e.normal) checkVector(j["normal"], *e.normal);
@@ -102,7 +102,7 @@ TEST_CASE("continuity equals freeform continuity", "[cli][document]")
     const std::string path = docPath();
     const TypedDocument doc = TypedDocument::read(path);
     for (const std::string name : {"s2", "s3", "d3"}) {
-        const Json j = run("continuity " + path + " --object " + name);
+        const Json j = run("continuity " + freeform::test::shellQuote(path) + " --object " + name);
         const auto joints = continuity(doc, doc.object(name));
         REQUIRE(j["joints"].size() == joints.size());
         for (std::size_t i = 0; i < joints.size(); ++i) {
@@ -119,10 +119,10 @@ TEST_CASE("convertSpline equals freeform convert --to", "[cli][document]")
 {
     const std::string path = docPath();
     TypedDocument doc = TypedDocument::read(path);
-    run("convert " + path + " --object d3 --to bezier_spline -o " + tmp("layer_conv1.json"));
+    run("convert " + freeform::test::shellQuote(path) + " --object d3 --to bezier_spline -o " + freeform::test::shellQuote(tmp("layer_conv1.json")));
     convertSpline(doc, doc.object("d3").id(), "bezier_spline");
     CHECK(formatDocument(readDocument(tmp("layer_conv1.json"))) == formatDocument(doc.toDocument()));
-    run("convert " + tmp("layer_conv1.json") + " --object d3 --to deboor_spline --end open -o " + tmp("layer_conv2.json"));
+    run("convert " + freeform::test::shellQuote(tmp("layer_conv1.json")) + " --object d3 --to deboor_spline --end open -o " + freeform::test::shellQuote(tmp("layer_conv2.json")));
     convertSpline(doc, doc.object("d3").id(), "deboor_spline", EndCondition::Open);
     CHECK(formatDocument(readDocument(tmp("layer_conv2.json"))) == formatDocument(doc.toDocument()));
 }
@@ -131,7 +131,7 @@ TEST_CASE("tessellation of surfaces equals freeform tessellate", "[cli][document
 {
     const std::string path = docPath();
     const TypedDocument doc = TypedDocument::read(path);
-    const Json j = run("tessellate " + path + " --segments 5 -o " + tmp("layer_tess.obj"));
+    const Json j = run("tessellate " + freeform::test::shellQuote(path) + " --segments 5 -o " + freeform::test::shellQuote(tmp("layer_tess.obj")));
     TessellationOptions options;
     options.segmentsU = options.segmentsV = 5;
     TessellationReport report;
@@ -145,7 +145,7 @@ TEST_CASE("tessellation of surfaces equals freeform tessellate", "[cli][document
 TEST_CASE("deformDocument equals freeform ffd DOC: the document and the report", "[cli][document][ffd]")
 {
     const std::string path = docPath();
-    const Json report = run("ffd " + path + " --lattice " + path + " -o " + tmp("layer_ffd.json"));
+    const Json report = run("ffd " + freeform::test::shellQuote(path) + " --lattice " + freeform::test::shellQuote(path) + " -o " + freeform::test::shellQuote(tmp("layer_ffd.json")));
     TypedDocument doc = TypedDocument::read(path);
     const Lattice lattice = latticeFromData(std::get<LatticeData>(doc.object("L").data()));
     const DeformDocumentReport r = deformDocument(doc, lattice);

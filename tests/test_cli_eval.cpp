@@ -36,7 +36,7 @@ std::string curveDoc()
 
 TEST_CASE("eval prints the point and the derivatives of a curve", "[cli]")
 {
-    const auto r = cli("eval " + curveDoc() + " --object c --at 0.5 --derivatives 4");
+    const auto r = cli("eval " + freeform::test::shellQuote(curveDoc()) + " --object c --at 0.5 --derivatives 4");
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
@@ -55,14 +55,14 @@ TEST_CASE("eval prints the point and the derivatives of a curve", "[cli]")
 
 TEST_CASE("eval numbers read back to the same double", "[cli]")
 {
-    const auto r = cli("eval " + curveDoc() + " --object h --at 0.1");
+    const auto r = cli("eval " + freeform::test::shellQuote(curveDoc()) + " --object h --at 0.1");
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
     // f(0.1) of the quadratic (0,0,0),(0.1,0.2,0.3),(1,1,1): 2 t (1-t) b1 + t^2 b2, in double.
     const double t = 0.1, w1 = 2 * t * (1 - t), w2 = t * t;
     CHECK(j["point"][0].get<double>() == 0.0 * (1 - t) * (1 - t) + w1 * 0.1 + w2 * 1.0);
     CHECK(j.contains("derivatives") == false);
-    const auto r3 = cli("eval " + curveDoc() + " --object h --at 1 --derivatives 1");
+    const auto r3 = cli("eval " + freeform::test::shellQuote(curveDoc()) + " --object h --at 1 --derivatives 1");
     CHECK(Json::parse(r3.out)["derivatives"][0] == Json::array({1.8, 1.6, 1.4}));
 }
 
@@ -81,27 +81,27 @@ TEST_CASE("bad usage exits 2", "[cli][errors]")
     const std::string d = curveDoc();
     requireError(freeform::test::cli(""), 2, "no command");
     requireError(freeform::test::cli("frobnicate"), 2, "unknown command");
-    requireError(freeform::test::cli("eval " + d + " --at 0.5"), 2, "--object is required");
-    requireError(freeform::test::cli("eval " + d + " --object c"), 2, "--at is required");
+    requireError(freeform::test::cli("eval " + freeform::test::shellQuote(d) + " --at 0.5"), 2, "--object is required");
+    requireError(freeform::test::cli("eval " + freeform::test::shellQuote(d) + " --object c"), 2, "--at is required");
     requireError(freeform::test::cli("eval --object c --at 0.5"), 2, "missing the document");
-    requireError(freeform::test::cli("eval " + d + " --object c --at abc"), 2, "not a finite number");
-    requireError(freeform::test::cli("eval " + d + " --object c --at 0.5 --derivatives -1"), 2, "must not be negative");
-    requireError(freeform::test::cli("eval " + d + " --object c --at 0.5 --bogus"), 2, "unknown option --bogus");
-    requireError(freeform::test::cli("eval " + d + " " + d + " --object c --at 0.5"), 2, "unexpected argument");
+    requireError(freeform::test::cli("eval " + freeform::test::shellQuote(d) + " --object c --at abc"), 2, "not a finite number");
+    requireError(freeform::test::cli("eval " + freeform::test::shellQuote(d) + " --object c --at 0.5 --derivatives -1"), 2, "must not be negative");
+    requireError(freeform::test::cli("eval " + freeform::test::shellQuote(d) + " --object c --at 0.5 --bogus"), 2, "unknown option --bogus");
+    requireError(freeform::test::cli("eval " + freeform::test::shellQuote(d) + " " + freeform::test::shellQuote(d) + " --object c --at 0.5"), 2, "unexpected argument");
 }
 
 TEST_CASE("bad input exits 1", "[cli][errors]")
 {
-    requireError(cli("eval " + tmp("does_not_exist.json") + " --object c --at 0.5"), 1, "cannot open");
-    requireError(cli("eval " + curveDoc() + " --object nope --at 0.5"), 1, "no object named \"nope\"");
-    requireError(cli("eval " + curveDoc() + " --object c --at 1.5"), 1, "outside");
+    requireError(cli("eval " + freeform::test::shellQuote(tmp("does_not_exist.json")) + " --object c --at 0.5"), 1, "cannot open");
+    requireError(cli("eval " + freeform::test::shellQuote(curveDoc()) + " --object nope --at 0.5"), 1, "no object named \"nope\"");
+    requireError(cli("eval " + freeform::test::shellQuote(curveDoc()) + " --object c --at 1.5"), 1, "outside");
     const std::string broken = tmp("cli_broken.json");
     writeText(broken, R"({"format": "freeform", "version": 1, "objects": [{"name": "c", "type": "bezier_curve", "points": [[0,0],[1]]}]})");
-    requireError(cli("eval " + broken + " --object c --at 0.5"), 1, "points[1]");
+    requireError(cli("eval " + freeform::test::shellQuote(broken) + " --object c --at 0.5"), 1, "points[1]");
     writeText(broken, R"({"format": "freeform", "version": 1, "objects": [{"name": "c", "type": "bezier_curve", "points": [[0,0],[1,NaN]]}]})");
-    requireError(cli("eval " + broken + " --object c --at 0.5"), 1, "not valid JSON");
+    requireError(cli("eval " + freeform::test::shellQuote(broken) + " --object c --at 0.5"), 1, "not valid JSON");
     writeText(broken, R"({"format": "freeform", "version": 1, "objects": [{"name": "c", "type": "bezier_curb", "points": [[0,0]]}]})");
-    requireError(cli("eval " + broken + " --object c --at 0.5"), 1, "unknown object type");
+    requireError(cli("eval " + freeform::test::shellQuote(broken) + " --object c --at 0.5"), 1, "unknown object type");
     writeText(broken, "");
-    requireError(cli("eval " + broken + " --object c --at 0.5"), 1, "not valid JSON");
+    requireError(cli("eval " + freeform::test::shellQuote(broken) + " --object c --at 0.5"), 1, "not valid JSON");
 }

@@ -203,7 +203,7 @@ TEST_CASE("eval on a lattice prints the point, partial derivatives and det J", "
         {"name": "L", "type": "lattice", "degree": [1, 1, 1], "origin": [0, 0, 0],
          "axes": [[2, 0, 0], [0, 2, 0], [0, 0, 2]],
          "points": [[0,0,0],[0,0,2],[0,2,0],[0,2,2],[2,0,0],[2,0,2],[2,2,0],[3,2,2]]}]})");
-    const auto r = cli("eval " + path + " --object L --at 1,1,1 --derivatives 1");
+    const auto r = cli("eval " + freeform::test::shellQuote(path) + " --object L --at 1,1,1 --derivatives 1");
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
@@ -213,12 +213,12 @@ TEST_CASE("eval on a lattice prints the point, partial derivatives and det J", "
     CHECK(j["derivatives"][0]["t"] == Json::array({1.0, 2.0, 0.0}));
     CHECK(j["derivatives"][0]["u"] == Json::array({1.0, 0.0, 2.0}));
     CHECK(j["derivatives"][0]["det"] == 12.0 / 8.0); // det [f_s f_t f_u] / det [S T U]
-    const auto mid = Json::parse(cli("eval " + path + " --object L --at 0.5,0.5,0 --derivatives 1").out);
+    const auto mid = Json::parse(cli("eval " + freeform::test::shellQuote(path) + " --object L --at 0.5,0.5,0 --derivatives 1").out);
     CHECK(mid["point"] == Json::array({1.0, 1.0, 0.0}));
     CHECK(mid["derivatives"][0]["det"] == 1.0);
-    requireError(cli("eval " + path + " --object L --at 0.5,0.5,1.5"), 1, "outside the lattice's domain");
-    requireError(cli("eval " + path + " --object L --at 0.5,0.5,0.5 --derivatives 2"), 1, "--derivatives 0 or 1");
-    requireError(cli("eval " + path + " --object L --at 0.5,0.5"), 2, "expected 3");
+    requireError(cli("eval " + freeform::test::shellQuote(path) + " --object L --at 0.5,0.5,1.5"), 1, "outside the lattice's domain");
+    requireError(cli("eval " + freeform::test::shellQuote(path) + " --object L --at 0.5,0.5,0.5 --derivatives 2"), 1, "--derivatives 0 or 1");
+    requireError(cli("eval " + freeform::test::shellQuote(path) + " --object L --at 0.5,0.5"), 2, "expected 3");
 }
 
 TEST_CASE("bad input gives one error line, exit status 1 and no output file", "[cli]")

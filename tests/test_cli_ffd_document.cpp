@@ -90,7 +90,7 @@ Json deform(const std::string& tag, std::string& output)
     const std::string doc = tmp(tag + "_doc.json");
     writeText(doc, std::string(R"({"format": "freeform", "version": 1, "objects": )") + kObjects + "}");
     output = tmp(tag + "_out.json");
-    const auto r = cli("ffd " + doc + " --lattice " + lat + " -o " + output + " --report " + tmp(tag + "_report.json"));
+    const auto r = cli("ffd " + freeform::test::shellQuote(doc) + " --lattice " + freeform::test::shellQuote(lat) + " -o " + freeform::test::shellQuote(output) + " --report " + freeform::test::shellQuote(tmp(tag + "_report.json")));
     INFO(r.err);
     REQUIRE(r.status == 0);
     REQUIRE(r.err.empty());
@@ -199,10 +199,10 @@ TEST_CASE("ffd on a document: bad usage and bad input", "[cli]")
     const std::string obj = tmp("ffdbad_out.obj"), json = tmp("ffdbad_out.json");
     std::filesystem::remove(obj);
     std::filesystem::remove(json);
-    requireError(cli("ffd " + doc + " --lattice " + lat + " -o " + obj), 2, "OUT.json");
-    requireError(cli("ffd " + std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/cube.obj --lattice " + lat + " -o " + json), 2,
+    requireError(cli("ffd " + freeform::test::shellQuote(doc) + " --lattice " + freeform::test::shellQuote(lat) + " -o " + freeform::test::shellQuote(obj)), 2, "OUT.json");
+    requireError(cli("ffd " + freeform::test::shellQuote(std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/cube.obj") + " --lattice " + freeform::test::shellQuote(lat) + " -o " + freeform::test::shellQuote(json)), 2,
                  "not a document");
-    requireError(cli("ffd " + doc + " --lattice " + lat + " -o " + json + " --normals recompute"), 2, "meshes only");
+    requireError(cli("ffd " + freeform::test::shellQuote(doc) + " --lattice " + freeform::test::shellQuote(lat) + " -o " + freeform::test::shellQuote(json) + " --normals recompute"), 2, "meshes only");
 
     // A cubic lattice on a degree-8 curve: degree 72 is above the limit of 67.
     const std::string cubic = latticeDocument("ffdbad_cubic.json", 3);
@@ -212,10 +212,10 @@ TEST_CASE("ffd on a document: bad usage and bad input", "[cli]")
     writeText(high, Json({{"format", "freeform"}, {"version", 1},
                           {"objects", {{{"name", "h"}, {"type", "bezier_curve"}, {"points", points}}}}})
                         .dump());
-    requireError(cli("ffd " + high + " --lattice " + cubic + " -o " + json), 1, "object \"h\"");
+    requireError(cli("ffd " + freeform::test::shellQuote(high) + " --lattice " + freeform::test::shellQuote(cubic) + " -o " + freeform::test::shellQuote(json)), 1, "object \"h\"");
     const std::string broken = tmp("ffdbad_broken.json");
     writeText(broken, "{\"format\": \"freeform\", \"version\": 1, \"objects\": [");
-    requireError(cli("ffd " + broken + " --lattice " + lat + " -o " + json), 1, "ffdbad_broken.json");
+    requireError(cli("ffd " + freeform::test::shellQuote(broken) + " --lattice " + freeform::test::shellQuote(lat) + " -o " + freeform::test::shellQuote(json)), 1, "ffdbad_broken.json");
     CHECK_FALSE(std::filesystem::exists(obj));
     CHECK_FALSE(std::filesystem::exists(json));
 }

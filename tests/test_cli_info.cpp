@@ -57,7 +57,7 @@ std::string writeObj(const freeform::PolygonMesh& m, const std::string& name)
 
 TEST_CASE("info on a cube: the whole line, keys in the documented order", "[cli]")
 {
-    const auto r = cli("info " + writeObj(freeform::test::cube(), "cube.obj"));
+    const auto r = cli("info " + freeform::test::shellQuote(writeObj(freeform::test::cube(), "cube.obj")));
     INFO(r.err);
     REQUIRE(r.status == 0);
     CHECK(r.err.empty());
@@ -68,7 +68,7 @@ TEST_CASE("info on a cube: the whole line, keys in the documented order", "[cli]
 
 TEST_CASE("info on a torus, a two-hole slab and two components", "[cli]")
 {
-    const Json torus = Json::parse(cli("info " + writeObj(freeform::test::quadTorus(12, 6), "torus.obj")).out);
+    const Json torus = Json::parse(cli("info " + freeform::test::shellQuote(writeObj(freeform::test::quadTorus(12, 6), "torus.obj"))).out);
     CHECK(torus["vertices"] == 72);
     CHECK(torus["edges"] == 144);
     CHECK(torus["faces"] == 72);
@@ -77,12 +77,12 @@ TEST_CASE("info on a torus, a two-hole slab and two components", "[cli]")
     CHECK(torus["genus"] == 1);
     CHECK(!torus.contains("genus_note"));
 
-    const Json slab = Json::parse(cli("info " + writeObj(freeform::test::holedSlab(2), "slab.obj")).out);
+    const Json slab = Json::parse(cli("info " + freeform::test::shellQuote(writeObj(freeform::test::holedSlab(2), "slab.obj"))).out);
     CHECK(slab["euler"] == -2);
     CHECK(slab["genus"] == 2);
 
     const Json two = Json::parse(
-        cli("info " + writeObj(freeform::test::disjointUnion(freeform::test::tetrahedron(), freeform::test::quadTorus(5, 4)), "two.obj")).out);
+        cli("info " + freeform::test::shellQuote(writeObj(freeform::test::disjointUnion(freeform::test::tetrahedron(), freeform::test::quadTorus(5, 4)), "two.obj"))).out);
     CHECK(two["components"] == 2);
     CHECK(two["euler"] == 2);
     CHECK(two["genus"] == 1);
@@ -90,7 +90,7 @@ TEST_CASE("info on a torus, a two-hole slab and two components", "[cli]")
 
 TEST_CASE("info on a disk: genus null with a note", "[cli]")
 {
-    const auto r = cli("info " + writeObj(freeform::test::fanDisk(6), "disk.obj"));
+    const auto r = cli("info " + freeform::test::shellQuote(writeObj(freeform::test::fanDisk(6), "disk.obj")));
     REQUIRE(r.status == 0);
     CHECK(r.out ==
           R"({"vertices":7,"edges":12,"faces":6,"boundary_edges":6,"boundary_loops":1,"components":1,"manifold":true,"closed":false,"euler":1,"genus":null,"genus_note":"it has 1 boundary loop; the genus is given for closed surfaces only"})"
@@ -101,7 +101,7 @@ TEST_CASE("info on non-manifold input reports instead of failing", "[cli]")
 {
     const std::string path = tmp("fan.obj");
     writeText(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
-    const auto r = cli("info " + path);
+    const auto r = cli("info " + freeform::test::shellQuote(path));
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
@@ -111,7 +111,7 @@ TEST_CASE("info on non-manifold input reports instead of failing", "[cli]")
     CHECK(j["genus"].is_null());
     CHECK(j["genus_note"].get<std::string>().rfind("not a manifold", 0) == 0);
 
-    const Json d = Json::parse(cli("info " + path + " --details").out);
+    const Json d = Json::parse(cli("info " + freeform::test::shellQuote(path) + " --details").out);
     CHECK(d["non_manifold_edges"] == Json::parse("[[0, 1, 3]]"));
     CHECK(d["non_manifold_vertices"] == Json::parse("[[0, 3], [1, 3]]"));
     CHECK(d["inconsistent_edges"] == Json::array());
@@ -125,7 +125,7 @@ TEST_CASE("info on non-manifold input reports instead of failing", "[cli]")
 
 TEST_CASE("info on a Klein bottle: closed manifold, not orientable", "[cli]")
 {
-    const Json j = Json::parse(cli("info " + writeObj(freeform::test::kleinBottle(5, 4), "klein.obj") + " --details").out);
+    const Json j = Json::parse(cli("info " + freeform::test::shellQuote(writeObj(freeform::test::kleinBottle(5, 4), "klein.obj")) + " --details").out);
     CHECK(j["manifold"] == true);
     CHECK(j["closed"] == true);
     CHECK(j["euler"] == 0);
@@ -157,7 +157,7 @@ TEST_CASE("info reads every mesh format", "[cli]")
         R"({"vertices":4,"edges":6,"faces":4,"boundary_edges":0,"boundary_loops":0,"components":1,"manifold":true,"closed":true,"euler":2,"genus":0})"
         "\n";
     for (const auto& path : {off, ply, stl}) {
-        const auto r = cli("info " + path);
+        const auto r = cli("info " + freeform::test::shellQuote(path));
         INFO(path << ": " << r.err);
         CHECK(r.out == expected);
     }
@@ -166,7 +166,7 @@ TEST_CASE("info reads every mesh format", "[cli]")
     for (const char* ext : {".gltf", ".glb", ".ply", ".obj"}) {
         const std::string path = tmp(std::string("torus") + ext);
         freeform::writePolygonMesh(torus, path);
-        const auto r = cli("info " + path);
+        const auto r = cli("info " + freeform::test::shellQuote(path));
         INFO(path << ": " << r.err);
         REQUIRE(r.status == 0);
         const Json j = Json::parse(r.out);
@@ -179,19 +179,19 @@ TEST_CASE("info reads every mesh format", "[cli]")
 
 TEST_CASE("info: bad input and bad usage", "[cli]")
 {
-    requireError(cli("info " + tmp("does-not-exist.obj")), 1, "does-not-exist.obj");
+    requireError(cli("info " + freeform::test::shellQuote(tmp("does-not-exist.obj"))), 1, "does-not-exist.obj");
 
     const std::string outOfRange = tmp("bad_index.obj");
     writeText(outOfRange, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-    requireError(cli("info " + outOfRange), 1, "bad_index.obj");
+    requireError(cli("info " + freeform::test::shellQuote(outOfRange)), 1, "bad_index.obj");
 
     const std::string garbage = tmp("garbage.obj");
     writeText(garbage, "v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    requireError(cli("info " + garbage), 1, "garbage.obj");
+    requireError(cli("info " + freeform::test::shellQuote(garbage)), 1, "garbage.obj");
 
     const std::string unknown = tmp("mesh.xyz");
     writeText(unknown, "1 2 3\n");
-    requireError(cli("info " + unknown), 1, "mesh.xyz");
+    requireError(cli("info " + freeform::test::shellQuote(unknown)), 1, "mesh.xyz");
 
     requireError(cli("info"), 2, "missing the mesh file");
     requireError(cli("info a.obj b.obj"), 2, "unexpected argument");
@@ -210,7 +210,7 @@ TEST_CASE("info on a file the reader accepts with a warning: one warning line on
     writeText(ply, "ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org\nelement vertex 3\nproperty float x\n"
                    "property float y\nproperty float z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n"
                    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-    const auto r = cli("info " + ply);
+    const auto r = cli("info " + freeform::test::shellQuote(ply));
     REQUIRE(r.status == 0);
     CHECK(Json::parse(r.out)["faces"] == 1);
     CHECK(r.out.find("warning") == std::string::npos);
@@ -222,7 +222,7 @@ TEST_CASE("info on a file the reader accepts with a warning: one warning line on
     // closed run's stream.
     std::vector<std::string> seen;
     const freeform::ScopedWarningHandler capture([&seen](const std::string& m) { seen.push_back(m); });
-    (void)cli("info " + ply);
+    (void)cli("info " + freeform::test::shellQuote(ply));
     CHECK(seen.empty()); // the run had its own handler
     freeform::warn("after the run");
     CHECK(seen == std::vector<std::string>{"after the run"});

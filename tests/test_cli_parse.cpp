@@ -130,14 +130,14 @@ TEST_CASE("CLI11 parse errors are bad usage with CLI11's message", "[cli][errors
 TEST_CASE("the spellings CLI11 accepts give the same result", "[cli]")
 {
     const std::string d = doc();
-    const auto plain = cliInProcess("eval " + d + " --object c --at 0.5 --derivatives 2");
+    const auto plain = cliInProcess("eval " + freeform::test::shellQuote(d) + " --object c --at 0.5 --derivatives 2");
     REQUIRE(plain.status == 0);
     // --name=value, options before the positional argument, in any order.
-    CHECK(cliInProcess("eval " + d + " --object=c --at=0.5 --derivatives=2").out == plain.out);
-    CHECK(cliInProcess("eval --derivatives 2 --at 0.5 --object c " + d).out == plain.out);
+    CHECK(cliInProcess("eval " + freeform::test::shellQuote(d) + " --object=c --at=0.5 --derivatives=2").out == plain.out);
+    CHECK(cliInProcess("eval --derivatives 2 --at 0.5 --object c " + freeform::test::shellQuote(d)).out == plain.out);
     CHECK(runCli({"eval", "--at", "0.5", d, "--object", "c", "--derivatives", "2"}).out == plain.out);
     // Integers are decimal: 010 is ten derivatives (CLI11 alone would read octal 8).
-    const auto ten = cliInProcess("eval " + d + " --object c --at 0.5 --derivatives 010");
+    const auto ten = cliInProcess("eval " + freeform::test::shellQuote(d) + " --object c --at 0.5 --derivatives 010");
     REQUIRE(ten.status == 0);
     CHECK(Json::parse(ten.out)["derivatives"].size() == 10);
     // A value starting with '-' is the option's value, not an option: t = -0.5 is outside [0, 1].

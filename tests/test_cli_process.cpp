@@ -45,7 +45,7 @@ TEST_CASE("the binary and the library agree byte for byte", "[cli]")
 TEST_CASE("stdout holds only the JSON line; errors only stderr", "[cli]")
 {
     const std::string mesh = std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/cube.obj";
-    const auto ok = cli("info " + mesh);
+    const auto ok = cli("info " + freeform::test::shellQuote(mesh));
     REQUIRE(ok.status == 0);
     CHECK(ok.err.empty());
     CHECK(std::count(ok.out.begin(), ok.out.end(), '\n') == 1);

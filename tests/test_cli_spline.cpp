@@ -52,7 +52,7 @@ const char* kDeBoor = R"({"name": "d", "type": "deboor_spline", "degree": 3, "en
 TEST_CASE("eval of a bezier_spline at a global parameter", "[cli]")
 {
     const std::string doc = document("spl_eval.json", kSpline);
-    const auto r = cli("eval " + doc + " --object s --at 2 --derivatives 3");
+    const auto r = cli("eval " + freeform::test::shellQuote(doc) + " --object s --at 2 --derivatives 3");
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
@@ -65,15 +65,15 @@ TEST_CASE("eval of a bezier_spline at a global parameter", "[cli]")
     CHECK(j["derivatives"][2] == Json::array({-1.5, 0.0}));
     CHECK(r.out.rfind(R"({"object":"s","t":2.0,"point":)", 0) == 0);
     // The end of the domain is T = 3.
-    CHECK(Json::parse(cli("eval " + doc + " --object s --at 3").out)["point"] == Json::array({8.0, 0.0}));
-    requireError(cli("eval " + doc + " --object s --at 3.5"), 1, "outside the spline's domain [0, 3]");
-    requireError(cli("eval " + doc + " --object s --at -0.1"), 1, "outside");
+    CHECK(Json::parse(cli("eval " + freeform::test::shellQuote(doc) + " --object s --at 3").out)["point"] == Json::array({8.0, 0.0}));
+    requireError(cli("eval " + freeform::test::shellQuote(doc) + " --object s --at 3.5"), 1, "outside the spline's domain [0, 3]");
+    requireError(cli("eval " + freeform::test::shellQuote(doc) + " --object s --at -0.1"), 1, "outside");
 }
 
 TEST_CASE("eval of a clamped deboor_spline starts and ends at the end de Boor points", "[cli]")
 {
     const std::string doc = document("spl_deboor.json", kDeBoor);
-    const auto start = cli("eval " + doc + " --object d --at 0 --derivatives 1");
+    const auto start = cli("eval " + freeform::test::shellQuote(doc) + " --object d --at 0 --derivatives 1");
     INFO(start.err);
     REQUIRE(start.status == 0);
     const Json a = Json::parse(start.out);
@@ -81,39 +81,39 @@ TEST_CASE("eval of a clamped deboor_spline starts and ends at the end de Boor po
     // Clamped: f'(0) = 3 (d_1 - d_0) / h_0 = (3, 9).
     CHECK(a["derivatives"][0][0].get<double>() == Approx(3.0).epsilon(1e-14));
     CHECK(a["derivatives"][0][1].get<double>() == Approx(9.0).epsilon(1e-14));
-    const Json b = Json::parse(cli("eval " + doc + " --object d --at 3").out);
+    const Json b = Json::parse(cli("eval " + freeform::test::shellQuote(doc) + " --object d --at 3").out);
     CHECK(b["point"] == Json::array({8.0, 0.0}));
 }
 
 TEST_CASE("continuity prints every joint with C, G and the jumps", "[cli]")
 {
     const std::string doc = document("spl_cont.json", std::string(kJump) + "," + kSpline + "," + kDeBoor);
-    const auto r = cli("continuity " + doc + " --object j");
+    const auto r = cli("continuity " + freeform::test::shellQuote(doc) + " --object j");
     INFO(r.err);
     REQUIRE(r.status == 0);
     CHECK(r.out == R"({"object":"j","joints":[{"joint":1,"t":3.0,"C":2,"G":2,"jumps":[0.0,0.0,0.0,4.5]}]})"
                    "\n");
     // The two-segment arch spline: C0 with a first-derivative jump, G1 (tangents (3,-6) and (1.5,-3)).
-    const Json s = Json::parse(cli("continuity " + doc + " --object s").out);
+    const Json s = Json::parse(cli("continuity " + freeform::test::shellQuote(doc) + " --object s").out);
     CHECK(s["joints"][0]["C"] == 0);
     CHECK(s["joints"][0]["G"] == 1);
     CHECK(s["joints"][0]["jumps"][1].get<double>() == Approx(std::sqrt(1.5 * 1.5 + 3.0 * 3.0)).epsilon(1e-15));
     // A de Boor spline is C2 at its joints.
-    const Json d = Json::parse(cli("continuity " + doc + " --object d").out);
+    const Json d = Json::parse(cli("continuity " + freeform::test::shellQuote(doc) + " --object d").out);
     REQUIRE(d["joints"].size() == 1);
     CHECK(d["joints"][0]["C"] == 2);
     // A loose tolerance lets the jump in the first derivative pass.
-    const Json loose = Json::parse(cli("continuity " + doc + " --object s --tolerance 10").out);
+    const Json loose = Json::parse(cli("continuity " + freeform::test::shellQuote(doc) + " --object s --tolerance 10").out);
     CHECK(loose["joints"][0]["C"].get<int>() >= 1);
-    requireError(cli("continuity " + doc + " --object s --tolerance 0"), 2, "--tolerance");
-    requireError(cli("continuity " + doc + " --object nope"), 1, "no object named \"nope\"");
+    requireError(cli("continuity " + freeform::test::shellQuote(doc) + " --object s --tolerance 0"), 2, "--tolerance");
+    requireError(cli("continuity " + freeform::test::shellQuote(doc) + " --object nope"), 1, "no object named \"nope\"");
 }
 
 TEST_CASE("continuity reports the closing joint of a closed spline", "[cli]")
 {
     const std::string doc = document("spl_closed.json", R"({"name": "c", "type": "deboor_spline", "degree": 3,
         "end": "closed", "points": [[0,0],[2,0],[2,2],[0,2]]})");
-    const Json j = Json::parse(cli("continuity " + doc + " --object c").out);
+    const Json j = Json::parse(cli("continuity " + freeform::test::shellQuote(doc) + " --object c").out);
     REQUIRE(j["joints"].size() == 4);
     CHECK(j["joints"][0]["joint"] == 0);
     CHECK(j["joints"][0]["t"] == 0.0);
@@ -125,7 +125,7 @@ TEST_CASE("interpolate writes a bezier_spline through the points", "[cli]")
     const std::string in = tmp("spl_points.json"), out = tmp("spl_interp.json");
     writeText(in, R"({"points": [[0,0],[3,4],[6,0],[9,4]]})");
     std::filesystem::remove(out);
-    const auto r = cli("interpolate " + in + " -o " + out);
+    const auto r = cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out));
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json summary = Json::parse(r.out);
@@ -141,12 +141,12 @@ TEST_CASE("interpolate writes a bezier_spline through the points", "[cli]")
     CHECK(o["points"].size() == 10);
     CHECK(o["points"][3] == Json::array({3.0, 4.0}));
     // Through every point: eval at the knots 0, 5, 10, 15.
-    const auto e = cli("eval " + out + " --object interpolant --at 10");
+    const auto e = cli("eval " + freeform::test::shellQuote(out) + " --object interpolant --at 10");
     CHECK(Json::parse(e.out)["point"] == Json::array({6.0, 0.0}));
 
     // Given parameters and clamped ends.
     writeText(in, R"({"points": [[0,0],[1,1],[2,0]], "params": [0, 1, 3]})");
-    const auto c = cli("interpolate " + in + " -o " + out + " --end clamped --start-derivative 1,0 --end-derivative 0,-1");
+    const auto c = cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --end clamped --start-derivative 1,0 --end-derivative 0,-1");
     INFO(c.err);
     REQUIRE(c.status == 0);
     CHECK(Json::parse(c.out)["param"] == "given");
@@ -157,7 +157,7 @@ TEST_CASE("interpolate writes a bezier_spline through the points", "[cli]")
 
     // Periodic: a closed spline.
     writeText(in, R"({"points": [[1,0],[0,1],[-1,0],[0,-1]]})");
-    REQUIRE(cli("interpolate " + in + " -o " + out + " --end periodic --param uniform").status == 0);
+    REQUIRE(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --end periodic --param uniform").status == 0);
     const Json pd = Json::parse(slurp(out));
     CHECK(pd["objects"][0]["closed"] == true);
     CHECK(pd["objects"][0]["points"].size() == 12);
@@ -168,21 +168,21 @@ TEST_CASE("interpolate: bad usage and bad input", "[cli]")
     const std::string in = tmp("spl_points_bad.json"), out = tmp("spl_interp_bad.json");
     writeText(in, R"({"points": [[0,0],[3,4],[6,0]]})");
     std::filesystem::remove(out);
-    requireError(cli("interpolate " + in + " -o " + out + " --end free"), 2, "unknown end condition \"free\"");
-    requireError(cli("interpolate " + in + " -o " + out + " --param arc"), 2, "unknown parametrization");
-    requireError(cli("interpolate " + in + " -o " + out + " --end clamped"), 2, "--start-derivative");
-    requireError(cli("interpolate " + in + " -o " + out + " --start-derivative 1,0"), 2, "clamped only");
-    requireError(cli("interpolate " + in + " -o " + out + " --end clamped --start-derivative 1,0,0 --end-derivative 1,0,0"),
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --end free"), 2, "unknown end condition \"free\"");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --param arc"), 2, "unknown parametrization");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --end clamped"), 2, "--start-derivative");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --start-derivative 1,0"), 2, "clamped only");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out) + " --end clamped --start-derivative 1,0,0 --end-derivative 1,0,0"),
                  2, "expected 2 numbers");
-    requireError(cli("interpolate " + in), 2, "--output");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in)), 2, "--output");
     writeText(in, R"({"points": [[0,0],[0,0],[6,0]]})");
-    requireError(cli("interpolate " + in + " -o " + out), 1, "points 0 and 1 coincide");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out)), 1, "points 0 and 1 coincide");
     writeText(in, R"({"points": [[0,0],[1,0,0]]})");
-    requireError(cli("interpolate " + in + " -o " + out), 1, "points[1]");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out)), 1, "points[1]");
     writeText(in, R"({"points": [[0,0],[1,0]], "weights": [1]})");
-    requireError(cli("interpolate " + in + " -o " + out), 1, "unknown field");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out)), 1, "unknown field");
     writeText(in, R"({"points": [[0,0],[1,0],[2,1]], "params": [0, 2, 1]})");
-    requireError(cli("interpolate " + in + " -o " + out), 1, "strictly increasing");
+    requireError(cli("interpolate " + freeform::test::shellQuote(in) + " -o " + freeform::test::shellQuote(out)), 1, "strictly increasing");
     CHECK_FALSE(std::filesystem::exists(out));
 }
 
@@ -190,7 +190,7 @@ TEST_CASE("convert between de Boor and Bézier form, round trip", "[cli]")
 {
     const std::string doc = document("spl_conv.json", std::string(kDeBoor) + "," + kSpline);
     const std::string bez = tmp("spl_conv_bez.json"), back = tmp("spl_conv_back.json");
-    const auto r = cli("convert " + doc + " --object d --to bezier_spline -o " + bez);
+    const auto r = cli("convert " + freeform::test::shellQuote(doc) + " --object d --to bezier_spline -o " + freeform::test::shellQuote(bez));
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json summary = Json::parse(r.out);
@@ -202,7 +202,7 @@ TEST_CASE("convert between de Boor and Bézier form, round trip", "[cli]")
     CHECK(b["objects"][0]["points"].size() == 7);
     CHECK(b["objects"][0]["points"][0] == Json::array({0.0, 0.0}));
     CHECK(b["objects"][0]["points"][1] == Json::array({1.0, 3.0}));
-    const auto r2 = cli("convert " + bez + " --object d --to deboor_spline -o " + back);
+    const auto r2 = cli("convert " + freeform::test::shellQuote(bez) + " --object d --to deboor_spline -o " + freeform::test::shellQuote(back));
     INFO(r2.err);
     REQUIRE(r2.status == 0);
     CHECK(Json::parse(r2.out)["end"] == "clamped");
@@ -216,10 +216,10 @@ TEST_CASE("convert between de Boor and Bézier form, round trip", "[cli]")
     // The arch spline is not C2: a clear error, no output file.
     const std::string none = tmp("spl_conv_none.json");
     std::filesystem::remove(none);
-    requireError(cli("convert " + doc + " --object s --to deboor_spline -o " + none), 1, "not C2 at joint 1");
+    requireError(cli("convert " + freeform::test::shellQuote(doc) + " --object s --to deboor_spline -o " + freeform::test::shellQuote(none)), 1, "not C2 at joint 1");
     CHECK_FALSE(std::filesystem::exists(none));
-    requireError(cli("convert " + doc + " --object d --to deboor_spline -o " + none), 1, "already a deboor_spline");
-    requireError(cli("convert " + doc + " --object d --to nurbs -o " + none), 2, "--to");
+    requireError(cli("convert " + freeform::test::shellQuote(doc) + " --object d --to deboor_spline -o " + freeform::test::shellQuote(none)), 1, "already a deboor_spline");
+    requireError(cli("convert " + freeform::test::shellQuote(doc) + " --object d --to nurbs -o " + freeform::test::shellQuote(none)), 2, "--to");
     CHECK_FALSE(std::filesystem::exists(none));
 }
 
@@ -248,11 +248,11 @@ TEST_CASE("bad spline objects: exit 1, nothing on stdout", "[cli]")
     for (const auto& c : cases) {
         const std::string doc = document("spl_bad.json", c[0]);
         CAPTURE(c[0]);
-        requireError(cli("eval " + doc + " --object b --at 0"), 1, c[1]);
-        requireError(cli("continuity " + doc + " --object b"), 1, c[1]);
+        requireError(cli("eval " + freeform::test::shellQuote(doc) + " --object b --at 0"), 1, c[1]);
+        requireError(cli("continuity " + freeform::test::shellQuote(doc) + " --object b"), 1, c[1]);
     }
     const std::string curve = document("spl_curve.json", R"({"name": "c", "type": "bezier_curve", "points": [[0,0],[1,1]]})");
-    requireError(cli("continuity " + curve + " --object c"), 1, "not a spline");
+    requireError(cli("continuity " + freeform::test::shellQuote(curve) + " --object c"), 1, "not a spline");
 }
 
 TEST_CASE("spline command help texts list every option", "[cli]")

@@ -80,10 +80,10 @@ TEST_CASE("convert --end open recovers the open de Boor points; clamped describe
 {
     const std::string doc = document("end_open.json", kOpen);
     const std::string bez = tmp("end_open_bez.json"), open = tmp("end_open_back.json");
-    run("convert " + doc + " --object o --to bezier_spline -o " + bez);
+    run("convert " + freeform::test::shellQuote(doc) + " --object o --to bezier_spline -o " + freeform::test::shellQuote(bez));
 
     // Open: the round trip de Boor -> Bézier -> de Boor gives back the input.
-    const Json summary = run("convert " + bez + " --object o --to deboor_spline --end open -o " + open);
+    const Json summary = run("convert " + freeform::test::shellQuote(bez) + " --object o --to deboor_spline --end open -o " + freeform::test::shellQuote(open));
     CHECK(summary["end"] == "open");
     CHECK(summary["points"] == 6);
     const Json back = Json::parse(slurp(open))["objects"][0];
@@ -94,13 +94,13 @@ TEST_CASE("convert --end open recovers the open de Boor points; clamped describe
     // Clamped (also the default for an open spline): other de Boor points, the same Bézier spline,
     // starting at the first de Boor point.
     const std::string clamped = tmp("end_open_clamped.json"), dflt = tmp("end_open_default.json");
-    CHECK(run("convert " + bez + " --object o --to deboor_spline --end clamped -o " + clamped)["end"] == "clamped");
-    CHECK(run("convert " + bez + " --object o --to deboor_spline -o " + dflt)["end"] == "clamped");
+    CHECK(run("convert " + freeform::test::shellQuote(bez) + " --object o --to deboor_spline --end clamped -o " + freeform::test::shellQuote(clamped))["end"] == "clamped");
+    CHECK(run("convert " + freeform::test::shellQuote(bez) + " --object o --to deboor_spline -o " + freeform::test::shellQuote(dflt))["end"] == "clamped");
     CHECK(objectPoints(clamped) == objectPoints(dflt));
     CHECK(objectPoints(clamped)[0] == objectPoints(bez)[0]);
     CHECK(objectPoints(clamped) != back["points"]);
     const std::string again = tmp("end_open_again.json");
-    run("convert " + clamped + " --object o --to bezier_spline -o " + again);
+    run("convert " + freeform::test::shellQuote(clamped) + " --object o --to bezier_spline -o " + freeform::test::shellQuote(again));
     checkSame(objectPoints(again), objectPoints(bez), 1e-12);
 }
 
@@ -108,26 +108,26 @@ TEST_CASE("convert --end closed on a closed spline; end conditions the spline ca
 {
     const std::string doc = document("end_closed.json", kClosed);
     const std::string bez = tmp("end_closed_bez.json"), back = tmp("end_closed_back.json");
-    run("convert " + doc + " --object c --to bezier_spline -o " + bez);
-    CHECK(run("convert " + bez + " --object c --to deboor_spline --end closed -o " + back)["end"] == "closed");
+    run("convert " + freeform::test::shellQuote(doc) + " --object c --to bezier_spline -o " + freeform::test::shellQuote(bez));
+    CHECK(run("convert " + freeform::test::shellQuote(bez) + " --object c --to deboor_spline --end closed -o " + freeform::test::shellQuote(back))["end"] == "closed");
     checkSame(objectPoints(back), Json::parse(std::string("[") + kClosed + "]")[0]["points"], 1e-12);
 
     const std::string none = tmp("end_none.json");
     std::filesystem::remove(none);
-    requireError(cli("convert " + bez + " --object c --to deboor_spline --end open -o " + none), 1, "use --end closed");
-    requireError(cli("convert " + bez + " --object c --to deboor_spline --end clamped -o " + none), 1, "closed");
+    requireError(cli("convert " + freeform::test::shellQuote(bez) + " --object c --to deboor_spline --end open -o " + freeform::test::shellQuote(none)), 1, "use --end closed");
+    requireError(cli("convert " + freeform::test::shellQuote(bez) + " --object c --to deboor_spline --end clamped -o " + freeform::test::shellQuote(none)), 1, "closed");
     const std::string openDoc = document("end_open2.json", kOpen), openBez = tmp("end_open2_bez.json");
-    run("convert " + openDoc + " --object o --to bezier_spline -o " + openBez);
-    requireError(cli("convert " + openBez + " --object o --to deboor_spline --end closed -o " + none), 1,
+    run("convert " + freeform::test::shellQuote(openDoc) + " --object o --to bezier_spline -o " + freeform::test::shellQuote(openBez));
+    requireError(cli("convert " + freeform::test::shellQuote(openBez) + " --object o --to deboor_spline --end closed -o " + freeform::test::shellQuote(none)), 1,
                  "use --end open or --end clamped");
     CHECK_FALSE(std::filesystem::exists(none));
 
     // Bad usage: exit 2.
-    requireError(cli("convert " + openBez + " --object o --to deboor_spline --end natural -o " + none), 2,
+    requireError(cli("convert " + freeform::test::shellQuote(openBez) + " --object o --to deboor_spline --end natural -o " + freeform::test::shellQuote(none)), 2,
                  "\"natural\" is not one of open, clamped, closed");
-    requireError(cli("convert " + doc + " --object c --to bezier_spline --end open -o " + none), 2,
+    requireError(cli("convert " + freeform::test::shellQuote(doc) + " --object c --to bezier_spline --end open -o " + freeform::test::shellQuote(none)), 2,
                  "--end: goes with --to deboor_spline only");
-    requireError(cli("convert " + doc + " --end open -o " + tmp("end_none.obj")), 2, "--end");
+    requireError(cli("convert " + freeform::test::shellQuote(doc) + " --end open -o " + freeform::test::shellQuote(tmp("end_none.obj"))), 2, "--end");
     CHECK_FALSE(std::filesystem::exists(none));
     CHECK_FALSE(std::filesystem::exists(tmp("end_none.obj")));
     CHECK(cli("convert --help").out.find("--end") != std::string::npos);

@@ -71,7 +71,7 @@ std::vector<std::string> linesStarting(const std::string& text, const std::strin
 
 TEST_CASE("eval of a bezier_surface: point, normal and derivatives up to K", "[cli][surface]")
 {
-    const auto r = cli("eval " + surfaceDoc() + " --object p --at 0.25,0.5 --derivatives 2");
+    const auto r = cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object p --at 0.25,0.5 --derivatives 2");
     INFO(r.err);
     REQUIRE(r.status == 0);
     CHECK(r.out.rfind(R"({"object":"p","u":0.25,"v":0.5,"point":[0.25,0.5,0.125],"normal":)", 0) == 0);
@@ -90,17 +90,17 @@ TEST_CASE("eval of a bezier_surface: point, normal and derivatives up to K", "[c
     // Keys in the documented order.
     CHECK(r.out.find(R"("derivatives":{"u":)") != std::string::npos);
     CHECK(r.out.find(R"("uu":[0.0,0.0,0.0],"uv":)") != std::string::npos);
-    const auto r3 = cli("eval " + surfaceDoc() + " --object p --at 0.25,0.5 --derivatives 3");
+    const auto r3 = cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object p --at 0.25,0.5 --derivatives 3");
     const Json j3 = Json::parse(r3.out);
     for (const char* key : {"uuu", "uuv", "uvv", "vvv"}) CHECK(j3["derivatives"].contains(key));
-    CHECK(Json::parse(cli("eval " + surfaceDoc() + " --object p --at 1,1").out).contains("derivatives") == false);
+    CHECK(Json::parse(cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object p --at 1,1").out).contains("derivatives") == false);
 }
 
 TEST_CASE("eval of a deboor_surface: the uniform bicubic B-spline", "[cli][surface]")
 {
     // Grid point (r, c) = (r, c, r^2); the B-spline reproduces quadratics: at (s, t) in the only
     // patch, x = 1 + s, y = 1 + t, z = x^2 + 1/3 (the B-spline of r^2 is x^2 + 1/3).
-    const auto r = cli("eval " + surfaceDoc() + " --object g --at 0.5,0.25 --derivatives 1");
+    const auto r = cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object g --at 0.5,0.25 --derivatives 1");
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
@@ -108,26 +108,26 @@ TEST_CASE("eval of a deboor_surface: the uniform bicubic B-spline", "[cli][surfa
     CHECK(j["point"][1].get<double>() == Approx(1.25).epsilon(1e-15));
     CHECK(j["point"][2].get<double>() == Approx(1.5 * 1.5 + 1.0 / 3).epsilon(1e-14));
     CHECK(j["derivatives"]["u"][2].get<double>() == Approx(3.0).epsilon(1e-14));
-    requireError(cli("eval " + surfaceDoc() + " --object g --at 1.5,0.5"), 1, "outside the surface's domain [0, 1]");
+    requireError(cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object g --at 1.5,0.5"), 1, "outside the surface's domain [0, 1]");
 }
 
 TEST_CASE("eval of surfaces: bad usage and bad input", "[cli][surface][errors]")
 {
-    requireError(cli("eval " + surfaceDoc() + " --object p --at 0.5"), 2, "expected 2 comma-separated numbers");
-    requireError(cli("eval " + surfaceDoc() + " --object p --at 0.5,x"), 2, "not a finite number");
-    requireError(cli("eval " + surfaceDoc() + " --object p --at 0.5,1.01"), 1, "outside");
+    requireError(cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object p --at 0.5"), 2, "expected 2 comma-separated numbers");
+    requireError(cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object p --at 0.5,x"), 2, "not a finite number");
+    requireError(cli("eval " + freeform::test::shellQuote(surfaceDoc()) + " --object p --at 0.5,1.01"), 1, "outside");
     const std::string bad = tmp("cli_surface_bad.json");
     writeText(bad, R"({"format": "freeform", "version": 1, "objects": [
         {"name": "g", "type": "deboor_surface", "degree": [3, 3], "end": ["open", "closed"],
          "points": [[[0,0,0],[1,0,0],[2,0,0]],[[0,1,0],[1,1,0],[2,1,0]],[[0,2,0],[1,2,0],[2,2,0]]]}]})");
-    requireError(cli("eval " + bad + " --object g --at 0.5,0.5"), 1, "3 rows are too few for end condition \"open\"");
+    requireError(cli("eval " + freeform::test::shellQuote(bad) + " --object g --at 0.5,0.5"), 1, "3 rows are too few for end condition \"open\"");
 }
 
 TEST_CASE("tessellate the teapot .bpt into an OBJ with v, vt, vn and f v/vt/vn", "[cli][tessellate]")
 {
     const std::string out = tmp("cli_teapot.obj");
     std::filesystem::remove(out);
-    const auto r = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 0.01 --outward");
+    const auto r = cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance 0.01 --outward");
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Json j = Json::parse(r.out);
@@ -152,7 +152,7 @@ TEST_CASE("tessellate the teapot .bpt into an OBJ with v, vt, vn and f v/vt/vn",
     }
     CHECK(corners == 3);
     // --segments 2: 32 patches of 2 x 2 cells, welded.
-    const auto r2 = cli("tessellate " + kTeapot + " -o " + out + " --segments 2");
+    const auto r2 = cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --segments 2");
     REQUIRE(r2.status == 0);
     CHECK(Json::parse(r2.out)["triangles"].get<long>() <= 32 * 8);
 }
@@ -160,61 +160,61 @@ TEST_CASE("tessellate the teapot .bpt into an OBJ with v, vt, vn and f v/vt/vn",
 TEST_CASE("tessellate a document: all surfaces or --object", "[cli][tessellate]")
 {
     const std::string out = tmp("cli_doc.obj");
-    const auto all = cli("tessellate " + surfaceDoc() + " -o " + out + " --segments 3");
+    const auto all = cli("tessellate " + freeform::test::shellQuote(surfaceDoc()) + " -o " + freeform::test::shellQuote(out) + " --segments 3");
     INFO(all.err);
     REQUIRE(all.status == 0);
     CHECK(Json::parse(all.out)["patches"] == 2);
     CHECK(Json::parse(all.out)["triangles"] == 36);
-    const auto one = cli("tessellate " + surfaceDoc() + " --object p -o " + out + " --segments 3");
+    const auto one = cli("tessellate " + freeform::test::shellQuote(surfaceDoc()) + " --object p -o " + freeform::test::shellQuote(out) + " --segments 3");
     REQUIRE(one.status == 0);
     CHECK(Json::parse(one.out)["vertices"] == 16);
-    requireError(cli("tessellate " + surfaceDoc() + " --object c -o " + out), 1, "is not a surface");
+    requireError(cli("tessellate " + freeform::test::shellQuote(surfaceDoc()) + " --object c -o " + freeform::test::shellQuote(out)), 1, "is not a surface");
 }
 
 TEST_CASE("tessellate: bad usage exits 2, bad input 1, no output left behind", "[cli][tessellate][errors]")
 {
     const std::string out = tmp("cli_never.obj");
     std::filesystem::remove(out);
-    requireError(cli("tessellate " + kTeapot), 2, "--output is required");
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --segments 4"), 2, "either --tolerance or --segments");
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --segments 0"), 2, "--segments");
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --tolerance -1"), 2, "positive");
-    requireError(cli("tessellate " + kTeapot + " -o " + tmp("x.ply")), 2, ".obj");
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --object x"), 2, "--object");
-    requireError(cli("tessellate " + tmp("missing.bpt") + " -o " + out), 1, "missing.bpt");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot)), 2, "--output is required");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-3 --segments 4"), 2, "either --tolerance or --segments");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --segments 0"), 2, "--segments");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance -1"), 2, "positive");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(tmp("x.ply"))), 2, ".obj");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --object x"), 2, "--object");
+    requireError(cli("tessellate " + freeform::test::shellQuote(tmp("missing.bpt")) + " -o " + freeform::test::shellQuote(out)), 1, "missing.bpt");
     const std::string bad = tmp("cli_bad.bpt");
     writeText(bad, "1\n3 3\n0 0 0\n");
-    requireError(cli("tessellate " + bad + " -o " + out), 1, "patch 0 ends after 1 of 16 points");
+    requireError(cli("tessellate " + freeform::test::shellQuote(bad) + " -o " + freeform::test::shellQuote(out)), 1, "patch 0 ends after 1 of 16 points");
     writeText(bad, "1\n1 1\n0 0 0\n1 0 0\n0 1 0 7\n1 1 1\n");
-    requireError(cli("tessellate " + bad + " -o " + out), 1, "line 5");
+    requireError(cli("tessellate " + freeform::test::shellQuote(bad) + " -o " + freeform::test::shellQuote(out)), 1, "line 5");
     const std::string curves = tmp("cli_curves.json");
     writeText(curves, R"({"format": "freeform", "version": 1, "objects": [{"name": "c", "type": "bezier_curve", "points": [[0,0],[1,1]]}]})");
-    requireError(cli("tessellate " + curves + " -o " + out), 1, "no surface objects");
+    requireError(cli("tessellate " + freeform::test::shellQuote(curves) + " -o " + freeform::test::shellQuote(out)), 1, "no surface objects");
     CHECK_FALSE(std::filesystem::exists(out));
     // A failing run leaves an existing output untouched.
     writeText(out, "keep");
-    requireError(cli("tessellate " + bad + " -o " + out), 1, "line 5");
+    requireError(cli("tessellate " + freeform::test::shellQuote(bad) + " -o " + freeform::test::shellQuote(out)), 1, "line 5");
     CHECK(slurp(out) == "keep");
 }
 
 TEST_CASE("convert a document to OBJ free-form and back", "[cli][convert]")
 {
     const std::string obj = tmp("cli_conv.obj"), back = tmp("cli_conv.json");
-    const auto r = cli("convert " + surfaceDoc() + " --object p -o " + obj);
+    const auto r = cli("convert " + freeform::test::shellQuote(surfaceDoc()) + " --object p -o " + freeform::test::shellQuote(obj));
     INFO(r.err);
     REQUIRE(r.status == 0);
     CHECK(Json::parse(r.out)["objects"] == Json::array({"p"}));
     CHECK(slurp(obj).find("surf 0 1 0 1 1 2 3 4") != std::string::npos);
-    const auto r2 = cli("convert " + obj + " -o " + back);
+    const auto r2 = cli("convert " + freeform::test::shellQuote(obj) + " -o " + freeform::test::shellQuote(back));
     INFO(r2.err);
     REQUIRE(r2.status == 0);
-    const auto e = cli("eval " + back + " --object p --at 0.25,0.5");
+    const auto e = cli("eval " + freeform::test::shellQuote(back) + " --object p --at 0.25,0.5");
     REQUIRE(e.status == 0);
     CHECK(Json::parse(e.out)["point"] == Json::array({0.25, 0.5, 0.125}));
     // The de Boor surface has no OBJ free-form form: named, exit 1.
-    requireError(cli("convert " + surfaceDoc() + " -o " + obj), 1, "object \"g\": type deboor_surface");
-    requireError(cli("convert " + surfaceDoc() + " -o " + tmp("x.txt")), 2, "from .json to .obj");
+    requireError(cli("convert " + freeform::test::shellQuote(surfaceDoc()) + " -o " + freeform::test::shellQuote(obj)), 1, "object \"g\": type deboor_surface");
+    requireError(cli("convert " + freeform::test::shellQuote(surfaceDoc()) + " -o " + freeform::test::shellQuote(tmp("x.txt"))), 2, "from .json to .obj");
     const std::string broken = tmp("cli_broken.obj");
     writeText(broken, "v 0 0 0\ncstype bezier\ndeg 1\ncurv 0 1 1 9\nend\n");
-    requireError(cli("convert " + broken + " -o " + back), 1, "line 4: vertex index 9 is out of range");
+    requireError(cli("convert " + freeform::test::shellQuote(broken) + " -o " + freeform::test::shellQuote(back)), 1, "line 4: vertex index 9 is out of range");
 }

@@ -29,7 +29,7 @@ const std::string kTeapot = std::string(FREEFORM_SOURCE_DIR) + "/data/teapot.bpt
 TEST_CASE("tessellate reports the measured deviations beside the certified bound", "[cli][tessellate][local]")
 {
     const std::string out = tmp("tess_local.obj");
-    const auto local = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3");
+    const auto local = cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-3");
     INFO(local.err);
     REQUIRE(local.status == 0);
     const Json a = Json::parse(local.out);
@@ -43,20 +43,20 @@ TEST_CASE("tessellate reports the measured deviations beside the certified bound
     // (the tool runs instrumented too). It runs in Release; the library's patch-grid refinement is
     // tested under the sanitizers in test_tessellate.
     if (!freeform::test::underSanitizers) {
-        const auto grid = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --refinement patch-grid");
+        const auto grid = cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-3 --refinement patch-grid");
         REQUIRE(grid.status == 0);
         const Json b = Json::parse(grid.out);
         CHECK(b["error_bound"].get<double>() <= 1e-3);
         CHECK(b["triangles"].get<long>() > a["triangles"].get<long>());
     }
     // --measure geometric: every mesh point within the tolerance of the surface, fewer triangles.
-    const auto geo = cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --measure geometric");
+    const auto geo = cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-3 --measure geometric");
     REQUIRE(geo.status == 0);
     const Json g = Json::parse(geo.out);
     CHECK(g["error_bound"].get<double>() <= 1e-3);
     CHECK(g["measured_geometric"].get<double>() <= 1e-3);
     CHECK(g["triangles"].get<long>() < a["triangles"].get<long>());
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --tolerance 1e-3 --measure hausdorff"), 2, "--measure");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-3 --measure hausdorff"), 2, "--measure");
 }
 
 TEST_CASE("tessellate --max-triangles refuses with the estimate and writes nothing", "[cli][tessellate][limits]")
@@ -70,16 +70,16 @@ TEST_CASE("tessellate --max-triangles refuses with the estimate and writes nothi
     const std::string huge = tmp("tess_huge.bpt"), out = tmp("tess_huge.obj");
     writeText(huge, bpt);
     std::filesystem::remove(out);
-    requireError(cli("tessellate " + huge + " -o " + out + " --tolerance 1e-2 --max-triangles 100000"), 1,
+    requireError(cli("tessellate " + freeform::test::shellQuote(huge) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-2 --max-triangles 100000"), 1,
                  "needs more than maxTriangles = 100000");
     CHECK(!std::filesystem::exists(out));
     // The default limit (10^7), with one grid per patch: refused from the count alone.
-    requireError(cli("tessellate " + huge + " -o " + out + " --tolerance 1e-2 --refinement patch-grid"), 1,
+    requireError(cli("tessellate " + freeform::test::shellQuote(huge) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e-2 --refinement patch-grid"), 1,
                  "33554432 triangles");
     CHECK(!std::filesystem::exists(out));
-    const auto coarse = cli("tessellate " + huge + " -o " + out + " --tolerance 1e4 --max-triangles 0");
+    const auto coarse = cli("tessellate " + freeform::test::shellQuote(huge) + " -o " + freeform::test::shellQuote(out) + " --tolerance 1e4 --max-triangles 0");
     CHECK(coarse.status == 0);
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --max-triangles -1"), 2, "--max-triangles");
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --max-triangles lots"), 2, "--max-triangles");
-    requireError(cli("tessellate " + kTeapot + " -o " + out + " --refinement quadtree"), 2, "--refinement");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --max-triangles -1"), 2, "--max-triangles");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --max-triangles lots"), 2, "--max-triangles");
+    requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --refinement quadtree"), 2, "--refinement");
 }

@@ -67,7 +67,7 @@ TEST_CASE("freeform ffd and the editor's apply lattice write the same objects", 
 
     // The command line.
     const std::string cliOut = kTmp + "/ffd_frontends_cli.json";
-    const auto r = test::cli("ffd " + kDoc + " --lattice " + kDoc + " --object L -o " + cliOut);
+    const auto r = test::cli("ffd " + freeform::test::shellQuote(kDoc) + " --lattice " + freeform::test::shellQuote(kDoc) + " --object L -o " + freeform::test::shellQuote(cliOut));
     INFO(r.err);
     REQUIRE(r.status == 0);
     const JsonDoc report = JsonDoc::parse(r.out);

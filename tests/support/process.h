@@ -37,12 +37,21 @@ inline void writeText(const std::string& path, const std::string& text)
     std::ofstream(path, std::ios::binary) << text;
 }
 
+/// `text` as one word for sh, whatever it holds (spaces, quotes, non-ASCII): in single quotes, each
+/// single quote in it written as '\''.
+inline std::string shellQuote(const std::string& text)
+{
+    std::string quoted = "'";
+    for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
 /// Runs `commandLine` (already quoted for sh) with stdout and stderr captured in files.
 inline ProcessResult run(const std::string& commandLine)
 {
     static int counter = 0;
     const std::string base = std::string(FREEFORM_TEST_TMP) + "/run" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-    const std::string full = commandLine + " >" + base + ".out 2>" + base + ".err </dev/null";
+    const std::string full = commandLine + " >" + shellQuote(base + ".out") + " 2>" + shellQuote(base + ".err") + " </dev/null";
     const int raw = std::system(full.c_str());
     ProcessResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -73,7 +82,7 @@ inline void checkStdoutContract(const ProcessResult& r, bool asksForHelp, const 
 /// The freeform command-line tool with arguments.
 inline ProcessResult cli(const std::string& arguments)
 {
-    ProcessResult r = run(std::string("'") + FREEFORM_CLI + "' " + arguments);
+    ProcessResult r = run(shellQuote(FREEFORM_CLI) + " " + arguments);
     const std::string padded = " " + arguments + " ";
     const bool help = padded.find(" --help ") != std::string::npos || padded.find(" -h ") != std::string::npos ||
                       padded.find(" --help=") != std::string::npos || padded.find("'--help'") != std::string::npos ||
