@@ -304,6 +304,8 @@ std::string App::stateText() const
     j["path_dialog"] = ui_.pathDialog != UiState::PathDialog::None;
     j["unsaved_dialog"] = ui_.pending != PendingAction::None;
     j["modified"] = scene_.modified();
+    j["undo"] = {{"steps", scene_.history().size()}, {"label", scene_.history().undoLabel()}};
+    j["popup_open"] = ImGui::GetCurrentContext() != nullptr && ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
     nlohmann::ordered_json panels = nlohmann::ordered_json::object();
     for (const auto& p : ui_.panels) panels[p.name] = {p.x, p.y, p.width, p.height};
     j["panels"] = panels;
@@ -614,6 +616,7 @@ void App::newDocument()
         return;
     }
     replaceScene(Scene());
+    ui_.notice = "new document";
 }
 
 void App::open(const std::string& path)
@@ -629,6 +632,7 @@ void App::open(const std::string& path)
             return;
         }
         replaceScene(std::move(next));
+        ui_.notice = "opened " + path;
         addRecent(path);
     } catch (const Error& e) {
         ui_.error = e.what();
@@ -641,9 +645,11 @@ void App::carryOutPending()
     ui_.pending = PendingAction::None;
     if (action == PendingAction::New) {
         replaceScene(Scene());
+        ui_.notice = "new document";
     } else if (action == PendingAction::Open && pendingScene_) {
         Scene next = std::move(*pendingScene_);
         replaceScene(std::move(next));
+        ui_.notice = "opened " + ui_.pendingPath;
         addRecent(ui_.pendingPath);
     } else if (action == PendingAction::Quit) {
         quitting_ = true;
@@ -664,6 +670,7 @@ bool App::saveAs(const std::string& path)
 {
     try {
         scene_.save(path);
+        ui_.notice = "saved " + path;
         addRecent(path);
         removeAutosave();
         return true;
@@ -695,6 +702,7 @@ void App::exportMesh(const std::string& path)
 {
     try {
         scene_.exportMesh(path);
+        ui_.notice = "exported the tessellation to " + path;
     } catch (const Error& e) {
         ui_.error = e.what();
     }
@@ -743,14 +751,16 @@ void App::addRecent(const std::string& path)
 void App::undo()
 {
     interaction_.finish(scene_); // Ctrl+Z during a drag: keep it as a step, then take it back
-    scene_.undo();
+    const std::string label = scene_.history().undoLabel();
+    ui_.notice = scene_.undo() ? "undone: " + label : "nothing to undo";
     validateSelection();
 }
 
 void App::redo()
 {
     interaction_.finish(scene_);
-    scene_.redo();
+    const std::string label = scene_.history().redoLabel();
+    ui_.notice = scene_.redo() ? "redone: " + label : "nothing to redo";
     validateSelection();
 }
 
@@ -835,8 +845,15 @@ void App::recover(bool accept)
 
 // ------------------------------------------------------------------------------------ input
 
+void App::startAction()
+{
+    ui_.notice.clear();
+    tools_.message().clear();
+}
+
 void App::onMouseButton(int button, int action, int mods)
 {
+    if (action == GLFW_PRESS) startAction(); // on a panel too: a click there starts an action as well
     if (action == GLFW_RELEASE) {
         if (button != pressButton_) return;
         if (drag_ == Drag::Pending) {
@@ -931,7 +948,13 @@ void App::onScroll(double dy)
 
 void App::onKey(int key, int action, int mods)
 {
+    const bool modifier = key == GLFW_KEY_LEFT_SHIFT || key == GLFW_KEY_RIGHT_SHIFT || key == GLFW_KEY_LEFT_CONTROL ||
+                          key == GLFW_KEY_RIGHT_CONTROL || key == GLFW_KEY_LEFT_ALT || key == GLFW_KEY_RIGHT_ALT ||
+                          key == GLFW_KEY_LEFT_SUPER || key == GLFW_KEY_RIGHT_SUPER;
+    if (action == GLFW_PRESS && !modifier) startAction(); // typing in a field too: Enter there is the action
     if (action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
+    // Escape while a menu is open closes the menu (ui/ui.cpp, endMenu) and does nothing else.
+    if (key == GLFW_KEY_ESCAPE && ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) return;
     // The keymap's contexts in dispatch order (interaction/keymap.h, docs/editor.md): undo and redo
     // always; during a drag or grab its keys and nothing else; files; the tools; editing; views.
     if (const KeyBinding* b = findBinding(KeyContext::History, key, mods)) {
@@ -1006,6 +1029,7 @@ void App::perform(KeyAction action)
 
 void App::onDrop(int count, const char** paths)
 {
+    startAction();
     for (int i = 0; i < count; ++i) {
         std::string ext = fs::path(paths[i]).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

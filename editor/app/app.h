@@ -145,6 +145,9 @@ private:
     void offerRecovery();
     void applyModifiers(int mods);
     void addRecent(const std::string& path);
+    /// A new action starts (a button or key pressed, files dropped): the status bar's messages of
+    /// the last one (the notice, the tools' message) go (docs/editor.md, "Status bar").
+    void startAction();
     double aspect() const;
 
     /// The library's warnings since the last call, as the status line shows them ("warning: ...",

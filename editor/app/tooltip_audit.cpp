@@ -67,7 +67,12 @@ std::string idPath(ImGuiID id, const Frame& frame)
     for (int level = 0; level < tool.Results.Size; ++level) {
         const ImGuiStackLevelInfo& info = tool.Results[level];
         std::string part;
-        if (info.QuerySuccess) part = info.Desc;
+        if (info.QuerySuccess) {
+            part = info.Desc;
+            // The stack tool's buffer is full: the label may go on beyond it. Say so rather than
+            // report a cut label as if it were whole.
+            if (part.size() + 1 >= sizeof info.Desc) part += "...";
+        }
         else if (const ImGuiWindow* w = ImGui::FindWindowByID(info.ID)) part = w->Name;
         else {
             char hex[16];

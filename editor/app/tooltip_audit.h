@@ -9,7 +9,8 @@
 // window must be open in that frame. The window's own chrome (title bar buttons, scrollbars,
 // resize grips and borders, table column borders) is not a control of the panels and is skipped.
 // Each item hovered is named by its ID path (window, then the labels and IDs pushed, as ImGui's
-// stack tool finds them). Every dropdown (combo) hovered is opened by a click and its list swept
+// stack tool finds them; a label of more than about 55 characters is cut there by ImGui and ends in "..."
+// here: find such items by their tooltip text). Every dropdown (combo) hovered is opened by a click and its list swept
 // the same way, so that each choice needs its own tooltip. Nothing here runs unless a replay asks
 // for it.
 

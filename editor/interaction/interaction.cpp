@@ -206,7 +206,12 @@ bool Interaction::press(Scene& scene, Selection& selection, const ViewTransform&
     if (mode_ != Mode::None) return true;
     if (button != GLFW_MOUSE_BUTTON_LEFT) return false;
     const bool shift = mods & GLFW_MOD_SHIFT, ctrl = mods & GLFW_MOD_CONTROL;
-    if (!ctrl && !shift && settings_.gizmo && selection.item >= 0 && selection.item < scene.itemCount()) {
+    // A control point of the selected object under the pointer wins over a gizmo handle drawn
+    // across it (docs/editor.md, "Gizmo"): the point is what the user aims at, and the handle can
+    // be taken anywhere else along its length.
+    const auto pointHit = pickControlPoint(scene, selection, view, x, y);
+    const bool pointOfSelected = pointHit && pointHit->first == selection.item;
+    if (!ctrl && !shift && !pointOfSelected && settings_.gizmo && selection.item >= 0 && selection.item < scene.itemCount()) {
         if (const auto centre = selectionCentre(scene, selection)) {
             Gizmo g;
             g.centre = *centre;
@@ -219,7 +224,7 @@ bool Interaction::press(Scene& scene, Selection& selection, const ViewTransform&
         }
     }
     if (!ctrl) {
-        if (const auto hit = pickControlPoint(scene, selection, view, x, y)) {
+        if (const auto& hit = pointHit) {
             const auto [item, k] = *hit;
             if (shift) {
                 if (item != selection.item) {
@@ -264,7 +269,7 @@ void Interaction::move(Scene& scene, Selection& selection, const ViewTransform& 
     selection.hoverItem = hit ? hit->first : -1;
     selection.hoverPoint = hit ? hit->second : -1;
     gizmoHover_.reset();
-    if (settings_.gizmo)
+    if (settings_.gizmo && !(hit && hit->first == selection.item)) // a point of the selection wins (press)
         if (const auto centre = selectionCentre(scene, selection)) {
             Gizmo g;
             g.centre = *centre;

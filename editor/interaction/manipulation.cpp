@@ -72,6 +72,11 @@ Eigen::Vector3d dragDelta(const ViewTransform& view, Constraint constraint, cons
         if (!a || !b) return Eigen::Vector3d::Zero();
         Eigen::Vector3d delta = *b - *a;
         if (constraint != Constraint::View) delta[axis] = 0; // exactly in the plane
+        // A view along a world axis (front, top, ... ): the move is exactly in that axis's plane,
+        // not off it by the rounding of the view's matrices (a flat curve drawn in the top view
+        // would get z values like 1e-34).
+        for (int r = 0; r < 3; ++r)
+            if (constraint == Constraint::View && std::abs(n[(r + 1) % 3]) < 1e-9 && std::abs(n[(r + 2) % 3]) < 1e-9) delta[r] = 0;
         return delta;
     }
     const auto s0 = nearestOnLine(grab, unit(axis), o0, d0), s1 = nearestOnLine(grab, unit(axis), o1, d1);

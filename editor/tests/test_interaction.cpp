@@ -167,6 +167,27 @@ TEST_CASE("dragDelta in the view plane, along an axis, in a plane", "[interactio
     CHECK(dragDelta(v, Constraint::PlaneX, grab, 400, 250, 450, 220) == Eigen::Vector3d::Zero());
 }
 
+TEST_CASE("dragDelta in the view plane of an axis view (top, front, right, perspective too) has exactly 0 along the view", "[interaction]")
+{
+    // Issue 25: a flat curve in the top view got z values like 6.8e-34 from view-plane drags.
+    Scene scene = curveScene();
+    for (const char* name : {"top", "front", "right", "bottom"})
+        for (Projection projection : {Projection::Orthographic, Projection::Perspective}) {
+            scene.camera.setView(name);
+            scene.camera.projection = projection;
+            const ViewTransform v = ViewTransform::of(scene, kW, kH);
+            int along = 0;
+            for (int r = 1; r < 3; ++r)
+                if (std::abs(v.viewDirection[r]) > std::abs(v.viewDirection[along])) along = r;
+            for (const Eigen::Vector3d& grab : {Eigen::Vector3d(0.3, -0.7, 0.11), Eigen::Vector3d(-1.9, 1.3, 0.77)}) {
+                const Eigen::Vector3d d = dragDelta(v, Constraint::View, grab, 401.3, 297.1, 463.9, 211.7);
+                INFO(name << (projection == Projection::Orthographic ? " orthographic" : " perspective") << ": " << d.transpose());
+                CHECK(d[along] == 0);
+                CHECK(d.norm() > 0.1);
+            }
+        }
+}
+
 TEST_CASE("snapDelta puts the grabbed point on the grid in the coordinates the constraint moves", "[interaction]")
 {
     const Eigen::Vector3d grab(0.13, 0.27, -0.4);
@@ -353,6 +374,40 @@ TEST_CASE("Interaction: the gizmo constrains to an axis or a plane", "[interacti
     CHECK_THAT(twice(2, 1) - after(2, 1), WithinAbs(20 * unit, 1e-12));
     CHECK(twice(1, 1) == after(1, 1));
     CHECK(s.scene.history().size() == 2);
+}
+
+TEST_CASE("Interaction: a selected point under a gizmo arrow is dragged as a point, not along the arrow (issue 25)", "[interaction]")
+{
+    Session s;
+    s.scene.camera.distance = 15; // about 64 pixels per unit: point 2 lies on the x arrow (90 pixels)
+    s.selection.selectItem(0);
+    s.selection.setPoints({1, 2}); // (-1, 0, 1.5) and (1, 0, 1.5): the gizmo at (0, 0, 1.5)
+    const Eigen::Matrix3Xd before = s.scene.controlPoints(0);
+    const Eigen::Vector2d p2 = pixel(s.scene, 1, 1.5);
+    Gizmo g;
+    g.centre = Eigen::Vector3d(0, 0, 1.5);
+    REQUIRE(g.pick(s.view(), p2.x(), p2.y()) == Constraint::AxisX); // the arrow passes over the point
+    // Hovering the point highlights the point, not the arrow.
+    s.move(p2.x(), p2.y());
+    CHECK(s.selection.hoverPoint == 2);
+    // Dragged by (+16, +50) pixels: both selected points follow in the view plane (x and z here).
+    s.drag(p2, p2 + Eigen::Vector2d(16, 50));
+    const Eigen::Matrix3Xd after = s.scene.controlPoints(0);
+    const double unit = 1 / scale(s.scene);
+    for (int k : {1, 2}) {
+        INFO("point " << k);
+        CHECK_THAT(after(0, k) - before(0, k), WithinAbs(16 * unit, 1e-12));
+        CHECK_THAT(after(2, k) - before(2, k), WithinAbs(-50 * unit, 1e-12));
+        CHECK(after(1, k) == before(1, k));
+    }
+    CHECK(after.col(0) == before.col(0));
+    CHECK(after.col(3) == before.col(3));
+    // Further along the arrow, off the point, the arrow is still taken: along x only.
+    const Eigen::Vector2d centre = pixel(s.scene, after(0, 1) / 2 + after(0, 2) / 2, after(2, 1));
+    s.drag(centre + Eigen::Vector2d(30, 0), centre + Eigen::Vector2d(40, 30));
+    const Eigen::Matrix3Xd again = s.scene.controlPoints(0);
+    CHECK_THAT(again(0, 1) - after(0, 1), WithinAbs(10 * unit, 1e-12));
+    CHECK(again(2, 1) == after(2, 1));
 }
 
 TEST_CASE("Interaction: G grabs, X constrains, a click confirms; Escape during a drag takes it back", "[interaction]")

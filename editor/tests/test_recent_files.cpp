@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/recent_files.h"
+#include "ui/path_label.h"
 #include "support/process.h"
 
 using namespace freeform::editor;
@@ -108,4 +109,28 @@ TEST_CASE("recent files: a broken file is ignored with one message naming it", "
         CHECK(again.load().empty());
         CHECK(again.paths() == std::vector<std::string>{doc(1)});
     }
+}
+
+TEST_CASE("recent files: a long path is shown by its beginning and its end, cut between characters", "[editor][recent]")
+{
+    CHECK(shortPathLabel("/a/b.json") == "/a/b.json");
+    const std::string exact = "/" + std::string(63, 'a'); // 64 characters: shown whole
+    CHECK(shortPathLabel(exact) == exact);
+
+    // 116 characters: 61 are kept around "...", the last 30 (the file name and the end of its folder).
+    const std::string folder(100, 'a');
+    const std::string label = shortPathLabel("/" + folder + "/file name.json");
+    CHECK(label == "/" + std::string(30, 'a') + "..." + std::string(15, 'a') + "/file name.json");
+    CHECK(label.size() == 64);
+
+    // A file name longer than the label keeps its end; the beginning keeps at least 8 characters.
+    CHECK(shortPathLabel("/d/" + std::string(100, 'n')) == "/d/" + std::string(5, 'n') + "..." + std::string(53, 'n'));
+
+    // Two-byte characters (u with diaeresis): 64 characters, 128 - 7 + 7 bytes, no character split.
+    std::string u;
+    for (int i = 0; i < 100; ++i) u += "\xC3\xBC";
+    std::string u30, u23;
+    for (int i = 0; i < 30; ++i) u30 += "\xC3\xBC";
+    for (int i = 0; i < 23; ++i) u23 += "\xC3\xBC";
+    CHECK(shortPathLabel("/" + u + "/x.json") == "/" + u30 + "..." + u23 + "/x.json");
 }

@@ -317,8 +317,10 @@ std::optional<BezierSplineData> solveDeBoor(const BezierSplineData& before, cons
 
 } // namespace
 
-BezierSplineData enforceJointModes(const BezierSplineData& before, const BezierSplineData& after,
-                                   const std::vector<JointMode>& modes, const std::vector<int>& moved)
+/// enforceJointModes as computed (least squares: the moved points land where they were put up to
+/// rounding).
+static BezierSplineData enforceJointModesComputed(const BezierSplineData& before, const BezierSplineData& after,
+                                                  const std::vector<JointMode>& modes, const std::vector<int>& moved)
 {
     if (before.points.cols() != after.points.cols() || before.degree != after.degree || before.closed != after.closed)
         return after;
@@ -428,6 +430,20 @@ Points3 curvatureComb(const std::vector<Eigen::Matrix<double, 3, 3>>& derivative
         out.col(static_cast<Eigen::Index>(2 * i + 1)) = p - scale * k;
     }
     return out;
+}
+
+BezierSplineData enforceJointModes(const BezierSplineData& before, const BezierSplineData& after,
+                                   const std::vector<JointMode>& modes, const std::vector<int>& moved)
+{
+    BezierSplineData enforced = enforceJointModesComputed(before, after, modes, moved);
+    if (enforced.points.cols() != after.points.cols()) return enforced;
+    // A moved point the modes let stay keeps the bits it was given (a typed 1.5 stays 1.5): the
+    // least squares above put it there up to rounding, and the modes hold to that rounding either way.
+    const double scale = std::max(1.0, after.points.cwiseAbs().maxCoeff());
+    for (int k : moved)
+        if (k >= 0 && k < after.points.cols() && (enforced.points.col(k) - after.points.col(k)).cwiseAbs().maxCoeff() <= 1e-9 * scale)
+            enforced.points.col(k) = after.points.col(k);
+    return enforced;
 }
 
 } // namespace freeform::editor

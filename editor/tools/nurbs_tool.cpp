@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 #include <type_traits>
 
@@ -20,6 +22,14 @@ namespace freeform::editor {
 using namespace tool_util;
 
 namespace {
+
+/// A number for the status bar: up to ten significant digits.
+std::string shortNumber(double v)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", v);
+    return text;
+}
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -380,7 +390,10 @@ bool NurbsTool::scaleWeights(ToolContext& c, int item, const std::vector<int>& k
             w->at(static_cast<std::size_t>(ks[j])) = value;
         }
         c.scene.replaceObject(item, next, "weight");
-        status().clear();
+        const double first = w->at(static_cast<std::size_t>(ks.front()));
+        status() = ks.size() == 1 ? "weight of point " + std::to_string(ks.front()) + " set to " + shortNumber(first)
+                                  : "weights of " + std::to_string(ks.size()) + " points set (point " + std::to_string(ks.front()) + ": " +
+                                        shortNumber(first) + ")";
         return true;
     } catch (const Error& e) {
         status() = e.what();
@@ -432,7 +445,8 @@ bool NurbsTool::insertKnot(ToolContext& c, double u, int dir)
         }
         c.scene.replaceObject(item, next, "insert knot");
         c.selection.points.clear();
-        status().clear();
+        const char* along = std::holds_alternative<NurbsSurfaceData>(next.data) ? (dir == 0 ? " in u" : " in v") : "";
+        status() = std::string("knot ") + shortNumber(u) + " inserted" + along + " (the shape unchanged; undo: Ctrl+Z)";
         return true;
     } catch (const Error& e) {
         status() = e.what();

@@ -5,13 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <string>
 
 #include "interaction/keymap.h"
 #include "render/colour_map.h"
 #include "scene/scene_drawer.h"
 #include "tools/tools.h"
+#include "ui/path_label.h"
 
 namespace freeform::editor {
 
@@ -198,6 +201,29 @@ void askPath(UiState& s, UiActions& actions, UiState::PathDialog which, const st
     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
 }
 
+namespace {
+
+/// The label of a recent file's entry: the path, shortened in the middle when long
+/// (ui/path_label.h); its ImGui ID is the entry's index (pushed by the caller) and "###recent", so
+/// that neither the path's length nor a "##" in it changes the ID or cuts what is shown.
+std::string recentLabel(const std::string& path)
+{
+    std::string label;
+    for (const char c : shortPathLabel(path)) {
+        if (c == '#' && !label.empty() && label.back() == '#') label += ' '; // "##" would end what ImGui shows
+        label += c;
+    }
+    return label + "###recent";
+}
+
+/// A recent file's tooltip: the full path, then what choosing it does (or that the file is gone).
+std::string recentTooltip(const std::string& path, bool exists, const char* action)
+{
+    return path + "\n" + (exists ? action : "This file no longer exists");
+}
+
+} // namespace
+
 void tooltip(UiState& state, const char* text)
 {
     if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
@@ -271,11 +297,20 @@ bool scalarRangeControls(DisplaySettings& d)
 
 namespace {
 
+/// Ends an open menu; Escape closes it (and the menus it was opened from): ImGui 1.86 does so
+/// only with keyboard navigation on, which the editor leaves off (its keys are its own).
+void endMenu()
+{
+    if (keyPressed(ImGuiKey_Escape)) ImGui::CloseCurrentPopup();
+    ImGui::EndMenu();
+}
+
 void mainMenu(Scene& scene, UiState& s, UiActions& actions)
 {
     if (!ImGui::BeginMainMenuBar()) return;
     // A menu's title has its tooltip while the menu is closed (open, the menu itself shows).
     const bool fileMenu = ImGui::BeginMenu("File");
+    recordWidget("menu File");
     if (!fileMenu) tooltip(s, "New, Open, Save, Import a mesh or .bpt, Export the tessellation, Quit");
     if (fileMenu) {
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
@@ -285,14 +320,17 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         const bool recentMenu = ImGui::BeginMenu("Open recent", !actions.recentFiles().empty());
         if (recentMenu) {
             // Most recent first; a file that is gone is shown greyed and cannot be chosen.
-            for (const std::string& path : actions.recentFiles()) {
+            for (std::size_t k = 0; k < actions.recentFiles().size(); ++k) {
+                const std::string& path = actions.recentFiles()[k];
                 std::error_code ec;
                 const bool exists = std::filesystem::exists(path, ec);
-                if (ImGui::MenuItem(path.c_str(), nullptr, false, exists)) actions.open(path);
-                tooltip(s, exists ? "Open this document (asks first when there are unsaved changes)" : "This file no longer exists");
+                ImGui::PushID(static_cast<int>(k));
+                if (ImGui::MenuItem(recentLabel(path).c_str(), nullptr, false, exists)) actions.open(path);
+                tooltip(s, recentTooltip(path, exists, "Open this document (asks first when there are unsaved changes)").c_str());
+                ImGui::PopID();
             }
             fitWindow();
-            ImGui::EndMenu();
+            endMenu();
         }
         // After EndMenu the last item is "Open recent" again: its tooltip shows while its list is open too.
         tooltip(s, actions.recentFiles().empty() ? "The last 8 documents opened or saved (none yet)"
@@ -314,7 +352,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         tooltip(s, "Close the editor (asks first when there are unsaved changes)");
         fitWindow();
-        ImGui::EndMenu();
+        endMenu();
     }
     const bool editMenu = ImGui::BeginMenu("Edit");
     if (!editMenu) tooltip(s, "Undo, redo, select points, snapping, proportional editing, the gizmo");
@@ -345,7 +383,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::MenuItem("Translate gizmo", "Shift+G", &s.edit.gizmo);
         tooltip(s, "Arrows and squares at the selected points' centre: drag along an axis or in a plane");
         fitWindow();
-        ImGui::EndMenu();
+        endMenu();
     }
     const bool viewMenu = ImGui::BeginMenu("View");
     if (!viewMenu) tooltip(s, "Shading, the camera's side and projection, fitting, the Display panel, statistics");
@@ -389,7 +427,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::MenuItem("Frame statistics", "F2", &s.showStats);
         tooltip(s, "Frame time, update time and triangle count at the bottom of the view");
         fitWindow();
-        ImGui::EndMenu();
+        endMenu();
     }
     const bool helpMenu = ImGui::BeginMenu("Help");
     if (!helpMenu) tooltip(s, "The controls and the first steps (F1)");
@@ -397,7 +435,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::MenuItem("Controls", "F1", &s.showHelp);
         tooltip(s, "First steps, the mouse and every key");
         fitWindow();
-        ImGui::EndMenu();
+        endMenu();
     }
     ImGui::Separator();
     const std::string full = (scene.path().empty() ? std::string("untitled") : scene.path()) + (scene.modified() ? " *" : "");
@@ -460,7 +498,41 @@ void outliner(Scene& scene, UiState& s)
 /// point table's columns: computed again only when the item's content changes (its key).
 constexpr const char* kPointFormat = "%.6g";
 
-float widestCoordinate(const SceneItem& item, const PointColumns& points)
+/// A coordinate field showing `value` at kPointFormat. True, with `value` set, only when Enter
+/// confirms text that was edited and reads as a finite number in full (surrounding spaces
+/// allowed). Enter on the text as shown changes nothing, so a value keeps the bits its six digits
+/// do not show; text that is not a number, or is not finite, is refused with a notice in the
+/// status bar naming `what`, and `value` is left as it was. (ImGui's InputDouble parses the text
+/// it shows back on every Enter, and takes text it cannot read without a word.)
+bool coordinateField(const char* label, double& value, UiState& s, const std::string& what)
+{
+    char shown[64], buffer[64];
+    std::snprintf(shown, sizeof shown, kPointFormat, value);
+    std::memcpy(buffer, shown, sizeof buffer);
+    if (!ImGui::InputText(label, buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll))
+        return false;
+    if (std::strcmp(buffer, shown) == 0) return false;
+    std::string text = buffer;
+    const auto space = [](char c) { return c == ' ' || c == '\t'; };
+    while (!text.empty() && space(text.back())) text.pop_back();
+    std::size_t first = 0;
+    while (first < text.size() && space(text[first])) ++first;
+    text.erase(0, first);
+    char* end = nullptr;
+    const double parsed = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size()) {
+        s.notice = what + ": \"" + text + "\" is not a number; nothing changed";
+        return false;
+    }
+    if (!std::isfinite(parsed)) {
+        s.notice = what + ": " + text + " is refused, a coordinate must be finite; nothing changed";
+        return false;
+    }
+    value = parsed;
+    return true;
+}
+
+float widestCoordinate(const SceneItem& item, const Eigen::Ref<const Eigen::MatrixXd>& points)
 {
     static long cachedId = -1, cachedKey = -1;
     static Eigen::Index cachedCount = -1;
@@ -476,22 +548,36 @@ float widestCoordinate(const SceneItem& item, const PointColumns& points)
     return widest;
 }
 
+/// The points the control point table lists: the object's own; for a subdivision cage whose mesh
+/// is a file, the file's vertices as read (the ones drawn and picked), and typing one makes the
+/// cage inline as dragging it does (Scene::setControlPoints).
+Eigen::Ref<const Eigen::MatrixXd> tablePoints(const Scene& scene, int index)
+{
+    const DocumentObject& object = scene.object(index);
+    if (const auto* cage = std::get_if<SubdivisionSurfaceData>(&object.data)) {
+        if (!cage->mesh.empty()) return scene.item(index).geometry.netPoints;
+        return cage->vertices;
+    }
+    return std::visit(
+        [](const auto& d) -> Eigen::Ref<const Eigen::MatrixXd> {
+            if constexpr (std::is_same_v<std::decay_t<decltype(d)>, SubdivisionSurfaceData>) return d.vertices;
+            else return d.points;
+        },
+        object.data);
+}
+
 /// Editable control points of a document object: a table of one row per point, its number and
 /// one field per coordinate; every field gets the width of the widest coordinate's text (when
 /// the columns are wider than the panel the table scrolls sideways, the number column frozen).
 void controlPointTable(Scene& scene, int index, UiState& s)
 {
-    const DocumentObject& object = scene.object(index);
-    const PointColumns* points = std::visit(
-        [](const auto& d) -> const PointColumns* {
-            using T = std::decay_t<decltype(d)>;
-            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return &d.vertices;
-            else return &d.points;
-        },
-        object.data);
+    const Eigen::Ref<const Eigen::MatrixXd> listed = tablePoints(scene, index);
+    const Eigen::Ref<const Eigen::MatrixXd>* points = &listed;
     const int dim = static_cast<int>(points->rows());
     const int count = static_cast<int>(points->cols());
-    const bool open = ImGui::CollapsingHeader(("control points (" + std::to_string(count) + ")").c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    const std::string header = "control points (" + std::to_string(count) + ")";
+    const bool open = ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    recordWidget(header.c_str());
     tooltip(s, "Show or hide the table of every control point's coordinates (click to fold)");
     if (!open) return;
     const ImGuiStyle& style = ImGui::GetStyle();
@@ -542,7 +628,9 @@ void controlPointTable(Scene& scene, int index, UiState& s)
                     ImGui::TableNextColumn();
                     ImGui::PushID(r);
                     ImGui::SetNextItemWidth(-FLT_MIN);
-                    entered |= ImGui::InputDouble("##c", &value[r], 0, 0, kPointFormat, ImGuiInputTextFlags_EnterReturnsTrue);
+                    const std::string what = "point " + std::to_string(k) + " " + axes[r];
+                    entered |= coordinateField("##c", value[r], s, what);
+                    recordWidget(("table " + what).c_str());
                     char text[32];
                     std::snprintf(text, sizeof text, kPointFormat, value[r]);
                     fitValue(text);
@@ -551,7 +639,7 @@ void controlPointTable(Scene& scene, int index, UiState& s)
                 }
                 if (entered) {
                     try {
-                        scene.setControlPoint(index, k, Eigen::Vector3d(value[0], value[1], value[2]));
+                        scene.setControlPoint(index, k, Eigen::Vector3d(value[0], value[1], value[2]), "set point");
                     } catch (const Error& e) {
                         s.error = e.what();
                     }
@@ -607,8 +695,11 @@ void selectedPoints(Scene& scene, int index, UiState& s)
         } else {
             ImGui::SetNextItemWidth(avail - spacing - ImGui::CalcTextSize("x").x);
         }
-        entered |= ImGui::InputDouble(oneRow ? "##selected" : axes[r], &value[r], 0, 0, kPointFormat, ImGuiInputTextFlags_EnterReturnsTrue);
+        entered |= coordinateField(oneRow ? "##selected" : axes[r], value[r], s,
+                                   ks.size() == 1 ? "point " + std::to_string(ks.front()) + " " + axes[r]
+                                                  : std::string(axes[r]) + " of the selected points' centre");
         fitValue(texts[r]);
+        recordWidget(r == 0 ? "selected x" : r == 1 ? "selected y" : "selected z");
         tooltip(s, ks.size() == 1 ? "The selected point's coordinates: type new ones and press Enter"
                                   : "The selected points' centre: a new one moves them all by the same offset (Enter)");
         ImGui::PopID();
@@ -912,8 +1003,13 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
     if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("path (or drop a file on the window):");
         ImGui::SetNextItemWidth(480);
-        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-        const bool enter = ImGui::InputText("##path", s.pathBuffer, sizeof s.pathBuffer, ImGuiInputTextFlags_EnterReturnsTrue);
+        if (ImGui::IsWindowAppearing()) {
+            ImGui::SetKeyboardFocusHere();
+            s.pathSelectAll = true;
+        }
+        const bool enter = ImGui::InputText("##path", s.pathBuffer, sizeof s.pathBuffer,
+                                            ImGuiInputTextFlags_EnterReturnsTrue | (s.pathSelectAll ? ImGuiInputTextFlags_AutoSelectAll : 0));
+        if (ImGui::IsItemActive()) s.pathSelectAll = false;
         tooltip(s, "The file's path, relative to the working directory; Enter confirms");
         if (s.pathDialog == UiState::PathDialog::Import) {
             int up = s.importUp == UpAxis::Y ? 1 : 0;
@@ -927,12 +1023,15 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
         }
         if (s.pathDialog == UiState::PathDialog::Open && !actions.recentFiles().empty()) {
             ImGui::TextDisabled("recent:");
-            for (const std::string& path : actions.recentFiles()) {
+            for (std::size_t k = 0; k < actions.recentFiles().size(); ++k) {
+                const std::string& path = actions.recentFiles()[k];
                 std::error_code ec;
                 const bool exists = std::filesystem::exists(path, ec);
-                if (ImGui::Selectable(path.c_str(), false, exists ? 0 : ImGuiSelectableFlags_Disabled))
+                ImGui::PushID(static_cast<int>(k));
+                if (ImGui::Selectable(recentLabel(path).c_str(), false, exists ? 0 : ImGuiSelectableFlags_Disabled))
                     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", path.c_str());
-                tooltip(s, exists ? "Put this path in the field" : "This file no longer exists");
+                tooltip(s, recentTooltip(path, exists, "Put this path in the field").c_str());
+                ImGui::PopID();
             }
         }
         const bool okButton = ImGui::Button("OK");
@@ -968,7 +1067,9 @@ bool unsavedDialog(Scene& scene, UiState& s, UiActions& actions)
     if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
     bool proceed = false;
     if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("%s has unsaved changes.", scene.path().empty() ? "The document" : scene.path().c_str());
+        // A long path is shortened in the middle (the dialog must fit the window); hovering shows it whole.
+        ImGui::Text("%s has unsaved changes.", scene.path().empty() ? "The document" : shortPathLabel(scene.path()).c_str());
+        if (!scene.path().empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", scene.path().c_str());
         const bool saveButton = ImGui::Button("Save");
         tooltip(s, "Save the document, then go on");
         if (saveButton) {
@@ -1051,7 +1152,8 @@ void statsWindow(UiState& s)
                             ImVec2(0.5f, 1.0f));
     ImGui::SetNextWindowBgAlpha(0.6f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
-                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove |
+                                   ImGuiWindowFlags_NoInputs; // see-through for the pointer: a point under it can be picked
     if (ImGui::Begin("Frame statistics", nullptr, flags)) {
         char text[160];
         std::snprintf(text, sizeof text, "frame %.2f ms   update %.2f ms   %ld triangles", s.frameMs, s.updateMs, s.triangles);

@@ -64,6 +64,10 @@ struct UiState {
     // Path dialog: which action it serves and the text being edited.
     enum class PathDialog { None, Open, SaveAs, Import, Export } pathDialog = PathDialog::None;
     char pathBuffer[1024] = {};
+    // True from the dialog's first frame until its path field is active: that activation selects
+    // the whole prefilled path (ImGui keeps a field's edit state between activations, and after a
+    // typed path was confirmed, the next one would start with the cursor after the old text).
+    bool pathSelectAll = false;
     // Dialogs answer only keys pressed after they appeared (the Enter that confirms one dialog must
     // not close the next one in the same frame, nor while it is held): the frame each appeared in.
     int errorFrame = -1;

@@ -6,7 +6,9 @@
 #      document it printed: three objects, no typed-path dialog;
 #   2. a chooser that fails (exit 5: not a choice, not a cancel) falls back to the dialog where the
 #      path is typed;
-#   3. FREEFORM_NO_ZENITY=1 never calls it (the typed-path dialog at once).
+#   3. FREEFORM_NO_ZENITY=1 never calls it (the typed-path dialog at once);
+#   4. a name typed there opens; the dialog opened again (and closed with Escape, and opened once
+#      more): the name typed replaces the prefilled path.
 # Usage: chooser_window.sh EDITOR WORKDIR. Exit 77 (skipped) without Xvfb, xdotool or python3.
 set -u
 EDITOR=$1
@@ -45,6 +47,7 @@ WAIT_FOR_LOG="$WORK/zenity.log" # wait_for (xvfb.sh) prints it on failure
 # start ENV...: the editor on doc.json with --state, its window focused.
 start() {
     rm -f "$WORK/state.json"
+    cd "$WORK" || exit 1
     env "$@" FREEFORM_AUTOSAVE_DIR="$WORK/autosave" ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" \
         "$EDITOR" "$WORK/doc.json" --size 1280x800 --state "$WORK/state.json" >"$WORK/editor.out" 2>"$WORK/editor.err" &
     EDITOR_PID=$!
@@ -83,5 +86,27 @@ start FREEFORM_NO_ZENITY=1
 xdotool key --clearmodifiers ctrl+o
 wait_for "FREEFORM_NO_ZENITY=1: the typed path" "s['path_dialog'] and s['objects'] == 1"
 [ -e "$WORK/zenity.log" ] && { echo "FAIL: zenity was called with FREEFORM_NO_ZENITY=1"; exit 1; }
+
+# 4. The typed path dialog opened again after a typed Open starts from its prefilled path,
+#    selected: what is typed replaces it (issue 25: ImGui kept the field's edit state, the cursor
+#    after the old name and no selection, and the typed name was appended to the old one). The
+#    editor runs in $WORK, so the typed names are relative.
+sleep 0.3
+xdotool type --delay 20 "chosen.json"
+xdotool key --clearmodifiers Return
+wait_for "the first typed Open opens chosen.json" "s['objects'] == 3 and not s['path_dialog'] and s['error'] == ''"
+xdotool key --clearmodifiers ctrl+o
+wait_for "Ctrl+O opens the dialog" "s['path_dialog']"
+xdotool key --clearmodifiers Escape
+wait_for "Escape closes the dialog" "not s['path_dialog']"
+printf '{"format": "freeform", "version": 1, "objects": [' >"$WORK/corrupt.json"
+xdotool key --clearmodifiers ctrl+o
+wait_for "Ctrl+O opens the dialog again" "s['path_dialog']"
+sleep 0.3
+xdotool type --delay 20 "corrupt.json"
+xdotool key --clearmodifiers Return
+wait_for "the second typed Open reads the name typed, not the old name with it appended" \
+    "s['error'].startswith('corrupt.json: ') and s['objects'] == 3"
 stop
-echo "ok: the chooser's file opened, a failed chooser falls back to the typed path, FREEFORM_NO_ZENITY=1 never calls it"
+echo "ok: the chooser's file opened, a failed chooser falls back to the typed path, FREEFORM_NO_ZENITY=1 never calls it," \
+    "a second typed Open replaces the prefilled path"
