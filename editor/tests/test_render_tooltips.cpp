@@ -26,6 +26,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -346,9 +347,12 @@ TEST_CASE("issue 12: every control of every panel, menu and dialog has a tooltip
     }
     // A recent file whose path is long (over 200 characters, a space and a non-ASCII letter in a
     // folder name): its entry is shortened in the menu and found by its tooltip, which names it in full.
-    const std::string longFolder = kTmp + "/tooltips recent \xC3\xBC " + std::string(120, 'f');
+    // (The folder name is padded so that the path reaches 200 characters whatever the checkout's.)
+    const std::string folderStart = kTmp + "/tooltips recent \xC3\xBC ", name = "/tooltips_long_recent.json";
+    const std::size_t pad = std::max<std::size_t>(120, 200 - std::min<std::size_t>(200, folderStart.size() + name.size()));
+    const std::string longFolder = folderStart + std::string(pad, 'f');
     fs::create_directories(fs::u8path(longFolder));
-    const std::string longDoc = longFolder + "/tooltips_long_recent.json", gone = kTmp + "/tooltips_gone.json";
+    const std::string longDoc = longFolder + name, gone = kTmp + "/tooltips_gone.json";
     REQUIRE(longDoc.size() >= 200);
     freeform::test::writeText(longDoc, freeform::test::slurp(doc));
     freeform::test::writeText(config + "/recent.json", Json{{"recent", {doc, longDoc, gone}}}.dump(1));
