@@ -14,6 +14,8 @@
 
 #include "support/random.h"
 
+namespace test_aframe {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -231,3 +233,5 @@ TEST_CASE("float A-frame is C2 to float precision", "[aframe]")
     for (const auto& joint : continuityReport(spline)) CHECK(joint.C == 2);
     CHECK((spline.deBoorPoints(EndCondition::Clamped) - d).cwiseAbs().maxCoeff() < 1e-5f);
 }
+
+} // namespace test_aframe

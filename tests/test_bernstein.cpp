@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+namespace test_bernstein {
+
 using namespace freeform;
 
 __extension__ typedef unsigned __int128 U128; // exact reference arithmetic
@@ -124,3 +126,5 @@ TEST_CASE("basis derivatives: d/dt B_i^n = n (B_(i-1)^(n-1) - B_i^(n-1)) and fin
         for (int i = 0; i <= n; ++i) CHECK(d[i] == 0.0L);
     }
 }
+
+} // namespace test_bernstein

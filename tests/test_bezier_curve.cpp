@@ -11,6 +11,8 @@
 
 #include "support/random.h"
 
+namespace test_bezier_curve {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -353,3 +355,5 @@ TEST_CASE("float and long double instantiations", "[curve]")
     CHECK(g(0.25L).x() == 0.25L);
     CHECK(g.arcLength() == Approx(std::sqrt(3.0)).epsilon(1e-15));
 }
+
+} // namespace test_bezier_curve

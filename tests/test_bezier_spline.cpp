@@ -13,6 +13,8 @@
 
 #include "support/random.h"
 
+namespace test_bezier_spline {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 using Spline2 = BezierSpline<double, 2>;
@@ -226,3 +228,5 @@ TEST_CASE("BezierSpline validation names what is wrong", "[spline]")
     CHECK_THROWS_WITH((Spline2(2, false, randomPoints<double, 2>(5, 1)).deBoorPoints(EndCondition::Open)),
                       Catch::Contains("cubic"));
 }
+
+} // namespace test_bezier_spline

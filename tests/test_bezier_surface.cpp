@@ -11,6 +11,8 @@
 #include "freeform/surface/bezier_surface.h"
 #include "support/random.h"
 
+namespace test_bezier_surface {
+
 using freeform::BezierSurface;
 using S3 = BezierSurface<double, 3>;
 using V3 = Eigen::Vector3d;
@@ -306,3 +308,5 @@ TEST_CASE("closest point: never worse than brute force, exact near the boundary"
     for (const V3& x : samples) brute = std::min(brute, (x - away).norm());
     CHECK(c.distance <= brute + 1e-12);
 }
+
+} // namespace test_bezier_surface

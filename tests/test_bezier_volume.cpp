@@ -9,6 +9,8 @@
 
 #include "support/random.h"
 
+namespace test_bezier_volume {
+
 using freeform::BezierVolume;
 using Volume = BezierVolume<double>;
 using Points = Volume::Points;
@@ -180,3 +182,5 @@ TEST_CASE("a volume rejects bad input with a message", "[unit]")
     const Volume v(1, 1, 1, Points::Zero(3, 8));
     CHECK_THROWS_WITH(v.derivative(3), Contains("axis 3"));
 }
+
+} // namespace test_bezier_volume

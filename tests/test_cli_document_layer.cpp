@@ -14,6 +14,8 @@
 #include "freeform/io/geometry_data.h"
 #include "support/process.h"
 
+namespace test_cli_document_layer {
+
 using freeform::test::cli;
 using freeform::test::writeText;
 using Json = nlohmann::json;
@@ -168,3 +170,5 @@ TEST_CASE("deformDocument equals freeform ffd DOC: the document and the report",
     }
     CHECK(report["certificate"]["min_coefficient"].get<double>() == r.certificate.minCoefficient);
 }
+
+} // namespace test_cli_document_layer

@@ -7,6 +7,8 @@
 #include "support/cli.h"
 #include "support/cli_errors.h"
 
+namespace test_cli_eval {
+
 namespace {
 /// In process (support/cli.h); "help texts" and "bad usage exits 2" start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -105,3 +107,5 @@ TEST_CASE("bad input exits 1", "[cli][errors]")
     writeText(broken, "");
     requireError(cli("eval " + freeform::test::shellQuote(broken) + " --object c --at 0.5"), 1, "not valid JSON");
 }
+
+} // namespace test_cli_eval

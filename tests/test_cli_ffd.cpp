@@ -14,6 +14,8 @@
 #include "support/cli.h"
 #include "support/cli_errors.h"
 
+namespace test_cli_ffd {
+
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -296,3 +298,5 @@ TEST_CASE("bench prints the documented keys", "[cli]")
     CHECK(f["scalar"] == "float");
     CHECK(f["normals"] == true);
 }
+
+} // namespace test_cli_ffd

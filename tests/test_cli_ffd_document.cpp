@@ -13,6 +13,8 @@
 
 #include "support/cli.h"
 
+namespace test_cli_ffd_document {
+
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -219,3 +221,5 @@ TEST_CASE("ffd on a document: bad usage and bad input", "[cli]")
     CHECK_FALSE(std::filesystem::exists(obj));
     CHECK_FALSE(std::filesystem::exists(json));
 }
+
+} // namespace test_cli_ffd_document

@@ -17,6 +17,8 @@
 #include "support/cli.h"
 #include "support/cli_errors.h"
 
+namespace test_cli_info {
+
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -227,3 +229,5 @@ TEST_CASE("info on a file the reader accepts with a warning: one warning line on
     freeform::warn("after the run");
     CHECK(seen == std::vector<std::string>{"after the run"});
 }
+
+} // namespace test_cli_info

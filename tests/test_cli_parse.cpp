@@ -22,6 +22,8 @@
 
 #include "support/cli.h"
 
+namespace test_cli_parse {
+
 using freeform::test::cliInProcess;
 using freeform::test::runCli;
 using freeform::test::writeText;
@@ -192,3 +194,5 @@ TEST_CASE("every command's --help lists every option docs/cli.md documents for i
         }
     }
 }
+
+} // namespace test_cli_parse

@@ -10,6 +10,8 @@
 
 #include "support/cli.h"
 
+namespace test_cli_process {
+
 using freeform::test::cli;
 using freeform::test::cliInProcess;
 using freeform::test::writeText;
@@ -61,3 +63,5 @@ TEST_CASE("stdout holds only the JSON line; errors only stderr", "[cli]")
         CHECK(r.err.rfind("error: ", 0) == 0);
     }
 }
+
+} // namespace test_cli_process

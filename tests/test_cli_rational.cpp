@@ -20,6 +20,8 @@
 #include "freeform/tessellate/tessellate_rational.h"
 #include "support/cli.h"
 
+namespace test_cli_rational {
+
 using namespace freeform;
 using Json = nlohmann::json;
 
@@ -506,3 +508,5 @@ TEST_CASE("rational document: freeform ffd DOC composes the 3D NURBS curve and t
         }
     CHECK(worst <= 1e-12);
 }
+
+} // namespace test_cli_rational

@@ -12,6 +12,8 @@
 #include "support/cli.h"
 #include "support/cli_errors.h"
 
+namespace test_cli_spline {
+
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -265,3 +267,5 @@ TEST_CASE("spline command help texts list every option", "[cli]")
     for (const char* option : {"--output", "--end", "--param", "--start-derivative", "--end-derivative"})
         CHECK(i.out.find(option) != std::string::npos);
 }
+
+} // namespace test_cli_spline

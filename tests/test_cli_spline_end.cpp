@@ -9,6 +9,11 @@
 #include <filesystem>
 
 #include "support/cli.h"
+#include "support/cli_errors.h"
+
+namespace test_cli_spline_end {
+
+using freeform::test::requireError;
 
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
@@ -63,15 +68,6 @@ void checkSame(const Json& a, const Json& b, double margin)
         for (std::size_t k = 0; k < a[i].size(); ++k)
             CHECK(a[i][k].get<double>() == Approx(b[i][k].get<double>()).margin(margin));
     }
-}
-
-void requireError(const freeform::test::ProcessResult& r, int status, const std::string& fragment)
-{
-    INFO("stderr: " << r.err);
-    CHECK(r.status == status);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("error: ", 0) == 0);
-    CHECK(r.err.find(fragment) != std::string::npos);
 }
 
 } // namespace
@@ -132,3 +128,5 @@ TEST_CASE("convert --end closed on a closed spline; end conditions the spline ca
     CHECK_FALSE(std::filesystem::exists(tmp("end_none.obj")));
     CHECK(cli("convert --help").out.find("--end") != std::string::npos);
 }
+
+} // namespace test_cli_spline_end

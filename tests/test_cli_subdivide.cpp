@@ -13,6 +13,8 @@
 #include "support/cli.h"
 #include "support/cli_errors.h"
 
+namespace test_cli_subdivide {
+
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -236,3 +238,5 @@ TEST_CASE("subdivide: bad cages and bad usage", "[cli]")
     requireError(cli("subdivide '" + cage("cube.obj") + "' -o '" + out + "' --scheme doo"), 2, "--scheme");
     CHECK(!std::filesystem::exists(out));
 }
+
+} // namespace test_cli_subdivide

@@ -13,6 +13,8 @@
 
 #include "support/cli.h"
 
+namespace test_cli_subdivide_loop {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -117,3 +119,5 @@ TEST_CASE("subdivide --tolerance: open, holed and creased Loop cages are certifi
     CHECK(oi["euler"] == 1);
     CHECK(oi["manifold"] == true);
 }
+
+} // namespace test_cli_subdivide_loop

@@ -12,6 +12,8 @@
 #include "support/cli.h"
 #include "support/cli_errors.h"
 
+namespace test_cli_surface {
+
 namespace {
 /// The tool in process (support/cli.h); test_cli_eval and test_cli_process start the binary.
 freeform::test::ProcessResult cli(const std::string& arguments)
@@ -218,3 +220,5 @@ TEST_CASE("convert a document to OBJ free-form and back", "[cli][convert]")
     writeText(broken, "v 0 0 0\ncstype bezier\ndeg 1\ncurv 0 1 1 9\nend\n");
     requireError(cli("convert " + freeform::test::shellQuote(broken) + " -o " + freeform::test::shellQuote(back)), 1, "line 4: vertex index 9 is out of range");
 }
+
+} // namespace test_cli_surface

@@ -6,6 +6,8 @@
 
 #include <freeform/curve/continuity.h>
 
+namespace test_continuity {
+
 using namespace freeform;
 using Spline2 = BezierSpline<double, 2>;
 
@@ -86,3 +88,5 @@ TEST_CASE("jointContinuity validation", "[continuity]")
     CHECK_THROWS_WITH((jointContinuity<double, 2>(a, b, 1.0, 1.0)), Catch::Contains("same degree"));
     CHECK_THROWS_WITH((jointContinuity<double, 2>(a, a, 0.0, 1.0)), Catch::Contains("positive"));
 }
+
+} // namespace test_continuity

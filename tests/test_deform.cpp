@@ -13,6 +13,8 @@
 
 #include "support/random.h"
 
+namespace test_deform {
+
 using freeform::DeformOptions;
 using freeform::DeformReport;
 using freeform::FfdBinding;
@@ -452,3 +454,5 @@ TEST_CASE("normals through cof(J) flip where the map mirrors; area-weighted norm
     CHECK((n.col(2) - Eigen::Vector3d(0, 0, 1)).norm() < 1e-15);
     CHECK((n.col(4) - f2.normalized()).norm() < 1e-15);
 }
+
+} // namespace test_deform

@@ -12,6 +12,8 @@
 
 #include "support/random.h"
 
+namespace test_deform_surface {
+
 using freeform::Lattice;
 using freeform::OutsidePolicy;
 using Points = Lattice::Points;
@@ -173,3 +175,5 @@ TEST_CASE("deformSurface rejects degrees above the limit and a non-finite streng
     CHECK_THROWS_AS(freeform::deformSurface(lat, big), freeform::Error);
     CHECK_THROWS_AS(freeform::deformSurface(lat, small, std::nan("")), freeform::Error);
 }
+
+} // namespace test_deform_surface

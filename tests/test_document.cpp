@@ -9,6 +9,8 @@
 
 #include "support/process.h"
 
+namespace test_document {
+
 using namespace freeform;
 
 namespace {
@@ -110,3 +112,5 @@ TEST_CASE("atomic writes leave the old file when writing fails", "[document][io]
     CHECK(files == 1);
     CHECK_THROWS_WITH(readDocument(dir + "/missing.json"), Catch::Contains("missing.json: cannot open"));
 }
+
+} // namespace test_document

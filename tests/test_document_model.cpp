@@ -11,6 +11,8 @@
 #include "freeform/document/document.h"
 #include "freeform/io/geometry_data.h"
 
+namespace test_document_model {
+
 using namespace freeform;
 using V3 = Eigen::Vector3d;
 
@@ -377,3 +379,5 @@ TEST_CASE("deformDocument: objects outside the box, affine lattices", "[document
         CHECK_FALSE(isAffineLattice(lattice));
     }
 }
+
+} // namespace test_document_model

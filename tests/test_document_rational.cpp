@@ -15,6 +15,8 @@
 #include "freeform/document/document.h"
 #include "freeform/io/geometry_data.h"
 
+namespace test_document_rational {
+
 using namespace freeform;
 using V3 = Eigen::Vector3d;
 
@@ -191,3 +193,5 @@ TEST_CASE("rational and NURBS objects: deformDocument under an affine lattice", 
         CHECK(std::abs((q.head<2>() - Eigen::Vector2d(1, 0)).norm() - 2) <= 1e-13);
     }
 }
+
+} // namespace test_document_rational

@@ -22,6 +22,8 @@
 #include "freeform/core/error.h"
 #include "freeform/io/file.h"
 
+namespace test_file_write {
+
 namespace fs = std::filesystem;
 using freeform::Error;
 using freeform::detail::TemporaryFile;
@@ -278,3 +280,5 @@ TEST_CASE("atomic writes name the path when they cannot write", "[io][file]")
     freeform::writeFileAtomicallyWith(plain, [](std::ostream& out) { out << "stream"; });
     CHECK(readBytes(plain) == "stream");
 }
+
+} // namespace test_file_write

@@ -11,6 +11,8 @@
 
 #include "support/meshes.h"
 
+namespace test_halfedge {
+
 using namespace freeform;
 using namespace freeform::test;
 
@@ -266,3 +268,5 @@ TEST_CASE("toPolygonMesh gives the faces back", "[halfedge]")
     CHECK(back.faceStart == m.faceStart);
     CHECK(back.positions == m.positions);
 }
+
+} // namespace test_halfedge

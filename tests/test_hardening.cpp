@@ -35,6 +35,8 @@
 #include "support/bytes.h"
 #include "support/process.h"
 
+namespace test_hardening {
+
 using freeform::Error;
 using freeform::MeshFile;
 using freeform::ScopedWarningHandler;
@@ -797,3 +799,5 @@ TEST_CASE("The warning handler: set, replaced, scoped, and nothing without one",
     mine("four"); // the returned handler is the one that was set
     CHECK(a.back() == "four");
 }
+
+} // namespace test_hardening

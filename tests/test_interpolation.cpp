@@ -15,6 +15,8 @@
 
 #include "support/random.h"
 
+namespace test_interpolation {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -189,3 +191,5 @@ TEST_CASE("interpolation input validation", "[interpolation]")
     CHECK_THROWS_WITH(parseParametrization("arc", "--param"), Catch::Contains("unknown parametrization"));
     CHECK(parseParametrization("centripetal", "x") == Parametrization::Centripetal);
 }
+
+} // namespace test_interpolation

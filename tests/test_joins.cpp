@@ -13,6 +13,8 @@
 
 #include "support/random.h"
 
+namespace test_joins {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 using Spline2 = BezierSpline<double, 2>;
@@ -197,3 +199,5 @@ TEST_CASE("join input validation", "[joins]")
     p << 0, 1, 1, 1, 2, 3, 4, 0, 1, 1, 1, 0, 0, 0; // left handle c_2 on the joint
     CHECK_THROWS_WITH(joinG1(Spline2(3, false, p), 1, JoinMove::RightHandle), Catch::Contains("coincides"));
 }
+
+} // namespace test_joins

@@ -10,6 +10,8 @@
 #include "freeform/io/geometry_data.h"
 #include "support/random.h"
 
+namespace test_lattice {
+
 using freeform::Lattice;
 using freeform::OutsidePolicy;
 using Points = Lattice::Points;
@@ -204,3 +206,5 @@ TEST_CASE("degree elevation of a deformed lattice leaves the deformation unchang
         CHECK(Lattice::identity({1, 1, 1}, f.origin, f.axes).elevated(2, 0, 1).isRest());
     }
 }
+
+} // namespace test_lattice

@@ -11,6 +11,8 @@
 
 #include "freeform/freeform.h" // compiles on its own, with every header in it
 
+namespace test_layering {
+
 namespace fs = std::filesystem;
 
 TEST_CASE("geometry headers include no JSON, io or document header", "[layers]")
@@ -64,3 +66,5 @@ TEST_CASE("freeform.h includes every public header", "[layers]")
     CHECK(headers >= 30);
     CHECK(listed.size() == static_cast<std::size_t>(headers));
 }
+
+} // namespace test_layering

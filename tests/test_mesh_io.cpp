@@ -20,6 +20,8 @@
 #include "support/process.h"
 #include "support/text_lines.h"
 
+namespace test_mesh_io {
+
 using freeform::MeshFile;
 using freeform::test::lines;
 using freeform::test::words;
@@ -593,3 +595,5 @@ TEST_CASE("The sample meshes of data/meshes agree across formats and round-trip 
     CHECK(cube.vertexCount() == 8);
     CHECK(cube.faceCount() == 6);
 }
+
+} // namespace test_mesh_io

@@ -19,6 +19,11 @@
 #ifdef FREEFORM_HAVE_ASSIMP
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#endif
+
+namespace test_mesh_io_assimp {
+
+#ifdef FREEFORM_HAVE_ASSIMP
 
 namespace {
 
@@ -265,3 +270,5 @@ TEST_CASE("Assimp cross-check", "[mesh_io][assimp]")
 }
 
 #endif
+
+} // namespace test_mesh_io_assimp

@@ -12,6 +12,8 @@
 #include "support/bytes.h"
 #include "support/process.h"
 
+namespace test_mesh_io_errors {
+
 using freeform::MeshFile;
 using freeform::test::putBytes;
 using freeform::test::slurp;
@@ -209,3 +211,5 @@ TEST_CASE("A failed write leaves the existing output untouched", "[mesh_io][erro
     CHECK_THROWS_WITH(freeform::writePolygonMesh(file.toPolygonMesh(), out), Contains("vertex 2 is not finite"));
     CHECK(slurp(out) == "precious\n");
 }
+
+} // namespace test_mesh_io_errors

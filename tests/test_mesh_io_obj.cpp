@@ -13,6 +13,8 @@
 #include "support/process.h"
 #include "support/text_lines.h"
 
+namespace test_mesh_io_obj {
+
 using freeform::MeshFile;
 using freeform::test::lines;
 using freeform::test::words;
@@ -165,3 +167,5 @@ TEST_CASE("OBJ: writePolygonMesh writes numbers that read back exactly", "[mesh_
     CHECK(back.faceVertices == mesh.faceVertices);
     CHECK(back.faceStart == mesh.faceStart);
 }
+
+} // namespace test_mesh_io_obj

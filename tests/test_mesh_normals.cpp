@@ -11,6 +11,8 @@
 
 #include "support/meshes.h"
 
+namespace test_mesh_normals {
+
 using namespace freeform;
 using namespace freeform::test;
 
@@ -141,3 +143,5 @@ TEST_CASE("weighting names and invalid meshes", "[normals]")
     bad.positions(1, 2) = NAN;
     CHECK_THROWS_WITH(vertexNormals(bad), Catch::Contains("vertex 2"));
 }
+
+} // namespace test_mesh_normals

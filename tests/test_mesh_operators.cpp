@@ -12,6 +12,8 @@
 
 #include "support/meshes.h"
 
+namespace test_mesh_operators {
+
 using namespace freeform;
 using namespace freeform::test;
 
@@ -308,3 +310,5 @@ TEST_CASE("collapse down a torus until the link condition stops it", "[operators
     CHECK(r.manifold);
     CHECK(r.genus == 1);
 }
+
+} // namespace test_mesh_operators

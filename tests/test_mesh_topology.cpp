@@ -7,6 +7,8 @@
 
 #include "support/meshes.h"
 
+namespace test_mesh_topology {
+
 using namespace freeform;
 using namespace freeform::test;
 
@@ -191,3 +193,5 @@ TEST_CASE("isolated vertices and the empty mesh", "[topology]")
     CHECK(!empty.genus);
     CHECK(empty.genusNote == "the mesh has no faces");
 }
+
+} // namespace test_mesh_topology

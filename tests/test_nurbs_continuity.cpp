@@ -9,6 +9,8 @@
 
 #include "support/random.h"
 
+namespace test_nurbs_continuity {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -73,3 +75,5 @@ TEST_CASE("a kink and the rational circle", "[nurbs][continuity]")
         CHECK(j.G == 2);
     }
 }
+
+} // namespace test_nurbs_continuity

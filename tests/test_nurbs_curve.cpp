@@ -17,6 +17,8 @@
 #include "support/cox_de_boor.h"
 #include "support/random.h"
 
+namespace test_nurbs_curve {
+
 using namespace freeform;
 using namespace freeform::test;
 
@@ -387,3 +389,5 @@ TEST_CASE("closest point is global: never farther than dense sampling, zero for 
         RationalBezierCurve<double, 3>(P, (Eigen::VectorXd(5) << 0.4, 2.7, 0.5, 2.9, 0.35).finished()));
     for (int i = 0; i <= 50; ++i) CHECK(piece.closestPoint(piece(i / 50.0)).distance <= 1e-9);
 }
+
+} // namespace test_nurbs_curve

@@ -11,6 +11,8 @@
 
 #include "support/random.h"
 
+namespace test_nurbs_interpolation {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -104,3 +106,5 @@ TEST_CASE("least squares: ends exact, residual no larger than with fewer control
     dup.col(2) = dup.col(1);
     CHECK_THROWS_WITH((interpolateNurbs<double, 2>(dup, 2)), Catch::Contains("points 1 and 2 coincide"));
 }
+
+} // namespace test_nurbs_interpolation

@@ -13,6 +13,8 @@
 #include "support/cox_de_boor.h"
 #include "support/random.h"
 
+namespace test_nurbs_surface {
+
 using namespace freeform;
 using namespace freeform::test;
 using Surface = NurbsSurface<double, 3>;
@@ -187,3 +189,5 @@ TEST_CASE("surface knot refinement in u and v keeps the surface", "[nurbs][surfa
             }
     }
 }
+
+} // namespace test_nurbs_surface

@@ -14,6 +14,8 @@
 #include "support/cox_de_boor.h"
 #include "support/random.h"
 
+namespace test_nurbs_surface_degree {
+
 using namespace freeform;
 using namespace freeform::test;
 using Surface = NurbsSurface<double, 3>;
@@ -163,3 +165,5 @@ TEST_CASE("the reported error of removal and reduction bounds the deviation on a
     }
     CHECK_THROWS_WITH(randomSurface(1, 2, false, 5).reducedU(), Catch::Contains("cannot be reduced"));
 }
+
+} // namespace test_nurbs_surface_degree

@@ -7,6 +7,8 @@
 #include "freeform/surface/bezier_surface.h"
 #include "support/random.h"
 
+namespace test_obj_freeform {
+
 using namespace freeform;
 
 namespace {
@@ -135,3 +137,5 @@ TEST_CASE("objects without an OBJ free-form form are refused by name", "[obj][er
     doc.objects.push_back({"g", DeBoorSurfaceData{}, ""});
     CHECK_THROWS_WITH(formatObjFreeform(doc), Catch::Contains("type deboor_surface has no OBJ free-form form"));
 }
+
+} // namespace test_obj_freeform

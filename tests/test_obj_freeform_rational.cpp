@@ -12,6 +12,8 @@
 #include "freeform/surface/nurbs_surface.h"
 #include "support/random.h"
 
+namespace test_obj_freeform_rational {
+
 using namespace freeform;
 
 namespace {
@@ -278,3 +280,5 @@ TEST_CASE("OBJ rational and B-spline errors name the line", "[obj][nurbs][errors
     CHECK(err(v4 + "cstype bspline\ndeg 1\nbmat u 1 0 0 1\n") ==
           "x.obj: line 7: \"bmat\" is not supported (Bézier and B-spline curves and surfaces only)");
 }
+
+} // namespace test_obj_freeform_rational

@@ -10,6 +10,8 @@
 #include "support/process.h"
 #include "support/random.h"
 
+namespace test_patch_complex {
+
 using namespace freeform;
 using V3 = Eigen::Vector3d;
 
@@ -184,3 +186,5 @@ TEST_CASE("de Boor surface: closed in both directions is a torus of shared edges
     CHECK_THROWS_WITH(deboorSurfacePatches(grid(4, 2, 1), 4, 2, EndCondition::Clamped, EndCondition::Closed),
                       Catch::Contains("columns"));
 }
+
+} // namespace test_patch_complex

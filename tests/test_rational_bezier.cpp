@@ -11,6 +11,8 @@
 
 #include "support/random.h"
 
+namespace test_rational_bezier {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 using RB2 = RationalBezierCurve<double, 2>;
@@ -150,3 +152,5 @@ TEST_CASE("the batch path agrees with de Casteljau", "[rational][batch]")
     c.evaluateMany(ts.data(), ts.size(), out);
     for (std::size_t i = 0; i < ts.size(); ++i) CHECK((out.col(i) - c(ts[i])).norm() <= 1e-14);
 }
+
+} // namespace test_rational_bezier

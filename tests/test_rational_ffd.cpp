@@ -12,6 +12,8 @@
 
 #include "support/random.h"
 
+namespace test_rational_ffd {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -121,3 +123,5 @@ TEST_CASE("exact composition of rational Bézier and NURBS curves with a rationa
     for (int i = 0; i <= 20; ++i) CHECK((a(i / 20.0) - b(i / 20.0)).norm() <= 1e-13);
     CHECK_THROWS_WITH(RationalLattice(l, Eigen::VectorXd::Ones(3)), Catch::Contains("3 weights"));
 }
+
+} // namespace test_rational_ffd

@@ -13,6 +13,8 @@
 
 #include "support/random.h"
 
+namespace test_rational_ffd_surface {
+
 using namespace freeform;
 using freeform::test::randomPoints;
 
@@ -219,3 +221,5 @@ TEST_CASE("surface composition errors name the degrees", "[ffd][rational][surfac
     CHECK(ok.degreeU() == 27);
     CHECK_THROWS_WITH(deformSurface(RationalLattice(l), patch, std::nan("")), Catch::Contains("strength"));
 }
+
+} // namespace test_rational_ffd_surface

@@ -15,6 +15,8 @@
 #include "freeform/tessellate/tessellate.h"
 #include "support/random.h"
 
+namespace test_subdivision {
+
 using namespace freeform;
 
 namespace {
@@ -438,3 +440,5 @@ TEST_CASE("documents: creases, corners and boundary round-trip and reach the cag
     bad.creases = {{0, 2, 10}};
     CHECK_THROWS_WITH(surfaceFromData(bad, "", "doc: s"), Catch::StartsWith("doc: s: ") && Catch::Contains("no such edge"));
 }
+
+} // namespace test_subdivision

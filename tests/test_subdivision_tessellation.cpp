@@ -25,6 +25,8 @@
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
+namespace test_subdivision_tessellation {
+
 using namespace freeform;
 using freeform::test::V3;
 
@@ -244,3 +246,5 @@ TEST_CASE("certified tessellation: a smooth boundary corner (edge_only) is certi
     for (char f : r.report.faceCertified) CHECK(f == 1);
     CHECK(r.mesh.faceCount() > 0);
 }
+
+} // namespace test_subdivision_tessellation

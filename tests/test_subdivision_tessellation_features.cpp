@@ -30,6 +30,8 @@
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
+namespace test_subdivision_tessellation_features {
+
 using namespace freeform;
 using freeform::test::V3;
 
@@ -289,3 +291,5 @@ TEST_CASE("OpenSubdiv's corner patch under edge_only misses the limit at a one-f
                 (X - limit).norm());
     CHECK((patch - limit).norm() > 1e-3);
 }
+
+} // namespace test_subdivision_tessellation_features

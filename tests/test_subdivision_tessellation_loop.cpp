@@ -36,6 +36,8 @@
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
+namespace test_subdivision_tessellation_loop {
+
 using namespace freeform;
 using freeform::test::V3;
 
@@ -460,3 +462,5 @@ TEST_CASE("Loop tessellation with certified = false keeps the estimate and says 
     CHECK(report.faceCertified.empty());
     CHECK(m.faceCount() > 0);
 }
+
+} // namespace test_subdivision_tessellation_loop

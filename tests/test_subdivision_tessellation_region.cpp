@@ -28,6 +28,8 @@
 #include "support/subdivision_reference.h"
 #include "support/tessellation_checks.h"
 
+namespace test_subdivision_tessellation_region {
+
 using namespace freeform;
 using freeform::test::V3;
 
@@ -194,3 +196,5 @@ TEST_CASE("a tolerance per region: a non-positive region tolerance is an Error",
     o.toleranceOf = [](const Eigen::AlignedBox3d&) { return 0.0; };
     CHECK_THROWS_AS(surface.tessellate(o), Error);
 }
+
+} // namespace test_subdivision_tessellation_region

@@ -14,6 +14,8 @@
 #include "support/random.h"
 #include "support/tessellation_checks.h"
 
+namespace test_tessellate {
+
 using namespace freeform;
 using namespace freeform::test;
 using V3 = Eigen::Vector3d;
@@ -266,3 +268,5 @@ TEST_CASE("no cracks between a flat and a strongly curved patch sharing an edge"
     // The union is a disk: V - E + F = 1.
     CHECK(top.euler() == 1);
 }
+
+} // namespace test_tessellate

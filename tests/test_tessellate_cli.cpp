@@ -14,6 +14,8 @@
 #include "support/process.h"
 #include "support/sanitizers.h"
 
+namespace test_tessellate_cli {
+
 using freeform::test::cli;
 using freeform::test::requireError;
 using freeform::test::writeText;
@@ -83,3 +85,5 @@ TEST_CASE("tessellate --max-triangles refuses with the estimate and writes nothi
     requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --max-triangles lots"), 2, "--max-triangles");
     requireError(cli("tessellate " + freeform::test::shellQuote(kTeapot) + " -o " + freeform::test::shellQuote(out) + " --refinement quadtree"), 2, "--refinement");
 }
+
+} // namespace test_tessellate_cli

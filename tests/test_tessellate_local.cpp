@@ -19,6 +19,8 @@
 #include "support/sanitizers.h"
 #include "support/tessellation_checks.h"
 
+namespace test_tessellate_local {
+
 using namespace freeform;
 using namespace freeform::test;
 using V3 = Eigen::Vector3d;
@@ -465,3 +467,5 @@ TEST_CASE("per-patch tolerances: a de Boor torus stays closed and of genus 1", "
             for (std::size_t p = 0; p < t.patches.size(); ++p) CHECK(surfaceToMesh(t.patches[p], mesh, 16, 2 * tolerances[p], 0.25) <= tolerances[p]);
     }
 }
+
+} // namespace test_tessellate_local

@@ -10,6 +10,8 @@
 
 #include "support/random.h"
 
+namespace test_transform {
+
 using namespace freeform;
 using Catch::Matchers::WithinAbs;
 
@@ -230,3 +232,5 @@ TEST_CASE("the float versions agree with double", "[transform]")
     const Eigen::Matrix4d d = perspective<double>(1.0, 1.5, 0.1, 50.0) * lookAt<double>({1, 2, 3}, {0, 0, 0}, {0, 0, 1});
     REQUIRE((f.cast<double>() - d).cwiseAbs().maxCoeff() < 1e-5);
 }
+
+} // namespace test_transform

@@ -14,6 +14,8 @@
 
 #include "support/meshes.h"
 
+namespace test_triangulate {
+
 using namespace freeform;
 using namespace freeform::test;
 
@@ -205,3 +207,5 @@ TEST_CASE("triangulating a mesh keeps vertices, attributes and topology", "[tria
     CHECK(lt.faceCount() == 4);
     CHECK(meshReport(lt).boundaryEdges == 6);
 }
+
+} // namespace test_triangulate

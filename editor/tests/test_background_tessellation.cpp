@@ -16,6 +16,8 @@
 #include "scene/scene.h"
 #include "scene/tessellation_worker.h"
 
+namespace test_background_tessellation {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -373,3 +375,5 @@ TEST_CASE("per-patch screen tolerance: a patch is rebuilt when its own tolerance
     CHECK(scene.item(near).revision != revision);
     CHECK(scene.item(near).geometry.patchTolerance.at(0) > 2 * built);
 }
+
+} // namespace test_background_tessellation

@@ -26,6 +26,8 @@
 #include "scene/scene_drawer.h"
 #include "tools/tools.h"
 
+namespace test_drag_exact {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -619,3 +621,5 @@ TEST_CASE("Lattice drag: the release's exact evaluation on a worker thread", "[f
         requireExact(d, fullEvaluation(d.current(), 1, d.rest));
     }
 }
+
+} // namespace test_drag_exact

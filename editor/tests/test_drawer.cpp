@@ -17,6 +17,8 @@
 #include "scene/scene_drawer.h"
 #include "support/process.h"
 
+namespace test_drawer {
+
 using namespace freeform;
 using namespace freeform::editor;
 using Kind = RecordingRenderer::Kind;
@@ -249,3 +251,5 @@ TEST_CASE("recording renderer: auto anti-aliasing multisamples a GPU's frames an
         CHECK(r.samples() == 2);
     }
 }
+
+} // namespace test_drawer

@@ -24,6 +24,8 @@
 #include "scene/scene_drawer.h"
 #include "support/process.h"
 
+namespace test_drawer_normals {
+
 using namespace freeform;
 using namespace freeform::editor;
 using Kind = RecordingRenderer::Kind;
@@ -113,3 +115,5 @@ TEST_CASE("recording renderer: the normals overlay draws one line per vertex, fr
     }
     CHECK(worstLonger <= 1e-6);
 }
+
+} // namespace test_drawer_normals

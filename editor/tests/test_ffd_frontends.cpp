@@ -22,6 +22,8 @@
 #include "support/process.h"
 #include "tools/tools.h"
 
+namespace test_ffd_frontends {
+
 using namespace freeform;
 using namespace freeform::editor;
 using JsonDoc = nlohmann::json;
@@ -152,3 +154,5 @@ TEST_CASE("freeform ffd and the editor's apply lattice write the same objects", 
         CHECK((point(cage["vertices"][static_cast<std::size_t>(v)]) - lattice.deform(Eigen::Vector3d(cube.positions.col(v))).point)
                   .norm() < 1e-12);
 }
+
+} // namespace test_ffd_frontends

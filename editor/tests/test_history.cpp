@@ -14,6 +14,8 @@
 #include "scene/scene.h"
 #include "support/process.h"
 
+namespace test_history {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -236,3 +238,5 @@ TEST_CASE("Scene: undo rebuilds only the items whose content changed", "[history
     CHECK_FALSE(scene.item(2).geometryDirty);
     CHECK(scene.item(2).settings.visible);
 }
+
+} // namespace test_history

@@ -22,6 +22,8 @@
 #include "interaction/replay.h"
 #include "support/process.h"
 
+namespace test_interaction {
+
 using namespace freeform;
 using namespace freeform::editor;
 using Catch::Matchers::WithinAbs;
@@ -529,3 +531,5 @@ TEST_CASE("parseReplay reads tooltip_audit (the tooltip test's hook) and rejects
     CHECK(message(R"({"events": [{"type": "tooltip_audit", "windows": [3]}]})").find("events[0].windows") != std::string::npos);
     CHECK(message(R"({"events": [{"type": "tooltip_audit", "count": 3}]})").find("events[0].count") != std::string::npos);
 }
+
+} // namespace test_interaction

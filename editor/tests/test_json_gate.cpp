@@ -17,6 +17,8 @@
 #include "scene/scene.h"
 #include "scene/settings.h"
 
+namespace test_json_gate {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -190,3 +192,5 @@ TEST_CASE("Settings refuse numbers a float cannot hold instead of storing infini
     CHECK_THROWS_WITH(DisplaySettings::fromText(R"({"headlight_color": [1e39, 0, 0]})", "doc.editor.display"),
                       Catch::Contains("headlight_color[0]") && Catch::Contains("out of range"));
 }
+
+} // namespace test_json_gate

@@ -17,6 +17,8 @@
 #include "tools/tools.h"
 #include "ui/ui.h"
 
+namespace test_keymap {
+
 using namespace freeform::editor;
 
 namespace {
@@ -153,3 +155,5 @@ TEST_CASE("keymap: Interaction and the tools act on the table's keys", "[editor]
     CHECK(tools.lattice().direct);
     CHECK_FALSE(tools.onKey(context, entryOf(KeyAction::NextShading).key, 0));
 }
+
+} // namespace test_keymap

@@ -38,6 +38,8 @@
 #include "support/tool_bench.h"
 #include "tools/tools.h"
 
+namespace test_nurbs_tool {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::tool_test;
@@ -359,3 +361,5 @@ TEST_CASE("nurbs editor: apply exactly turns NURBS and rational curves as freefo
         }
     }
 }
+
+} // namespace test_nurbs_tool

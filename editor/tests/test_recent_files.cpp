@@ -15,6 +15,8 @@
 #include "ui/path_label.h"
 #include "support/process.h"
 
+namespace test_recent_files {
+
 using namespace freeform::editor;
 namespace fs = std::filesystem;
 
@@ -134,3 +136,5 @@ TEST_CASE("recent files: a long path is shown by its beginning and its end, cut 
     for (int i = 0; i < 23; ++i) u23 += "\xC3\xBC";
     CHECK(shortPathLabel("/" + u + "/x.json") == "/" + u30 + "..." + u23 + "/x.json");
 }
+
+} // namespace test_recent_files

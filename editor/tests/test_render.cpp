@@ -26,6 +26,8 @@
 #include "support/editor_process.h"
 #include "support/process.h"
 
+namespace test_render {
+
 using namespace freeform;
 using freeform::test::compare;
 using freeform::test::loadPng;
@@ -244,3 +246,5 @@ TEST_CASE("the demo scene renders with the panels", "[render]")
     REQUIRE(image.width == 640);
     REQUIRE(image.height == 400);
 }
+
+} // namespace test_render

@@ -32,6 +32,8 @@
 #include "support/editor_process.h"
 #include "support/process.h"
 
+namespace test_render_colour_map {
+
 using namespace freeform;
 using namespace freeform::editor;
 using Json = nlohmann::ordered_json;
@@ -241,3 +243,5 @@ TEST_CASE("with a fixed det J range a lattice drag keeps the colour of an untouc
     CHECK(autoChange > 20);
     CHECK(autoMoved.saved["editor"]["display"]["scalar_range"] == "auto");
 }
+
+} // namespace test_render_colour_map

@@ -25,6 +25,8 @@
 #include "support/editor_process.h"
 #include "support/process.h"
 
+namespace test_render_dialogs_layout {
+
 using Json = nlohmann::ordered_json;
 
 namespace {
@@ -214,3 +216,5 @@ TEST_CASE("issue 12: a tooltip shows over the Display panel's controls, and none
     const Json view = replayState("tooltip_view", Json::array({{{"type", "move"}, {"x", 640}, {"y", 400}}, {{"type", "frame"}, {"count", 3}}}));
     CHECK(view["tooltip"] == "");
 }
+
+} // namespace test_render_dialogs_layout

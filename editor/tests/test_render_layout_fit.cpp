@@ -27,6 +27,8 @@
 #include "support/process.h"
 #include "support/replay_session.h"
 
+namespace test_render_layout_fit {
+
 using namespace freeform;
 using namespace freeform::editor::replay_test;
 using Json = nlohmann::ordered_json;
@@ -284,3 +286,5 @@ TEST_CASE("issue 12: the clipping check reports a cut status line and a panel na
     CHECK(panel);
     CHECK(dialog);
 }
+
+} // namespace test_render_layout_fit

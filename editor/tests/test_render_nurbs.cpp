@@ -29,6 +29,8 @@
 #include "support/editor_process.h"
 #include "support/process.h"
 
+namespace test_render_nurbs {
+
 using namespace freeform;
 using namespace freeform::editor;
 using JsonR = nlohmann::ordered_json;
@@ -260,3 +262,5 @@ TEST_CASE("Alt + drag 100 pixels up multiplies a weight by e; K inserts a knot, 
         for (int k = 0; k <= 40; ++k) CHECK((cliEval(out, "wave", 3.0 * k / 40) - before[static_cast<std::size_t>(k)]).norm() < 1e-13);
     }
 }
+
+} // namespace test_render_nurbs

@@ -51,6 +51,8 @@
 #include "support/process.h"
 #include "support/replay_session.h"
 
+namespace test_render_promises {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
@@ -777,3 +779,5 @@ TEST_CASE("--frames N prints the documented statistics and nothing else on stdou
     CHECK(bad.out.empty());
     CHECK(bad.err.rfind("error:", 0) == 0);
 }
+
+} // namespace test_render_promises

@@ -36,6 +36,8 @@
 #include "support/process.h"
 #include "support/replay_session.h"
 
+namespace test_render_promises_last {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
@@ -433,3 +435,5 @@ TEST_CASE("Ctrl+Q quits without unsaved changes; with them it asks, and the docu
         CHECK(vec(curve["points"][0]) == Eigen::Vector3d(-2, 0, 0));
     }
 }
+
+} // namespace test_render_promises_last

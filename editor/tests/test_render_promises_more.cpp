@@ -43,6 +43,8 @@
 #include "support/process.h"
 #include "support/replay_session.h"
 
+namespace test_render_promises_more {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
@@ -621,3 +623,5 @@ TEST_CASE("the keyboard table's Z, W, R, Ctrl+N and Ctrl+S do what their rows sa
         CHECK(written["objects"][0]["points"][2][0] == 2.0); // the curve, untouched
     }
 }
+
+} // namespace test_render_promises_more

@@ -33,6 +33,8 @@
 #include "support/process.h"
 #include "support/replay_session.h"
 
+namespace test_render_replay {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
@@ -276,3 +278,5 @@ TEST_CASE("a bad events file: exit 1, one error line, nothing written", "[render
     CHECK(missing.status == 1);
     CHECK_FALSE(fs::exists(out));
 }
+
+} // namespace test_render_replay

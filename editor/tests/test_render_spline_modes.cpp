@@ -41,6 +41,8 @@
 #include "support/replay_session.h"
 #include "tools/curve_tools.h"
 
+namespace test_render_spline_modes {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
@@ -485,3 +487,5 @@ TEST_CASE("issue 25: a file cage's control point table lists the file's vertices
     CHECK(typed.state["undo"]["label"] == "set point");
     CHECK(test::slurp(obj) == before); // the file is left as it is
 }
+
+} // namespace test_render_spline_modes

@@ -42,6 +42,8 @@
 #include "support/replay_session.h"
 #include "support/text_lines.h"
 
+namespace test_render_tools {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::replay_test;
@@ -426,3 +428,5 @@ TEST_CASE("fit/apply lattice by --replay then --save writes freeform ffd's objec
     // the de Boor surface (non-affine lattice: skipped) and the lattice itself stay.
     CHECK(changed == std::set<std::string>{"curve3", "spline3", "deboor3", "patch", "complex_a", "complex_b", "cage"});
 }
+
+} // namespace test_render_tools

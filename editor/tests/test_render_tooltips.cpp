@@ -36,6 +36,8 @@
 #include "support/process.h"
 #include "support/replay_session.h"
 
+namespace test_render_tooltips {
+
 using Json = nlohmann::ordered_json;
 using namespace freeform::editor::replay_test;
 
@@ -413,3 +415,5 @@ TEST_CASE("issue 12: every control of every panel, menu and dialog has a tooltip
         CHECK(dropdownsOpened.count(dropdown) == 1);
     }
 }
+
+} // namespace test_render_tooltips

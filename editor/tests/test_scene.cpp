@@ -14,6 +14,8 @@
 #include "scene/scene.h"
 #include "support/process.h"
 
+namespace test_scene {
+
 using namespace freeform;
 using namespace freeform::editor;
 using Catch::Matchers::WithinAbs;
@@ -310,3 +312,5 @@ TEST_CASE("scene: the pixel tolerance gives the world size of that many pixels a
     scene.updateViewTolerance(800);
     CHECK(scene.tessellationTolerance() == scene.display.tolerance);
 }
+
+} // namespace test_scene

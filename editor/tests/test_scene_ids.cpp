@@ -19,6 +19,8 @@
 #include "scene/scene_drawer.h"
 #include "support/process.h"
 
+namespace test_scene_ids {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -236,3 +238,5 @@ TEST_CASE("derived: a lattice drag reaches the drawer as a vertex update of the 
     // det J as the colour scalars: one per vertex.
     CHECK(gpu.scalars.size() == 8);
 }
+
+} // namespace test_scene_ids

@@ -29,6 +29,8 @@
 #include "interaction/keymap.h"
 #include "tools/tools.h"
 
+namespace test_subdivision_editing {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -825,3 +827,5 @@ TEST_CASE("CageTool: in edge mode (E) a click picks the nearest projected cage e
     REQUIRE(press(b, KeyAction::CageEdgeMode));
     CHECK_FALSE(b.tools.cage().edgeMode);
 }
+
+} // namespace test_subdivision_editing

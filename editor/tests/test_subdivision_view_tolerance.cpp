@@ -17,6 +17,8 @@
 #include "freeform/document/document.h"
 #include "scene/scene.h"
 
+namespace test_subdivision_view_tolerance {
+
 using namespace freeform;
 using namespace freeform::editor;
 
@@ -157,3 +159,5 @@ TEST_CASE("subdivision to the view: one box per cage face, fewer triangles than 
     INFO("after the zoom " << after.surface->faceCount() << " triangles, before " << builtTriangles);
     CHECK(after.surface->faceCount() > builtTriangles);
 }
+
+} // namespace test_subdivision_view_tolerance

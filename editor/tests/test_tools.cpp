@@ -26,6 +26,8 @@
 #include "support/tool_bench.h"
 #include "tools/tools.h"
 
+namespace test_tools {
+
 using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::tool_test;
@@ -1060,3 +1062,5 @@ TEST_CASE("Tools: First steps, the C0 patch pair: the edge is C0 only, rows made
     CHECK(b.tools.patch().edges()[0].c1); // equal row spacing on both sides
     CHECK(b.tools.patch().edges()[0].angle < 1e-6); // an angle from a cosine near 1: resolution about 1.5e-8
 }
+
+} // namespace test_tools

@@ -33,6 +33,8 @@
 #include "tools/tool_util.h"
 #include "tools/tools.h"
 
+namespace test_up_axis {
+
 using namespace freeform;
 using namespace freeform::editor;
 using Json = nlohmann::ordered_json;
@@ -242,3 +244,5 @@ TEST_CASE("up axis: an export through the lattice writes the file's own coordina
     }
     CHECK(largest > 0.05); // the drag did reach the mesh
 }
+
+} // namespace test_up_axis

@@ -10,16 +10,12 @@
 #include "freeform/core/error.h"
 #include "freeform/io/geometry_data.h"
 #include "../io/object_lookup.h"
+#include "overloaded.h"
 
 namespace freeform {
 namespace {
 
-template <class... F>
-struct Overloaded : F... {
-    using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
+using detail::Overloaded;
 
 template <int Dim>
 DeBoorSpline<Dim> deboorSpline(const DeBoorSplineData& d)

@@ -9,16 +9,12 @@
 #include "freeform/document/operations.h"
 #include "freeform/curve/nurbs_continuity.h"
 #include "rational.h"
+#include "overloaded.h"
 
 namespace freeform {
 namespace {
 
-template <class... F>
-struct Overloaded : F... {
-    using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
+using detail::Overloaded;
 
 Eigen::Matrix<double, 3, Eigen::Dynamic> to3d(const PointColumns& p)
 {

@@ -15,7 +15,7 @@ namespace freeform {
 
 namespace {
 
-using Json = nlohmann::json;
+using PlainJson = nlohmann::json;
 
 class CheckingSax {
 public:
@@ -26,11 +26,11 @@ public:
 
     bool null() { return value(); }
     bool boolean(bool) { return value(); }
-    bool number_integer(Json::number_integer_t) { return value(); }
-    bool number_unsigned(Json::number_unsigned_t) { return value(); }
-    bool number_float(Json::number_float_t, const std::string&) { return value(); }
+    bool number_integer(PlainJson::number_integer_t) { return value(); }
+    bool number_unsigned(PlainJson::number_unsigned_t) { return value(); }
+    bool number_float(PlainJson::number_float_t, const std::string&) { return value(); }
     bool string(std::string&) { return value(); }
-    bool binary(Json::binary_t&) { return value(); }
+    bool binary(PlainJson::binary_t&) { return value(); }
 
     bool start_object(std::size_t) { return open(false); }
     bool end_object() { return close(); }
@@ -127,8 +127,8 @@ void checkJsonText(std::string_view text, const std::string& source, int maxDept
     CheckingSax sax(maxDepth);
     bool ok = false;
     try {
-        ok = Json::sax_parse(text.begin(), text.end(), &sax);
-    } catch (const Json::exception&) {
+        ok = PlainJson::sax_parse(text.begin(), text.end(), &sax);
+    } catch (const PlainJson::exception&) {
         return; // a syntax error: the parser that follows reports it with its position
     }
     if (ok || sax.syntax) return;

@@ -5,12 +5,12 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <numbers>
 
 namespace freeform {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d unitOrZero(const Eigen::Vector3d& v)
 {
@@ -87,7 +87,7 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> vertexNormals(const PolygonMesh& mesh, 
                 // non-convex polygon turns against the face normal and gets 2 pi minus it.
                 const Eigen::Vector3d axb = a.cross(b);
                 w = std::atan2(axb.norm(), a.dot(b));
-                if (n > 3 && axb.dot(normal) > 0) w = 2 * kPi - w;
+                if (n > 3 && axb.dot(normal) > 0) w = 2 * std::numbers::pi - w;
             }
             sum.col(v) += w * normal;
         }

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "freeform/core/error.h"
@@ -16,7 +17,6 @@ namespace {
 
 using Vec2 = Eigen::Vector2d;
 
-constexpr double kPi = 3.14159265358979323846;
 
 double orient(const Vec2& a, const Vec2& b, const Vec2& c)
 {
@@ -73,7 +73,7 @@ std::vector<std::array<int, 3>> triangulatePolygon2(const Eigen::Matrix<double, 
         convex = isConvexTurn(a, b, c, s);
         turning += std::atan2(s * orient(a, b, c), (b - a).dot(c - b));
     }
-    if (convex && std::abs(turning - 2 * kPi) < kPi) return fan(n);
+    if (convex && std::abs(turning - 2 * std::numbers::pi) < std::numbers::pi) return fan(n);
 
     std::vector<int> prev(n), next(n);
     for (int i = 0; i < n; ++i) {

@@ -43,8 +43,6 @@ public:
     }
 };
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
 /// Splits text[first, last) into tokens, stopping at a '#' comment.
 void tokenize(const std::string& text, std::size_t first, std::size_t last, std::vector<Token>& tokens)
 {

@@ -24,8 +24,6 @@ public:
     }
 };
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
 } // namespace
 
 std::unique_ptr<Source> readOff(const std::string& path, std::string text)

@@ -20,6 +20,9 @@
 
 namespace freeform::meshio {
 
+/// A blank within a line of a text format: space, tab, carriage return, vertical tab, form feed.
+inline bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
 using Matrix3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;
 using Matrix4X = Eigen::Matrix<double, 4, Eigen::Dynamic>;
 using Matrix2X = Eigen::Matrix<double, 2, Eigen::Dynamic>;
