@@ -105,11 +105,13 @@ TEST_CASE("a tolerance per region: every cell within its own tolerance, far part
     for (const Case& c : cases)
         DYNAMIC_SECTION(c.name)
         {
-            // Under the sanitizers (support/sanitizers.h) the long open grid is left out: it took
-            // 105 of this test's 140 s of ASan + UBSan (its level-6 reference and the sampled
-            // ratios over 40 faces); the prism and the octahedron keep the region code on
-            // irregular Catmull-Clark and Loop cells there. Every case runs in Release.
-            if (test::underSanitizers && c.name.rfind("long open grid", 0) == 0) continue;
+            // Under the sanitizers (support/sanitizers.h) only the octahedron runs here: the long
+            // open grid took 105 of this test's 140 s of ASan + UBSan (its level-6 reference and the
+            // sampled ratios over 40 faces), and the pentagonal prism 60 of the remaining 80 (its
+            // level-7 reference). The region code on the prism's irregular Catmull-Clark cells still
+            // runs there in the next test case (the same prism, the same toleranceOf path, without
+            // the reference). Every case runs in Release.
+            if (test::underSanitizers && c.scheme != SubdivisionScheme::Loop) continue;
             const SubdivisionSurface surface(c.cage, c.scheme, c.cage.boundary.value_or(BoundaryInterpolation::EdgeOnly));
             const Region region{1e-3, minX(c.cage.mesh)};
             SubdivisionTessellationOptions o;

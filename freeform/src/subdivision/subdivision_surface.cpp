@@ -76,7 +76,7 @@ std::uint64_t directedKey(int a, int b)
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
-std::string edgeName(int a, int b) { return "edge " + std::to_string(a) + "-" + std::to_string(b); }
+std::string cageEdgeName(int a, int b) { return "edge " + std::to_string(a) + "-" + std::to_string(b); }
 
 bool validSharpness(double s) { return std::isfinite(s) && s >= 0; }
 
@@ -133,10 +133,10 @@ void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const s
             const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % n];
             const auto [it, fresh] = directed.emplace(directedKey(a, b), f);
             if (!fresh)
-                throw Error(what + ": " + edgeName(a, b) + " runs the same way in faces " + std::to_string(it->second) +
+                throw Error(what + ": " + cageEdgeName(a, b) + " runs the same way in faces " + std::to_string(it->second) +
                             " and " + std::to_string(f) + " (inconsistent orientation or a non-manifold edge)");
             if (++undirected[edgeKey(a, b)] > 2)
-                throw Error(what + ": " + edgeName(a, b) + " has more than two faces (face " + std::to_string(f) +
+                throw Error(what + ": " + cageEdgeName(a, b) + " has more than two faces (face " + std::to_string(f) +
                             " is the third): the cage is not manifold");
         }
     }
@@ -164,7 +164,7 @@ void validateCage(const SubdivisionCage& cage, SubdivisionScheme scheme, const s
             throw Error(what + ": hole " + std::to_string(i) + ": face " + std::to_string(cage.holes[i]) + " is out of range");
     for (std::size_t i = 0; i < cage.creases.size(); ++i) {
         const EdgeCrease& c = cage.creases[i];
-        const std::string name = what + ": crease " + std::to_string(i) + " (" + edgeName(c.v0, c.v1) + ")";
+        const std::string name = what + ": crease " + std::to_string(i) + " (" + cageEdgeName(c.v0, c.v1) + ")";
         if (c.v0 < 0 || c.v0 >= vertices || c.v1 < 0 || c.v1 >= vertices)
             throw Error(name + ": vertex index out of range 0.." + std::to_string(vertices - 1));
         if (!undirected.count(edgeKey(c.v0, c.v1))) throw Error(name + ": the cage has no such edge");
