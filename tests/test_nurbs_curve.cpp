@@ -89,6 +89,20 @@ TEST_CASE("knot vector validation names the knot", "[nurbs][knots]")
                       Catch::Contains("weight 1"));
 }
 
+TEST_CASE("messages print parameters and knots so that they read back exactly", "[nurbs][knots]")
+{
+    // std::to_string (%f) printed 1 + 1e-9 as "1.000000" and a domain of size 1e-8 as
+    // "(0.000000, 0.000000)", hiding the very problem the message reports.
+    const NurbsCurve<double, 2> c(2, {0, 0, 0, 1, 1, 1}, randomPoints<double, 2>(3, 1));
+    CHECK_THROWS_WITH(c.insertKnot(1 + 1e-9), Catch::Equals("NurbsCurve::insertKnot: 1.000000001 is not inside the domain (0, 1)"));
+    CHECK_THROWS_WITH(c.split(-0.1), Catch::Contains("-0.1 is not inside the domain (0, 1)"));
+    const NurbsCurve<double, 2> tiny(2, {0, 0, 0, 1e-8, 1e-8, 1e-8}, randomPoints<double, 2>(3, 2));
+    CHECK_THROWS_WITH(tiny.insertKnot(2e-8), Catch::Contains("2e-08 is not inside the domain (0, 1e-08)"));
+    CHECK_THROWS_WITH(KnotVector<double>({0, 0, 1, 0.1 + 0.2, 1, 1}, 2), Catch::Contains("knot 3 (0.30000000000000004)"));
+    const NurbsCurve<float, 2> f(2, {0, 0, 0, 1, 1, 1}, randomPoints<float, 2>(3, 3));
+    CHECK_THROWS_WITH(f.insertKnot(1.1f), Catch::Contains("1.1 is not inside the domain (0, 1)"));
+}
+
 TEST_CASE("findSpan and the basis against Cox-de Boor in long double, degrees 1-9", "[nurbs][knots]")
 {
     for (int p = 1; p <= 9; ++p)

@@ -2,12 +2,13 @@
 # differences for the sensitivities and det J, the command-line tool's outputs on the same files.
 import json
 import os
+import subprocess
 
 import numpy as np
 import pytest
 
 import freeform as ff
-from conftest import ROOT, reference_deform, reference_weights, random_lattice, run_cli
+from conftest import ROOT, cli, reference_deform, reference_weights, random_lattice, run_cli
 
 RNG = np.random.default_rng(5)
 INSIDE = RNG.uniform(-1, 1, (200, 3)) * [1.0, 1.1, 0.85]
@@ -397,6 +398,38 @@ def test_extrapolation_that_overflows_raises_instead_of_nan():
     r = lat.report(near)
     assert r["vertices"] == 2 and r["outside"] == 2
     assert all(np.isfinite([r["min_det_j"], r["max_det_j"]]))
+
+
+def test_mesh_file_deform_that_overflows_raises_and_keeps_the_file(tmp_path):
+    lat = random_lattice(ff, outside="extrapolate")
+    src = tmp_path / "far.obj"
+    src.write_text("v 0 0 0\nv 1e100 1e100 1e100\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n")
+    m = ff.MeshFile.read(str(src))
+    before = m.positions.copy()
+    for normals in ("jacobian", "recompute"):
+        with pytest.raises(ff.Error, match=r"far\.obj: vertex 1 deforms to a position that is not finite \(the extrapolate policy"):
+            m.deform(lat, normals=normals)
+        np.testing.assert_array_equal(m.positions, before)  # before the fix: NaN positions, written as "nan"
+    # the command line refuses the same file (one error line, exit 1) and writes nothing
+    lat_path = tmp_path / "lat.json"
+    out = tmp_path / "out.obj"
+    lat.save(str(lat_path))
+    r = subprocess.run([cli(), "ffd", str(src), "--lattice", str(lat_path), "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 1 and r.stdout == "" and not out.exists()
+    assert r.stderr.startswith("error: ") and r.stderr.count("\n") == 1 and "vertex 1 deforms to a position that is not finite" in r.stderr
+
+
+def test_document_deform_that_overflows_raises_and_keeps_the_document():
+    lat = random_lattice(ff, outside="keep")
+    doc = ff.Document()
+    doc.add("near", ff.NurbsCurve.circle())
+    doc.add("far", ff.NurbsCurve(2, [0, 0, 0, 1, 1, 1], np.full((3, 3), 1e100)))
+    # refused by the composition itself ("BezierCurve: point 0 coordinate 0 is not finite") or by the
+    # document layer's check of the result: either way naming the object, before anything changes
+    with pytest.raises(ff.Error, match=r'object "far": .*not finite'):
+        doc.deform(lat)
+    np.testing.assert_array_equal(doc.object("far").control_points, np.full((3, 3), 1e100))  # before: inf
+    np.testing.assert_array_equal(doc.object("near").control_points, ff.NurbsCurve.circle().control_points)
 
 
 @pytest.mark.parametrize("bad", [2**40, -1, 1.5, True, "2", None])

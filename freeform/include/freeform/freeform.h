@@ -4,6 +4,7 @@
 
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
+#include "freeform/core/format.h"
 #include "freeform/core/parallel.h"
 #include "freeform/core/polynomial.h"
 #include "freeform/core/quadrature.h"

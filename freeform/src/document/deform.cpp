@@ -18,6 +18,24 @@ bool controlPointsInside(const Lattice& lattice, const Eigen::Ref<const Eigen::M
     return true;
 }
 
+/// The first field of `data` that holds a number that is not finite ("points", "weights",
+/// "vertices"), or "" when every number is finite.
+std::string firstNonFinite(const ObjectData& data)
+{
+    return std::visit(
+        [](const auto& d) -> std::string {
+            if constexpr (requires { d.points; })
+                if (!d.points.allFinite()) return "points";
+            if constexpr (requires { d.vertices; })
+                if (!d.vertices.allFinite()) return "vertices";
+            if constexpr (requires { d.weights; })
+                for (double x : d.weights)
+                    if (!std::isfinite(x)) return "weights";
+            return "";
+        },
+        data);
+}
+
 /// A spline's segments pushed through the lattice exactly, as a bezier_spline of degree
 /// d (l+m+n) on the same intervals (joints shared, as the format stores them).
 BezierSplineData deformSpline(const Lattice& lattice, const BezierSpline<double, 3>& spline, double strength)
@@ -218,6 +236,13 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
         } catch (const Error& e) {
             throw Error(doc.what(o) + ": " + e.what());
         }
+        // Far outside the box the lattice polynomial (continued there for the exact compositions, and
+        // for a cage under the extrapolate policy) can overflow: refuse before the document changes
+        // (JSON has no number for infinity or NaN).
+        if (const std::string field = firstNonFinite(result); !field.empty())
+            throw Error(doc.what(o) + ": the deformed " + field +
+                        " are not finite (the lattice polynomial overflows this far outside its box: use a lattice "
+                        "that covers the object)");
         const bool isCage = std::holds_alternative<SubdivisionObject>(o.geometry());
         // Subdivision cages follow the outside policy point by point (as meshes); everything else is
         // the polynomial continued, which equals point-wise FFD inside the box or under extrapolate.

@@ -18,17 +18,32 @@ MeshFileDeformation deformMeshFile(const Lattice& lattice, MeshFile& file, const
     out.jacobians = jacobians.data();
     MeshFileDeformation result;
     binding.deform(lattice, out, options, &result.report);
+    // Under the extrapolate policy the lattice polynomial far outside the box can overflow: refuse
+    // before the file changes (a NaN position would be written as "nan").
+    if (!moved.allFinite() || !jacobians.allFinite()) {
+        Eigen::Index v = 0;
+        while (v < count && moved.col(v).allFinite() && jacobians.col(v).allFinite()) ++v;
+        throw Error(file.path() + ": vertex " + std::to_string(v) + " deforms to a position that is not finite" +
+                    (lattice.outside() == OutsidePolicy::Extrapolate
+                         ? " (the extrapolate policy continues the lattice polynomial, which overflows this far "
+                           "outside the box: use clamp or keep, or a lattice that covers the mesh)"
+                         : ""));
+    }
     result.outside = binding.outsideVertices();
+    auto& n = file.normals();
+    const bool recompute = n.cols() > 0 && normals == NormalMode::Recompute;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> before; // the positions as they were, while a failure may undo
+    if (recompute) before = positions;
     positions = moved;
     const auto jacobianAt = [&](int v) { return Eigen::Matrix3d(Eigen::Map<const Eigen::Matrix3d>(jacobians.col(v).data())); };
 
-    auto& n = file.normals();
     const auto& normalAnchors = file.normalAnchors();
-    if (n.cols() > 0 && normals == NormalMode::Recompute) {
+    if (recompute) {
         Eigen::Matrix<double, 3, Eigen::Dynamic> fresh;
         try {
             fresh = areaWeightedNormals(file.toPolygonMesh());
         } catch (const Error& e) {
+            positions = before; // the file as it was
             throw Error(file.path() + ": cannot recompute normals: " + e.what()); // name the file
         }
         for (Eigen::Index i = 0; i < n.cols(); ++i) {

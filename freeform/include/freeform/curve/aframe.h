@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "freeform/core/error.h"
+#include "freeform/core/format.h"
 #include "freeform/core/types.h"
 
 namespace freeform {
@@ -241,9 +242,9 @@ PointMatrix<Scalar, Dim> aframeDeBoorPoints(const PointMatrix<Scalar, Dim>& bezi
         long joint = (worstIndex + 1) / 3; // b_(3j-1), b_3j, b_(3j+1) belong to joint j
         if (closed) joint %= segments;
         throw Error("aframeDeBoorPoints: the cubic Bézier spline is not C2 at joint " + std::to_string(joint) +
-                    ": Bézier point " + std::to_string(worstIndex) + " is " + std::to_string(static_cast<double>(worst)) +
+                    ": Bézier point " + std::to_string(worstIndex) + " is " + formatNumber(worst) +
                     " away from the C2 spline of the recovered de Boor points (tolerance " +
-                    std::to_string(static_cast<double>(tolerance * size)) + ")");
+                    formatNumber(Scalar(tolerance * size)) + ")");
     }
     return deboor;
 }

@@ -25,6 +25,7 @@
 
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
+#include "freeform/core/format.h"
 
 namespace freeform {
 
@@ -241,7 +242,7 @@ public:
     }
 
 private:
-    static std::string num(Scalar x) { return std::to_string(static_cast<long double>(x)); }
+    static std::string num(Scalar x) { return formatNumber(x); }
 
     std::vector<Scalar> knots_;
     int degree_;

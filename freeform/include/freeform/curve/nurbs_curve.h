@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/core/format.h"
 #include "freeform/core/polynomial.h"
 #include "freeform/core/quadrature.h"
 #include "freeform/curve/batch.h"
@@ -455,7 +456,7 @@ public:
     }
 
 private:
-    static std::string num(Scalar x) { return std::to_string(static_cast<long double>(x)); }
+    static std::string num(Scalar x) { return formatNumber(x); }
 
     static HPoints homogeneousFrom(const Points& points, const Weights& weights)
     {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform/core/format.h"
 #include "freeform/curve/knot_vector.h"
 #include "freeform/curve/nurbs_curve.h"
 #include "freeform/surface/rational_bezier_surface.h"
@@ -360,7 +361,7 @@ public:
         for (std::size_t k = 1; k + 1 < br.size(); ++k)
             if (ku_.multiplicity(br[k]) > p)
                 throw Error("NurbsSurface::reducedU: the surface is broken at knot " +
-                            std::to_string(static_cast<long double>(br[k])) + " in u");
+                            formatNumber(br[k]) + " in u");
         std::vector<NurbsCurve<Scalar, Dim>> curves;
         Scalar error(0);
         for (const auto& c : curvesU()) {
