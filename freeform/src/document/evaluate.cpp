@@ -2,9 +2,9 @@
 
 #include <Eigen/LU>
 
-#include <charconv>
 #include <cmath>
 
+#include "freeform/core/format.h"
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
 #include "evaluation.h"
@@ -12,13 +12,6 @@
 
 namespace freeform {
 namespace detail {
-
-std::string shortest(double v)
-{
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
 
 void expectCount(const std::string& what, const std::vector<double>& at, std::size_t count, const char* form)
 {
@@ -30,8 +23,8 @@ void expectCount(const std::string& what, const std::vector<double>& at, std::si
 void inDomain(const std::string& what, const char* name, double t, double a, double b, const char* kind)
 {
     if (!(t >= a && t <= b))
-        throw Error(what + ": " + name + " = " + shortest(t) + " is outside the " + kind + "'s domain [" + shortest(a) + ", " +
-                    shortest(b) + "]");
+        throw Error(what + ": " + name + " = " + formatNumber(t) + " is outside the " + kind + "'s domain [" + formatNumber(a) + ", " +
+                    formatNumber(b) + "]");
 }
 
 Evaluation curveEvaluation(const Eigen::Ref<const Eigen::MatrixXd>& derivatives, int order)
@@ -61,7 +54,6 @@ namespace {
 
 using detail::expectCount;
 using detail::inDomain;
-using detail::shortest;
 
 Evaluation evaluateCurve(const std::string& what, const AnyCurve& curve, const std::vector<double>& at, int order)
 {
@@ -95,7 +87,7 @@ Evaluation evaluateLattice(const std::string& what, const Lattice& lattice, cons
     expectCount(what, stu, 3, "S,T,U");
     for (double x : stu)
         if (!(x >= 0 && x <= 1))
-            throw Error(what + ": (s, t, u) = " + shortest(stu[0]) + "," + shortest(stu[1]) + "," + shortest(stu[2]) +
+            throw Error(what + ": (s, t, u) = " + formatNumber(stu[0]) + "," + formatNumber(stu[1]) + "," + formatNumber(stu[2]) +
                         " is outside the lattice's domain [0, 1]^3");
     if (order > 1) throw Error(what + ": a lattice has --derivatives 0 or 1, not " + std::to_string(order));
     const auto jet = lattice.map(Eigen::Vector3d(stu[0], stu[1], stu[2]));

@@ -13,9 +13,6 @@
 
 namespace freeform::detail {
 
-/// Shortest text that reads back to the same double ("3", "0.1").
-std::string shortest(double v);
-
 /// Error unless `at` holds `count` numbers: "WHAT: the parameter is FORM (COUNT numbers), got N".
 void expectCount(const std::string& what, const std::vector<double>& at, std::size_t count, const char* form);
 

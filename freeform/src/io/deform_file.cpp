@@ -18,17 +18,16 @@ MeshFileDeformation deformMeshFile(const Lattice& lattice, MeshFile& file, const
     out.jacobians = jacobians.data();
     MeshFileDeformation result;
     binding.deform(lattice, out, options, &result.report);
-    // Under the extrapolate policy the lattice polynomial far outside the box can overflow: refuse
-    // before the file changes (a NaN position would be written as "nan").
-    if (!moved.allFinite() || !jacobians.allFinite()) {
-        Eigen::Index v = 0;
-        while (v < count && moved.col(v).allFinite() && jacobians.col(v).allFinite()) ++v;
-        throw Error(file.path() + ": vertex " + std::to_string(v) + " deforms to a position that is not finite" +
-                    (lattice.outside() == OutsidePolicy::Extrapolate
-                         ? " (the extrapolate policy continues the lattice polynomial, which overflows this far "
-                           "outside the box: use clamp or keep, or a lattice that covers the mesh)"
-                         : ""));
-    }
+    // Only the extrapolate policy evaluates the lattice polynomial outside its box, and far enough
+    // outside it overflows: refuse before the file changes (a NaN position would be written as
+    // "nan"). Inside the box, or under keep and clamp, the result of finite input is finite.
+    if (lattice.outside() == OutsidePolicy::Extrapolate)
+        for (const int v : binding.outsideVertices())
+            if (!moved.col(v).allFinite() || !jacobians.col(v).allFinite())
+                throw Error(file.path() + ": vertex " + std::to_string(v) +
+                            " deforms to a position that is not finite (the extrapolate policy continues the lattice "
+                            "polynomial, which overflows this far outside the box: use clamp or keep, or a lattice "
+                            "that covers the mesh)");
     result.outside = binding.outsideVertices();
     auto& n = file.normals();
     const bool recompute = n.cols() > 0 && normals == NormalMode::Recompute;

@@ -1,5 +1,6 @@
 // OBJ free-form Bézier geometry (see io/obj_freeform.h and docs/surfaces.md).
 
+#include "freeform/core/format.h"
 #include "freeform/io/obj_freeform.h"
 
 #include <array>
@@ -200,18 +201,11 @@ private:
             const double x = weights_[static_cast<std::size_t>(i)];
             if (!(x > 0))
                 fail(e.line, std::string("vertex ") + std::to_string(i + 1) + " (line " +
-                                 std::to_string(weightLines_[static_cast<std::size_t>(i)]) + ") has weight " + formatNumberR(x) +
+                                 std::to_string(weightLines_[static_cast<std::size_t>(i)]) + ") has weight " + formatNumber(x) +
                                  "; rational weights must be positive");
             w.push_back(x);
         }
         return w;
-    }
-
-    static std::string formatNumberR(double v)
-    {
-        char buf[64];
-        const auto r = std::to_chars(buf, buf + sizeof buf, v);
-        return std::string(buf, r.ptr);
     }
 
     /// A B-spline knot vector from parm: count + degree + 1 knots, validated, and the curv/surf range
@@ -228,8 +222,8 @@ private:
         KnotVector<double>(parm, degree, source_ + ": line " + std::to_string(line) + ": " + name); // throws naming the knot
         const double a = parm[static_cast<std::size_t>(degree)], b = parm[static_cast<std::size_t>(count)];
         if (r0 != a || r1 != b)
-            fail(e.line, std::string("the parameter range ") + formatNumberR(r0) + " " + formatNumberR(r1) + " in " + dir +
-                             " is not the knot domain " + formatNumberR(a) + " " + formatNumberR(b) +
+            fail(e.line, std::string("the parameter range ") + formatNumber(r0) + " " + formatNumber(r1) + " in " + dir +
+                             " is not the knot domain " + formatNumber(a) + " " + formatNumber(b) +
                              " (a part of a B-spline is not supported)");
         return parm;
     }
@@ -425,13 +419,6 @@ private:
     bool cstype_ = false, rational_ = false, bspline_ = false;
     int du_ = 0, dv_ = -1;
 };
-
-std::string formatNumber(double v)
-{
-    char buf[64];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
 
 void writeVertices(std::string& out, const PointColumns& pts, const std::vector<double>& weights = {})
 {

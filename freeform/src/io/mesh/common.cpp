@@ -8,6 +8,7 @@
 #include <limits>
 #include <ostream>
 
+#include "freeform/core/format.h"
 #include "source.h"
 
 namespace freeform::meshio {
@@ -17,19 +18,9 @@ bool sameBits(double a, double b)
     return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
-std::string formatDouble(double value)
-{
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, result.ptr);
-}
+std::string formatDouble(double value) { return formatNumber(value); }
 
-std::string formatFloat(float value)
-{
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, result.ptr);
-}
+std::string formatFloat(float value) { return formatNumber(value); }
 
 bool parseDouble(std::string_view token, double& value)
 {
