@@ -12,24 +12,66 @@
 namespace freeform {
 namespace {
 
-/// M_uu/(8 nu^2) + M_uv/(4 nu nv) + M_vv/(8 nv^2) for the polynomial patch with control values
-/// value(i, j) (a vector of any size), the differences measured in the Euclidean norm.
-template <class Value>
-double polynomialBound(int m, int n, const Value& value, int nu, int nv)
-{
+/// The second differences of a polynomial patch with control values value(i, j) (a vector of any
+/// size), measured in the Euclidean norm and scaled by the degrees: M_uu, M_uv and M_vv of the
+/// bound M_uu/(8 nu^2) + M_uv/(4 nu nv) + M_vv/(8 nv^2) (docs/surfaces.md). They do not depend on
+/// the segment counts, so a search over the counts computes them once.
+struct SecondDifferences {
     double muu = 0, muv = 0, mvv = 0;
+    double bound(int nu, int nv) const { return muu / (8.0 * nu * nu) + muv / (4.0 * nu * nv) + mvv / (8.0 * nv * nv); }
+};
+
+template <class Value>
+SecondDifferences secondDifferences(int m, int n, const Value& value)
+{
+    SecondDifferences d;
     for (int i = 0; i <= m; ++i)
         for (int j = 0; j <= n; ++j) {
-            if (i + 2 <= m) muu = std::max(muu, (value(i + 2, j) - 2 * value(i + 1, j) + value(i, j)).norm());
-            if (j + 2 <= n) mvv = std::max(mvv, (value(i, j + 2) - 2 * value(i, j + 1) + value(i, j)).norm());
+            if (i + 2 <= m) d.muu = std::max(d.muu, (value(i + 2, j) - 2 * value(i + 1, j) + value(i, j)).norm());
+            if (j + 2 <= n) d.mvv = std::max(d.mvv, (value(i, j + 2) - 2 * value(i, j + 1) + value(i, j)).norm());
             if (i + 1 <= m && j + 1 <= n)
-                muv = std::max(muv, (value(i + 1, j + 1) - value(i + 1, j) - value(i, j + 1) + value(i, j)).norm());
+                d.muv = std::max(d.muv, (value(i + 1, j + 1) - value(i + 1, j) - value(i, j + 1) + value(i, j)).norm());
         }
-    muu *= double(m) * (m - 1);
-    mvv *= double(n) * (n - 1);
-    muv *= double(m) * n;
-    return muu / (8.0 * nu * nu) + muv / (4.0 * nu * nv) + mvv / (8.0 * nv * nv);
+    d.muu *= double(m) * (m - 1);
+    d.mvv *= double(n) * (n - 1);
+    d.muv *= double(m) * n;
+    return d;
 }
+
+/// The rational patch's bound as a function of the segment counts (docs/surfaces.md, "Rational
+/// patches"): (bound of w (P - c) + rho * bound of w) / min w, with c the centre and rho the
+/// half-diagonal of the control points' box.
+class RationalBound {
+public:
+    explicit RationalBound(const RationalPatch& patch)
+    {
+        const int m = patch.degreeU(), n = patch.degreeV();
+        const auto& h = patch.homogeneous();
+        Eigen::Vector3d lo = patch.controlPoint(0, 0), hi = lo;
+        wmin_ = patch.weight(0, 0);
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) {
+                lo = lo.cwiseMin(patch.controlPoint(i, j));
+                hi = hi.cwiseMax(patch.controlPoint(i, j));
+                wmin_ = std::min(wmin_, patch.weight(i, j));
+            }
+        const Eigen::Vector3d c = (lo + hi) / 2;
+        rho_ = (hi - lo).norm() / 2;
+        // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone.
+        numerator_ = secondDifferences(m, n, [&](int i, int j) -> Eigen::Vector3d {
+            const Eigen::Vector4d q = h.controlPoint(i, j);
+            return q.head<3>() - q[3] * c;
+        });
+        weight_ = secondDifferences(m, n, [&](int i, int j) -> Eigen::Matrix<double, 1, 1> {
+            return Eigen::Matrix<double, 1, 1>(h.controlPoint(i, j)[3]);
+        });
+    }
+    double operator()(int nu, int nv) const { return (numerator_.bound(nu, nv) + rho_ * weight_.bound(nu, nv)) / wmin_; }
+
+private:
+    SecondDifferences numerator_, weight_;
+    double rho_ = 0, wmin_ = 1;
+};
 
 void checkOptions(const TessellationOptions& o)
 {
@@ -124,43 +166,23 @@ void gridCounts(const std::vector<RationalPatch>& patches, int rows, int cols, c
 double rationalTessellationErrorBound(const RationalPatch& patch, int nu, int nv)
 {
     if (nu < 1 || nv < 1) throw Error("rationalTessellationErrorBound: segment counts must be at least 1");
-    const int m = patch.degreeU(), n = patch.degreeV();
-    const auto& h = patch.homogeneous();
-    Eigen::Vector3d lo = patch.controlPoint(0, 0), hi = lo;
-    double wmin = patch.weight(0, 0);
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            lo = lo.cwiseMin(patch.controlPoint(i, j));
-            hi = hi.cwiseMax(patch.controlPoint(i, j));
-            wmin = std::min(wmin, patch.weight(i, j));
-        }
-    const Eigen::Vector3d c = (lo + hi) / 2;
-    const double rho = (hi - lo).norm() / 2;
-    // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone.
-    const auto numerator = [&](int i, int j) -> Eigen::Vector3d {
-        const Eigen::Vector4d q = h.controlPoint(i, j);
-        return q.head<3>() - q[3] * c;
-    };
-    const auto weight = [&](int i, int j) -> Eigen::Matrix<double, 1, 1> {
-        return Eigen::Matrix<double, 1, 1>(h.controlPoint(i, j)[3]);
-    };
-    const double eh = polynomialBound(m, n, numerator, nu, nv);
-    const double ew = polynomialBound(m, n, weight, nu, nv);
-    return (eh + rho * ew) / wmin;
+    return RationalBound(patch)(nu, nv);
 }
 
 std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double tolerance, int maxSegments)
 {
     if (!(tolerance > 0)) throw Error("rationalAdaptiveSegments: the tolerance must be positive");
-    // The bound is decreasing in each count: search the fewest cells nu * nv by trying every nu.
+    // The bound is decreasing in each count: search the fewest cells nu * nv by trying every nu
+    // (the patch's differences computed once, not once per trial).
+    const RationalBound bound(patch);
     std::array<int, 2> best{maxSegments, maxSegments};
     long bestCells = static_cast<long>(maxSegments) * maxSegments + 1;
     for (int nu = 1; nu <= maxSegments; ++nu) {
-        if (rationalTessellationErrorBound(patch, nu, maxSegments) > tolerance) continue;
+        if (bound(nu, maxSegments) > tolerance) continue;
         int lo = 1, hi = maxSegments; // smallest nv with bound <= tolerance
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
-            if (rationalTessellationErrorBound(patch, nu, mid) <= tolerance) hi = mid;
+            if (bound(nu, mid) <= tolerance) hi = mid;
             else lo = mid + 1;
         }
         const long cells = static_cast<long>(nu) * lo;
