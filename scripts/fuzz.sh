@@ -36,10 +36,11 @@ if [ "${FREEFORM_FUZZ_NO_BUILD:-}" != "1" ]; then   # 1: run what build-asan/ al
     rm -rf build-asan   # an older g++ sanitizer build: this folder is clang's now
   fi
   # The sanitizer build of scripts/test.sh: clang, -O1, ASan + UBSan, warnings as errors, the
-  # library with libFuzzer's coverage instrumentation, no benchmarks and no render tests.
+  # library with libFuzzer's coverage instrumentation, no benchmarks, examples (no test runs them)
+  # or render tests.
   CC=clang CXX=clang++ cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1" \
     -DFREEFORM_SANITIZE=ON -DFREEFORM_BUILD_FUZZERS=ON -DFREEFORM_WARNINGS_AS_ERRORS=ON \
-    -DFREEFORM_BUILD_BENCHMARKS=OFF -DFREEFORM_BUILD_RENDER_TESTS=OFF "${launcher[@]}" >/dev/null
+    -DFREEFORM_BUILD_BENCHMARKS=OFF -DFREEFORM_BUILD_EXAMPLES=OFF -DFREEFORM_BUILD_RENDER_TESTS=OFF "${launcher[@]}" >/dev/null
   if [ "${FREEFORM_FUZZ_CONFIGURE_ONLY:-}" = "1" ]; then exit 0; fi
   echo "== fuzz build (build-asan: clang, ASan + UBSan + libFuzzer)"
   cmake --build build-asan -j "$jobs" --target "${targets[@]}"
