@@ -10,7 +10,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -594,6 +596,96 @@ TEST_CASE("The sample meshes of data/meshes agree across formats and round-trip 
     const PolygonMesh cube = freeform::readPolygonMesh(dir + "cube.obj");
     CHECK(cube.vertexCount() == 8);
     CHECK(cube.faceCount() == 6);
+}
+
+namespace {
+
+/// The same doubles, bit for bit (== would let -0 equal +0 and refuse NaN).
+template <class Matrix>
+bool sameBits(const Matrix& a, const Matrix& b)
+{
+    return a.rows() == b.rows() && a.cols() == b.cols() &&
+           (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0);
+}
+
+} // namespace
+
+TEST_CASE("MeshFile::readBytes reads a file from memory as read() reads it from the disk", "[mesh_io][memory]")
+{
+    const std::string dir = std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/";
+    // A folder that does not exist: nothing of the file or its buffers can come from the disk.
+    const std::string nowhere = tmp("memory_nowhere") + "/";
+    REQUIRE_FALSE(std::filesystem::exists(nowhere));
+    for (const char* name : {"cube.obj", "sphere.obj", "sphere.ply", "sphere.gltf", "sphere.glb", "sphere.off", "sphere.stl"}) {
+        INFO(name);
+        const MeshFile file = MeshFile::read(dir + name);
+        CHECK(file.bytes() == slurp(dir + name));
+        const bool external = std::string(name) == "sphere.gltf";
+        const std::map<std::string, std::string> companions = file.companions();
+        if (external) {
+            REQUIRE(companions.size() == 1);
+            CHECK(companions.at("sphere.bin") == slurp(dir + "sphere.bin")); // its byteLength is the whole file
+        } else {
+            CHECK(companions.empty());
+        }
+        MeshFile copy = MeshFile::readBytes(nowhere + name, file.bytes(), companions);
+        CHECK(copy.path() == nowhere + name);
+        CHECK(copy.format() == file.format());
+        CHECK(copy.reader() == file.reader());
+        CHECK(sameBits(copy.positions(), file.positions()));
+        CHECK(sameBits(copy.normals(), file.normals()));
+        CHECK(sameBits(copy.tangents(), file.tangents()));
+        CHECK(copy.normalAnchors() == file.normalAnchors());
+        CHECK(copy.bytes() == file.bytes());
+        CHECK(copy.companions() == companions);
+        // Moved alike, both write the same file to the same path (a .gltf's buffer is written
+        // beside it, named after it).
+        MeshFile moved = MeshFile::read(dir + name);
+        moved.positions().colwise() += kShift;
+        copy.positions().colwise() += kShift;
+        const std::string out = tmp("memory_out") + std::filesystem::path(name).extension().string();
+        moved.write(out);
+        const std::string fromDisk = slurp(out), binFromDisk = external ? slurp(tmp("memory_out.bin")) : "";
+        std::filesystem::remove(out);
+        copy.write(out);
+        CHECK(slurp(out) == fromDisk);
+        if (external) {
+            CHECK(slurp(tmp("memory_out.bin")) == binFromDisk);
+            CHECK(binFromDisk != slurp(dir + "sphere.bin")); // it did move
+        }
+    }
+}
+
+TEST_CASE("MeshFile::readBytes: a missing companion and bad bytes are errors naming the file", "[mesh_io][memory]")
+{
+    const std::string dir = std::string(FREEFORM_SOURCE_DIR) + "/data/meshes/";
+    // The .gltf's buffer is neither given nor read from beside it on the disk.
+    REQUIRE_THROWS_WITH(MeshFile::readBytes(dir + "sphere.gltf", slurp(dir + "sphere.gltf")),
+                        Catch::Contains(dir + "sphere.gltf: buffer 0: the uri \"sphere.bin\" names sphere.bin, which is not "
+                                        "among the files given with it"));
+    // A uri that leaves the folder is refused before any lookup, as on the disk.
+    std::string json = slurp(dir + "sphere.gltf");
+    const std::size_t at = json.find("\"sphere.bin\"");
+    REQUIRE(at != std::string::npos);
+    json.replace(at, 12, "\"../sphere.bin\"");
+    REQUIRE_THROWS_WITH(MeshFile::readBytes("m.gltf", json, {{"../sphere.bin", slurp(dir + "sphere.bin")}}),
+                        Catch::Contains("m.gltf: buffer 0: the uri \"../sphere.bin\" leaves the folder (..)"));
+    // A buffer shorter than its byteLength, as a truncated file on the disk.
+    REQUIRE_THROWS_WITH(MeshFile::readBytes("m.gltf", slurp(dir + "sphere.gltf"), {{"sphere.bin", "abc"}}),
+                        Catch::Contains("m.gltf: buffer 0 holds 3 bytes, its byteLength is"));
+    // Truncated binary STL: the same message as the file on the disk, under the given name.
+    const std::string stl = slurp(dir + "sphere.stl").substr(0, 200);
+    writeText(tmp("memory_truncated.stl"), stl);
+    std::string fromDisk;
+    try {
+        (void)MeshFile::read(tmp("memory_truncated.stl"));
+    } catch (const freeform::Error& e) {
+        fromDisk = e.what();
+    }
+    REQUIRE(fromDisk.rfind(tmp("memory_truncated.stl") + ": ", 0) == 0);
+    REQUIRE_THROWS_WITH(MeshFile::readBytes("cut.stl", stl),
+                        "cut.stl: " + fromDisk.substr(tmp("memory_truncated.stl").size() + 2));
+    REQUIRE_THROWS_WITH(MeshFile::readBytes("mesh.xyz123", "v 0 0 0\n"), Catch::Contains("mesh.xyz123: unknown mesh format '.xyz123'"));
 }
 
 } // namespace test_mesh_io

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <tuple>
 #include <cmath>
@@ -254,6 +255,24 @@ TEST_CASE("Other formats come in through Assimp, said plainly", "[mesh_io][assim
         REQUIRE(file.positions().cols() > 0);
         CHECK(file.toPolygonMesh().faceCount() > 0);
     }
+    // From memory (MeshFile::readBytes: Assimp's ReadFileFromMemory, the extension as its hint),
+    // under a name in a folder that does not exist: the same mesh as from the disk.
+    for (const char* name : {"FBX/box.fbx", "Collada/duck.dae"}) {
+        INFO(name);
+        const freeform::MeshFile disk = freeform::MeshFile::read(models + name);
+        std::ifstream in(models + name, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        CHECK(disk.bytes() == bytes);
+        const std::string nowhere = out + "nowhere/" + std::filesystem::path(name).filename().string();
+        const freeform::MeshFile memory = freeform::MeshFile::readBytes(nowhere, disk.bytes());
+        CHECK(memory.reader() == "assimp (not lossless)");
+        CHECK(memory.positions() == disk.positions());
+        CHECK(memory.normals() == disk.normals());
+        const freeform::PolygonMesh a = disk.toPolygonMesh(), b = memory.toPolygonMesh();
+        CHECK(a.faceStart == b.faceStart);
+        CHECK(a.faceVertices == b.faceVertices);
+    }
+
     freeform::MeshFile duck = freeform::MeshFile::read(models + "Collada/duck.dae");
     duck.positions().row(1).array() += 10.0;
     duck.write(out + "duck.dae");

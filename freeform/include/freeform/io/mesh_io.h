@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,21 @@ class MeshFile {
 public:
     /// Reads any supported format by extension; Error naming the file and line/offset on bad input.
     static MeshFile read(const std::string& path);
+    /// Reads a file already in memory exactly as read() reads the file at path: `path` gives the
+    /// format (by its extension), names the file in messages and is what path() returns, and the
+    /// disk is never touched; a .gltf's external buffers come from `companions`, keyed by the path
+    /// relative to the file's folder that their uri names (as companions() returns them). With
+    /// bytes() and companions() it rebuilds a file from its defining data (the Python module
+    /// pickles a MeshFile so), equal to it bit for bit. Error as read() on bad input, and naming a
+    /// buffer whose file is not among the companions.
+    static MeshFile readBytes(const std::string& path, std::string bytes,
+                              const std::map<std::string, std::string>& companions = {});
+    /// The file as read, byte for byte (not as it would be written now).
+    const std::string& bytes() const;
+    /// The other files the file was read with: a .gltf's external buffers (each the bytes its
+    /// buffer declares, byteLength) by their path relative to the file's folder. Empty for the
+    /// other formats.
+    std::map<std::string, std::string> companions() const;
 
     Eigen::Matrix<double, 3, Eigen::Dynamic>& positions() { return positions_; } // 3 x P, file order
     const Eigen::Matrix<double, 3, Eigen::Dynamic>& positions() const { return positions_; }
@@ -94,6 +110,7 @@ public:
 
 private:
     MeshFile() = default;
+    static MeshFile fromSource(std::shared_ptr<const meshio::Source> source);
     std::shared_ptr<const meshio::Source> source_;
     Eigen::Matrix<double, 3, Eigen::Dynamic> positions_;
     Eigen::Matrix<double, 3, Eigen::Dynamic> normals_;

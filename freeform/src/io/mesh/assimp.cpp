@@ -29,6 +29,9 @@ public:
     std::vector<int> faceVertices;
     std::string extension;
     std::string exportFormat; // Assimp's exporter id for the extension, or empty
+    std::string bytes;        // the file as read
+
+    const std::string& fileBytes() const override { return bytes; }
 
     PolygonMesh polygonMesh(const Values& now) const override { return indexedMesh(now, faceStart, faceVertices); }
 
@@ -76,7 +79,7 @@ bool assimpReads(const std::string& extension)
     return importer.IsExtensionSupported("." + extension);
 }
 
-std::unique_ptr<Source> readAssimp(const std::string& path)
+std::unique_ptr<Source> readAssimp(const std::string& path, std::string bytes, bool fromDisk)
 {
     auto src = std::make_unique<AssimpSource>();
     src->path = path;
@@ -84,7 +87,11 @@ std::unique_ptr<Source> readAssimp(const std::string& path)
     src->format = src->extension;
     src->reader = "assimp (not lossless)";
     src->importer = std::make_shared<Assimp::Importer>();
-    const aiScene* scene = src->importer->ReadFile(path, aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
+    src->bytes = std::move(bytes);
+    const unsigned flags = aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+    const aiScene* scene = fromDisk ? src->importer->ReadFile(path, flags)
+                                    : src->importer->ReadFileFromMemory(src->bytes.data(), src->bytes.size(), flags,
+                                                                        src->extension.c_str());
     if (scene == nullptr)
         throw Error(path + ": Assimp could not read the file: " + src->importer->GetErrorString());
     Assimp::Exporter exporter;

@@ -350,6 +350,8 @@ public:
     Json doc;                       // parsed
     std::vector<std::string> buffers; // data of each buffer (GLB: buffer 0 = the whole BIN chunk)
     std::vector<std::string> bufferFiles; // external file each buffer was read from, or empty
+    std::vector<std::string> bufferNames; // that file relative to the glTF file's folder (as its uri names it), or empty
+    std::string glbFile;            // a .glb as read, whole (a .gltf is its JSON text)
     bool glbHasBin = false;
     std::string glbTrailingChunks;  // chunks after JSON and BIN, kept as they were
     std::string glbJsonChunk;       // the JSON chunk's data including its padding
@@ -390,6 +392,20 @@ public:
     bool writesSame(const std::string& target) const override { return target == "gltf" || target == "glb"; }
 
     void writeSame(const std::string& target, const std::string& targetFormat, const Values& now) const override;
+
+    const std::string& fileBytes() const override { return binary ? glbFile : json; }
+
+    std::map<std::string, std::string> companions() const override
+    {
+        std::map<std::string, std::string> files;
+        for (std::size_t j = 0; j < buffers.size(); ++j)
+            if (!bufferNames[j].empty()) {
+                // Buffers that share a file hold prefixes of it: keep the longest.
+                const auto [at, added] = files.emplace(bufferNames[j], buffers[j]);
+                if (!added && buffers[j].size() > at->second.size()) at->second = buffers[j];
+            }
+        return files;
+    }
 };
 
 /// The place of an accessor's data; Error when it has none or it lies outside its buffer. Every
@@ -469,34 +485,47 @@ double componentValue(const GltfSource& src, const AccessorView& v, int element,
     }
 }
 
-/// The file an external buffer URI names, confined to the glTF file's own folder: a relative path
-/// without ".." components, no scheme, no absolute path, naming a regular file (not a device, a
-/// folder or a link that leads outside). Error naming the buffer otherwise (docs/mesh-io.md).
-std::string confinedBufferFile(const GltfSource& src, const std::string& uri, const std::string& name)
+Error refuseUri(const GltfSource& src, const std::string& uri, const std::string& name, const std::string& why)
+{
+    return Error(src.path + ": " + name + ": the uri \"" + uri + "\" " + why +
+                 " (external buffers are read only from the glTF file's own folder and below)");
+}
+
+/// The path an external buffer URI names relative to the glTF file's folder, checked without the
+/// disk: a relative path without ".." components, no scheme, no absolute path. Normalised ("./a"
+/// is "a"), with forward slashes: the key of a companion file (MeshFile::companions).
+fs::path relativeBufferPath(const GltfSource& src, const std::string& uri, const std::string& name)
 {
     const std::string decoded = percentDecode(uri);
-    const auto refuse = [&](const std::string& why) {
-        return Error(src.path + ": " + name + ": the uri \"" + uri + "\" " + why +
-                     " (external buffers are read only from the glTF file's own folder and below)");
-    };
-    if (decoded.empty()) throw refuse("is empty");
-    if (decoded.find(':') != std::string::npos) throw refuse("has a scheme or a drive (only data: URIs and relative paths are read)");
-    if (decoded.find('\0') != std::string::npos || decoded.find('\\') != std::string::npos) throw refuse("holds a NUL or a backslash");
+    if (decoded.empty()) throw refuseUri(src, uri, name, "is empty");
+    if (decoded.find(':') != std::string::npos)
+        throw refuseUri(src, uri, name, "has a scheme or a drive (only data: URIs and relative paths are read)");
+    if (decoded.find('\0') != std::string::npos || decoded.find('\\') != std::string::npos)
+        throw refuseUri(src, uri, name, "holds a NUL or a backslash");
     const fs::path relative(decoded);
-    if (relative.is_absolute() || relative.has_root_path() || decoded.front() == '/') throw refuse("is an absolute path");
+    if (relative.is_absolute() || relative.has_root_path() || decoded.front() == '/') throw refuseUri(src, uri, name, "is an absolute path");
     for (const fs::path& part : relative)
-        if (part == "..") throw refuse("leaves the folder (..)");
+        if (part == "..") throw refuseUri(src, uri, name, "leaves the folder (..)");
+    return relative.lexically_normal();
+}
+
+/// The file an external buffer URI names, confined to the glTF file's own folder: the checks of
+/// relativeBufferPath, and a regular file (not a device, a folder or a link that leads outside).
+/// Error naming the buffer otherwise (docs/mesh-io.md).
+std::string confinedBufferFile(const GltfSource& src, const std::string& uri, const std::string& name)
+{
+    const fs::path relative = relativeBufferPath(src, uri, name);
     const fs::path dir = fs::path(src.path).parent_path();
     const fs::path file = dir / relative;
     std::error_code ec;
     const fs::file_status status = fs::status(file, ec);
     if (ec || !fs::exists(status)) throw Error(src.path + ": " + name + ": " + file.string() + ": cannot open the file for reading");
-    if (!fs::is_regular_file(status)) throw refuse("is not a regular file");
+    if (!fs::is_regular_file(status)) throw refuseUri(src, uri, name, "is not a regular file");
     const fs::path realDir = fs::weakly_canonical(dir.empty() ? fs::path(".") : dir, ec);
     const fs::path realFile = fs::weakly_canonical(file, ec);
-    if (ec) throw refuse("cannot be resolved");
+    if (ec) throw refuseUri(src, uri, name, "cannot be resolved");
     const auto rel = realFile.lexically_relative(realDir);
-    if (rel.empty() || *rel.begin() == "..") throw refuse("leads outside the folder through a link");
+    if (rel.empty() || *rel.begin() == "..") throw refuseUri(src, uri, name, "leads outside the folder through a link");
     return file.string();
 }
 
@@ -516,7 +545,7 @@ std::string readPrefix(const std::string& file, std::uint64_t maxBytes, const Gl
     return data;
 }
 
-void loadBuffers(GltfSource& src, const std::string& bin)
+void loadBuffers(GltfSource& src, const std::string& bin, const Companions* companions)
 {
     const Json& buffers = arrayMember(src.doc, "buffers", src.path);
     for (std::size_t j = 0; j < buffers.size(); ++j) {
@@ -525,6 +554,7 @@ void loadBuffers(GltfSource& src, const std::string& bin)
         const auto length = static_cast<std::uint64_t>(integerMember(b, "byteLength", src.path + ": " + name, 1, kMaxBytes));
         std::string data;
         std::string file;
+        std::string relative;
         if (!b.contains("uri")) {
             if (!src.binary || j != 0 || !src.glbHasBin)
                 throw Error(src.path + ": " + name + " has no uri and there is no GLB BIN chunk for it");
@@ -539,7 +569,16 @@ void loadBuffers(GltfSource& src, const std::string& bin)
                     throw Error(src.path + ": " + name + ": only base64 data: URIs are supported");
                 if (!decodeBase64(std::string_view(uri).substr(comma + 1), data))
                     throw Error(src.path + ": " + name + ": the data: URI is not valid base64");
+            } else if (companions != nullptr) {
+                relative = relativeBufferPath(src, uri, name).generic_string();
+                const auto found = companions->find(relative);
+                if (found == companions->end())
+                    throw Error(src.path + ": " + name + ": the uri \"" + uri + "\" names " + relative +
+                                ", which is not among the files given with it");
+                file = (fs::path(src.path).parent_path() / relative).string();
+                data = found->second.substr(0, length); // as from the disk: never more than byteLength
             } else {
+                relative = relativeBufferPath(src, uri, name).generic_string();
                 file = confinedBufferFile(src, uri, name);
                 data = readPrefix(file, length, src, name); // never more than byteLength (a device never ends)
             }
@@ -549,6 +588,7 @@ void loadBuffers(GltfSource& src, const std::string& bin)
                         std::to_string(length) + " (truncated?)");
         src.buffers.push_back(std::move(data));
         src.bufferFiles.push_back(file);
+        src.bufferNames.push_back(relative);
     }
     src.slots.resize(src.buffers.size());
 }
@@ -877,7 +917,7 @@ void GltfSource::writeSame(const std::string& target, const std::string& targetF
 
 } // namespace
 
-std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary)
+std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary, const Companions* companions)
 {
     auto src = std::make_unique<GltfSource>();
     src->path = path;
@@ -918,6 +958,7 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
             ++chunk;
         }
         if (chunk == 0) throw Error(path + ": the GLB file has no JSON chunk");
+        src->glbFile = std::move(bytes);
     } else {
         src->json = std::move(bytes);
     }
@@ -941,7 +982,7 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
             if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" || ext == "KHR_mesh_quantization")
                 throw Error(path + ": the file requires the extension " + ext.get<std::string>() +
                             ", which the lossless reader does not support");
-        loadBuffers(*src, bin);
+        loadBuffers(*src, bin, companions);
         readEditable(*src);
     } catch (const Json::exception& e) {
         throw Error(path + ": malformed glTF: " + e.what());

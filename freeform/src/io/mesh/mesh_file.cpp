@@ -33,30 +33,35 @@ void validateSource(const meshio::Source& source)
         }
 }
 
-std::unique_ptr<meshio::Source> readSourceUnchecked(const std::string& path)
+/// The file at path, or, when bytes is not null, the file in memory with its companions (then the
+/// disk is never read).
+std::unique_ptr<meshio::Source> readSourceUnchecked(const std::string& path, std::string* bytes,
+                                                    const meshio::Companions* companions)
 {
     const std::string ext = meshio::extensionOf(path);
     const bool known = ext == "obj" || ext == "ply" || ext == "stl" || ext == "off" || ext == "gltf" || ext == "glb";
     if (!known) {
         // Every other format Assimp reads, through Assimp (not lossless: docs/mesh-io.md).
         if (meshio::assimpReads(ext)) {
-            (void)readFile(path); // the same message as the other formats for a missing file or a folder
-            return meshio::readAssimp(path);
+            if (bytes != nullptr) return meshio::readAssimp(path, std::move(*bytes), false);
+            // readFile first: the same message as the other formats for a missing file or a folder.
+            return meshio::readAssimp(path, readFile(path), true);
         }
         throw Error(path + ": unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : "." + ext) +
                     "' (supported: " + kFormats + ", and through Assimp (not lossless) the formats it reads)");
     }
-    std::string bytes = readFile(path);
-    if (ext == "obj") return meshio::readObj(path, std::move(bytes));
-    if (ext == "ply") return meshio::readPly(path, std::move(bytes));
-    if (ext == "stl") return meshio::readStl(path, std::move(bytes));
-    if (ext == "off") return meshio::readOff(path, std::move(bytes));
-    return meshio::readGltf(path, std::move(bytes), ext == "glb");
+    std::string data = bytes != nullptr ? std::move(*bytes) : readFile(path);
+    if (ext == "obj") return meshio::readObj(path, std::move(data));
+    if (ext == "ply") return meshio::readPly(path, std::move(data));
+    if (ext == "stl") return meshio::readStl(path, std::move(data));
+    if (ext == "off") return meshio::readOff(path, std::move(data));
+    return meshio::readGltf(path, std::move(data), ext == "glb", bytes != nullptr ? companions : nullptr);
 }
 
-std::unique_ptr<meshio::Source> readSource(const std::string& path)
+std::unique_ptr<meshio::Source> readSource(const std::string& path, std::string* bytes = nullptr,
+                                           const meshio::Companions* companions = nullptr)
 {
-    std::unique_ptr<meshio::Source> source = readSourceUnchecked(path);
+    std::unique_ptr<meshio::Source> source = readSourceUnchecked(path, bytes, companions);
     validateSource(*source);
     return source;
 }
@@ -171,16 +176,25 @@ void writePolygonMesh(const PolygonMesh& mesh, const std::string& path)
     meshio::writeMeshAs(mesh, Eigen::MatrixXd(), path);
 }
 
-MeshFile MeshFile::read(const std::string& path)
+MeshFile MeshFile::fromSource(std::shared_ptr<const meshio::Source> source)
 {
     MeshFile file;
-    std::shared_ptr<const meshio::Source> source = readSource(path);
     file.positions_ = source->positions;
     file.normals_ = source->normals;
     file.tangents_ = source->tangents;
     file.source_ = std::move(source);
     return file;
 }
+
+MeshFile MeshFile::read(const std::string& path) { return fromSource(readSource(path)); }
+
+MeshFile MeshFile::readBytes(const std::string& path, std::string bytes, const std::map<std::string, std::string>& companions)
+{
+    return fromSource(readSource(path, &bytes, &companions));
+}
+
+const std::string& MeshFile::bytes() const { return source_->fileBytes(); }
+std::map<std::string, std::string> MeshFile::companions() const { return source_->companions(); }
 
 const std::vector<int>& MeshFile::normalAnchors() const { return source_->normalAnchors; }
 const std::vector<int>& MeshFile::tangentAnchors() const { return source_->tangentAnchors; }

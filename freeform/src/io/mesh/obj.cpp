@@ -19,6 +19,7 @@ public:
     std::string text;
     std::vector<TextSlot> slots;
     std::vector<int> faceStart{0};
+    const std::string& fileBytes() const override { return text; }
     std::vector<int> cornerVertex, cornerTexcoord, cornerNormal;
     Matrix2X texcoords;
     Eigen::MatrixXd colors; // 3 x V when every `v` record is "v x y z r g b"

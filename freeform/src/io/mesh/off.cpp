@@ -17,6 +17,7 @@ class OffSource final : public IndexedSource {
 public:
     std::string text;
     std::vector<TextSlot> slots;
+    const std::string& fileBytes() const override { return text; }
 
     void writeSame(const std::string& target, const std::string&, const Values& now) const override
     {

@@ -83,6 +83,7 @@ const char* typeName(BinaryType t)
 class PlySource final : public IndexedSource {
 public:
     std::string bytes; // the whole file
+    const std::string& fileBytes() const override { return bytes; }
     Encoding encoding = Encoding::Ascii;
     std::vector<TextSlot> textSlots;
     std::vector<BinarySlot> binarySlots;

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -150,7 +151,16 @@ public:
     virtual bool writesSame(const std::string& targetFormat) const { return targetFormat == format; }
     /// Writes the file back with the current values (atomically).
     virtual void writeSame(const std::string& path, const std::string& targetFormat, const Values& now) const = 0;
+    /// The file as read, byte for byte (MeshFile::bytes; read again from memory by readSource).
+    virtual const std::string& fileBytes() const = 0;
+    /// The other files it was read with: a .gltf's external buffers, by the relative path their
+    /// uri names (MeshFile::companions). Empty for every other format.
+    virtual std::map<std::string, std::string> companions() const { return {}; }
 };
+
+/// Files already in memory that a reader takes instead of the disk: a .gltf's external buffers by
+/// the relative path their uri names (null: read them from the glTF file's folder).
+using Companions = std::map<std::string, std::string>;
 
 /// A file of positions and an indexed face list, with texture coordinates and vertex colours when
 /// it has them (OFF, PLY).
@@ -170,9 +180,13 @@ std::unique_ptr<Source> readObj(const std::string& path, std::string text);
 std::unique_ptr<Source> readPly(const std::string& path, std::string bytes);
 std::unique_ptr<Source> readStl(const std::string& path, std::string bytes);
 std::unique_ptr<Source> readOff(const std::string& path, std::string text);
-std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary);
-/// Any other format Assimp reads (not lossless; assimp.cpp). assimpReads: whether it reads `extension`.
-std::unique_ptr<Source> readAssimp(const std::string& path);
+/// companions: the external buffers from memory instead of the disk (null: from the disk).
+std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary, const Companions* companions = nullptr);
+/// Any other format Assimp reads (not lossless; assimp.cpp), from the file's bytes (already read):
+/// from the file at path when fromDisk (so formats that refer to other files find them), from the
+/// bytes alone otherwise (Assimp's format found by the path's extension). assimpReads: whether it
+/// reads `extension`.
+std::unique_ptr<Source> readAssimp(const std::string& path, std::string bytes, bool fromDisk);
 bool assimpReads(const std::string& extension);
 
 // ---- writers of a whole mesh (conversion); colors: 3 or 4 x V in [0, 1], or empty.

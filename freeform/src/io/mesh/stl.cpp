@@ -21,6 +21,7 @@ class StlSource final : public Source {
 public:
     std::string bytes;
     bool binary = false;
+    const std::string& fileBytes() const override { return bytes; }
     std::vector<TextSlot> textSlots;
     std::vector<int> faceStart{0};
 
