@@ -6,6 +6,8 @@
 
 #include <pybind11/stl.h>
 
+#include <map>
+
 #include <freeform/curve/continuity.h>
 #include <freeform/curve/interpolation.h>
 #include <freeform/document/document.h>
@@ -40,6 +42,29 @@ py::dict evaluationDict(const freeform::Evaluation& e)
 struct PyMesh {
     freeform::MeshFile file;
 };
+
+/// Copies an (n, cols) array of a pickled MeshFile's state into `into` (cols x n), which must keep
+/// its column count: the file read back from its bytes has as many as the one pickled.
+template <class Matrix>
+void restoreColumns(Matrix& into, py::handle value, const std::string& what)
+{
+    const py::array a = rows(value, "MeshFile.__setstate__: " + what, into.rows(), false);
+    if (a.shape(0) != into.cols())
+        throw freeform::Error("MeshFile.__setstate__: " + what + ": expected " + std::to_string(into.cols()) + " rows, got " +
+                              std::to_string(a.shape(0)));
+    std::copy(static_cast<const double*>(a.data()), static_cast<const double*>(a.data()) + a.size(), into.data());
+}
+
+freeform::MeshFile meshFromBytes(const std::string& path, py::bytes data, py::handle companionsArg)
+{
+    std::string bytes = data;
+    std::map<std::string, std::string> companions;
+    if (!companionsArg.is_none())
+        for (const auto& [key, value] : companionsArg.cast<py::dict>())
+            companions.emplace(key.cast<std::string>(), std::string(value.cast<py::bytes>()));
+    py::gil_scoped_release release;
+    return freeform::MeshFile::readBytes(path, std::move(bytes), companions);
+}
 
 } // namespace
 
@@ -611,13 +636,45 @@ else of the file as read.)doc")
                 return PyMesh{freeform::MeshFile::read(path)};
             },
             py::arg("path"))
+        .def_static(
+            "read_bytes",
+            [](const std::string& path, py::bytes data, py::handle companions) {
+                return PyMesh{meshFromBytes(path, data, companions)};
+            },
+            py::arg("path"), py::arg("data"), py::arg("companions") = py::none(),
+            "The file's bytes already in memory, read as read(path) reads the file (path gives the format by its "
+            "extension and names the file; the disk is never touched). companions: a .gltf's external buffers, "
+            "{path relative to the file's folder, as the uri names it: bytes}.")
+        .def("file_bytes", [](const PyMesh& m) { return py::bytes(m.file.bytes()); },
+             "The file as read, byte for byte (not as write() would write it now).")
+        .def_property_readonly(
+            "companions",
+            [](const PyMesh& m) {
+                py::dict d;
+                for (const auto& [name, bytes] : m.file.companions()) d[py::str(name)] = py::bytes(bytes);
+                return d;
+            },
+            "A .gltf's external buffers as read, {relative path: bytes}; empty for the other formats.")
         .def("__copy__", [](const PyMesh& m) { return m; })
         .def("__deepcopy__", [](const PyMesh& m, py::handle) { return m; }, py::arg("memo"))
-        .def("__reduce__", [](const PyMesh& m) -> py::object {
-            throw py::type_error("cannot pickle 'freeform.MeshFile' (" + m.file.path() +
-                                 "): it holds the file as read, which only its path reproduces; send the path and read "
-                                 "it where it is used (docs/python.md, \"Scaling out\")");
-        })
+        .def(py::pickle(
+            // Its defining fields: the file as read (and a .gltf's external buffers), which hold
+            // everything a write keeps, and the editable numbers as they are now. Unpickling
+            // reads the bytes from memory (never the disk), then puts the numbers back.
+            [](const PyMesh& m) {
+                py::dict companions;
+                for (const auto& [name, bytes] : m.file.companions()) companions[py::str(name)] = py::bytes(bytes);
+                return py::make_tuple(m.file.path(), py::bytes(m.file.bytes()), companions, fromColumns(m.file.positions()),
+                                      fromColumns(m.file.normals()), fromColumns(m.file.tangents()));
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 6) throw freeform::Error("MeshFile.__setstate__: expected 6 fields, got " + std::to_string(t.size()));
+                PyMesh m{meshFromBytes(t[0].cast<std::string>(), t[1].cast<py::bytes>(), t[2])};
+                restoreColumns(m.file.positions(), t[3], "positions");
+                restoreColumns(m.file.normals(), t[4], "normals");
+                restoreColumns(m.file.tangents(), t[5], "tangents");
+                return m;
+            }))
         .def_property(
             "positions",
             [](py::object self) {
@@ -642,6 +699,13 @@ else of the file as read.)doc")
             },
             "(N, 3) float64 view of the file's normal records (may be empty).")
         .def_property_readonly("normal_anchors", [](const PyMesh& m) { return m.file.normalAnchors(); })
+        .def_property_readonly(
+            "tangents",
+            [](py::object self) {
+                auto& t = self.cast<PyMesh&>().file.tangents();
+                return py::array_t<double>({static_cast<py::ssize_t>(t.cols()), py::ssize_t{4}}, t.data(), self);
+            },
+            "(T, 4) float64 view of the file's tangents (xyz and handedness w; glTF only, may be empty).")
         .def_property_readonly("format", [](const PyMesh& m) { return m.file.format(); })
         .def_property_readonly("path", [](const PyMesh& m) { return m.file.path(); })
         .def(

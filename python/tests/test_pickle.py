@@ -1,7 +1,7 @@
 # Pickling and copying (issue 26, item 2): every class pickles its defining fields and comes back
 # equal bit for bit (the same arrays, byte for byte, and the same results of its calls); copy.copy
-# and copy.deepcopy give independent objects. MeshFile copies but refuses pickle with a message
-# that says what to send instead (it holds the file as read).
+# and copy.deepcopy give independent objects. A MeshFile pickles the file as read (and a .gltf's
+# external buffers) with its numbers as they are now, and reads it back from memory, not the disk.
 import copy
 import pickle
 
@@ -163,15 +163,67 @@ def test_binding_round_trip_deforms_the_same(dtype):
         pickle.loads(pickle.dumps(b)).deform(other)
 
 
-def test_mesh_file_copies_but_does_not_pickle():
-    path = ROOT / "data" / "meshes" / "sphere.obj"
-    m = ff.MeshFile.read(str(path))
+MESH_SAMPLES = ["cube.obj", "sphere.obj", "sphere.ply", "sphere.gltf", "sphere.glb", "sphere.off", "sphere.stl"]
+
+
+@pytest.mark.parametrize("name", MESH_SAMPLES)
+def test_mesh_file_pickles_from_memory_and_writes_the_same_file(name, tmp_path):
+    src = tmp_path / "src"
+    src.mkdir()
+    for f in (ROOT / "data" / "meshes").iterdir():          # the sample and its .bin / .mtl beside it
+        (src / f.name).write_bytes(f.read_bytes())
+    m = ff.MeshFile.read(str(src / name))
+    assert m.file_bytes() == (src / name).read_bytes()
+    lat = ff.Lattice(2, origin=[-1.5, -1.5, -1.5], axes=np.eye(3) * 3)
+    lat.control_points[lat.index(1, 1, 2)] += [0.1, -0.2, 0.3]
+    m.deform(lat)                                              # unsaved edits travel with the pickle
+    for protocol in PROTOCOLS:
+        data = pickle.dumps(m, protocol=protocol)
+        for f in src.iterdir():                                # nothing of it is on the disk any more
+            f.unlink()
+        back = pickle.loads(data)
+        for f in (ROOT / "data" / "meshes").iterdir():
+            (src / f.name).write_bytes(f.read_bytes())
+        assert back.path == m.path and back.format == m.format
+        assert same_bits(back.positions, m.positions)
+        assert same_bits(back.normals, m.normals)
+        assert same_bits(back.tangents, m.tangents)
+        assert back.normal_anchors == m.normal_anchors
+        assert back.file_bytes() == m.file_bytes()
+        assert back.companions == m.companions
+        ext = name.rsplit(".", 1)[1]
+        out = tmp_path / f"out.{ext}"                          # a .gltf's buffer goes beside it as out.bin
+        m.write(str(out))
+        written = out.read_bytes(), (tmp_path / "out.bin").read_bytes() if ext == "gltf" else b""
+        out.unlink()
+        back.write(str(out))
+        assert out.read_bytes() == written[0]
+        if ext == "gltf":
+            assert back.companions == {"sphere.bin": (ROOT / "data" / "meshes" / "sphere.bin").read_bytes()}
+            assert (tmp_path / "out.bin").read_bytes() == written[1]
     for c in (copy.copy(m), copy.deepcopy(m)):
         assert same_bits(c.positions, m.positions) and c.path == m.path
         c.positions[:] += 1.0
         assert not np.array_equal(c.positions, m.positions)
-    with pytest.raises(TypeError, match="cannot pickle 'freeform.MeshFile'.*send the path"):
-        pickle.dumps(m)
+
+
+def test_mesh_file_read_bytes_and_its_errors():
+    meshes = ROOT / "data" / "meshes"
+    m = ff.MeshFile.read_bytes("in/memory.ply", (meshes / "sphere.ply").read_bytes())
+    assert same_bits(m.positions, ff.MeshFile.read(str(meshes / "sphere.ply")).positions)
+    assert m.path == "in/memory.ply" and m.companions == {}
+    with pytest.raises(ff.Error, match=r"m\.gltf: buffer 0: the uri \"sphere\.bin\" names sphere\.bin, which is not among"):
+        ff.MeshFile.read_bytes("m.gltf", (meshes / "sphere.gltf").read_bytes())
+    g = ff.MeshFile.read_bytes("m.gltf", (meshes / "sphere.gltf").read_bytes(),
+                               companions={"sphere.bin": (meshes / "sphere.bin").read_bytes()})
+    assert same_bits(g.positions, ff.MeshFile.read(str(meshes / "sphere.gltf")).positions)
+    with pytest.raises(ff.Error, match=r"cut\.stl: "):
+        ff.MeshFile.read_bytes("cut.stl", (meshes / "sphere.stl").read_bytes()[:200])
+    state = m.__getstate__()
+    with pytest.raises(ff.Error, match="expected 6 fields"):
+        ff.MeshFile.__new__(ff.MeshFile).__setstate__(state[:5])
+    with pytest.raises(ff.Error, match=r"positions: expected 266 rows, got 3"):
+        ff.MeshFile.__new__(ff.MeshFile).__setstate__((state[0], state[1], state[2], np.zeros((3, 3)), *state[4:]))
 
 
 def test_corrupt_states_raise_freeform_error():
