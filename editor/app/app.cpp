@@ -121,6 +121,17 @@ App::App(Scene scene, const Options& options) : options_(options), scene_(std::m
     ImGui_ImplOpenGL3_Init("#version 330 core");
     imgui_ = true;
     replaying_ = !options_.replay.empty();
+    if (!options_.frameLog.empty()) {
+        frameLog_.open(options_.frameLog, std::ios::trunc);
+        if (!frameLog_) throw Error(options_.frameLog + ": cannot open the frame log for writing");
+        // input: the handlers of the events since the last frame (picking, the drag's point moves);
+        // ui: ImGui's frame; update: tools, geometry and derived items (the deformed meshes);
+        // overlay; draw: the scene drawer (uploads included); gui: ImGui's draw calls; end: the
+        // present and buffer swap in a window, the wait for the GPU (glFinish) headless; total:
+        // all of them; period: from the previous frame's end to this one's; cpu: the process's CPU
+        // time (every thread) from the frame's start to its end.
+        frameLog_ << "frame\tdragging\tchanged\tinput_ms\tui_ms\tupdate_ms\toverlay_ms\tdraw_ms\tgui_ms\tend_ms\ttotal_ms\tperiod_ms\tcpu_ms\n";
+    }
     // Autosave: interactive sessions always, headless ones only when the folder is given.
     autosave_ = !options_.headless() || std::getenv("FREEFORM_AUTOSAVE_DIR") != nullptr;
     if (const char* interval = std::getenv("FREEFORM_AUTOSAVE_INTERVAL")) {
@@ -246,6 +257,11 @@ void App::takeInput()
 }
 
 void App::dispatchInput()
+{
+    timedInput([this] { dispatchEvents(); });
+}
+
+void App::dispatchEvents()
 {
     for (const InputEvent& e : frameInput_) {
         switch (e.type) {
@@ -484,8 +500,11 @@ std::string App::takeWarnings()
 void App::frame(int width, int height, bool withUi, bool stillImage)
 {
     const auto t0 = std::chrono::steady_clock::now();
+    const double cpu0 = frameLog_.is_open() ? processCpuMilliseconds() : 0;
+    const double inputBefore = inputMs_;
     if (std::string warnings = takeWarnings(); !warnings.empty()) ui_.notice = std::move(warnings);
     if (withUi) buildUi();
+    const double inputInUi = inputMs_ - inputBefore; // a window's events are handled inside buildUi
     validateSelection();
     // The tools' follow-up (joint modes), then the geometry of what changed and the derived items
     // (the meshes lattices deform): the "update" time.
@@ -504,15 +523,42 @@ void App::frame(int width, int height, bool withUi, bool stillImage)
     scene_.updateGeometry();
     if (options_.headless()) scene_.finishTessellation();
     if (dirty) ui_.updateMs = millisecondsSince(t1);
+    const auto t2 = std::chrono::steady_clock::now();
     lastChange_ = scene_.changeCount();
     validateSelection();
     interaction_.fillOverlay(scene_, ui_.selection, view(), overlay_);
+    const auto t3 = std::chrono::steady_clock::now();
     ui_.triangles = drawer_->draw(scene_, width, height, ui_.selection.item, &overlay_, stillImage);
+    const auto t4 = std::chrono::steady_clock::now();
     if (withUi) {
         renderer_->bindOverlayTarget();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     }
     ui_.frameMs = millisecondsSince(t0);
+    if (frameLog_.is_open()) {
+        const auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+        const auto t5 = std::chrono::steady_clock::now();
+        loggedFrame_ = {interaction_.busy(), dirty, inputMs_, ms(t0, t1) - inputInUi, ms(t1, t2), ms(t2, t3), ms(t3, t4), ms(t4, t5), cpu0};
+        inputMs_ = 0;
+        // Headless, the frame ends here: the wait for the GPU stands for a window's present.
+        if (options_.headless()) {
+            renderer_->finish();
+            logFrame(millisecondsSince(t5));
+        }
+    }
+}
+
+void App::logFrame(double endMs)
+{
+    const auto now = std::chrono::steady_clock::now();
+    const double period = loggedFrames_ == 0 ? 0 : std::chrono::duration<double, std::milli>(now - lastLogged_).count();
+    lastLogged_ = now;
+    const LoggedFrame& f = loggedFrame_;
+    char line[256];
+    std::snprintf(line, sizeof line, "%ld\t%d\t%d\t%.3f\t%.3f\t%.3f\t%.3f\t%.3f\t%.3f\t%.3f\t%.3f\t%.3f\t%.3f\n", loggedFrames_++,
+                  f.dragging ? 1 : 0, f.changed ? 1 : 0, f.input, f.ui, f.update, f.overlay, f.draw, f.gui, endMs,
+                  f.input + f.ui + f.update + f.overlay + f.draw + f.gui + endMs, period, processCpuMilliseconds() - f.cpuStart);
+    frameLog_ << line << std::flush;
 }
 
 int App::run()
@@ -527,8 +573,10 @@ int App::run()
             continue;
         }
         frame(w, h, true);
+        const auto presented = std::chrono::steady_clock::now();
         renderer_->presentToWindow(w, h);
         glfwSwapBuffers(window_);
+        if (frameLog_.is_open()) logFrame(millisecondsSince(presented));
         maybeAutosave();
         // --state in a window: the state file follows every change (tests driving the window read it).
         if (!options_.state.empty()) {
@@ -1068,7 +1116,7 @@ void App::replay(const std::vector<ReplayEvent>& events)
         if (x == cursorX_ && y == cursorY_ && io.MousePos.x == float(x) && io.MousePos.y == float(y)) return;
         applyModifiers(mods);
         io.MousePos = ImVec2(float(x), float(y));
-        onCursor(x, y);
+        timedInput([&] { onCursor(x, y); });
         render(); // ImGui sees the hover before a press there, as after a real move
     };
     render();
@@ -1077,7 +1125,7 @@ void App::replay(const std::vector<ReplayEvent>& events)
         case ReplayEvent::Type::Move:
             applyModifiers(e.mods);
             io.MousePos = ImVec2(float(e.x), float(e.y));
-            onCursor(e.x, e.y);
+            timedInput([&] { onCursor(e.x, e.y); });
             break;
         case ReplayEvent::Type::Press:
         case ReplayEvent::Type::Release: {
@@ -1085,7 +1133,7 @@ void App::replay(const std::vector<ReplayEvent>& events)
             applyModifiers(e.mods);
             const bool down = e.type == ReplayEvent::Type::Press;
             if (e.button < 5) io.MouseDown[e.button] = down;
-            onMouseButton(e.button, down ? GLFW_PRESS : GLFW_RELEASE, e.mods);
+            timedInput([&] { onMouseButton(e.button, down ? GLFW_PRESS : GLFW_RELEASE, e.mods); });
             break;
         }
         case ReplayEvent::Type::Key:

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -115,6 +116,25 @@ private:
     void queueInput(const InputEvent& e) { input_.push_back(e); }
     void takeInput();        // before NewFrame: this frame's events to ImGui's backend
     void dispatchInput();    // after NewFrame: the same events to the view's handlers
+    void dispatchEvents();   // (dispatchInput's loop, timed for --frame-log)
+    // --frame-log (docs/performance.md, "Editor frame time"): the time the input handlers took
+    // since the last logged frame (a drag's picking and point moves), and the log itself.
+    template <class Handler>
+    void timedInput(Handler&& handler)
+    {
+        const auto t0 = std::chrono::steady_clock::now();
+        handler();
+        inputMs_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+    double inputMs_ = 0;
+    std::ofstream frameLog_;
+    long loggedFrames_ = 0;
+    struct LoggedFrame {
+        bool dragging = false, changed = false;
+        double input = 0, ui = 0, update = 0, overlay = 0, draw = 0, gui = 0, cpuStart = 0;
+    } loggedFrame_;
+    std::chrono::steady_clock::time_point lastLogged_;
+    void logFrame(double endMs); // writes the frame's line once it has ended (endMs: its present or GPU wait)
     std::vector<InputEvent> input_, frameInput_;
     bool holdInput_ = false;                   // the previous frame opened or closed a dialog or popup
     int dialogs_ = 0;                          // which dialogs and popups were up (uiSignature)

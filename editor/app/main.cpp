@@ -7,6 +7,9 @@
 
 #include <cstdio>
 #include <iostream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <string>
 #include <vector>
 
@@ -81,6 +84,16 @@ void applyOptions(Scene& scene, const Options& o)
 
 int main(int argc, char** argv)
 {
+#if defined(__GLIBC__)
+    // Keep freed heap memory instead of giving the top of the heap back to the system after every
+    // frame. With glibc's default (a trim threshold that follows the largest freed block), a
+    // lattice drag over a 64k-vertex mesh put the heap in a state where each frame's large
+    // temporary buffers (llvmpipe's vertex data among them) were returned and faulted in again:
+    // from then on every frame, at rest too, took about 45 ms more (page faults in the profile),
+    // 126-133 ms a drag frame against 75-86 ms with this setting (docs/performance.md, "Lattice
+    // drag in the window"). A quarter of a GiB is what the editor may keep unused at most.
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
     Options options;
     try {
         options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));

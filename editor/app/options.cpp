@@ -71,6 +71,7 @@ Options parseOptions(const std::vector<std::string>& args)
         } else if (a == "--segments") o.segments = parseInt(value(), a, 1, 1000);
         else if (a == "--samples") o.samples = parseInt(value(), a, 0, 16);
         else if (a == "--frames") o.frames = parseInt(value(), a, 1, 100000);
+        else if (a == "--frame-log") o.frameLog = value();
         else if (a == "--wireframe") o.wireframe = true;
         else if (a == "--flip-normals") o.flipNormals = true;
         else if (a == "--no-ui") o.noUi = true;
@@ -95,6 +96,9 @@ headless use:
   --replay EVENTS.json   feed the input events of the file (mouse, keys, text, frames; docs/editor.md)
                          to a hidden window of --size, rendering a frame after each; then --save
                          and/or --screenshot write the result, and the editor exits
+  --frame-log OUT.tsv    write each frame's time by phase (input, ui, update, overlay, draw, gui,
+                         and its end: the present in a window, the wait for the GPU headless),
+                         milliseconds, one line per frame (docs/performance.md)
   --size WxH             image size in pixels (default 1280x800; also the window size)
   --state OUT.json       when the editor exits (after --replay, or when its window closes) write its
                          state: the error dialog's message, the window and panel rectangles, the

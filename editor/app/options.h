@@ -34,6 +34,7 @@ struct Options {
     bool flipNormals = false;
     bool noUi = false;
     int frames = 0;                        // --frames N: render N frames and print timings
+    std::string frameLog;                  // --frame-log OUT.tsv: each frame's phases in ms, one line per frame
     bool help = false;
 
     bool headless() const { return !screenshot.empty() || !save.empty() || frames > 0 || !replay.empty(); }

@@ -54,15 +54,17 @@ struct Run {
     Json saved; // the --save output
 };
 
-/// Replays `events` on `doc` with --state and --save (and --screenshot when `png` is given).
-Run replayRun(const std::string& doc, const std::string& name, const Json& events, const std::string& png = "")
+/// Replays `events` on `doc` with --state and --save (and --screenshot when `png` is given, and
+/// the further options `extra`).
+Run replayRun(const std::string& doc, const std::string& name, const Json& events, const std::string& png = "",
+              const std::string& extra = "")
 {
     const std::string file = cat(kTmp, "/promises_last_", name, ".events.json"), state = cat(kTmp, "/promises_last_", name, ".state.json"),
                       out = cat(kTmp, "/promises_last_", name, ".out.json");
     test::writeText(file, Json{{"events", events}}.dump(1));
     fs::remove(state);
     fs::remove(out);
-    std::string args = cat("'", doc, "' --replay '", file, "' --state '", state, "' --save '", out, "' --size ", kW, "x", kH);
+    std::string args = cat("'", doc, "' --replay '", file, "' --state '", state, "' --save '", out, "' --size ", kW, "x", kH, extra);
     if (!png.empty()) {
         fs::remove(png);
         args += cat(" --screenshot '", png, "'");
@@ -248,6 +250,47 @@ TEST_CASE("the lattice read-out's numbers: vertices outside the box, det J's ran
         CHECK(out["lines"][1] == "det J in [1, 1]");
         CHECK(r.state["widgets"].contains("read-out"));
         CHECK_FALSE(r.state["widgets"].contains("fold-over"));
+    }
+
+    SECTION("--frame-log: one line per frame with the documented columns; the drag's frames flagged")
+    {
+        Json events = select;
+        drag(events, corner, neighbour);
+        events.push_back(frames(2));
+        const std::string log = cat(kTmp, "/promises_last_frame_log.tsv");
+        fs::remove(log);
+        const Run r = replayRun(doc, "frame_log", events, "", cat(" --frame-log '", log, "'"));
+        CHECK(r.process.out.empty()); // the log goes to its file only
+        std::istringstream in(test::slurp(log));
+        std::string line;
+        REQUIRE(std::getline(in, line));
+        CHECK(line == "frame\tdragging\tchanged\tinput_ms\tui_ms\tupdate_ms\toverlay_ms\tdraw_ms\tgui_ms\tend_ms\ttotal_ms\tperiod_ms\tcpu_ms");
+        int index = 0, dragChanged = 0, dragging = 0;
+        while (std::getline(in, line)) {
+            INFO(line);
+            std::vector<double> v;
+            std::istringstream fields(line);
+            for (std::string f; std::getline(fields, f, '\t');) v.push_back(std::stod(f));
+            REQUIRE(v.size() == 13);
+            CHECK(v[0] == index);
+            CHECK((v[1] == 0 || v[1] == 1));
+            CHECK((v[2] == 0 || v[2] == 1));
+            for (std::size_t k = 3; k < 13; ++k) CHECK(v[k] >= 0);
+            // total is the sum of the seven phases (each printed to 0.001 ms, the sum rounded once).
+            CHECK(std::abs(v[3] + v[4] + v[5] + v[6] + v[7] + v[8] + v[9] - v[10]) <= 0.0045);
+            CHECK((index == 0 ? v[11] == 0 : v[11] > 0));
+            dragging += v[1] == 1;
+            if (v[1] == 1 && v[2] == 1) {
+                ++dragChanged;
+                CHECK(v[5] > 0); // the deformation of the 266 vertices is in update
+            }
+            ++index;
+        }
+        // The lattice changes in the frame after each of the drag's two moves, and only then
+        // while a drag runs (the presses and releases change nothing while flagged).
+        CHECK(dragging > dragChanged);
+        CHECK(dragChanged == 2);
+        CHECK(index > 6);
     }
 
     SECTION("the corner dragged across its neighbour: det J <= 0 at some vertices, in red")
