@@ -514,6 +514,7 @@ void App::frame(int width, int height, bool withUi, bool stillImage)
     overlay_.clear();
     ToolContext context = toolContext();
     tools_.update(context, overlay_);
+    if (const int fitted = tools_.lattice().takeFitted(); fitted >= 0) frameIfOutside(fitted);
     // A zoom that changes the pixel size by 2x re-tessellates in the background (the scene keeps
     // drawing the old meshes and swaps the new ones in when they are ready; edits are rebuilt at
     // once). Headless runs (--screenshot, --frames, --replay, --save) wait for it every frame, so
@@ -777,6 +778,28 @@ void App::fit(bool selectionOnly)
         else if (!selected.isEmpty()) box = Eigen::AlignedBox3d(selected.min() - Eigen::Vector3d::Constant(0.5), selected.max() + Eigen::Vector3d::Constant(0.5));
         else if (!scene_.item(sel.item).geometry.bounds.isEmpty()) box = scene_.item(sel.item).geometry.bounds;
     }
+    scene_.camera.fit(box, aspect());
+    scene_.touch();
+}
+
+void App::frameIfOutside(int item)
+{
+    // A lattice fitted around a mesh is larger than the mesh (its margin); when a control point
+    // lies outside the view, the view frames the scene and the item's points (same direction).
+    if (item < 0 || item >= scene_.itemCount()) return;
+    scene_.updateGeometry();
+    int w = 1, h = 1;
+    viewSize(w, h);
+    const Eigen::Matrix4d viewProjection = ViewTransform::of(scene_, w, h).viewProjection;
+    const Eigen::Matrix3Xd points = scene_.controlPoints(item);
+    bool outside = false;
+    Eigen::AlignedBox3d box = scene_.bounds();
+    for (Eigen::Index k = 0; k < points.cols(); ++k) {
+        const Eigen::Vector4d clip = viewProjection * points.col(k).homogeneous();
+        outside = outside || !(clip.w() > 0) || std::abs(clip.x()) > clip.w() || std::abs(clip.y()) > clip.w();
+        box.extend(Eigen::Vector3d(points.col(k)));
+    }
+    if (!outside) return;
     scene_.camera.fit(box, aspect());
     scene_.touch();
 }

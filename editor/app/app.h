@@ -151,6 +151,7 @@ private:
     /// One frame; stillImage: for a screenshot (multisampled under Antialiasing::Auto, see
     /// scene/settings.h), not a frame of the interactive view.
     void frame(int width, int height, bool withUi, bool stillImage = false);
+    void frameIfOutside(int item); // fits the view to the scene when a point of item is outside it
     /// One frame of the panels; `afterNewFrame` (the tooltip audit's hook) runs right after ImGui::NewFrame.
     void buildUi(const std::function<void()>& afterNewFrame = {});
     void carryOutPending();

@@ -479,4 +479,42 @@ TEST_CASE("Ctrl+Q quits without unsaved changes; with them it asks, and the docu
     }
 }
 
+TEST_CASE("L frames the view on a fitted lattice that does not fit in it, and leaves a view that holds it",
+          "[render][replay][ffd]")
+{
+    // The bumpy sphere seen from the front right at distance 3.2 (close: the sphere fills the
+    // view) and at 12 (far): L fits a lattice with the panel's margin around it.
+    const std::string mesh = cat(FREEFORM_SOURCE_DIR, "/data/meshes/sphere.obj");
+    for (const double distance : {3.2, 12.0}) {
+        INFO(distance);
+        const std::string doc = writeDoc(cat("frame_fit_", distance),
+                                         {{"format", "freeform"},
+                                          {"version", 1},
+                                          {"objects", Json::array()},
+                                          {"editor",
+                                           {{"camera", frontRightCamera(Eigen::Vector3d::Zero(), distance)},
+                                            {"meshes", Json::array({{{"name", "sphere"}, {"path", mesh}}})}}}});
+        Json events = Json::array();
+        click(events, Eigen::Vector2d(kW / 2.0, kH / 2.0)); // the sphere
+        events.push_back(key("L"));
+        events.push_back(frames(2));
+        const Run r = replayRun(doc, cat("frame_fit_", distance), events);
+        const Json lattice = objectNamed(r.saved, "sphere_lattice");
+        REQUIRE(lattice.is_object());
+        const std::string saved = cat(kTmp, "/promises_last_frame_fit_saved.json");
+        test::writeText(saved, r.saved.dump(1));
+        const Scene after = Scene::load(saved);
+        // Every control point of the lattice inside the window, computed here from the saved camera.
+        for (const Json& p : lattice["points"]) {
+            const Eigen::Vector2d px = worldToPixel(after, kW, kH, vec(p));
+            CHECK(px.x() >= 0);
+            CHECK(px.x() <= kW);
+            CHECK(px.y() >= 0);
+            CHECK(px.y() <= kH);
+        }
+        if (distance == 12.0) CHECK(r.state["camera"]["distance"] == Approx(12.0)); // it held the lattice already
+        else CHECK(r.state["camera"]["distance"].get<double>() > 3.2);
+    }
+}
+
 } // namespace test_render_promises_last

@@ -150,6 +150,7 @@ bool LatticeTool::fitLattice(ToolContext& c, int meshItem)
         c.scene.setSettings(i, settings, "fit lattice");
         c.scene.endMerge();
         c.selection.selectItem(i);
+        fitted_ = i;
         status().clear();
         return true;
     } catch (const Error& e) {

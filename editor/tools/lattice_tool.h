@@ -6,6 +6,7 @@
 // and direct manipulation (key D: drag a point of a deformed mesh, the lattice follows).
 
 #include <string>
+#include <utility>
 
 #include "tools/tool.h"
 
@@ -32,6 +33,9 @@ public:
     bool certifyLattice(ToolContext& context, int latticeItem);
 
     bool dragging() const { return dragLattice_ != 0; }
+    /// The item the last fitLattice added, once (-1: none since the last call): the app frames
+    /// the view on the scene when that lattice does not fit in it.
+    int takeFitted() { return std::exchange(fitted_, -1); }
 
     // ---- settings the panel and the tests change
     int degree[3] = {3, 3, 3};  // of fitted lattices
@@ -44,6 +48,7 @@ private:
     Eigen::Vector3d dragPlanePoint_ = Eigen::Vector3d::Zero(), dragPlaneNormal_ = Eigen::Vector3d::UnitZ();
     DocumentObject dragObject_; // the lattice at the start of the drag
     Eigen::Vector3d directRest_ = Eigen::Vector3d::Zero(), directTarget_ = Eigen::Vector3d::Zero();
+    int fitted_ = -1;           // the item fitLattice added, until takeFitted
 };
 
 } // namespace freeform::editor
