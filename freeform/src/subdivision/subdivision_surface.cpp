@@ -5,6 +5,7 @@
 
 #include "freeform/subdivision/subdivision_surface.h"
 
+#include "freeform/core/format.h"
 #include "freeform/core/warning.h"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
@@ -17,9 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <mutex>
-#include <sstream>
 #include <unordered_map>
 
 #include "certified_tessellation_common.h"
@@ -349,10 +348,8 @@ LimitPoint SubdivisionSurface::evaluate(int face, double u, double v) const
     if (!hasLimitSurface(face))
         throw Error("subdivision surface: face " + std::to_string(face) + " has no limit surface (boundary interpolation none)");
     if (!inDomain(face, u, v)) {
-        std::ostringstream s;
-        s.precision(17);
-        s << "subdivision surface: (u, v) = (" << u << ", " << v << ") is outside the domain of face " << face;
-        throw Error(s.str());
+        throw Error("subdivision surface: (u, v) = (" + formatNumber(u) + ", " + formatNumber(v) +
+                    ") is outside the domain of face " + std::to_string(face));
     }
     return limitPoint(topology_->surface(face), patchPoints_.data() + 3 * topology_->patchOffset[static_cast<std::size_t>(face)], u, v);
 }

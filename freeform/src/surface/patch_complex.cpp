@@ -7,7 +7,6 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <tuple>
 
 #include "freeform/core/error.h"
