@@ -1,7 +1,8 @@
 # Scaling out on Dask (issue 26, item 2; docs/python.md "Scaling out"): a lattice shipped to two
 # worker processes of a dask.distributed LocalCluster deforms chunks of points to the same bits as
 # here, and examples/python/batch_ffd_dask.py, run against that cluster, writes the same bytes as
-# `freeform ffd` for every mesh of a folder. One cluster for the whole session (its start costs
+# `freeform ffd` for every mesh of a folder; a MeshFile (a .gltf with an external buffer) deformed
+# on a worker comes back equal bit for bit. One cluster for the whole session (its start costs
 # seconds on the 2-core CI machines).
 import json
 import os
@@ -53,6 +54,35 @@ def test_lattice_travels_to_worker_processes_and_back(dask_client):
     back = dask_client.submit(lambda L: L.elevated(1, 0, 0), lat).result()
     assert back.degree == (4, 3, 3) and back.strength == lat.strength
     np.testing.assert_allclose(back.deform(pts[:100]), lat.deform(pts[:100]), rtol=0, atol=1e-12)
+
+
+def deform_mesh(mesh, lattice):
+    import os
+
+    report = mesh.deform(lattice, threads=1)
+    return mesh, report["vertices"], os.getpid()
+
+
+def test_mesh_file_travels_to_a_worker_and_back(dask_client, tmp_path):
+    # A .gltf with its buffer in a .bin beside it, read here from a folder that is gone before the
+    # worker gets it: the pickle carries the file and its buffer, not the path.
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("sphere.gltf", "sphere.bin"):
+        (src / name).write_bytes((ROOT / "data" / "meshes" / name).read_bytes())
+    mesh = ff.MeshFile.read(str(src / "sphere.gltf"))
+    shutil.rmtree(src)
+    lat = random_lattice(ff, seed=4, scale=0.1)
+    back, vertices, pid = dask_client.submit(deform_mesh, mesh, lat, pure=False).result()
+    assert pid != os.getpid() and vertices == mesh.positions.shape[0]
+    mesh.deform(lat, threads=1)
+    assert back.positions.tobytes() == mesh.positions.tobytes()
+    assert back.normals.tobytes() == mesh.normals.tobytes()
+    mesh.write(str(tmp_path / "here.gltf"))
+    written = (tmp_path / "here.gltf").read_bytes(), (tmp_path / "here.bin").read_bytes()
+    back.write(str(tmp_path / "here.gltf"))
+    assert (tmp_path / "here.gltf").read_bytes() == written[0]
+    assert (tmp_path / "here.bin").read_bytes() == written[1]
 
 
 def test_batch_example_writes_what_the_cli_writes(dask_client, tmp_path):
