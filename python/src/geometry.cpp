@@ -43,6 +43,14 @@ struct PyMesh {
     freeform::MeshFile file;
 };
 
+/// A (cols, rows) float64 view of a mesh file's column-major matrix: no copy, `owner` (the Python
+/// MeshFile) keeps the data alive.
+template <class Matrix>
+py::array_t<double> columnsView(py::object owner, Matrix& m)
+{
+    return py::array_t<double>({static_cast<py::ssize_t>(m.cols()), static_cast<py::ssize_t>(m.rows())}, m.data(), owner);
+}
+
 /// Copies an (n, cols) array of a pickled MeshFile's state into `into` (cols x n), which must keep
 /// its column count: the file read back from its bytes has as many as the one pickled.
 template <class Matrix>
@@ -677,11 +685,7 @@ else of the file as read.)doc")
             }))
         .def_property(
             "positions",
-            [](py::object self) {
-                auto& f = self.cast<PyMesh&>().file;
-                auto& p = f.positions();
-                return py::array_t<double>({static_cast<py::ssize_t>(p.cols()), py::ssize_t{3}}, p.data(), self);
-            },
+            [](py::object self) { return columnsView(self, self.cast<PyMesh&>().file.positions()); },
             [](PyMesh& self, py::handle v) {
                 const py::array a = rows(v, "positions", 3, false);
                 if (a.shape(0) != self.file.positions().cols())
@@ -693,18 +697,12 @@ else of the file as read.)doc")
             "(P, 3) float64 view of the file's positions (no copy; in file order).")
         .def_property_readonly(
             "normals",
-            [](py::object self) {
-                auto& n = self.cast<PyMesh&>().file.normals();
-                return py::array_t<double>({static_cast<py::ssize_t>(n.cols()), py::ssize_t{3}}, n.data(), self);
-            },
+            [](py::object self) { return columnsView(self, self.cast<PyMesh&>().file.normals()); },
             "(N, 3) float64 view of the file's normal records (may be empty).")
         .def_property_readonly("normal_anchors", [](const PyMesh& m) { return m.file.normalAnchors(); })
         .def_property_readonly(
             "tangents",
-            [](py::object self) {
-                auto& t = self.cast<PyMesh&>().file.tangents();
-                return py::array_t<double>({static_cast<py::ssize_t>(t.cols()), py::ssize_t{4}}, t.data(), self);
-            },
+            [](py::object self) { return columnsView(self, self.cast<PyMesh&>().file.tangents()); },
             "(T, 4) float64 view of the file's tangents (xyz and handedness w; glTF only, may be empty).")
         .def_property_readonly("format", [](const PyMesh& m) { return m.file.format(); })
         .def_property_readonly("path", [](const PyMesh& m) { return m.file.path(); })
