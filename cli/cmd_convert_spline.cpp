@@ -18,11 +18,12 @@ Json convertSpline(const ConvertOptions& o)
     const std::string& name = o.object;
     const std::string& to = o.to;
     const std::string& output = o.output;
-    if (to != "bezier_spline" && to != "deboor_spline")
+    const KindInfo* form = findKind(to);
+    if (!form || !form->supports(KindOperation::ConvertSpline))
         throw UsageError("option --to: \"" + to + "\" is not one of bezier_spline, deboor_spline");
     std::optional<EndCondition> end;
     if (given(o.endGiven)) {
-        if (to != "deboor_spline") throw UsageError("option --end: goes with --to deboor_spline only");
+        if (form->kind != ObjectKind::DeBoorSpline) throw UsageError("option --end: goes with --to deboor_spline only");
         if (o.end != "open" && o.end != "clamped" && o.end != "closed")
             throw UsageError("option --end: \"" + o.end + "\" is not one of open, clamped, closed");
         end = parseEndCondition(o.end, "--end");

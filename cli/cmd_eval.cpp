@@ -20,11 +20,9 @@ Json eval(const EvalOptions& o)
     if (o.derivatives < 0) throw UsageError("option --derivatives: the order must not be negative");
     const TypedDocument doc = TypedDocument::read(o.positional[0]);
     const TypedObject& object = doc.object(o.object);
-    const std::string type = object.type();
-    const auto it = evaluators().find(type);
-    if (it == evaluators().end())
-        throw Error(doc.what(object) + ": eval does not support type \"" + type + "\" yet");
-    return it->second(doc, object, o.at, o.derivatives);
+    const Evaluator evaluator = evaluatorFor(object.info());
+    if (!evaluator) throw Error(doc.what(object) + ": eval does not support type \"" + object.type() + "\" yet");
+    return evaluator(doc, object, o.at, o.derivatives);
 }
 
 } // namespace

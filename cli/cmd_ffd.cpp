@@ -107,7 +107,8 @@ Json ffd(const FfdOptions& o)
 
     const Document doc = readDocument(o.lattice);
     const DocumentObject& object =
-        findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
+        findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt,
+                        "choose one with --object");
     const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);

@@ -7,6 +7,7 @@
 #include "command.h"
 #include "freeform/core/error.h"
 #include "freeform/curve/interpolation.h"
+#include "freeform/document/object_data.h"
 #include "freeform/io/file.h"
 #include "freeform/io/json_check.h"
 #include "points_file.h"
@@ -36,12 +37,7 @@ BezierSplineData interpolate(const PointsFile& in, InterpolationOptions<double, 
             throw Error(source + ": " + e.what());
         }
     }();
-    BezierSplineData data;
-    data.degree = 3;
-    data.closed = spline.closed();
-    data.points = spline.controlPoints();
-    data.intervals = spline.intervals();
-    return data;
+    return toData(spline);
 }
 
 struct InterpolateOptions {

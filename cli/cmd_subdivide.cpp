@@ -49,7 +49,8 @@ Json subdivide(const SubdivideOptions& o)
     if (given(o.latticeGiven)) {
         const Document doc = readDocument(o.lattice);
         const DocumentObject& object =
-            findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
+            findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt,
+                        "choose one with --object");
         latticeName = object.name;
         cage = deformCage(cage, latticeFromData(std::get<LatticeData>(object.data)));
     }

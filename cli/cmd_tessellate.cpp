@@ -91,39 +91,22 @@ Json tessellateCommand(const TessellateOptions& o)
     if (o.measure == "geometric") options.measure = TessellationMeasure::Geometric;
     options.sampleDeviation = true;
 
-    PatchComplex complex;
-    std::vector<const TypedObject*> rational; // rational_bezier_surface, nurbs_surface (tessellate_rational.cpp)
-    std::optional<TypedDocument> document;
+    DocumentTessellation result;
     if (hasExtension(input, ".bpt")) {
         if (given(o.objectGiven)) throw UsageError("option --object applies to documents, not .bpt files");
-        complex = readBpt(input);
+        const PatchComplex complex = readBpt(input);
+        result.mesh = tessellate(complex, options, &result.report);
+        result.patches = complex.patches.size();
     } else {
-        const TypedDocument& doc = document.emplace(TypedDocument::read(input));
-        if (given(o.objectGiven)) {
-            const TypedObject& object = doc.object(o.object);
-            if (const auto* sub = std::get_if<SubdivisionObject>(&object.geometry()))
-                return subdivisionCommand(sub->surface, o, output);
-            if (isRationalSurface(object)) rational.push_back(&object);
-            else complex = surfacePatches(doc, object);
-        } else {
-            for (const TypedObject& obj : doc.objects())
-                if (isRationalSurface(obj)) rational.push_back(&obj);
-            const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(),
-                                                [](const TypedObject& t) { return AnySurface::of(t).has_value(); });
-            // documentPatches says "no surface objects" when the document has none of any kind.
-            if (polynomial || rational.empty()) complex = documentPatches(doc);
-        }
+        const TypedDocument doc = TypedDocument::read(input);
+        const TypedObject* object = given(o.objectGiven) ? &doc.object(o.object) : nullptr;
+        if (const auto* sub = object ? std::get_if<SubdivisionObject>(&object->geometry()) : nullptr)
+            return subdivisionCommand(sub->surface, o, output);
+        result = tessellateDocument(doc, object, options); // the document layer (document/operations.h)
     }
-    TessellationReport report;
-    PolygonMesh mesh = complex.patches.empty() ? PolygonMesh() : tessellate(complex, options, &report);
-    std::size_t patches = complex.patches.size();
-    if (!rational.empty()) {
-        RationalMeshes r = tessellateRationalSurfaces(*document, rational, options);
-        if (!complex.patches.empty()) r.meshes.insert(r.meshes.begin(), std::move(mesh));
-        mesh = r.meshes.size() == 1 ? std::move(r.meshes.front()) : mergeMeshes(r.meshes);
-        patches += static_cast<std::size_t>(r.patches);
-        report.errorBound = std::max(report.errorBound, r.errorBound);
-    }
+    const PolygonMesh& mesh = result.mesh;
+    const TessellationReport& report = result.report;
+    const std::size_t patches = result.patches;
     writePolygonMesh(mesh, output);
     Json out;
     out["output"] = output;

@@ -83,33 +83,20 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
 /// A point as a JSON array.
 Json pointJson(const double* p, int dim);
 
-/// The lattice object `name` of the document, or its only lattice when no name is given; Error
-/// naming the document when it is not a lattice, when there are several, or none.
-const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name);
 
-/// `freeform eval` dispatches on the object type. Each geometry supplies one evaluator:
-/// given the object, the text of --at and the derivative order K, it returns the JSON result.
-/// One evaluator per object type: parses --at (usage errors, the domain message with the text as
-/// given), then prints the document layer's evaluate() (document/operations.h).
+/// `freeform eval` picks one evaluator by the object's row of the kind table (document/kinds.h:
+/// its parameters, whether it is rational). Each, given the object, the text of --at and the
+/// derivative order K, parses --at (usage errors, the domain message with the text as given), then
+/// prints the document layer's evaluate() (document/operations.h).
 using Evaluator = Json (*)(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order);
-const std::map<std::string, Evaluator>& evaluators(); // cli/commands.cpp
+/// The evaluator for a kind; nullptr when eval does not support it.
+Evaluator evaluatorFor(const KindInfo& kind); // cli/commands.cpp
 
-void addCurveEvaluators(std::map<std::string, Evaluator>& table);       // eval_curve.cpp
-void addLatticeEvaluators(std::map<std::string, Evaluator>& table);     // eval_lattice.cpp
-void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table); // eval_subdivision.cpp
-void addSurfaceEvaluators(std::map<std::string, Evaluator>& table);     // eval_surface.cpp
-void addRationalEvaluators(std::map<std::string, Evaluator>& table);    // eval_rational.cpp
-
-/// `freeform tessellate` on rational_bezier_surface and nurbs_surface objects (tessellate_rational.cpp).
-struct RationalMeshes {
-    std::vector<PolygonMesh> meshes;
-    int patches = 0;       // Bézier patches (after extraction)
-    double errorBound = 0; // the largest certified bound
-};
-bool isRationalSurface(const TypedObject& object);
-RationalMeshes tessellateRationalSurfaces(const TypedDocument& doc, const std::vector<const TypedObject*>& objects,
-                                          const TessellationOptions& options);
-PolygonMesh mergeMeshes(const std::vector<PolygonMesh>& meshes);
+Json evalCurve(const TypedDocument&, const TypedObject&, const std::string& at, int order);       // eval_curve.cpp
+Json evalLattice(const TypedDocument&, const TypedObject&, const std::string& at, int order);     // eval_lattice.cpp
+Json evalSubdivision(const TypedDocument&, const TypedObject&, const std::string& at, int order); // eval_subdivision.cpp
+Json evalSurface(const TypedDocument&, const TypedObject&, const std::string& at, int order);     // eval_surface.cpp
+Json evalRational(const TypedDocument&, const TypedObject&, const std::string& at, int order);    // eval_rational.cpp
 
 /// `freeform interpolate --degree P` (interpolate_nurbs.cpp): writes the nurbs_curve "interpolant".
 Json interpolateNurbsCommand(const PointColumns& points, const std::vector<double>& params, Parametrization param,

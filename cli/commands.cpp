@@ -1,5 +1,5 @@
-// The commands of `freeform`, in the order `freeform --help` lists them, and the object types
-// `freeform eval` knows. A new command is a new cmd_NAME.cpp with a defineNAME (declared in
+// The commands of `freeform`, in the order `freeform --help` lists them, and which evaluator
+// `freeform eval` uses for each kind of the kind table. A new command is a new cmd_NAME.cpp with a defineNAME (declared in
 // command.h) and one line here.
 
 #include "command.h"
@@ -23,18 +23,17 @@ const std::vector<Command>& commands()
     return list;
 }
 
-const std::map<std::string, Evaluator>& evaluators()
+Evaluator evaluatorFor(const KindInfo& kind)
 {
-    static const std::map<std::string, Evaluator> table = [] {
-        std::map<std::string, Evaluator> t;
-        addCurveEvaluators(t);
-        addSurfaceEvaluators(t);
-        addLatticeEvaluators(t);
-        addSubdivisionEvaluators(t);
-        addRationalEvaluators(t);
-        return t;
-    }();
-    return table;
+    if (!kind.supports(KindOperation::Evaluate)) return nullptr;
+    if (kind.rational) return evalRational;
+    switch (kind.parameters) {
+    case KindParameters::T: return evalCurve;
+    case KindParameters::UV: return evalSurface;
+    case KindParameters::STU: return evalLattice;
+    case KindParameters::FaceUV: return evalSubdivision;
+    }
+    return nullptr;
 }
 
 } // namespace freeform::cli

@@ -10,11 +10,10 @@ namespace freeform::cli {
 
 bool isRationalConversion(const ConvertOptions& o)
 {
-    if (o.to == "nurbs_curve" || o.to == "nurbs_surface") return true;
+    if (const KindInfo* to = findKind(o.to); to && to->knots) return true;
     if (o.positional.size() != 1 || !given(o.objectGiven)) return false;
     const Document doc = readDocument(o.positional[0]);
-    const std::string type = objectType(doc.object(o.object).data);
-    return type == "nurbs_curve" || type == "nurbs_surface";
+    return kindInfo(doc.object(o.object).data).supports(KindOperation::FromNurbs);
 }
 
 Json convertRational(const ConvertOptions& o)
@@ -23,7 +22,8 @@ Json convertRational(const ConvertOptions& o)
     TypedDocument doc = TypedDocument::read(o.positional[0]);
     const TypedObject& object = doc.object(o.object);
     const std::string from = object.type();
-    const bool toNurbs = o.to == "nurbs_curve" || o.to == "nurbs_surface";
+    const KindInfo* target = findKind(o.to);
+    const bool toNurbs = target && target->knots;
     ObjectData converted = toNurbs ? toNurbsData(doc, object) : fromNurbsData(doc, object);
     const std::string to = objectType(converted);
     if (to != o.to)

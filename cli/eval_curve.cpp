@@ -18,11 +18,13 @@ std::string shortest(double v)
     return std::string(buf, r.ptr);
 }
 
-Json evalAnyCurve(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
+} // namespace
+
+Json evalCurve(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
     const double t = parseNumber(at, "--at");
     const std::vector<double> domain = parameterDomain(object);
-    const bool spline = object.type() != "bezier_curve";
+    const bool spline = object.info().pieces;
     if (t < 0 || t > domain.at(0))
         throw Error(doc.what(object) + ": " + (spline ? "T" : "t") + " = " + at + " is outside the " +
                     (spline ? "spline" : "curve") + "'s domain [0, " + shortest(domain[0]) + "]");
@@ -38,15 +40,6 @@ Json evalAnyCurve(const TypedDocument& doc, const TypedObject& object, const std
         out["derivatives"] = std::move(ders);
     }
     return out;
-}
-
-} // namespace
-
-void addCurveEvaluators(std::map<std::string, Evaluator>& table)
-{
-    table["bezier_curve"] = evalAnyCurve;
-    table["bezier_spline"] = evalAnyCurve;
-    table["deboor_spline"] = evalAnyCurve;
 }
 
 } // namespace freeform::cli

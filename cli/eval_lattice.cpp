@@ -5,7 +5,6 @@
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
-namespace {
 
 Json evalLattice(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
@@ -25,13 +24,6 @@ Json evalLattice(const TypedDocument& doc, const TypedObject& object, const std:
         out["derivatives"] = Json::array({d});
     }
     return out;
-}
-
-} // namespace
-
-void addLatticeEvaluators(std::map<std::string, Evaluator>& table)
-{
-    table["lattice"] = evalLattice;
 }
 
 } // namespace freeform::cli

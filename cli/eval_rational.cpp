@@ -6,11 +6,10 @@
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
-namespace {
 
 Json evalRational(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
-    const bool surface = object.type().find("surface") != std::string::npos;
+    const bool surface = object.info().isSurface();
     const std::vector<double> values = parseNumberList(at, "--at", surface ? 2 : 1);
     const Evaluation e = evaluate(doc, object, values, order);
     const int dim = static_cast<int>(e.point.size());
@@ -36,16 +35,6 @@ Json evalRational(const TypedDocument& doc, const TypedObject& object, const std
         }
     }
     return out;
-}
-
-} // namespace
-
-void addRationalEvaluators(std::map<std::string, Evaluator>& table)
-{
-    table["rational_bezier_curve"] = evalRational;
-    table["nurbs_curve"] = evalRational;
-    table["rational_bezier_surface"] = evalRational;
-    table["nurbs_surface"] = evalRational;
 }
 
 } // namespace freeform::cli

@@ -8,7 +8,6 @@
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
-namespace {
 
 Json evalSubdivision(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
@@ -27,13 +26,6 @@ Json evalSubdivision(const TypedDocument& doc, const TypedObject& object, const 
     out["derivatives"] = std::move(ders);
     out["normal"] = pointJson(e.normal->data(), 3);
     return out;
-}
-
-} // namespace
-
-void addSubdivisionEvaluators(std::map<std::string, Evaluator>& table)
-{
-    table["subdivision_surface"] = evalSubdivision;
 }
 
 } // namespace freeform::cli

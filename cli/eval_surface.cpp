@@ -6,7 +6,6 @@
 #include "freeform/document/operations.h"
 
 namespace freeform::cli {
-namespace {
 
 Json evalSurface(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order)
 {
@@ -32,14 +31,6 @@ Json evalSurface(const TypedDocument& doc, const TypedObject& object, const std:
         out["derivatives"] = std::move(ders);
     }
     return out;
-}
-
-} // namespace
-
-void addSurfaceEvaluators(std::map<std::string, Evaluator>& table)
-{
-    table["bezier_surface"] = evalSurface;
-    table["deboor_surface"] = evalSurface;
 }
 
 } // namespace freeform::cli

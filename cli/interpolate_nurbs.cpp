@@ -5,6 +5,7 @@
 #include "command.h"
 #include "freeform/core/error.h"
 #include "freeform/curve/nurbs_interpolation.h"
+#include "freeform/document/object_data.h"
 
 namespace freeform::cli {
 namespace {
@@ -30,11 +31,7 @@ NurbsCurveData fit(const PointColumns& points, const std::vector<double>& params
             throw Error(source + ": " + e.what());
         }
     }();
-    NurbsCurveData d;
-    d.degree = curve.degree();
-    d.knots = curve.knots();
-    d.points = curve.controlPoints();
-    return d;
+    return toData(curve);
 }
 
 } // namespace

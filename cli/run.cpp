@@ -141,24 +141,6 @@ Json pointJson(const double* p, int dim)
     return a;
 }
 
-const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name)
-{
-    if (name) {
-        const DocumentObject& o = doc.object(*name);
-        if (!std::holds_alternative<LatticeData>(o.data))
-            throw Error(doc.source + ": object \"" + *name + "\" is a " + objectType(o.data) + ", not a lattice");
-        return o;
-    }
-    const DocumentObject* found = nullptr;
-    for (const DocumentObject& o : doc.objects) {
-        if (!std::holds_alternative<LatticeData>(o.data)) continue;
-        if (found) throw Error(doc.source + ": has several lattices; choose one with --object");
-        found = &o;
-    }
-    if (!found) throw Error(doc.source + ": has no lattice object");
-    return *found;
-}
-
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
 {
     // The library's warnings (freeform/core/warning.h): one "warning:" line each on stderr, as the

@@ -1,7 +1,7 @@
 # Type stubs of the freeform Python module (docs/python.md). Arrays are NumPy arrays: points
 # (N, 3) float64 or float32 C-contiguous are used without a copy; other layouts are converted once.
 # Checked against the built module by mypy.stubtest and by argument name (python/tests/test_module.py).
-from typing import Any, Dict, Optional, Sequence, Tuple, TypeAlias, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, TypeAlias, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -368,6 +368,7 @@ class RationalLattice(metaclass=_Pybind11Type):
     def jacobian(self, points: ArrayLike) -> _F64: ...
     def deform_curve(self, curve: Union[BezierCurve, RationalBezierCurve, NurbsCurve]) -> Union[RationalBezierCurve, NurbsCurve]: ...
 
+def kinds() -> List[Dict[str, Any]]: ...
 def interpolate_nurbs(points: ArrayLike, degree: int = 3, parametrization: str = "chord",
                       params: Optional[ArrayLike] = None, start_derivative: Optional[ArrayLike] = None,
                       end_derivative: Optional[ArrayLike] = None) -> NurbsCurve: ...

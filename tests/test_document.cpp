@@ -92,7 +92,7 @@ TEST_CASE("write then read gives the same document and the same text", "[documen
     CHECK(c.points(1, 1) == 2e-300);
     CHECK(c.points(1, 3) == 0.30000000000000004);
     CHECK(std::get<BezierSplineData>(b.object("s").data).intervals == std::vector<double>{1, 2.5});
-    CHECK(std::get<LatticeData>(b.object("L").data).outside == "keep");
+    CHECK(std::get<LatticeData>(b.object("L").data).outside == OutsidePolicy::Keep);
     CHECK(b.object("L").editor == R"({"visible":false})");
 }
 

@@ -136,7 +136,7 @@ TEST_CASE("document data round trip and validation", "[unit]")
     CHECK(lat.displacements().leftCols(7).isZero(0.0));
     const freeform::LatticeData back = latticeToData(lat);
     CHECK(back.points == std::get<freeform::LatticeData>(doc.object("L").data).points);
-    CHECK(back.outside == "keep");
+    CHECK(back.outside == OutsidePolicy::Keep);
     CHECK(back.axes == Eigen::Matrix3d(Eigen::Vector3d(2, 2, 2).asDiagonal()));
 
     using Catch::Matchers::Contains;

@@ -3,7 +3,8 @@
 // tessellate/; headers and sources) may include a file format (nlohmann), the io or document
 // layer, or a stream header, nor print: the library reports through freeform::Error and the
 // warning handler (core/warning.h) only. This test reads every such file; snprintf and
-// to_chars, which format into memory, are allowed.
+// to_chars, which format into memory, are allowed. The front ends (cli/, editor/, python/src/)
+// compare no type string: they dispatch on the kind table (document/kinds.h).
 
 #include <catch2/catch.hpp>
 
@@ -43,7 +44,71 @@ std::string violation(const std::string& line)
     return "";
 }
 
+/// The kind names a front-end line compares or keys on as a string literal ("nurbs_curve"), or ""
+/// when it has none. Front ends dispatch on the kind table (document/kinds.h) instead. Comments may
+/// name kinds, and so may longer texts (help, messages). "lattice" is also a JSON member of
+/// command output, a Python argument, the `freeform lattice` command and a default object name:
+/// those uses ([, py::arg(, def_property_readonly(, {, `name = `, a method name alone on its line)
+/// are not the kind.
+std::string quotedKind(const std::string& line)
+{
+    const std::string code = line.substr(0, line.find("//"));
+    static const std::regex literal(R"rx((^|.)"([a-z_]+)")rx");
+    static const std::regex latticeUse(R"rx((\[|py::arg\(|def_property_readonly\(|\{|name = |^\s*)"lattice")rx");
+    std::string found;
+    for (auto it = std::sregex_iterator(code.begin(), code.end(), literal); it != std::sregex_iterator(); ++it) {
+        const std::string word = (*it)[2];
+        if (!freeform::kindNamed(word)) continue;
+        if (word == "lattice" && std::regex_search(code, latticeUse) &&
+            code.find("== \"lattice\"") == std::string::npos && code.find("!= \"lattice\"") == std::string::npos)
+            continue;
+        found += (found.empty() ? "" : " ") + word;
+    }
+    return found;
+}
+
 } // namespace
+
+TEST_CASE("the quoted-kind check finds what it forbids", "[layers]")
+{
+    CHECK(quotedKind(R"(    if (type == "nurbs_curve") return;)") == "nurbs_curve");
+    CHECK(quotedKind(R"(    table["bezier_surface"] = evalSurface;)") == "bezier_surface");
+    CHECK(quotedKind(R"(    return t == "rational_bezier_curve" || t == "lattice";)") == "rational_bezier_curve lattice");
+    CHECK(quotedKind(R"(    if (it.type != "lattice") continue;)") == "lattice");
+    CHECK(quotedKind(R"(    j["lattice"] = latticeObject.name;)") == "");
+    CHECK(quotedKind(R"(    py::arg("lattice"), py::arg("threads") = 0)") == "");
+    CHECK(quotedKind(R"(    throw UsageError("option --to: is not one of bezier_spline, deboor_spline");)") == "");
+    CHECK(quotedKind(R"(    // a "bezier_spline" here)") == "");
+    CHECK(quotedKind(R"(    std::string a = "mesh", b = "nurbs";)") == "");
+    CHECK(quotedKind(R"(            "lattice",)") == "");
+    CHECK(quotedKind(R"(            "nurbs_curve",)") == "nurbs_curve");
+}
+
+TEST_CASE("the front ends name no kind in code: they dispatch on the kind table", "[layers]")
+{
+    const fs::path root(FREEFORM_SOURCE_DIR);
+    int files = 0;
+    for (const char* folder : {"cli", "editor", "python/src"}) {
+        REQUIRE(fs::is_directory(root / folder));
+        for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
+            const fs::path& path = entry.path();
+            if (!entry.is_regular_file() || (path.extension() != ".cpp" && path.extension() != ".h")) continue;
+            // Tests and benchmarks write documents, whose text names kinds.
+            const std::string relative = fs::relative(path, root).generic_string();
+            if (relative.rfind("editor/tests/", 0) == 0 || relative.rfind("editor/benchmarks/", 0) == 0) continue;
+            ++files;
+            std::ifstream in(path);
+            std::string line;
+            int number = 0;
+            while (std::getline(in, line)) {
+                ++number;
+                INFO(path.string() << ":" << number << ": " << line);
+                CHECK(quotedKind(line).empty());
+            }
+        }
+    }
+    CHECK(files >= 80);
+}
 
 TEST_CASE("the violation check finds what it forbids", "[layers]")
 {

@@ -289,11 +289,11 @@ std::string App::statusHint()
     } else if (tools_.spline().dragging()) {
         hint = "Move de Boor point: the spline is rebuilt from its de Boor points and stays C2";
     } else if (ui_.selection.item >= 0 && ui_.selection.item < scene_.itemCount()) {
-        const std::string& type = scene_.item(ui_.selection.item).type;
-        hint = "Select (" + scene_.item(ui_.selection.item).name + ", " + type + "): click a point to select it, drag to move it";
-        if (type == "bezier_spline") hint += "; 1-4 set the joint's mode (free, aligned, mirrored, C2)";
-        else if (type == "lattice") hint += "; D drags the deformed mesh directly";
-        else if (NurbsTool::handles(type)) hint += "; Alt+drag a point: its weight; K: insert a knot at t; T: de Boor construction";
+        const SceneItem& selected = scene_.item(ui_.selection.item);
+        hint = "Select (" + selected.name + ", " + selected.type + "): click a point to select it, drag to move it";
+        if (selected.is(ObjectKind::BezierSpline)) hint += "; 1-4 set the joint's mode (free, aligned, mirrored, C2)";
+        else if (selected.is(ObjectKind::Lattice)) hint += "; D drags the deformed mesh directly";
+        else if (NurbsTool::handles(selected.info())) hint += "; Alt+drag a point: its weight; K: insert a knot at t; T: de Boor construction";
         hint += "; Escape deselects";
     } else {
         hint = "Select: click an object or point; C: curve, Shift+C: C2 spline; drag: orbit, wheel: zoom; F1: help";

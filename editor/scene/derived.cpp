@@ -49,7 +49,7 @@ void Scene::updateDerived()
     std::map<long, int> lattices;
     for (std::size_t i = 0; i < items_.size(); ++i) {
         SceneItem& it = items_[i];
-        if (it.kind != SceneItem::Kind::DocumentObject || it.type != "lattice") continue;
+        if (!it.is(ObjectKind::Lattice)) continue;
         if (it.deforms == 0 && !it.settings.ffd.mesh.empty()) resolveLink(it);
         if (it.deforms != 0) lattices[it.id] = static_cast<int>(i);
     }

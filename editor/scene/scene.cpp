@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "freeform/document/object_data.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/geometry_data.h"
 #include "freeform/io/json_check.h"
@@ -58,12 +59,9 @@ std::vector<DocumentObject> bptObjects(const std::string& path)
     std::vector<DocumentObject> objects;
     for (std::size_t i = 0; i < complex.patches.size(); ++i) {
         const auto& patch = complex.patches[i];
-        BezierSurfaceData d;
-        d.degree = {patch.degreeU(), patch.degreeV()};
-        d.points = patch.controlPoints();
         char name[32];
         std::snprintf(name, sizeof name, "patch_%02zu", i);
-        objects.push_back({name, d, ""});
+        objects.push_back({name, toData(patch), ""});
     }
     return objects;
 }
@@ -358,25 +356,12 @@ void Scene::setUpAxis(int i, UpAxis up)
 
 namespace {
 
-/// The meshes, merged into one (vertex indices shifted).
-PolygonMesh mergeMeshes(const std::vector<const PolygonMesh*>& meshes)
+/// The visible meshes as one, as the editor exports them: positions and normals (no texture
+/// coordinates, which not every drawn mesh has).
+PolygonMesh exportedMesh(const std::vector<const PolygonMesh*>& meshes)
 {
-    PolygonMesh out;
-    Eigen::Index total = 0;
-    for (const PolygonMesh* m : meshes) total += m->positions.cols();
-    out.positions.resize(3, total);
-    out.normals.resize(3, total);
-    Eigen::Index offset = 0;
-    for (const PolygonMesh* m : meshes) {
-        out.positions.middleCols(offset, m->positions.cols()) = m->positions;
-        out.normals.middleCols(offset, m->normals.cols()) = m->normals;
-        for (int f = 0; f < m->faceCount(); ++f) {
-            std::vector<int> face(m->face(f), m->face(f) + m->faceSize(f));
-            for (int& v : face) v += static_cast<int>(offset);
-            out.addFace(face.begin(), face.end());
-        }
-        offset += m->positions.cols();
-    }
+    PolygonMesh out = mergeMeshes(meshes);
+    out.texcoords.resize(2, 0);
     return out;
 }
 
@@ -388,7 +373,7 @@ PolygonMesh Scene::mergedMesh()
     std::vector<const PolygonMesh*> meshes;
     for (const SceneItem& item : items_)
         if (item.settings.visible && item.geometry.surface) meshes.push_back(&*item.geometry.surface);
-    return mergeMeshes(meshes);
+    return exportedMesh(meshes);
 }
 
 void Scene::exportMesh(const std::string& path)
@@ -410,7 +395,7 @@ void Scene::exportMesh(const std::string& path)
         }
         if (g->surface) meshes.push_back(&*g->surface);
     }
-    const PolygonMesh mesh = mergeMeshes(meshes);
+    const PolygonMesh mesh = exportedMesh(meshes);
     if (mesh.faceCount() == 0) throw Error("export: the scene has no visible surfaces or meshes");
     writePolygonMesh(mesh, path);
 }
@@ -489,24 +474,6 @@ std::string Scene::documentDirectory() const
 {
     if (!cageDirectory_.empty()) return cageDirectory_;
     return path_.empty() ? std::string() : fs::path(path_).parent_path().string();
-}
-
-SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
-                                  const std::string& what)
-{
-    if (data.mesh.empty()) return data;
-    const SubdivisionCage cage = cageFromData(data, documentDirectory, what);
-    SubdivisionSurfaceData out = data;
-    out.vertices = cage.mesh.positions;
-    out.faces.clear();
-    for (int f = 0; f < cage.mesh.faceCount(); ++f)
-        out.faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
-    out.creases.clear();
-    for (const EdgeCrease& c : cage.creases) out.creases.push_back({double(c.v0), double(c.v1), c.sharpness});
-    out.corners.clear();
-    for (const VertexCorner& c : cage.corners) out.corners.push_back({double(c.vertex), c.sharpness});
-    out.mesh.clear();
-    return out;
 }
 
 Eigen::Matrix3Xd Scene::controlPoints(int i) const
@@ -787,7 +754,7 @@ TessellationWorker& Scene::tessellationWorker()
 
 bool Scene::followsViewTolerance(const SceneItem& item) const
 {
-    if (item.kind != SceneItem::Kind::DocumentObject || item.type == "lattice") return false;
+    if (item.kind != SceneItem::Kind::DocumentObject || item.is(ObjectKind::Lattice)) return false;
     const Tessellation& t = item.settings.tessellation;
     if (t.tolerance > 0) return false; // its own tolerance
     // Uniform surfaces ignore the tolerance; a curve's polyline follows it in either mode.

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform/document/kinds.h"
 #include "freeform/io/document.h"
 #include "freeform/io/up_axis.h"
 #include "freeform/mesh/polygon_mesh.h"
@@ -95,6 +96,14 @@ struct SceneItem {
                                           // settings.ffd.mesh, the document's form), 0: none
     double builtTolerance = 0;            // the world tolerance `geometry` was built for
                                           // (buildGeometry's argument; 0: not built)
+
+    /// The object's row of the kind table (document/kinds.h); nullptr for an imported mesh.
+    const KindInfo* info() const { return kind == Kind::DocumentObject ? findKind(type) : nullptr; }
+    bool is(ObjectKind objectKind) const
+    {
+        const KindInfo* k = info();
+        return k && k->kind == objectKind;
+    }
 };
 
 class TessellationWorker;
@@ -328,12 +337,6 @@ private:
 /// to view.tolerance(control-point box of the patch) (geometry.patchBoxes / patchTolerance).
 ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
                            const std::string& documentDirectory = {}, const PixelScale& view = {});
-/// A subdivision_surface whose cage is in a mesh file as inline vertices and faces, with the file's
-/// crease tags (and the object's own creases and corners) as creases / corners; an inline one as it
-/// is. Error prefixed with `what` when the file cannot be read. Edits and deformations of a file
-/// cage go through this, so the file itself is never rewritten.
-SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
-                                  const std::string& what);
 /// Reads a mesh file and makes sure it has triangles and per-vertex normals.
 ItemGeometry buildMeshGeometry(const std::string& path, UpAxis up = UpAxis::Z);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.

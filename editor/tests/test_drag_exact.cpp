@@ -478,7 +478,7 @@ void shrinkLattice(Drag& d, const std::string& outside)
     auto& data = std::get<LatticeData>(object.data);
     data.origin += 0.15 * data.axes * Eigen::Vector3d(1, 1, 1);
     data.axes *= 0.7;
-    data.outside = outside;
+    data.outside = parseOutsidePolicy(outside, "outside");
     const Lattice shrunk = latticeFromData(data);
     const Lattice::Points points = shrunk.restPoints();
     data.points = points;

@@ -47,8 +47,8 @@ bool curveLike(const ToolContext& c)
 {
     const int item = c.selection.item;
     if (item < 0 || item >= c.scene.itemCount()) return false;
-    const std::string& type = c.scene.item(item).type;
-    return type == "bezier_curve" || type == "bezier_spline" || type == "deboor_spline";
+    const KindInfo* kind = c.scene.item(item).info();
+    return kind && kind->isCurve() && !kind->rational;
 }
 
 /// Replaces the selected object's data by op(data); Error messages go to `status`.

@@ -49,7 +49,7 @@ bool LatticeTool::onKey(ToolContext& c, KeyAction action)
         return true;
     case KeyAction::ApplyLattice: {
         const int item = c.selection.item;
-        if (item < 0 || item >= c.scene.itemCount() || c.scene.item(item).type != "lattice") return false;
+        if (item < 0 || item >= c.scene.itemCount() || !c.scene.item(item).is(ObjectKind::Lattice)) return false;
         applyLatticeToObjects(c, item); // the panel's "apply exactly to curves and patches"
         return true;
     }
@@ -224,7 +224,7 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
         std::string why;
         int skipped = 0;
         for (const SkippedObject& s : report.skipped) {
-            if (s.type == "lattice") continue;
+            if (kindNamed(s.type) == ObjectKind::Lattice) continue;
             ++skipped;
             why = s.name + ": " + s.reason;
         }

@@ -180,11 +180,7 @@ ObjectData arcData(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& a,
 
 // ------------------------------------------------------------------ queries
 
-bool NurbsTool::handles(const std::string& type)
-{
-    return type == "rational_bezier_curve" || type == "rational_bezier_surface" || type == "nurbs_curve" ||
-           type == "nurbs_surface";
-}
+bool NurbsTool::handles(const KindInfo* kind) { return kind && kind->rational; }
 
 std::vector<double> NurbsTool::weightsOf(const Scene& scene, int item)
 {
@@ -222,7 +218,7 @@ double NurbsTool::sliderParameter(const ToolContext& c) const
 bool NurbsTool::onKey(ToolContext& c, KeyAction action)
 {
     const int item = c.selection.item;
-    const std::string type = item >= 0 && item < c.scene.itemCount() ? c.scene.item(item).type : std::string();
+    const KindInfo* kind = item >= 0 && item < c.scene.itemCount() ? c.scene.item(item).info() : nullptr;
     switch (action) {
     case KeyAction::CreateCircle:
     case KeyAction::CreateArc:
@@ -234,11 +230,11 @@ bool NurbsTool::onKey(ToolContext& c, KeyAction action)
         cancelCreating();
         return true;
     case KeyAction::InsertKnot:
-        if (type != "nurbs_curve" && type != "nurbs_surface") return false;
+        if (!kind || !kind->knots) return false;
         insertKnot(c, sliderParameter(c), direction);
         return true;
     case KeyAction::DeBoorConstruction:
-        if (type != "nurbs_curve" && type != "rational_bezier_curve") return false;
+        if (!handles(kind) || !kind->isCurve()) return false;
         construction = !construction;
         return true;
     default: return false;
@@ -278,7 +274,7 @@ bool NurbsTool::onPointer(ToolContext& c, const PointerEvent& e)
     double best = std::numeric_limits<double>::infinity();
     for (int i = 0; i < scene.itemCount(); ++i) {
         const SceneItem& it = scene.item(i);
-        if (!handles(it.type) || !it.settings.visible) continue;
+        if (!handles(it.info()) || !it.settings.visible) continue;
         const Eigen::Matrix3Xd points = scene.controlPoints(i);
         const auto k = pickPoint(view, points, e.x, e.y, 10);
         if (!k) continue;
@@ -376,7 +372,7 @@ bool NurbsTool::setWeights(ToolContext& c, int item, const std::vector<int>& ks,
 bool NurbsTool::scaleWeights(ToolContext& c, int item, const std::vector<int>& ks, const std::vector<double>& start, double factor)
 {
     try {
-        if (item < 0 || item >= c.scene.itemCount() || !handles(c.scene.item(item).type))
+        if (item < 0 || item >= c.scene.itemCount() || !handles(c.scene.item(item).info()))
             throw Error("weights: select a rational Bézier or NURBS object first");
         if (ks.empty()) throw Error("weights: select control points first");
         DocumentObject next = c.scene.object(item);
@@ -482,7 +478,7 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
     }
     int item = -1;
     const DocumentObject* object = selectedObject(c, item);
-    if (!object || !handles(c.scene.item(item).type)) return;
+    if (!object || !handles(c.scene.item(item).info())) return;
     try {
         const double size = sceneSize(c.scene);
         if (const auto curve = curve3(object->data)) {

@@ -35,7 +35,7 @@ public:
     void drawPanel(ToolContext& context) override;
 
     /// Whether the type is one of the four rational/NURBS document types.
-    static bool handles(const std::string& type);
+    static bool handles(const KindInfo* kind);
     /// The weights of item i's control points (1 for each when the object stores none; empty for
     /// other types).
     static std::vector<double> weightsOf(const Scene& scene, int item);

@@ -44,10 +44,17 @@ void headersRow(const char* const* tips)
     }
 }
 
-std::string selectedType(const ToolContext& c)
+/// The selected object's row of the kind table; nullptr when nothing or a mesh is selected.
+const KindInfo* selectedKind(const ToolContext& c)
 {
     const int item = c.selection.item;
-    return item >= 0 && item < c.scene.itemCount() ? c.scene.item(item).type : std::string();
+    return item >= 0 && item < c.scene.itemCount() ? c.scene.item(item).info() : nullptr;
+}
+
+bool selectedIs(const ToolContext& c, ObjectKind kind)
+{
+    const KindInfo* k = selectedKind(c);
+    return k && k->kind == kind;
 }
 
 } // namespace
@@ -74,8 +81,8 @@ void CurveTool::drawToolbar(ToolContext& c)
 
 void CurveTool::drawPanel(ToolContext& c)
 {
-    const std::string type = selectedType(c);
-    if (type != "bezier_curve" && type != "bezier_spline" && type != "deboor_spline") return;
+    const KindInfo* kind = selectedKind(c);
+    if (!kind || !kind->isCurve() || kind->rational) return;
     ImGui::TextUnformatted("Curve tools");
     float tf = static_cast<float>(t);
     if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
@@ -89,7 +96,7 @@ void CurveTool::drawPanel(ToolContext& c)
         if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) combScale = scale;
         tooltip("Length of the comb's teeth per unit of curvature");
     }
-    if (type != "deboor_spline") {
+    if (kind->kind != ObjectKind::DeBoorSpline) {
         if (ImGui::Button("elevate degree (E)")) elevateSelected(c);
         tooltip("The same curve one degree higher (a spline: every segment; refused while a joint is C2)");
         sameLineIfFits("split at t (K)");
@@ -107,7 +114,7 @@ void CurveTool::drawPanel(ToolContext& c)
 
 void SplineTool::drawPanel(ToolContext& c)
 {
-    if (selectedType(c) != "bezier_spline") return;
+    if (!selectedIs(c, ObjectKind::BezierSpline)) return;
     const int item = c.selection.item;
     const auto& d = std::get<BezierSplineData>(c.scene.object(item).data);
     ImGui::Separator();
@@ -257,8 +264,8 @@ void drawTessellationSettings(ToolContext& c)
 
 void PatchTool::drawPanel(ToolContext& c)
 {
-    const std::string type = selectedType(c);
-    if (type != "bezier_surface" && type != "deboor_surface") return;
+    const KindInfo* kind = selectedKind(c);
+    if (!kind || !kind->isSurface() || kind->rational || kind->parameters != KindParameters::UV) return;
     drawTessellationSettings(c);
     ImGui::Separator();
     if (ImGui::Button("edge continuity of all patches")) computeEdgeContinuity(c);
@@ -306,10 +313,10 @@ void PatchTool::drawPanel(ToolContext& c)
 
 void LatticeTool::drawPanel(ToolContext& c)
 {
-    const std::string type = selectedType(c);
     const int item = c.selection.item;
-    if (type == "mesh") return drawMeshPanel(c, item);
-    if (type != "lattice") return;
+    if (item >= 0 && item < c.scene.itemCount() && c.scene.item(item).kind == SceneItem::Kind::ImportedMesh)
+        return drawMeshPanel(c, item);
+    if (!selectedIs(c, ObjectKind::Lattice)) return;
     ImGui::TextUnformatted("Free-form deformation");
     ObjectSettings settings = c.scene.item(item).settings;
     // The mesh it deforms (the link is the mesh's id; the document names it).
@@ -353,7 +360,8 @@ void LatticeTool::drawPanel(ToolContext& c)
         "Vertices outside the lattice box do not move (the mesh tears at the box where its boundary points moved)",
         "Vertices outside move as the nearest point of the box does: continuous everywhere (what Blender does)",
         "The lattice's polynomial continued outside the box: smooth, but it grows quickly away from it"};
-    int policy = data.outside == "keep" ? 0 : data.outside == "clamp" ? 1 : 2;
+    static_assert(int(OutsidePolicy::Keep) == 0 && int(OutsidePolicy::Clamp) == 1 && int(OutsidePolicy::Extrapolate) == 2);
+    int policy = static_cast<int>(data.outside);
     // BeginCombo rather than Combo (the same control) so that the open list's entries are recorded.
     bool policyChanged = false;
     noteDropdown("outside");
@@ -372,7 +380,7 @@ void LatticeTool::drawPanel(ToolContext& c)
         ImGui::EndCombo();
     }
     if (policyChanged) {
-        data.outside = policies[policy];
+        data.outside = static_cast<OutsidePolicy>(policy);
         try {
             c.scene.replaceObject(item, o, "outside policy");
         } catch (const Error& e) {
@@ -497,10 +505,10 @@ void NurbsTool::drawToolbar(ToolContext&)
 
 void NurbsTool::drawPanel(ToolContext& c)
 {
-    const std::string type = selectedType(c);
-    if (!handles(type)) return;
+    const KindInfo* kind = selectedKind(c);
+    if (!handles(kind)) return;
     const int item = c.selection.item;
-    if (type == "nurbs_surface" || type == "rational_bezier_surface") {
+    if (kind->isSurface()) {
         drawTessellationSettings(c);
         ImGui::Separator();
     }
@@ -530,15 +538,15 @@ void NurbsTool::drawPanel(ToolContext& c)
             setWeights(c, item, c.selection.points, typedWeight);
         tooltip("Set the selected points' weight to the typed value (one undo step)");
     }
-    const bool curve = type == "nurbs_curve" || type == "rational_bezier_curve";
+    const bool curve = kind->isCurve();
     if (curve) ImGui::Checkbox("de Boor construction at t (T)", &construction);
     if (curve) tooltip("Show the de Boor construction (homogeneous, projected) at the slider's parameter t");
-    if (type != "nurbs_curve" && type != "nurbs_surface") return;
+    if (!kind->knots) return;
     ImGui::Separator();
     ImGui::TextUnformatted("Knots");
     ImGui::Checkbox("show knots", &showKnots);
     tooltip("Curves: a dot at each distinct knot, one tick per unit of multiplicity (red: C0 or less). Surfaces: isoparametric lines at the knots");
-    if (type == "nurbs_surface") {
+    if (kind->isSurface()) {
         ImGui::RadioButton("in u", &direction, 0);
         tooltip("Insert knots in the u direction (every column of the net)");
         ImGui::SameLine();

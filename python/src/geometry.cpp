@@ -496,9 +496,8 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
                 const auto& o = d.object(name);
                 auto c = freeform::AnyCurve::of(o);
                 if (!c) {
-                    const std::string t = o.type();
-                    if (t == "rational_bezier_curve" || t == "nurbs_curve") return geometryObject(d, o);
-                    throw freeform::Error(d.what(o) + ": is a " + t + ", not a curve or spline");
+                    if (o.info().isCurve()) return geometryObject(d, o); // the rational and NURBS curves
+                    throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a curve or spline");
                 }
                 return std::visit(
                     [](const auto& v) -> py::object {
@@ -539,7 +538,8 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
             [](freeform::TypedDocument& d, const std::string& name, const std::string& to, std::optional<std::string> end) {
                 const auto& o = d.object(name);
                 const freeform::ObjectId id = o.id();
-                if (to == "bezier_spline" || to == "deboor_spline") {
+                const freeform::KindInfo* target = freeform::findKind(to);
+                if (target && target->supports(freeform::KindOperation::ConvertSpline)) {
                     std::optional<freeform::EndCondition> e;
                     if (end) e = freeform::parseEndCondition(*end, "end");
                     freeform::convertSpline(d, id, to, e);
@@ -549,7 +549,7 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
                 // An object of the requested kind already: nothing to convert, the object is kept
                 // as it is (bit for bit), as converting a bezier_spline to bezier_spline does.
                 if (o.type() == to) return to;
-                const bool toNurbs = to == "nurbs_curve" || to == "nurbs_surface";
+                const bool toNurbs = target && target->knots;
                 freeform::ObjectData data = toNurbs ? freeform::toNurbsData(d, o) : freeform::fromNurbsData(d, o);
                 const std::string got = freeform::objectType(data);
                 if (got != to)

@@ -386,31 +386,15 @@ py::dict certificateDict(const freeform::Certificate& c)
 
 PyLattice load(const std::string& path, const std::optional<std::string>& name)
 {
-    freeform::TypedDocument doc;
+    freeform::Document doc;
     {
         py::gil_scoped_release release;
-        doc = freeform::TypedDocument::read(path);
+        doc = freeform::readDocument(path);
     }
-    const freeform::TypedObject* object = nullptr;
-    if (name) {
-        object = &doc.object(*name);
-        if (!std::holds_alternative<Lattice>(object->geometry()))
-            throw freeform::Error(doc.what(*object) + ": is a " + object->type() + ", not a lattice");
-    } else {
-        std::vector<std::string> names;
-        for (const auto& o : doc.objects())
-            if (std::holds_alternative<Lattice>(o.geometry())) {
-                if (!object) object = &o;
-                names.push_back(o.name());
-            }
-        if (!object) throw freeform::Error(path + ": no lattice object");
-        if (names.size() > 1) {
-            std::string list;
-            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-            throw freeform::Error(path + ": several lattice objects (" + list + "): give name=");
-        }
-    }
-    return PyLattice(std::get<Lattice>(object->geometry()), object->name());
+    const freeform::DocumentObject& object = freeform::findLattice(doc, name, "give name=");
+    const freeform::Geometry geometry =
+        freeform::buildGeometry(object.data, "", doc.source + ": object \"" + object.name + "\"");
+    return PyLattice(std::get<freeform::Lattice>(geometry), object.name);
 }
 
 std::array<int, 3> degreeOf(py::handle h)

@@ -1,5 +1,6 @@
-// The Python module `freeform` (docs/python.md): freeform.Error and the bindings of lattice.cpp
-// and geometry.cpp. A front end on the document layer (docs/architecture.md), like cli/.
+// The Python module `freeform` (docs/python.md): freeform.Error, the kind table (kinds()) and the
+// bindings of lattice.cpp, geometry.cpp and nurbs.cpp. A front end on the document layer
+// (docs/architecture.md), like cli/.
 
 #include "arrays.h"
 
@@ -7,12 +8,43 @@
 
 #include <freeform/core/error.h>
 #include <freeform/core/warning.h>
+#include <freeform/document/kinds.h>
 
 namespace ffpy {
 void bindLattice(pybind11::module_& m);
 void bindGeometry(pybind11::module_& m);
 void bindNurbs(pybind11::module_& m);
 } // namespace ffpy
+
+namespace {
+
+/// One row of the kind table (document/kinds.h) as a dict.
+pybind11::dict kindDict(const freeform::KindInfo& k)
+{
+    using Op = freeform::KindOperation;
+    static const std::pair<Op, const char*> operations[] = {
+        {Op::Evaluate, "evaluate"},   {Op::Polyline, "polyline"},         {Op::Tessellate, "tessellate"},
+        {Op::Deform, "deform"},       {Op::Continuity, "continuity"},     {Op::ConvertSpline, "convert_spline"},
+        {Op::ToNurbs, "to_nurbs"},    {Op::FromNurbs, "from_nurbs"},      {Op::DeformsOthers, "deforms_others"}};
+    static const char* const natures[] = {"curve", "surface", "volume"};
+    static const char* const parameters[] = {"t", "uv", "face_uv", "stu"};
+    pybind11::list ops;
+    for (const auto& [op, name] : operations)
+        if (k.supports(op)) ops.append(name);
+    pybind11::dict d;
+    d["name"] = std::string(k.name);
+    d["summary"] = std::string(k.summary);
+    d["nature"] = natures[static_cast<int>(k.nature)];
+    d["parameters"] = parameters[static_cast<int>(k.parameters)];
+    d["dimension"] = k.dimension;
+    d["rational"] = k.rational;
+    d["knots"] = k.knots;
+    d["pieces"] = k.pieces;
+    d["operations"] = ops;
+    return d;
+}
+
+} // namespace
 
 PYBIND11_MODULE(freeform, m)
 {
@@ -31,6 +63,16 @@ PYBIND11_MODULE(freeform, m)
         pybind11::gil_scoped_acquire gil;
         if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) PyErr_WriteUnraisable(nullptr);
     });
+    m.def(
+        "kinds",
+        [] {
+            pybind11::list out;
+            for (const freeform::KindInfo& k : freeform::objectKinds()) out.append(kindDict(k));
+            return out;
+        },
+        "The kind table (docs/architecture.md): one dict per document object kind, in the format's order, with "
+        "name, summary, nature ('curve', 'surface', 'volume'), parameters ('t', 'uv', 'face_uv', 'stu'), dimension "
+        "(0: 2 or 3), rational, knots, pieces and the operations it supports.");
     ffpy::bindLattice(m);
     ffpy::bindGeometry(m);
     ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve

@@ -396,34 +396,16 @@ py::object geometryObject(const freeform::TypedDocument& doc, const freeform::Ty
 
 freeform::ObjectData objectData(py::handle h)
 {
-    if (py::isinstance<PyCurve>(h))
-        return std::visit([](const auto& c) { return freeform::BezierCurveData{c.controlPoints()}; }, h.cast<const PyCurve&>().c);
-    if (py::isinstance<PySpline>(h))
-        return std::visit(
-            [](const auto& c) {
-                freeform::BezierSplineData d;
-                d.degree = c.degree();
-                d.closed = c.closed();
-                d.points = c.controlPoints();
-                d.intervals = c.intervals();
-                return d;
-            },
-            h.cast<const PySpline&>().s);
-    if (py::isinstance<PyPatch>(h)) {
-        const auto& p = h.cast<const PyPatch&>().p;
-        freeform::BezierSurfaceData d;
-        d.degree = {p.degreeU(), p.degreeV()};
-        d.points = p.controlPoints();
-        return d;
-    }
-    if (py::isinstance<PyLattice>(h)) return freeform::latticeToData(h.cast<PyLattice&>().snapshot());
-    if (py::isinstance<PyRationalCurve>(h))
-        return std::visit([](const auto& c) { return freeform::ObjectData(freeform::rationalCurveData(c)); },
-                          h.cast<const PyRationalCurve&>().c);
-    if (py::isinstance<PyNurbsCurve>(h))
-        return std::visit([](const auto& c) { return freeform::ObjectData(freeform::nurbsCurveData(c)); }, h.cast<const PyNurbsCurve&>().c);
-    if (py::isinstance<PyRationalSurface>(h)) return freeform::rationalSurfaceData(h.cast<const PyRationalSurface&>().s);
-    if (py::isinstance<PyNurbsSurface>(h)) return freeform::nurbsSurfaceData(h.cast<const PyNurbsSurface&>().s);
+    // The document layer's toData (document/object_data.h), the inverse of buildGeometry.
+    const auto data = [](const auto& g) { return freeform::ObjectData(freeform::toData(g)); };
+    if (py::isinstance<PyCurve>(h)) return std::visit(data, h.cast<const PyCurve&>().c);
+    if (py::isinstance<PySpline>(h)) return std::visit(data, h.cast<const PySpline&>().s);
+    if (py::isinstance<PyPatch>(h)) return data(h.cast<const PyPatch&>().p);
+    if (py::isinstance<PyLattice>(h)) return data(h.cast<PyLattice&>().snapshot());
+    if (py::isinstance<PyRationalCurve>(h)) return std::visit(data, h.cast<const PyRationalCurve&>().c);
+    if (py::isinstance<PyNurbsCurve>(h)) return std::visit(data, h.cast<const PyNurbsCurve&>().c);
+    if (py::isinstance<PyRationalSurface>(h)) return data(h.cast<const PyRationalSurface&>().s);
+    if (py::isinstance<PyNurbsSurface>(h)) return data(h.cast<const PyNurbsSurface&>().s);
     throw py::type_error("expected a freeform geometry object (BezierCurve, Spline, Patch, Lattice, RationalBezierCurve, "
                          "NurbsCurve, RationalBezierSurface, NurbsSurface), got " +
                          std::string(py::str(py::type::handle_of(h).attr("__name__"))));

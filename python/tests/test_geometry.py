@@ -221,3 +221,38 @@ def test_a_reader_warning_is_a_python_warning(tmp_path):
         mesh = ff.MeshFile.read(str(path))
     assert len(record) == 1
     assert mesh.positions.shape == (3, 3)
+
+
+def test_kinds_table_describes_every_object_of_the_documents():
+    # ff.kinds() is the library's kind table; each row's parameters, nature and operations are
+    # checked against what the Document calls do with a real object of that kind.
+    kinds = ff.kinds()
+    table = {k["name"]: k for k in kinds}
+    assert len(table) == len(kinds) == 11
+    at = {"t": [0.0], "uv": [0.0, 0.0], "face_uv": [0, 0.5, 0.5], "stu": [0.5, 0.25, 0.75]}
+    seen = set()
+    for path in (ROOT / "data" / "ffd_every_type.json", ROOT / "examples" / "data" / "nurbs.json"):
+        doc = ff.Document.load(str(path))
+        for o in json.loads(path.read_text())["objects"]:
+            name = o["name"]
+            k = table[doc.type(name)]
+            assert k["name"] == o["type"]
+            seen.add(k["name"])
+            assert k["rational"] == (o["type"].startswith("rational") or o["type"].startswith("nurbs"))
+            assert k["knots"] == ("knots" in o)
+            r = doc.evaluate(name, at[k["parameters"]])
+            assert len(r["point"]) == (k["dimension"] or len(o["points"][0]))
+            with pytest.raises(ff.Error):
+                doc.evaluate(name, at[k["parameters"]][:-1])
+            if k["nature"] == "curve":
+                doc.curve(name)
+            else:
+                with pytest.raises(ff.Error):
+                    doc.curve(name)
+            if "tessellate" in k["operations"]:
+                positions, faces, _ = doc.tessellate(name, segments=2)
+                assert len(positions) > 0 and len(faces) > 0
+            else:
+                with pytest.raises(ff.Error):
+                    doc.tessellate(name, segments=2)
+    assert seen == set(table)

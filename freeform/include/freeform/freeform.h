@@ -50,6 +50,7 @@
 #include "freeform/io/obj_freeform.h"
 #include "freeform/io/up_axis.h"
 #include "freeform/document/document.h"
+#include "freeform/document/kinds.h"
 #include "freeform/document/model.h"
 #include "freeform/document/object_data.h"
 #include "freeform/document/operations.h"

@@ -208,16 +208,8 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 } else {
                     // A cage from a mesh file is written inline (its OBJ crease tags become the
                     // object's creases and corners), so the document holds the deformed cage.
-                    v = cage.mesh.positions;
-                    d.mesh.clear();
-                    d.faces.clear();
-                    for (int f = 0; f < cage.mesh.faceCount(); ++f)
-                        d.faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
-                    d.creases.clear();
-                    d.corners.clear();
-                    for (const EdgeCrease& e : cage.creases)
-                        d.creases.push_back({double(e.v0), double(e.v1), e.sharpness});
-                    for (const VertexCorner& c : cage.corners) d.corners.push_back({double(c.vertex), c.sharpness});
+                    d = toData(*sub); // Error when the file's cage has what the inline form cannot hold
+                    v = d.vertices;
                     note = "the cage from \"" + data.mesh + "\" is written inline; ";
                 }
                 DeformOptions deform;

@@ -1,6 +1,8 @@
-// The plain data of rational and NURBS geometry (document/object_data.h).
+// The plain data of every kind of geometry (document/object_data.h).
 
 #include "freeform/document/object_data.h"
+
+#include "freeform/io/geometry_data.h"
 
 namespace freeform {
 namespace {
@@ -30,7 +32,75 @@ RationalBezierCurveData rationalData(const RationalBezierCurve<double, Dim>& c)
     return d;
 }
 
+template <int Dim>
+BezierSplineData splineToData(const BezierSpline<double, Dim>& s)
+{
+    BezierSplineData d;
+    d.degree = s.degree();
+    d.closed = s.closed();
+    d.points = s.controlPoints();
+    d.intervals = s.intervals();
+    return d;
+}
+
+template <int Dim>
+DeBoorSplineData deBoorToData(const DeBoorSpline<Dim>& s)
+{
+    DeBoorSplineData d;
+    d.degree = 3;
+    d.end = toString(s.end);
+    d.points = s.points;
+    d.intervals = s.intervals;
+    return d;
+}
+
 } // namespace
+
+BezierCurveData toData(const BezierCurve<double, 2>& curve) { return {curve.controlPoints()}; }
+BezierCurveData toData(const BezierCurve<double, 3>& curve) { return {curve.controlPoints()}; }
+BezierSplineData toData(const BezierSpline<double, 2>& spline) { return splineToData(spline); }
+BezierSplineData toData(const BezierSpline<double, 3>& spline) { return splineToData(spline); }
+DeBoorSplineData toData(const DeBoorSpline<2>& spline) { return deBoorToData(spline); }
+DeBoorSplineData toData(const DeBoorSpline<3>& spline) { return deBoorToData(spline); }
+
+BezierSurfaceData toData(const BezierSurface<double, 3>& surface)
+{
+    BezierSurfaceData d;
+    d.degree = {surface.degreeU(), surface.degreeV()};
+    d.points = surface.controlPoints();
+    return d;
+}
+
+DeBoorSurfaceData toData(const DeBoorSurface& surface)
+{
+    DeBoorSurfaceData d;
+    d.degree = {3, 3};
+    d.end = {toString(surface.end[0]), toString(surface.end[1])};
+    d.rows = surface.rows;
+    d.cols = surface.cols;
+    d.points = surface.points;
+    return d;
+}
+
+LatticeData toData(const Lattice& lattice) { return latticeToData(lattice); }
+
+SubdivisionSurfaceData toData(const SubdivisionObject& surface)
+{
+    return cageToData(surface.cage(), toString(surface.surface.scheme()), toString(surface.surface.boundary()),
+                      "subdivision_surface");
+}
+
+RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve) { return rationalCurveData(curve); }
+RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve) { return rationalCurveData(curve); }
+RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface) { return rationalSurfaceData(surface); }
+NurbsCurveData toData(const NurbsCurve<double, 2>& curve) { return nurbsCurveData(curve); }
+NurbsCurveData toData(const NurbsCurve<double, 3>& curve) { return nurbsCurveData(curve); }
+NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface) { return nurbsSurfaceData(surface); }
+
+ObjectData toData(const Geometry& geometry)
+{
+    return std::visit([](const auto& g) -> ObjectData { return toData(g); }, geometry);
+}
 
 NurbsCurveData nurbsCurveData(const NurbsCurve<double, 2>& curve) { return curveData(curve); }
 NurbsCurveData nurbsCurveData(const NurbsCurve<double, 3>& curve) { return curveData(curve); }

@@ -177,6 +177,51 @@ ControlNet controlNet(const TypedObject& object)
     return net;
 }
 
+DocumentTessellation tessellateDocument(const TypedDocument& doc, const TypedObject* object,
+                                        const TessellationOptions& options)
+{
+    auto rationalSurface = [](const TypedObject& o) { return o.info().rational && o.info().isSurface(); };
+    PatchComplex complex;
+    std::vector<const TypedObject*> rational;
+    if (object) {
+        if (rationalSurface(*object)) rational.push_back(object);
+        else complex = surfacePatches(doc, *object);
+    } else {
+        for (const TypedObject& o : doc.objects())
+            if (rationalSurface(o)) rational.push_back(&o);
+        const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(),
+                                            [](const TypedObject& o) { return AnySurface::of(o).has_value(); });
+        // documentPatches says "no surface objects" when the document has none of any kind.
+        if (polynomial || rational.empty()) complex = documentPatches(doc);
+    }
+    DocumentTessellation out;
+    if (!complex.patches.empty()) out.mesh = tessellate(complex, options, &out.report);
+    out.patches = complex.patches.size();
+    if (rational.empty()) return out;
+
+    ObjectTessellation settings;
+    settings.tolerance = options.tolerance;
+    settings.segments = options.segmentsU;
+    settings.flip = options.flipNormals;
+    std::vector<PolygonMesh> meshes;
+    if (!complex.patches.empty()) meshes.push_back(std::move(out.mesh));
+    for (const TypedObject* o : rational) {
+        TessellationReport report;
+        std::optional<PolygonMesh> mesh = tessellateObject(*o, settings, &report);
+        out.patches += report.segments.size();
+        out.report.errorBound = std::max(out.report.errorBound, report.errorBound);
+        meshes.push_back(std::move(*mesh)); // a rational surface always has one
+    }
+    if (meshes.size() == 1) {
+        out.mesh = std::move(meshes.front());
+    } else {
+        std::vector<const PolygonMesh*> parts;
+        for (const PolygonMesh& m : meshes) parts.push_back(&m);
+        out.mesh = mergeMeshes(parts);
+    }
+    return out;
+}
+
 // ---------------------------------------------------------------- convert
 
 BezierSplineData toBezierSplineData(const TypedDocument& doc, const TypedObject& object)

@@ -265,21 +265,23 @@ void patchGrid(const Json& obj, std::array<int, 2>& degree, PointColumns& points
 
 ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
 {
-    if (type == "rational_bezier_curve") {
+    const std::optional<ObjectKind> kind = kindNamed(type);
+    if (kind) switch (*kind) {
+    case ObjectKind::RationalBezierCurve: {
         onlyKnown(obj, {"name", "type", "points", "weights", "editor"}, w);
         RationalBezierCurveData d;
         d.points = bezierPoints(obj, w);
         d.weights = weightsOf(obj, 0, static_cast<int>(d.points.cols()), true, w);
         return d;
     }
-    if (type == "rational_bezier_surface") {
+    case ObjectKind::RationalBezierSurface: {
         onlyKnown(obj, {"name", "type", "degree", "points", "weights", "editor"}, w);
         RationalBezierSurfaceData d;
         patchGrid(obj, d.degree, d.points, w);
         d.weights = weightsOf(obj, d.degree[0] + 1, d.degree[1] + 1, true, w);
         return d;
     }
-    if (type == "nurbs_curve") {
+    case ObjectKind::NurbsCurve: {
         onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
         NurbsCurveData d;
         d.degree = curveDegree(obj, w);
@@ -292,7 +294,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         d.weights = weightsOf(obj, 0, static_cast<int>(count), false, w);
         return d;
     }
-    if (type == "nurbs_surface") {
+    case ObjectKind::NurbsSurface: {
         onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
         NurbsSurfaceData d;
         d.degree = degreeArray<2>(member(obj, "degree", w), w);
@@ -310,13 +312,13 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         d.weights = weightsOf(obj, d.rows, d.cols, false, w);
         return d;
     }
-    if (type == "bezier_curve") {
+    case ObjectKind::BezierCurve: {
         onlyKnown(obj, {"name", "type", "points", "editor"}, w);
         BezierCurveData d;
         d.points = bezierPoints(obj, w);
         return d;
     }
-    if (type == "bezier_spline") {
+    case ObjectKind::BezierSpline: {
         onlyKnown(obj, {"name", "type", "degree", "closed", "points", "intervals", "editor"}, w);
         BezierSplineData d;
         d.degree = curveDegree(obj, w);
@@ -342,7 +344,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         }
         return d;
     }
-    if (type == "deboor_spline") {
+    case ObjectKind::DeBoorSpline: {
         onlyKnown(obj, {"name", "type", "degree", "end", "points", "intervals", "editor"}, w);
         DeBoorSplineData d;
         d.degree = integer(member(obj, "degree", w), "degree", w);
@@ -366,13 +368,13 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         }
         return d;
     }
-    if (type == "bezier_surface") {
+    case ObjectKind::BezierSurface: {
         onlyKnown(obj, {"name", "type", "degree", "points", "editor"}, w);
         BezierSurfaceData d;
         patchGrid(obj, d.degree, d.points, w);
         return d;
     }
-    if (type == "deboor_surface") {
+    case ObjectKind::DeBoorSurface: {
         onlyKnown(obj, {"name", "type", "degree", "end", "points", "editor"}, w);
         DeBoorSurfaceData d;
         d.degree = degreeArray<2>(member(obj, "degree", w), w);
@@ -392,7 +394,7 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
                                  "\" in v (needs at least " + std::to_string(need[1]) + ")");
         return d;
     }
-    if (type == "lattice") {
+    case ObjectKind::Lattice: {
         onlyKnown(obj, {"name", "type", "degree", "origin", "axes", "points", "outside", "editor"}, w);
         LatticeData d;
         d.degree = degreeArray<3>(member(obj, "degree", w), w);
@@ -406,10 +408,10 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         if (d.points.cols() != expected)
             w.fail("points", "has " + std::to_string(d.points.cols()) + " points, degree needs " + std::to_string(expected));
         if (obj.contains("outside"))
-            d.outside = oneOf(obj["outside"], "outside", {"keep", "clamp", "extrapolate"}, w);
+            d.outside = parseOutsidePolicy(oneOf(obj["outside"], "outside", {"keep", "clamp", "extrapolate"}, w), "outside");
         return d;
     }
-    if (type == "subdivision_surface") {
+    case ObjectKind::SubdivisionSurface: {
         onlyKnown(obj, {"name", "type", "mesh", "vertices", "faces", "scheme", "creases", "corners", "boundary", "editor"}, w);
         SubdivisionSurfaceData d;
         if (obj.contains("scheme")) d.scheme = oneOf(obj["scheme"], "scheme", {"catmark", "loop"}, w);
@@ -462,10 +464,10 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         }
         return d;
     }
-    w.fail("type", "unknown object type \"" + type +
-                       "\" (known: bezier_curve, bezier_spline, deboor_spline, bezier_surface, "
-                       "deboor_surface, lattice, subdivision_surface, rational_bezier_curve, rational_bezier_surface, "
-                       "nurbs_curve, nurbs_surface)");
+    }
+    std::string known;
+    for (int k = 0; k < objectKindCount; ++k) known += (k ? ", " : "") + std::string(kindName(static_cast<ObjectKind>(k)));
+    w.fail("type", "unknown object type \"" + type + "\" (known: " + known + ")");
 }
 
 Json pointsJson(const PointColumns& p)
@@ -537,7 +539,7 @@ struct ObjectWriter {
         j["origin"] = pointsJson(d.origin)[0];
         j["axes"] = pointsJson(d.axes);
         j["points"] = pointsJson(d.points);
-        j["outside"] = d.outside;
+        j["outside"] = toString(d.outside);
     }
     void operator()(const SubdivisionSurfaceData& d) const
     {
@@ -589,14 +591,44 @@ struct ObjectWriter {
 
 } // namespace
 
-std::string objectType(const ObjectData& data)
+namespace {
+constexpr std::string_view kindNames[] = {"bezier_curve",   "bezier_spline", "deboor_spline",      "bezier_surface",
+                                          "deboor_surface", "lattice",       "subdivision_surface",
+                                          "rational_bezier_curve", "rational_bezier_surface", "nurbs_curve",
+                                          "nurbs_surface"};
+static_assert(std::variant_size_v<ObjectData> == std::size(kindNames));
+static_assert(objectKindCount == std::size(kindNames));
+} // namespace
+
+std::string_view kindName(ObjectKind kind) { return kindNames[static_cast<int>(kind)]; }
+
+std::optional<ObjectKind> kindNamed(std::string_view name)
 {
-    static const char* const names[] = {"bezier_curve",   "bezier_spline", "deboor_spline",      "bezier_surface",
-                                        "deboor_surface", "lattice",       "subdivision_surface",
-                                        "rational_bezier_curve", "rational_bezier_surface", "nurbs_curve",
-                                        "nurbs_surface"};
-    static_assert(std::variant_size_v<ObjectData> == std::size(names));
-    return names[data.index()];
+    for (int k = 0; k < objectKindCount; ++k)
+        if (kindNames[k] == name) return static_cast<ObjectKind>(k);
+    return std::nullopt;
+}
+
+std::string objectType(const ObjectData& data) { return std::string(kindName(objectKind(data))); }
+
+const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name, const std::string& choose)
+{
+    if (name) {
+        const DocumentObject& o = doc.object(*name);
+        if (!std::holds_alternative<LatticeData>(o.data))
+            throw Error(doc.source + ": object \"" + *name + "\" is a " + objectType(o.data) + ", not a lattice");
+        return o;
+    }
+    std::vector<const DocumentObject*> found;
+    for (const DocumentObject& o : doc.objects)
+        if (std::holds_alternative<LatticeData>(o.data)) found.push_back(&o);
+    if (found.empty()) throw Error(doc.source + ": has no lattice object");
+    if (found.size() > 1) {
+        std::string list;
+        for (const DocumentObject* o : found) list += (list.empty() ? "" : ", ") + o->name;
+        throw Error(doc.source + ": has several lattices (" + list + "); " + choose);
+    }
+    return *found.front();
 }
 
 const DocumentObject& Document::object(const std::string& name) const

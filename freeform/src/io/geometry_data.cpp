@@ -20,7 +20,7 @@ bool validSharpness(double s) { return std::isfinite(s) && s >= 0; }
 
 Lattice latticeFromData(const LatticeData& data)
 {
-    return Lattice(data.degree, data.origin, data.axes, data.points, parseOutsidePolicy(data.outside, "lattice: outside"));
+    return Lattice(data.degree, data.origin, data.axes, data.points, data.outside);
 }
 
 LatticeData latticeToData(const Lattice& lattice)
@@ -30,7 +30,7 @@ LatticeData latticeToData(const Lattice& lattice)
     d.origin = lattice.origin();
     d.axes = lattice.axes();
     d.points = lattice.controlPoints();
-    d.outside = toString(lattice.outside());
+    d.outside = lattice.outside();
     return d;
 }
 
@@ -184,6 +184,31 @@ SubdivisionCage cageFromData(const SubdivisionSurfaceData& data, const std::stri
     } catch (const Error& e) {
         throw Error(what + ": " + e.what());
     }
+}
+
+SubdivisionSurfaceData cageToData(const SubdivisionCage& cage, const std::string& scheme, const std::string& boundary,
+                                  const std::string& what)
+{
+    if (!cage.holes.empty() || cage.chaikin || cage.smoothTriangles)
+        throw Error(what + ": the cage's " +
+                    std::string(!cage.holes.empty() ? "holes" : cage.chaikin ? "creasemethod chaikin" : "smoothtriangles") +
+                    " cannot be written inline (keep the cage in its mesh file)");
+    SubdivisionSurfaceData out;
+    out.vertices = cage.mesh.positions;
+    for (int f = 0; f < cage.mesh.faceCount(); ++f)
+        out.faces.emplace_back(cage.mesh.face(f), cage.mesh.face(f) + cage.mesh.faceSize(f));
+    out.scheme = scheme;
+    for (const EdgeCrease& c : cage.creases) out.creases.push_back({double(c.v0), double(c.v1), c.sharpness});
+    for (const VertexCorner& c : cage.corners) out.corners.push_back({double(c.vertex), c.sharpness});
+    out.boundary = boundary;
+    return out;
+}
+
+SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                                  const std::string& what)
+{
+    if (data.mesh.empty()) return data;
+    return cageToData(cageFromData(data, documentDirectory, what), data.scheme, data.boundary, what);
 }
 
 SubdivisionSurface surfaceFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,

@@ -19,6 +19,7 @@
 #include "freeform/curve/bezier_spline.h"
 #include "freeform/curve/nurbs_curve.h"
 #include "freeform/curve/rational_bezier_curve.h"
+#include "freeform/document/kinds.h"
 #include "freeform/io/document.h"
 #include "freeform/subdivision/subdivision_surface.h"
 #include "freeform/surface/bezier_surface.h"
@@ -75,6 +76,9 @@ public:
     const std::string& name() const { return name_; }
     /// The "type" string of the format ("bezier_curve", ...).
     std::string type() const { return objectType(data_); }
+    ObjectKind kind() const { return objectKind(data_); }
+    /// The kind's row of the kind table (document/kinds.h): what it is and supports.
+    const KindInfo& info() const { return kindInfo(data_); }
     /// The plain data as it is written to the file (the source of truth for formatting).
     const ObjectData& data() const { return data_; }
     const Geometry& geometry() const { return geometry_; }

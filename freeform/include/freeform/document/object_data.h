@@ -1,10 +1,11 @@
 #pragma once
-// The document's plain data of rational and NURBS geometry (the inverse of buildGeometry for these
-// four types; the fields as docs/format.md spells them): what every front end writes back into a
-// document after an edit, a conversion or a deformation, said once here.
+// The document's plain data of geometry: toData, the inverse of buildGeometry for every kind (the
+// fields as docs/format.md spells them), what every front end writes back into a document after
+// an edit, a conversion or a deformation, said once here.
 
 #include "freeform/curve/nurbs_curve.h"
 #include "freeform/curve/rational_bezier_curve.h"
+#include "freeform/document/model.h"
 #include "freeform/io/document.h"
 #include "freeform/surface/nurbs_surface.h"
 #include "freeform/surface/rational_bezier_surface.h"
@@ -26,5 +27,27 @@ RationalBezierCurveData rationalCurveData(const RationalBezierCurve<double, 3>& 
 
 /// A rational_bezier_surface: degrees, points at i*(n+1) + j and their weights (always written).
 RationalBezierSurfaceData rationalSurfaceData(const RationalBezierSurface<double, 3>& surface);
+
+/// The data of any geometry, so that buildGeometry(toData(g)) is g again (a spline's intervals as
+/// it holds them; a subdivision cage written inline, its file's crease tags as the object's creases
+/// and corners). Error when the format cannot hold it: a cage with holes, `creasemethod chaikin` or
+/// `smoothtriangles` from its mesh file (the inline form has no field for them).
+BezierCurveData toData(const BezierCurve<double, 2>& curve);
+BezierCurveData toData(const BezierCurve<double, 3>& curve);
+BezierSplineData toData(const BezierSpline<double, 2>& spline);
+BezierSplineData toData(const BezierSpline<double, 3>& spline);
+DeBoorSplineData toData(const DeBoorSpline<2>& spline);
+DeBoorSplineData toData(const DeBoorSpline<3>& spline);
+BezierSurfaceData toData(const BezierSurface<double, 3>& surface);
+DeBoorSurfaceData toData(const DeBoorSurface& surface);
+LatticeData toData(const Lattice& lattice);
+SubdivisionSurfaceData toData(const SubdivisionObject& surface);
+RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve);
+RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve);
+RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface);
+NurbsCurveData toData(const NurbsCurve<double, 2>& curve);
+NurbsCurveData toData(const NurbsCurve<double, 3>& curve);
+NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface);
+ObjectData toData(const Geometry& geometry);
 
 } // namespace freeform

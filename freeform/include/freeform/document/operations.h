@@ -66,6 +66,22 @@ PatchComplex surfacePatches(const TypedDocument& doc, const TypedObject& object,
 /// Error when there is none.
 PatchComplex documentPatches(const TypedDocument& doc);
 
+/// A document's surfaces as one mesh (`freeform tessellate DOC`), with what was measured.
+struct DocumentTessellation {
+    PolygonMesh mesh;
+    std::size_t patches = 0;   ///< Bézier patches tessellated (the NURBS ones after extraction)
+    TessellationReport report; ///< of the polynomial complex; errorBound the largest of all
+};
+
+/// One surface object, or (object null) every bezier_surface, deboor_surface,
+/// rational_bezier_surface and nurbs_surface of the document, as one mesh: the polynomial patches
+/// as one complex (tessellate(); patches that share a side share its vertices), then each rational
+/// one (tessellateObject, its certified rational bound; uniform `segmentsU` per patch without a
+/// tolerance), merged in that order. Error as surfacePatches when the object is not one of these,
+/// or the document has no surface.
+DocumentTessellation tessellateDocument(const TypedDocument& doc, const TypedObject* object,
+                                        const TessellationOptions& options);
+
 /// How an object is tessellated for display (the editor's per-object settings, resolved).
 struct ObjectTessellation {
     double tolerance = 0; ///< > 0: adaptive to this distance; 0: uniform `segments`

@@ -16,10 +16,12 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
 #include "freeform/io/file.h"
+#include "freeform/volume/lattice.h"
 
 namespace freeform {
 
@@ -61,7 +63,7 @@ struct LatticeData {
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     Eigen::Matrix3d axes = Eigen::Matrix3d::Identity(); // columns S, T, U
     PointColumns points;           // 3 x (l+1)(m+1)(n+1), index i*(m+1)*(n+1) + j*(n+1) + k
-    std::string outside = "clamp"; // "keep" | "clamp" | "extrapolate"
+    OutsidePolicy outside = OutsidePolicy::Clamp; // "keep" | "clamp" | "extrapolate" in the file
 };
 
 struct SubdivisionSurfaceData {
@@ -125,8 +127,40 @@ struct Document {
     const DocumentObject* find(const std::string& name) const;
 };
 
+/// The kind of an object: one per alternative of ObjectData, in its order. What each kind is and
+/// supports is described once, in the kind table (document/kinds.h).
+enum class ObjectKind {
+    BezierCurve,
+    BezierSpline,
+    DeBoorSpline,
+    BezierSurface,
+    DeBoorSurface,
+    Lattice,
+    SubdivisionSurface,
+    RationalBezierCurve,
+    RationalBezierSurface,
+    NurbsCurve,
+    NurbsSurface,
+};
+inline constexpr int objectKindCount = 11;
+
+inline ObjectKind objectKind(const ObjectData& data) { return static_cast<ObjectKind>(data.index()); }
+
+/// The "type" string of a kind as docs/format.md spells it ("bezier_curve", ...): the only place
+/// the names are written.
+std::string_view kindName(ObjectKind kind);
+
+/// The kind whose "type" string is name; nullopt for any other text.
+std::optional<ObjectKind> kindNamed(std::string_view name);
+
 /// The "type" string of an object ("bezier_curve", ...).
 std::string objectType(const ObjectData& data);
+
+/// The lattice object called name, or the document's only lattice when there is no name: what
+/// `freeform ffd --lattice`, `subdivide --lattice` and Python's Lattice.load look up. Error naming
+/// the document when the object is not a lattice, when there is none, or when there are several
+/// (listing them, then `choose`: how the caller's user picks one, e.g. "choose one with --object").
+const DocumentObject& findLattice(const Document& doc, const std::optional<std::string>& name, const std::string& choose);
 
 /// Parses a document from JSON text; sourceName is used in error messages.
 Document parseDocument(const std::string& text, const std::string& sourceName = "document");

@@ -34,6 +34,19 @@ void parseCreaseTags(const std::string& objText, const std::string& source, Subd
 SubdivisionCage cageFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
                              const std::string& what);
 
+/// A subdivision_surface whose cage is in a mesh file as inline vertices and faces, with the file's
+/// crease tags (and the object's own creases and corners) as creases / corners; an inline one as it
+/// is. Error prefixed with `what` when the file cannot be read, or when its cage has what the inline
+/// form cannot hold (holes, `creasemethod chaikin`, `smoothtriangles`). Edits and deformations of a
+/// file cage go through this, so the file itself is never rewritten.
+SubdivisionSurfaceData inlineCage(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
+                                  const std::string& what);
+
+/// The inline data of a cage (vertices, faces, creases, corners; scheme and boundary as given);
+/// Error prefixed with `what` when it has holes, `creasemethod chaikin` or `smoothtriangles`.
+SubdivisionSurfaceData cageToData(const SubdivisionCage& cage, const std::string& scheme, const std::string& boundary,
+                                  const std::string& what);
+
 /// The surface of a document's subdivision_surface object (cageFromData, its scheme and boundary).
 SubdivisionSurface surfaceFromData(const SubdivisionSurfaceData& data, const std::string& documentDirectory,
                                    const std::string& what);

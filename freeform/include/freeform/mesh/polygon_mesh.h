@@ -73,4 +73,8 @@ struct PolygonMesh {
     }
 };
 
+/// The meshes as one, in order (each mesh's vertex indices shifted by the vertices before it);
+/// normals and texture coordinates are kept when every mesh has them, else left out.
+PolygonMesh mergeMeshes(const std::vector<const PolygonMesh*>& meshes);
+
 } // namespace freeform
