@@ -6,210 +6,29 @@
 // output (renamed after it when the output is another file). .gltf <-> .glb: a .glb written from a
 // .gltf embeds its external buffers as data: URIs (a valid GLB without a BIN chunk); a .gltf written
 // from a .glb stores the BIN chunk as OUT.bin.
-
-#include <nlohmann/json.hpp>
+//
+// This file: the reader (readGltf): the GLB container, the JSON checked member by member, the
+// buffers (data: URIs, external files confined to the file's folder, or the companions given with
+// it) and the editable accessors. The writers: gltf_write.cpp.
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <ostream>
+#include <memory>
+#include <string>
+#include <vector>
 
-#include "freeform/io/file.h"
 #include "freeform/io/json_check.h"
-#include "source.h"
+#include "gltf_internal.h"
 
 namespace freeform::meshio {
 
+namespace gltf_detail {
+
 namespace {
-
-using Json = nlohmann::json;
-namespace fs = std::filesystem;
-
-constexpr std::uint32_t kGlbMagic = 0x46546C67;   // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
-constexpr std::uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
-
-// ---------------------------------------------------------------- base64 and URIs
-
-const char kBase64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-
-std::string encodeBase64(const std::string& bytes)
-{
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    std::size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        const std::uint32_t v = (static_cast<std::uint8_t>(bytes[i]) << 16) | (static_cast<std::uint8_t>(bytes[i + 1]) << 8) |
-                                static_cast<std::uint8_t>(bytes[i + 2]);
-        for (int k = 3; k >= 0; --k) out.push_back(kBase64[(v >> (6 * k)) & 63]);
-    }
-    if (i < bytes.size()) {
-        std::uint32_t v = static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes[i + 1])) << 8;
-        out.push_back(kBase64[(v >> 18) & 63]);
-        out.push_back(kBase64[(v >> 12) & 63]);
-        out.push_back(i + 1 < bytes.size() ? kBase64[(v >> 6) & 63] : '=');
-        out.push_back('=');
-    }
-    return out;
-}
-
-bool decodeBase64(std::string_view text, std::string& out)
-{
-    std::uint32_t acc = 0;
-    int bits = 0;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (c == '=') {
-            for (std::size_t j = i; j < text.size(); ++j)
-                if (text[j] != '=') return false;
-            break;
-        }
-        const char* p = std::strchr(kBase64, c);
-        if (c == '\0' || p == nullptr) return false;
-        acc = (acc << 6) | static_cast<std::uint32_t>(p - kBase64);
-        bits += 6;
-        if (bits >= 8) {
-            bits -= 8;
-            out.push_back(static_cast<char>((acc >> bits) & 0xFF));
-        }
-    }
-    return true;
-}
-
-std::string percentDecode(const std::string& uri)
-{
-    std::string out;
-    for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-            out.push_back(static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
-            i += 2;
-        } else {
-            out.push_back(uri[i]);
-        }
-    }
-    return out;
-}
-
-std::string percentEncode(const std::string& name)
-{
-    static const char* const hex = "0123456789ABCDEF";
-    std::string out;
-    for (const char ch : name) {
-        const auto c = static_cast<unsigned char>(ch);
-        if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
-            out.push_back(ch);
-        } else {
-            out.push_back('%');
-            out.push_back(hex[c >> 4]);
-            out.push_back(hex[c & 15]);
-        }
-    }
-    return out;
-}
-
-// ---------------------------------------------------------------- where values sit in the JSON text
-
-struct Span {
-    std::size_t begin = 0;
-    std::size_t end = 0;
-};
-
-/// Finds the text spans of accessors[i].min / .max, buffers[j].uri and the buffers[j] objects in a
-/// JSON text that nlohmann already accepted. Keys: "accessors/3/min", "buffers/0/uri", "buffers/0".
-/// It recurses once per nesting level: checkJsonText bounded the depth before (kMaxJsonDepth).
-class JsonLocator {
-public:
-    explicit JsonLocator(const std::string& text) : s_(text) {}
-
-    std::map<std::string, Span> locate()
-    {
-        std::vector<std::string> path;
-        if (s_.compare(0, 3, "\xEF\xBB\xBF") == 0) i_ = 3; // a UTF-8 byte order mark
-        space();
-        value(path);
-        return spans_;
-    }
-
-private:
-    void space()
-    {
-        while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\n' || s_[i_] == '\r')) ++i_;
-    }
-
-    std::string string()
-    {
-        const std::size_t start = ++i_;
-        while (i_ < s_.size() && s_[i_] != '"') i_ += s_[i_] == '\\' ? 2 : 1;
-        const std::string raw = s_.substr(start, i_ - start);
-        ++i_;
-        // Keys are compared decoded: "\u0061ccessors" is "accessors" (nlohmann already accepted the text).
-        if (raw.find('\\') != std::string::npos) return Json::parse("\"" + raw + "\"").get<std::string>();
-        return raw;
-    }
-
-    void value(std::vector<std::string>& path)
-    {
-        const std::size_t begin = i_;
-        if (s_[i_] == '{') {
-            ++i_;
-            space();
-            while (s_[i_] != '}') {
-                path.push_back(string());
-                space();
-                ++i_; // ':'
-                space();
-                value(path);
-                path.pop_back();
-                space();
-                if (s_[i_] == ',') {
-                    ++i_;
-                    space();
-                }
-            }
-            ++i_;
-        } else if (s_[i_] == '[') {
-            ++i_;
-            space();
-            int index = 0;
-            while (s_[i_] != ']') {
-                path.push_back(std::to_string(index++));
-                value(path);
-                path.pop_back();
-                space();
-                if (s_[i_] == ',') {
-                    ++i_;
-                    space();
-                }
-            }
-            ++i_;
-        } else if (s_[i_] == '"') {
-            string();
-        } else {
-            while (i_ < s_.size() && s_[i_] != ',' && s_[i_] != '}' && s_[i_] != ']' && s_[i_] != ' ' && s_[i_] != '\n' &&
-                   s_[i_] != '\r' && s_[i_] != '\t')
-                ++i_;
-        }
-        record(path, begin);
-    }
-
-    void record(const std::vector<std::string>& path, std::size_t begin)
-    {
-        if (path.size() == 3 && ((path[0] == "accessors" && (path[2] == "min" || path[2] == "max")) ||
-                                 (path[0] == "buffers" && path[2] == "uri")))
-            spans_[path[0] + "/" + path[1] + "/" + path[2]] = {begin, i_};
-        if (path.size() == 2 && path[0] == "buffers") spans_[path[0] + "/" + path[1]] = {begin, i_};
-    }
-
-    const std::string& s_;
-    std::size_t i_ = 0;
-    std::map<std::string, Span> spans_;
-};
 
 // ---------------------------------------------------------------- checked members
 //
@@ -340,71 +159,6 @@ struct AccessorView {
     {
         return offset + static_cast<std::size_t>(element) * stride +
                static_cast<std::size_t>(component) * static_cast<std::size_t>(componentSize(componentType));
-    }
-};
-
-class GltfSource final : public Source {
-public:
-    bool binary = false;            // read from .glb
-    std::string json;               // the JSON text
-    Json doc;                       // parsed
-    std::vector<std::string> buffers; // data of each buffer (GLB: buffer 0 = the whole BIN chunk)
-    std::vector<std::string> bufferFiles; // external file each buffer was read from, or empty
-    std::vector<std::string> bufferNames; // that file relative to the glTF file's folder (as its uri names it), or empty
-    std::string glbFile;            // a .glb as read, whole (a .gltf is its JSON text)
-    bool glbHasBin = false;
-    std::string glbTrailingChunks;  // chunks after JSON and BIN, kept as they were
-    std::string glbJsonChunk;       // the JSON chunk's data including its padding
-    std::string glbBin;             // the BIN chunk as read (written back as it was unless buffer 0 is it)
-    bool binIsBuffer0 = false;      // buffer 0 has no uri: it is the BIN chunk
-    std::vector<std::vector<BinarySlot>> slots; // per buffer
-    struct PositionAccessor {
-        int accessor = 0;
-        int firstColumn = 0;
-        int count = 0;
-    };
-    std::vector<PositionAccessor> positionAccessors;
-    std::vector<int> faceStart{0};
-    std::vector<int> faceVertices;
-    std::vector<int> normalOfPosition; // per position: a normal index or -1
-    Matrix2X texcoords;                // 2 x P, or empty
-    Eigen::MatrixXd colors;            // 4 x P, or empty
-
-    PolygonMesh polygonMesh(const Values& now) const override
-    {
-        PolygonMesh mesh;
-        mesh.positions = now.positions;
-        mesh.faceStart = faceStart;
-        mesh.faceVertices = faceVertices;
-        const Eigen::Index p = now.positions.cols();
-        bool all = p > 0;
-        for (int n : normalOfPosition) all = all && n >= 0;
-        if (all) {
-            mesh.normals.resize(3, p);
-            for (Eigen::Index i = 0; i < p; ++i) mesh.normals.col(i) = now.normals.col(normalOfPosition[static_cast<std::size_t>(i)]);
-        }
-        mesh.texcoords = texcoords;
-        return mesh;
-    }
-
-    Eigen::MatrixXd vertexColors() const override { return colors; }
-
-    bool writesSame(const std::string& target) const override { return target == "gltf" || target == "glb"; }
-
-    void writeSame(const std::string& target, const std::string& targetFormat, const Values& now) const override;
-
-    const std::string& fileBytes() const override { return binary ? glbFile : json; }
-
-    std::map<std::string, std::string> companions() const override
-    {
-        std::map<std::string, std::string> files;
-        for (std::size_t j = 0; j < buffers.size(); ++j)
-            if (!bufferNames[j].empty()) {
-                // Buffers that share a file hold prefixes of it: keep the longest.
-                const auto [at, added] = files.emplace(bufferNames[j], buffers[j]);
-                if (!added && buffers[j].size() > at->second.size()) at->second = buffers[j];
-            }
-        return files;
     }
 };
 
@@ -764,161 +518,13 @@ void readEditable(GltfSource& src)
     if (allColor) src.colors = Eigen::Map<const Eigen::MatrixXd>(colors.data(), 4, columns);
 }
 
-std::uint32_t readU32(const std::string& b, std::size_t at) { return static_cast<std::uint32_t>(readBinary(b.data() + at, BinaryType::UInt32, false)); }
-
-void appendU32(std::string& out, std::uint32_t v)
-{
-    char buffer[4];
-    writeBinary(buffer, BinaryType::UInt32, false, v, "glb");
-    out.append(buffer, 4);
-}
-
-/// A GLB file: header, JSON chunk (padded with spaces), optional BIN chunk (padded with zeros),
-/// then further chunks as they were.
-std::string assembleGlb(std::string jsonChunk, bool jsonPadded, const std::string* bin, const std::string& trailing)
-{
-    if (!jsonPadded)
-        while (jsonChunk.size() % 4 != 0) jsonChunk.push_back(' ');
-    std::string binChunk;
-    if (bin != nullptr) {
-        binChunk = *bin;
-        while (binChunk.size() % 4 != 0) binChunk.push_back('\0');
-    }
-    std::string out;
-    appendU32(out, kGlbMagic);
-    appendU32(out, 2);
-    const std::size_t total = 12 + 8 + jsonChunk.size() + (bin != nullptr ? 8 + binChunk.size() : 0) + trailing.size();
-    appendU32(out, static_cast<std::uint32_t>(total));
-    appendU32(out, static_cast<std::uint32_t>(jsonChunk.size()));
-    appendU32(out, kChunkJson);
-    out += jsonChunk;
-    if (bin != nullptr) {
-        appendU32(out, static_cast<std::uint32_t>(binChunk.size()));
-        appendU32(out, kChunkBin);
-        out += binChunk;
-    }
-    out += trailing;
-    return out;
-}
-
-/// The file name for buffer j of an output: OUT.bin, or OUT_j.bin when there are several.
-std::string bufferFileName(const std::string& target, std::size_t j, std::size_t externalCount)
-{
-    const std::string stem = fs::path(target).stem().string();
-    return externalCount > 1 ? stem + "_" + std::to_string(j) + ".bin" : stem + ".bin";
-}
-
-bool sameFile(const std::string& a, const std::string& b)
-{
-    std::error_code ec;
-    return fs::equivalent(a, b, ec) && !ec;
-}
-
-void GltfSource::writeSame(const std::string& target, const std::string& targetFormat, const Values& now) const
-{
-    const Values was = original();
-    // 1. The buffers with the new numbers.
-    std::vector<std::string> data = buffers;
-    std::vector<bool> changed(buffers.size(), false);
-    for (std::size_t j = 0; j < buffers.size(); ++j) {
-        patchBinary(data[j], slots[j], now, was, target);
-        changed[j] = data[j] != buffers[j];
-    }
-
-    // 2. Text replacements in the JSON, sorted by position.
-    const std::map<std::string, Span> spans = JsonLocator(json).locate();
-    std::map<std::size_t, std::pair<std::size_t, std::string>> edits; // begin -> (end, text)
-    for (const PositionAccessor& pa : positionAccessors) {
-        bool moved = false;
-        for (int i = 0; i < pa.count && !moved; ++i)
-            for (int k = 0; k < 3; ++k) moved = moved || !sameBits(now.positions(k, pa.firstColumn + i), was.positions(k, pa.firstColumn + i));
-        if (!moved) continue;
-        for (const char* which : {"min", "max"}) {
-            const auto span = spans.find("accessors/" + std::to_string(pa.accessor) + "/" + which);
-            if (span == spans.end()) continue; // the file had none; adding members is left to validators
-            std::string text = "[";
-            for (int k = 0; k < 3; ++k) {
-                float bound = static_cast<float>(now.positions(k, pa.firstColumn));
-                for (int i = 1; i < pa.count; ++i) {
-                    const float v = static_cast<float>(now.positions(k, pa.firstColumn + i));
-                    bound = which[1] == 'i' ? std::min(bound, v) : std::max(bound, v);
-                }
-                text += (k ? ", " : "") + formatFloat(bound);
-            }
-            text += "]";
-            edits[span->second.begin] = {span->second.end, text};
-        }
-    }
-
-    const bool toGlb = targetFormat == "glb";
-    const bool inPlace = sameFile(target, path);
-    std::size_t externalCount = 0;
-    for (std::size_t j = 0; j < buffers.size(); ++j)
-        if (!bufferFiles[j].empty() || (binary && j == 0 && glbHasBin && !toGlb)) ++externalCount;
-    std::vector<std::pair<std::string, std::string>> binFiles; // (path, bytes) written before the JSON
-    const fs::path targetDir = fs::path(target).parent_path();
-    for (std::size_t j = 0; j < buffers.size(); ++j) {
-        const std::string key = "buffers/" + std::to_string(j);
-        const auto uriSpan = spans.find(key + "/uri");
-        const bool isBin = uriSpan == spans.end(); // the GLB BIN chunk
-        const bool isData = !isBin && bufferFiles[j].empty();
-        if (isBin) {
-            if (toGlb) continue; // stays the BIN chunk
-            // .glb -> .gltf: the BIN chunk becomes an external file; "uri" goes first into the object.
-            const std::string name = bufferFileName(target, j, externalCount);
-            binFiles.emplace_back((targetDir / name).string(), data[j]);
-            edits[spans.at(key).begin + 1] = {spans.at(key).begin + 1, "\"uri\": \"" + percentEncode(name) + "\", "};
-        } else if (isData) {
-            if (!changed[j]) continue;
-            const std::string uri = doc["buffers"][j]["uri"].get<std::string>();
-            edits[uriSpan->second.begin] = {uriSpan->second.end, "\"" + uri.substr(0, uri.find(',') + 1) + encodeBase64(data[j]) + "\""};
-        } else if (toGlb) {
-            // External buffers are embedded, so the .glb stands alone.
-            edits[uriSpan->second.begin] = {uriSpan->second.end,
-                                            "\"data:application/octet-stream;base64," + encodeBase64(data[j]) + "\""};
-        } else if (inPlace) {
-            if (changed[j]) binFiles.emplace_back(bufferFiles[j], data[j]);
-        } else {
-            // Never overwrite a buffer file the input still refers to.
-            const auto takenByInput = [&](const std::string& name) {
-                for (const std::string& f : bufferFiles)
-                    if (!f.empty() && sameFile(f, (targetDir / name).string())) return true;
-                return false;
-            };
-            std::string name = bufferFileName(target, j, externalCount);
-            for (int attempt = 1; takenByInput(name); ++attempt)
-                name = fs::path(target).stem().string() + "_" + std::to_string(j) + "_" + std::to_string(attempt) + ".bin";
-            binFiles.emplace_back((targetDir / name).string(), data[j]);
-            edits[uriSpan->second.begin] = {uriSpan->second.end, "\"" + percentEncode(name) + "\""};
-        }
-    }
-
-    std::string text;
-    std::size_t at = 0;
-    for (const auto& [begin, edit] : edits) {
-        text.append(json, at, begin - at);
-        text += edit.second;
-        at = edit.first;
-    }
-    text.append(json, at, std::string::npos);
-
-    for (const auto& [file, bytes] : binFiles) writeFileAtomically(file, bytes);
-    if (!toGlb) {
-        writeFileAtomically(target, text);
-        return;
-    }
-    // The BIN chunk: buffer 0 with its new numbers when buffer 0 is the chunk, else the chunk as it
-    // was (a BIN chunk no buffer refers to: data[0] may not exist, found by fuzz_mesh_glb).
-    const bool keepBin = binary && glbHasBin;
-    const std::string* bin = !keepBin ? nullptr : binIsBuffer0 ? &data[0] : &glbBin;
-    if (binary && edits.empty()) writeFileAtomically(target, assembleGlb(glbJsonChunk, true, bin, glbTrailingChunks));
-    else writeFileAtomically(target, assembleGlb(text, false, bin, binary ? glbTrailingChunks : std::string()));
-}
-
 } // namespace
+
+} // namespace gltf_detail
 
 std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, bool binary, const Companions* companions)
 {
+    using namespace gltf_detail;
     auto src = std::make_unique<GltfSource>();
     src->path = path;
     src->format = binary ? "glb" : "gltf";
@@ -988,95 +594,6 @@ std::unique_ptr<Source> readGltf(const std::string& path, std::string bytes, boo
         throw Error(path + ": malformed glTF: " + e.what());
     }
     return src;
-}
-
-void writeGltfMesh(const std::string& path, const PolygonMesh& mesh, const Eigen::MatrixXd& colors, bool binary)
-{
-    using Ordered = nlohmann::ordered_json;
-    const int v = mesh.vertexCount();
-    const bool n = mesh.normals.cols() == v && v > 0;
-    const bool uv = mesh.texcoords.cols() == v && v > 0;
-    const int colorRows = colors.cols() == v && v > 0 && colors.rows() >= 3 ? (colors.rows() >= 4 ? 4 : 3) : 0;
-
-    std::string buffer;
-    const auto putFloat = [&](double value) {
-        char b[4];
-        writeBinary(b, BinaryType::Float32, false, value, path);
-        buffer.append(b, 4);
-    };
-    Ordered accessors = Ordered::array(), views = Ordered::array(), attributes = Ordered::object();
-    const auto addView = [&](std::size_t begin, int target) {
-        Ordered view = {{"buffer", 0}, {"byteOffset", begin}, {"byteLength", buffer.size() - begin}};
-        if (target) view["target"] = target;
-        views.push_back(view);
-        return static_cast<int>(views.size()) - 1;
-    };
-    const auto addFloats = [&](const char* name, const auto& m, int rows, bool bounds) {
-        const std::size_t begin = buffer.size();
-        for (int i = 0; i < v; ++i)
-            for (int k = 0; k < rows; ++k) putFloat(m(k, i));
-        Ordered accessor = {{"bufferView", addView(begin, 34962)}, {"componentType", 5126}, {"count", v},
-                            {"type", rows == 2 ? "VEC2" : rows == 3 ? "VEC3" : "VEC4"}};
-        if (bounds) {
-            Ordered lo = Ordered::array(), hi = Ordered::array();
-            for (int k = 0; k < rows; ++k) {
-                float a = static_cast<float>(m(k, 0)), b = a;
-                for (int i = 1; i < v; ++i) {
-                    a = std::min(a, static_cast<float>(m(k, i)));
-                    b = std::max(b, static_cast<float>(m(k, i)));
-                }
-                double da = 0, db = 0;
-                parseDouble(formatFloat(a), da);
-                parseDouble(formatFloat(b), db);
-                lo.push_back(da);
-                hi.push_back(db);
-            }
-            accessor["min"] = lo;
-            accessor["max"] = hi;
-        }
-        accessors.push_back(accessor);
-        attributes[name] = static_cast<int>(accessors.size()) - 1;
-    };
-    if (v > 0) addFloats("POSITION", mesh.positions, 3, true);
-    if (n) addFloats("NORMAL", mesh.normals, 3, false);
-    if (uv) addFloats("TEXCOORD_0", mesh.texcoords, 2, false);
-    if (colorRows) addFloats("COLOR_0", colors, colorRows, false);
-
-    Ordered primitive = {{"attributes", attributes}, {"mode", 4}};
-    std::size_t triangles = 0;
-    for (int f = 0; f < mesh.faceCount(); ++f) triangles += static_cast<std::size_t>(mesh.faceSize(f) - 2);
-    if (triangles > 0) {
-        const std::size_t begin = buffer.size();
-        for (int f = 0; f < mesh.faceCount(); ++f)
-            for (int k = 1; k + 1 < mesh.faceSize(f); ++k)
-                for (int c : {mesh.face(f)[0], mesh.face(f)[k], mesh.face(f)[k + 1]}) {
-                    char b[4];
-                    writeBinary(b, BinaryType::UInt32, false, c, path);
-                    buffer.append(b, 4);
-                }
-        accessors.push_back({{"bufferView", addView(begin, 34963)}, {"componentType", 5125}, {"count", triangles * 3}, {"type", "SCALAR"}});
-        primitive["indices"] = static_cast<int>(accessors.size()) - 1;
-    }
-    Ordered doc = {{"asset", {{"version", "2.0"}, {"generator", "freeform"}}},
-                   {"scene", 0},
-                   {"scenes", Ordered::array({{{"nodes", {0}}}})},
-                   {"nodes", Ordered::array({{{"mesh", 0}}})},
-                   {"meshes", Ordered::array({{{"primitives", Ordered::array({primitive})}}})}};
-    if (!accessors.empty()) {
-        Ordered b = {{"byteLength", buffer.size()}};
-        std::string binName;
-        if (!binary) {
-            binName = fs::path(path).stem().string() + ".bin";
-            b = {{"uri", percentEncode(binName)}, {"byteLength", buffer.size()}};
-        }
-        doc["buffers"] = Ordered::array({b});
-        doc["bufferViews"] = views;
-        doc["accessors"] = accessors;
-        if (!binary) writeFileAtomically((fs::path(path).parent_path() / binName).string(), buffer);
-    }
-    const std::string text = doc.dump(2) + "\n";
-    if (binary) writeFileAtomically(path, assembleGlb(text, false, accessors.empty() ? nullptr : &buffer, std::string()));
-    else writeFileAtomically(path, text);
 }
 
 } // namespace freeform::meshio
