@@ -12,7 +12,8 @@
 // boundary none's faces) stay in the cage without a frame. Vertices are exact limit points under
 // canonical keys (cage vertex, cage edge + dyadic parameter, face + dyadic (u, v)); each leaf is cut
 // as the polygon of its corners and of the registered points inside its sides (ear clipping in
-// (u, v)), so the mesh is conforming and closed cages give closed meshes.
+// (u, v)), so the mesh is conforming and closed cages give closed meshes. The operations on the
+// Bézier nets (sub-nets, bounds, corner normals) are in loop_bezier.cpp (loop_bezier_net.h).
 
 #include "freeform/subdivision/subdivision_surface.h"
 
@@ -31,29 +32,14 @@
 #include "certified_tessellation_common.h"
 #include "freeform/core/error.h"
 #include "freeform/subdivision/loop_bezier.h"
+#include "loop_bezier_net.h"
 
 namespace freeform {
 
 using namespace detail;
+using namespace detail::loop;
 
 namespace {
-
-/// A quartic triangular Bézier net: b[j][k] is the point of multi-index (4 - j - k, j, k), i.e.
-/// weight (1-s-t)^i s^j t^k in the local coordinates (s, t) of the cell's corners 0, 1, 2.
-using Net = std::array<std::array<Eigen::Vector3d, 5>, 5>;
-
-/// The quartic box spline of OpenSubdiv's LOOP patch (its 12 points in the patch table's order) in
-/// Bézier form, times 24: row (j, k) in the order j = 0..4, k = 0..4-j. Derived by evaluating
-/// OpenSubdiv's Loop basis at the 15 domain points (j/4, k/4) and solving (docs/subdivision.md,
-/// "Loop cages"); every row is non-negative and sums to 24. tests/test_subdivision_tessellation_loop.cpp
-/// checks it against OpenSubdiv's patch evaluation.
-constexpr int kLoopToBezier[15][12] = {
-    {2, 2, 0, 2, 12, 2, 0, 2, 2, 0, 0, 0},  {0, 1, 0, 1, 12, 3, 0, 3, 4, 0, 0, 0}, {0, 0, 0, 0, 8, 4, 0, 4, 8, 0, 0, 0},
-    {0, 0, 0, 0, 4, 3, 0, 3, 12, 1, 1, 0},  {0, 0, 0, 0, 2, 2, 0, 2, 12, 2, 2, 2}, {1, 3, 0, 0, 12, 4, 0, 1, 3, 0, 0, 0},
-    {0, 1, 0, 0, 10, 6, 0, 1, 6, 0, 0, 0},  {0, 0, 0, 0, 6, 6, 0, 1, 10, 1, 0, 0}, {0, 0, 0, 0, 3, 4, 0, 1, 12, 3, 0, 1},
-    {0, 4, 0, 0, 8, 8, 0, 0, 4, 0, 0, 0},   {0, 1, 0, 0, 6, 10, 0, 0, 6, 1, 0, 0}, {0, 0, 0, 0, 4, 8, 0, 0, 8, 4, 0, 0},
-    {0, 3, 1, 0, 4, 12, 0, 0, 3, 1, 0, 0},  {0, 1, 0, 0, 3, 12, 1, 0, 4, 3, 0, 0}, {0, 2, 2, 0, 2, 12, 2, 0, 2, 2, 0, 0},
-};
 
 Net bezierOfLoop(const std::vector<Point3>& all, osd::Far::ConstIndexArray cvs)
 {
@@ -67,81 +53,6 @@ Net bezierOfLoop(const std::vector<Point3>& all, osd::Far::ConstIndexArray cvs)
             b[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = x / 24.0;
         }
     return b;
-}
-
-/// The blossom of the net at four points given in barycentric coordinates (weights of corners 0, 1, 2).
-Eigen::Vector3d blossom(const Net& net, const std::array<Eigen::Vector3d, 4>& args)
-{
-    Net p = net;
-    for (int n = 4; n >= 1; --n) {
-        const Eigen::Vector3d& a = args[static_cast<std::size_t>(4 - n)];
-        for (int j = 0; j <= n - 1; ++j)
-            for (int k = 0; k <= n - 1 - j; ++k) {
-                const auto J = static_cast<std::size_t>(j), K = static_cast<std::size_t>(k);
-                p[J][K] = a[0] * p[J][K] + a[1] * p[J + 1][K] + a[2] * p[J][K + 1];
-            }
-    }
-    return p[0][0];
-}
-
-/// The net of the sub-triangle with corners q0, q1, q2 (barycentric in the parent).
-Net subNet(const Net& net, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, const Eigen::Vector3d& q2)
-{
-    Net out;
-    for (int j = 0; j <= 4; ++j)
-        for (int k = 0; k <= 4 - j; ++k) {
-            std::array<Eigen::Vector3d, 4> args;
-            std::size_t m = 0;
-            for (int r = 0; r < 4 - j - k; ++r) args[m++] = q0;
-            for (int r = 0; r < j; ++r) args[m++] = q1;
-            for (int r = 0; r < k; ++r) args[m++] = q2;
-            out[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = blossom(net, args);
-        }
-    return out;
-}
-
-/// The certified bound of the net's triangle (docs/subdivision.md, "Loop cages"): for any triangle
-/// whose vertices are surface points of the cell, every point of it is within this of the surface
-/// point at the same parameter (and back). min over the corner taken as origin a of
-/// n(n-1)/8 (max|D_bb| + 2 max|D_bc| + max|D_cc|), n = 4, the second differences of the net along the
-/// cell's sides from a.
-double netBound(const Net& net)
-{
-    auto at = [&](const std::array<int, 3>& m) -> const Eigen::Vector3d& {
-        return net[static_cast<std::size_t>(m[1])][static_cast<std::size_t>(m[2])];
-    };
-    double best = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
-        double bb = 0, bc = 0, cc = 0;
-        for (int m1 = 0; m1 <= 2; ++m1)
-            for (int m2 = 0; m2 <= 2 - m1; ++m2) {
-                const std::array<int, 3> m{2 - m1 - m2, m1, m2};
-                auto plus = [&](int x, int y) {
-                    std::array<int, 3> r = m;
-                    ++r[static_cast<std::size_t>(x)];
-                    ++r[static_cast<std::size_t>(y)];
-                    return r;
-                };
-                const Eigen::Vector3d& aa = at(plus(a, a));
-                bb = std::max(bb, (at(plus(b, b)) - 2 * at(plus(a, b)) + aa).norm());
-                cc = std::max(cc, (at(plus(c, c)) - 2 * at(plus(a, c)) + aa).norm());
-                bc = std::max(bc, (at(plus(b, c)) - at(plus(a, c)) - at(plus(a, b)) + aa).norm());
-            }
-        best = std::min(best, 12.0 / 8.0 * (bb + 2 * bc + cc));
-    }
-    return best;
-}
-
-/// The unit normal of the net at corner k (tangents along its two sides, counter-clockwise).
-Eigen::Vector3d cornerNormal(const Net& b, int k)
-{
-    Eigen::Vector3d n;
-    if (k == 0) n = (b[1][0] - b[0][0]).cross(b[0][1] - b[0][0]);
-    else if (k == 1) n = (b[3][1] - b[4][0]).cross(b[3][0] - b[4][0]);
-    else n = (b[0][3] - b[0][4]).cross(b[1][3] - b[0][4]);
-    const double len = n.norm();
-    return len > 1e-300 && std::isfinite(len) ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
 /// Canonical keys and the lines leaf sides lie on, for a triangle cage (face (u, v): corner 0 at
@@ -654,35 +565,6 @@ int collectLoopCells(LoopSearch& s, const TriCage& m, const std::vector<TriFrame
 }
 
 } // namespace
-
-QuarticTriangleNet loopPatchToBezier(const std::array<Eigen::Vector3d, 12>& points)
-{
-    QuarticTriangleNet out;
-    for (int row = 0; row < 15; ++row) {
-        Eigen::Vector3d x = Eigen::Vector3d::Zero();
-        for (int c = 0; c < 12; ++c) x += kLoopToBezier[row][c] * points[static_cast<std::size_t>(c)];
-        out[static_cast<std::size_t>(row)] = x / 24.0;
-    }
-    return out;
-}
-
-namespace {
-Net toNet(const QuarticTriangleNet& flat)
-{
-    Net n;
-    for (int j = 0; j <= 4; ++j)
-        for (int k = 0; k <= 4 - j; ++k) n[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = flat[static_cast<std::size_t>(bezierIndex(j, k))];
-    return n;
-}
-} // namespace
-
-Eigen::Vector3d evaluateTriangleNet(const QuarticTriangleNet& net, double s, double t)
-{
-    const Eigen::Vector3d a(1 - s - t, s, t);
-    return blossom(toNet(net), {a, a, a, a});
-}
-
-double triangleNetErrorBound(const QuarticTriangleNet& net) { return netBound(toNet(net)); }
 
 PolygonMesh SubdivisionSurface::tessellateCertifiedLoop(const SubdivisionTessellationOptions& options,
                                                         SubdivisionTessellationReport* report) const
