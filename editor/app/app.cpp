@@ -1024,7 +1024,7 @@ void App::onKey(int key, int action, int mods)
                           key == GLFW_KEY_LEFT_SUPER || key == GLFW_KEY_RIGHT_SUPER;
     if (action == GLFW_PRESS && !modifier) startAction(); // typing in a field too: Enter there is the action
     if (action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
-    // Escape while a menu is open closes the menu (ui/ui.cpp, endMenu) and does nothing else.
+    // Escape while a menu is open closes the menu (ui/ui_menu_dialogs.cpp, endMenu) and does nothing else.
     if (key == GLFW_KEY_ESCAPE && ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) return;
     // The keymap's contexts in dispatch order (interaction/keymap.h, docs/editor.md): undo and redo
     // always; during a drag or grab its keys and nothing else; files; the tools; editing; views.
