@@ -124,8 +124,8 @@ std::string documentWithEditor(const std::string& name, const std::string& objec
 
 TEST_CASE("The scene refuses an editor member nested 100,000 deep or repeating a key, naming the object, and keeps its document", "[scene][hardening]")
 {
-    // The scene the editor holds before it tries to open the bad files (app.cpp opens into a new
-    // Scene and swaps it in only on success).
+    // The scene the editor holds before it tries to open the bad files (app_files.cpp opens into a
+    // new Scene and swaps it in only on success).
     Scene scene = Scene::load(documentWithEditor("gate_good.json", R"({"visible": false})"));
     REQUIRE(scene.itemCount() == 1);
     REQUIRE_FALSE(scene.item(0).settings.visible);
