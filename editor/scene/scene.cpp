@@ -1,3 +1,8 @@
+// The Scene (scene/scene.h): its items and their settings, the document's objects and control
+// points edited through one undo step each, the undo history, derived geometry rebuilt when dirty,
+// the view's tolerance and the background tessellation, bounds and item lookup. Loading, saving,
+// importing and exporting are in scene_io.cpp.
+
 #include "scene/scene.h"
 
 #include <algorithm>
@@ -7,64 +12,15 @@
 #include <set>
 
 #include "freeform/document/object_data.h"
-#include "freeform/io/bpt.h"
 #include "freeform/io/geometry_data.h"
-#include "freeform/io/json_check.h"
-#include "freeform/io/file.h"
-#include "freeform/io/mesh_io.h"
-#include "freeform/subdivision/subdivision_surface.h"
-#include "freeform/surface/patch_complex.h"
-#include "freeform/tessellate/tessellate.h"
-#include "scene/json_read.h"
+#include "scene/scene_internal.h"
 #include "scene/tessellation_worker.h"
 
 namespace freeform::editor {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string lowerExtension(const std::string& path)
-{
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
-bool isMeshFile(const std::string& ext)
-{
-    return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".off" || ext == ".gltf" || ext == ".glb";
-}
-
-/// Six times the signed volume enclosed by a triangle mesh (positive when its triangles face out).
-double signedVolume6(const PolygonMesh& mesh)
-{
-    double sum = 0;
-    for (int f = 0; f < mesh.faceCount(); ++f) {
-        const int* v = mesh.face(f);
-        for (int k = 1; k + 1 < mesh.faceSize(f); ++k)
-            sum += mesh.positions.col(v[0]).dot(mesh.positions.col(v[k]).cross(mesh.positions.col(v[k + 1])));
-    }
-    return sum;
-}
-
-/// One bezier_surface object per patch of a .bpt file. Patch files do not agree on orientation
-/// (teapot.bpt's f_u x f_v points inwards): when the complex encloses a negative volume, every
-/// patch is transposed (u and v swapped) so that the normals point out.
-std::vector<DocumentObject> bptObjects(const std::string& path)
-{
-    PatchComplex complex = readBpt(path);
-    if (signedVolume6(tessellateUniform(complex, 4, 4)) < 0)
-        for (Patch& patch : complex.patches) patch = patch.transposed();
-    std::vector<DocumentObject> objects;
-    for (std::size_t i = 0; i < complex.patches.size(); ++i) {
-        const auto& patch = complex.patches[i];
-        char name[32];
-        std::snprintf(name, sizeof name, "patch_%02zu", i);
-        objects.push_back({name, toData(patch), ""});
-    }
-    return objects;
-}
+namespace scene_detail {
 
 /// Revisions are unique across all scenes, so a drawer never mistakes a new item for an old one.
 int nextRevision()
@@ -88,6 +44,10 @@ long nextId()
     return ++counter;
 }
 
+} // namespace scene_detail
+
+namespace {
+
 PointColumns& pointsOf(ObjectData& data)
 {
     return std::visit(
@@ -103,94 +63,6 @@ PointColumns& pointsOf(ObjectData& data)
 
 Scene::Scene() = default;
 
-Scene Scene::load(const std::string& path, double aspect)
-{
-    Scene scene;
-    const std::string ext = lowerExtension(path);
-    if (ext == ".bpt") {
-        scene.document_.objects = bptObjects(path);
-        scene.document_.source = path;
-    } else if (isMeshFile(ext)) {
-        scene.document_.source = path;
-        scene.addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
-        scene.items_.back().up = formatUpAxis(path).value_or(UpAxis::Z); // glTF and GLB: Y up, as on import
-    } else {
-        scene.document_ = readDocument(path);
-        scene.path_ = path;
-        scene.cageDirectory_ = fs::path(path).parent_path().string();
-    }
-    // The editor member: camera, display, imported meshes. Errors name the file.
-    bool hasCamera = false;
-    if (!scene.document_.editor.empty()) {
-        try {
-            // Through the library's one JSON gate (docs/mesh-io.md, "Hostile input"): the text
-            // may come from anywhere a Document does, not only from readDocument's checked file.
-            checkJsonText(scene.document_.editor, "editor");
-            Json e;
-            try {
-                e = Json::parse(scene.document_.editor);
-            } catch (const Json::exception& x) {
-                throw Error(std::string("editor: not valid JSON: ") + x.what());
-            }
-            for (const auto& [key, value] : e.items())
-                if (key != "camera" && key != "display" && key != "meshes") json::fail("editor." + key, "unknown field");
-            if (e.contains("camera")) {
-                scene.camera = Camera::fromJson(e["camera"]);
-                hasCamera = true;
-            }
-            if (e.contains("display")) scene.display = DisplaySettings::fromJson(e["display"]);
-            if (e.contains("meshes")) {
-                const Json& meshes = e["meshes"];
-                if (!meshes.is_array()) json::fail("editor.meshes", "expected an array");
-                for (std::size_t i = 0; i < meshes.size(); ++i) {
-                    const std::string mp = "editor.meshes[" + std::to_string(i) + "]";
-                    const Json& m = meshes[i];
-                    json::requireObject(m, mp);
-                    if (!m.contains("name") || !m["name"].is_string()) json::fail(mp + ".name", "expected a string");
-                    if (!m.contains("path") || !m["path"].is_string()) json::fail(mp + ".path", "expected a string");
-                    for (const auto& [key, value] : m.items())
-                        if (key != "name" && key != "path" && key != "up" && key != "editor") json::fail(mp + "." + key, "unknown field");
-                    UpAxis up = UpAxis::Z; // absent: the file is Z-up, as before the field existed
-                    if (m.contains("up")) {
-                        if (!m["up"].is_string()) json::fail(mp + ".up", "expected \"z\" or \"y\"");
-                        up = parseUpAxis(m["up"].get<std::string>(), mp + ".up");
-                    }
-                    scene.addMeshItem(m["name"].get<std::string>(), m["path"].get<std::string>());
-                    scene.items_.back().up = up;
-                    if (m.contains("editor")) scene.items_.back().settings = ObjectSettings::fromJson(m["editor"], mp + ".editor");
-                }
-            }
-        } catch (const Error& e) {
-            throw Error(path + ": " + e.what());
-        }
-    }
-    // Object settings.
-    std::vector<SceneItem> meshes(scene.items_.begin(), scene.items_.end());
-    scene.rebuildItems();
-    scene.items_.insert(scene.items_.end(), meshes.begin(), meshes.end());
-    for (std::size_t i = 0; i < scene.document_.objects.size(); ++i) {
-        const DocumentObject& o = scene.document_.objects[i];
-        if (o.editor.empty()) continue;
-        try {
-            scene.items_[i].settings = ObjectSettings::fromText(o.editor, "object \"" + o.name + "\".editor"); // gated
-        } catch (const Error& e) {
-            throw Error(path + ": " + e.what());
-        }
-    }
-    for (SceneItem& item : scene.items_) scene.resolveLink(item);
-    // Mesh files are read now, so that an unreadable one fails the load.
-    scene.updateGeometry();
-    for (const SceneItem& item : scene.items_)
-        if (item.kind == SceneItem::Kind::ImportedMesh && !item.geometry.error.empty()) throw Error(item.geometry.error);
-    if (!hasCamera) {
-        const Eigen::AlignedBox3d box = scene.bounds();
-        scene.camera.setView("iso");
-        scene.camera.fit(box, aspect);
-    }
-    scene.modified_ = scene.path_.empty() && scene.itemCount() > 0; // imported content is unsaved
-    return scene;
-}
-
 void Scene::rebuildItems()
 {
     std::vector<SceneItem> items;
@@ -199,8 +71,8 @@ void Scene::rebuildItems()
         item.kind = SceneItem::Kind::DocumentObject;
         item.name = o.name;
         item.type = objectType(o.data);
-        item.key = nextKey();
-        item.id = nextId();
+        item.key = scene_detail::nextKey();
+        item.id = scene_detail::nextId();
         items.push_back(std::move(item));
     }
     items_ = std::move(items);
@@ -213,8 +85,8 @@ void Scene::addMeshItem(const std::string& name, const std::string& path)
     item.name = uniqueName(name);
     item.type = "mesh";
     item.meshPath = path;
-    item.key = nextKey();
-    item.id = nextId();
+    item.key = scene_detail::nextKey();
+    item.id = scene_detail::nextId();
     items_.push_back(std::move(item));
 }
 
@@ -237,167 +109,6 @@ std::string Scene::resolve(const std::string& meshPath) const
     const fs::path p(meshPath);
     if (p.is_absolute() || path_.empty()) return meshPath;
     return (fs::path(path_).parent_path() / p).string();
-}
-
-Document Scene::toDocument(MeshPaths meshPaths) const
-{
-    Document doc = document_;
-    for (std::size_t i = 0; i < doc.objects.size(); ++i) {
-        ObjectSettings s = items_[i].settings;
-        // The link is the mesh's id; the document names the mesh as it is called now.
-        if (const int m = indexOf(items_[i].deforms); m >= 0) s.ffd.mesh = items_[static_cast<std::size_t>(m)].name;
-        doc.objects[i].editor = s.isDefault() ? std::string() : s.toJson().dump();
-        // A relative cage path starts at cageDirectory_; for a document in another folder (after
-        // Save As) it is rebased there, so that it names the same file. (The autosave keeps it
-        // relative to the document's folder too: recovery resolves it there.)
-        auto* sub = std::get_if<SubdivisionSurfaceData>(&doc.objects[i].data);
-        if (!sub || sub->mesh.empty() || fs::path(sub->mesh).is_absolute() || path_.empty()) continue;
-        const fs::path from = fs::absolute(fs::path(documentDirectory())).lexically_normal();
-        const fs::path to = fs::absolute(fs::path(path_).parent_path()).lexically_normal();
-        if (from != to) sub->mesh = (from / sub->mesh).lexically_normal().lexically_relative(to).generic_string();
-    }
-    Json e;
-    e["camera"] = camera.toJson();
-    e["display"] = display.toJson();
-    Json meshes = Json::array();
-    for (const SceneItem& item : items_) {
-        if (item.kind != SceneItem::Kind::ImportedMesh) continue;
-        Json m;
-        m["name"] = item.name;
-        m["path"] = meshPaths == MeshPaths::Absolute ? fs::absolute(resolve(item.meshPath)).lexically_normal().string() : item.meshPath;
-        if (item.up != UpAxis::Z) m["up"] = toString(item.up);
-        if (!item.settings.isDefault()) m["editor"] = item.settings.toJson();
-        meshes.push_back(std::move(m));
-    }
-    if (!meshes.empty()) e["meshes"] = std::move(meshes);
-    doc.editor = e.dump();
-    return doc;
-}
-
-void Scene::save(const std::string& path)
-{
-    // Mesh paths are stored relative to the document when they lie beside or below it, and when
-    // they were relative already (rebased onto the new folder, ".." allowed: a document and its
-    // meshes that travel together keep working); others stay absolute.
-    const std::string oldPath = path_;
-    std::vector<std::string> oldMeshPaths;
-    for (SceneItem& item : items_) {
-        if (item.kind != SceneItem::Kind::ImportedMesh) continue;
-        oldMeshPaths.push_back(item.meshPath);
-        const fs::path absolute = fs::absolute(resolve(item.meshPath));
-        const fs::path base = fs::absolute(path).parent_path();
-        const fs::path relative = absolute.lexically_relative(base);
-        const bool wasRelative = fs::path(item.meshPath).is_relative();
-        item.meshPath = (!relative.empty() && (wasRelative || *relative.begin() != "..")) ? relative.generic_string()
-                                                                                         : absolute.string();
-    }
-    try {
-        path_ = path;
-        writeDocument(toDocument(), path);
-    } catch (...) {
-        path_ = oldPath;
-        std::size_t k = 0;
-        for (SceneItem& item : items_)
-            if (item.kind == SceneItem::Kind::ImportedMesh) item.meshPath = oldMeshPaths[k++];
-        throw;
-    }
-    document_.source = path;
-    modified_ = false;
-}
-
-void Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
-{
-    const std::string ext = lowerExtension(path);
-    if (ext == ".bpt") {
-        std::vector<DocumentObject> objects = bptObjects(path);
-        const std::string stem = fs::path(path).stem().string();
-        std::vector<SceneItem> added;
-        Document next = document_;
-        for (DocumentObject& o : objects) {
-            o.name = uniqueName(stem + "_" + o.name, added);
-            next.objects.push_back(o);
-            SceneItem item;
-            item.name = o.name;
-            item.type = objectType(o.data);
-            item.key = nextKey();
-            item.id = nextId();
-            added.push_back(std::move(item));
-        }
-        record(std::string("import ").append(fs::path(path).filename().string()));
-        const auto documentItems = static_cast<std::ptrdiff_t>(document_.objects.size());
-        document_ = std::move(next);
-        items_.insert(items_.begin() + documentItems, added.begin(), added.end());
-    } else if (isMeshFile(ext)) {
-        const UpAxis up = upAxis.value_or(formatUpAxis(path).value_or(UpAxis::Z));
-        ItemGeometry g = buildMeshGeometry(path, up); // reads it now: Error leaves the scene as it was
-        record(std::string("import ").append(fs::path(path).filename().string()));
-        addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
-        items_.back().up = up;
-        items_.back().geometry = std::move(g);
-        items_.back().geometryDirty = false;
-        items_.back().revision = items_.back().topology = nextRevision();
-    } else {
-        throw Error(path + ": cannot import this kind of file (.bpt or a mesh: .obj .ply .stl .off .gltf .glb)");
-    }
-    modified_ = true;
-}
-
-void Scene::setUpAxis(int i, UpAxis up)
-{
-    SceneItem& it = item(i);
-    if (it.kind != SceneItem::Kind::ImportedMesh) throw Error("\"" + it.name + "\": only an imported mesh has an up axis");
-    if (it.up == up) return;
-    record(up == UpAxis::Y ? "up axis Y" : "up axis Z");
-    it.up = up;
-    it.geometryDirty = true;
-    it.key = nextKey();
-    modified_ = true;
-}
-
-namespace {
-
-/// The visible meshes as one, as the editor exports them: positions and normals (no texture
-/// coordinates, which not every drawn mesh has).
-PolygonMesh exportedMesh(const std::vector<const PolygonMesh*>& meshes)
-{
-    PolygonMesh out = mergeMeshes(meshes);
-    out.texcoords.resize(2, 0);
-    return out;
-}
-
-} // namespace
-
-PolygonMesh Scene::mergedMesh()
-{
-    updateGeometry();
-    std::vector<const PolygonMesh*> meshes;
-    for (const SceneItem& item : items_)
-        if (item.settings.visible && item.geometry.surface) meshes.push_back(&*item.geometry.surface);
-    return exportedMesh(meshes);
-}
-
-void Scene::exportMesh(const std::string& path)
-{
-    // Exports keep the world tolerance (display.tolerance), not the view's pixel tolerance: an
-    // object drawn at the view's tolerance is tessellated again for the file only; what the view
-    // draws stays as it is.
-    updateGeometry();
-    std::vector<ItemGeometry> world;
-    world.reserve(items_.size()); // no reallocation: pointers into it are kept below
-    std::vector<const PolygonMesh*> meshes;
-    for (std::size_t i = 0; i < items_.size(); ++i) {
-        const SceneItem& item = items_[i];
-        if (!item.settings.visible) continue;
-        const ItemGeometry* g = &item.geometry;
-        if (followsViewTolerance(item) && (item.builtTolerance != display.tolerance || !item.geometry.patchTolerance.empty())) {
-            world.push_back(buildGeometry(document_.objects[i].data, item.settings, display.tolerance, documentDirectory()));
-            g = &world.back();
-        }
-        if (g->surface) meshes.push_back(&*g->surface);
-    }
-    const PolygonMesh mesh = exportedMesh(meshes);
-    if (mesh.faceCount() == 0) throw Error("export: the scene has no visible surfaces or meshes");
-    writePolygonMesh(mesh, path);
 }
 
 const DocumentObject& Scene::object(int i) const
@@ -434,7 +145,7 @@ void Scene::setObjectData(int i, ObjectData data)
     document_.objects[static_cast<std::size_t>(i)].data = std::move(data);
     SceneItem& it = items_[static_cast<std::size_t>(i)];
     it.geometryDirty = true;
-    it.key = nextKey();
+    it.key = scene_detail::nextKey();
     modified_ = true;
 }
 
@@ -518,7 +229,7 @@ void Scene::setSettings(int i, const ObjectSettings& settings, const std::string
     if (link) resolveLink(it);
     if (geometry && it.kind == SceneItem::Kind::DocumentObject) {
         it.geometryDirty = true;
-        it.key = nextKey();
+        it.key = scene_detail::nextKey();
     }
     modified_ = true;
 }
@@ -535,8 +246,8 @@ int Scene::addObject(DocumentObject object, const std::string& label)
     SceneItem item;
     item.name = object.name;
     item.type = objectType(document_.objects.back().data);
-    item.key = nextKey();
-    item.id = nextId();
+    item.key = scene_detail::nextKey();
+    item.id = scene_detail::nextId();
     items_.insert(items_.begin() + at, std::move(item));
     modified_ = true;
     return static_cast<int>(at);
@@ -549,7 +260,7 @@ void Scene::setScalars(int i, std::vector<float> scalars)
     if (!scalars.empty() && static_cast<long>(scalars.size()) != vertices)
         throw Error("\"" + it.name + "\": " + std::to_string(scalars.size()) + " scalars for " + std::to_string(vertices) + " vertices");
     it.scalars = std::move(scalars);
-    it.revision = nextRevision();
+    it.revision = scene_detail::nextRevision();
 }
 
 void Scene::remove(int i)
@@ -625,21 +336,6 @@ void Scene::cancelMerge()
     if (std::optional<SceneState> s = history_.cancelMerge()) restore(std::move(*s));
 }
 
-Scene Scene::recover(const std::string& autosavePath, const std::string& originalPath, double aspect)
-{
-    Scene scene = load(autosavePath, aspect);
-    scene.path_ = originalPath;
-    scene.cageDirectory_ = originalPath.empty() ? std::string() : fs::path(originalPath).parent_path().string();
-    scene.document_.source = originalPath.empty() ? autosavePath : originalPath;
-    // A relative cage path belongs to the original document's folder, not the autosave's.
-    for (std::size_t i = 0; i < scene.document_.objects.size(); ++i)
-        if (const auto* sub = std::get_if<SubdivisionSurfaceData>(&scene.document_.objects[i].data); sub && !sub->mesh.empty())
-            scene.items_[i].geometryDirty = true;
-    scene.updateGeometry();
-    scene.modified_ = true;
-    return scene;
-}
-
 void Scene::invalidateGeometry()
 {
     for (SceneItem& item : items_)
@@ -663,7 +359,7 @@ void Scene::buildItem(std::size_t i)
     if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
         item.scalars.clear();
     item.geometryDirty = false;
-    item.revision = item.topology = nextRevision();
+    item.revision = item.topology = scene_detail::nextRevision();
 }
 
 void Scene::updateGeometry()
@@ -803,7 +499,7 @@ void Scene::takeBackgroundResult()
         item.builtTolerance = result->tolerance;
         if (item.geometry.surface && item.scalars.size() != static_cast<std::size_t>(item.geometry.surface->vertexCount()))
             item.scalars.clear();
-        item.revision = item.topology = nextRevision();
+        item.revision = item.topology = scene_detail::nextRevision();
         ++backgroundStats_.applied;
     }
 }
