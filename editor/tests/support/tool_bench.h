@@ -1,10 +1,15 @@
 #pragma once
-// What the window-less tool tests share (test_tools.cpp, test_nurbs_tool.cpp): a Scene driven
-// through the tools' entry points with the context the application would pass them, under a view
-// whose pixels are worked out by hand. Header only.
+// What the window-less tool tests share (test_tools.cpp, test_spline_joints.cpp,
+// test_lattice_tool.cpp, test_nurbs_tool.cpp): a Scene driven through the tools' entry points with
+// the context the application would pass them, under a view whose pixels are worked out by hand;
+// the curve scene and the distorted box mesh they load, and readings of curves, splines and their
+// joints. Header only.
+
+#include <catch2/catch.hpp>
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -13,6 +18,7 @@
 #include <freeform/core/transform.h>
 
 #include "freeform/document/operations.h"
+#include "support/process.h"
 #include "tools/tools.h"
 
 namespace freeform::editor::tool_test {
@@ -63,4 +69,88 @@ struct Bench {
     }
 };
 
+/// A 3D cubic "c", a cubic spline "s" of three segments on intervals (1, 2, 0.5) whose joints are
+/// neither C1 nor G1, and a lattice "box".
+inline Scene curveScene(const std::string& name)
+{
+    const std::string path = cat(FREEFORM_TEST_TMP, "/", name);
+    test::writeText(path, R"({"format": "freeform", "version": 1, "objects": [
+      {"name": "c", "type": "bezier_curve", "points": [[-2, 0, 0.5], [-1, 1, 1.5], [0.5, -1, 2], [2, 0.3, -0.5]]},
+      {"name": "s", "type": "bezier_spline", "degree": 3, "intervals": [1, 2, 0.5], "points": [
+        [-3, 0, 0], [-2.5, 1, 0.2], [-1.8, 1.2, 0.1], [-1, 0.5, 0], [-0.2, 0.9, 0.3], [0.4, -0.6, 0.2],
+        [1, -0.5, 0], [1.6, 0.1, -0.2], [2.4, 1.1, 0], [3, 0.2, 0.1]]},
+      {"name": "box", "type": "lattice", "degree": [1, 1, 1], "origin": [0, 0, 0], "axes": [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
+       "points": [[0,0,0],[0,0,1],[0,1,0],[0,1,1],[1,0,0],[1,0,1],[1,1,0],[1,1,1]]}]})");
+    return Scene::load(path);
+}
+
+/// The bezier_curve `name` of the scene, as the library's curve.
+inline BezierCurve<double, 3> curveOf(const Scene& scene, const std::string& name)
+{
+    return BezierCurve<double, 3>(Points3(std::get<BezierCurveData>(scene.object(findItem(scene, name)).data).points));
+}
+
+/// The bezier_spline `name` of the scene, as saved.
+inline const BezierSplineData& splineData(const Scene& scene, const std::string& name)
+{
+    return std::get<BezierSplineData>(scene.object(findItem(scene, name)).data);
+}
+
+/// The bezier_spline `name` of the scene, as the library's spline.
+inline BezierSpline<double, 3> splineOf(const Scene& scene, const std::string& name)
+{
+    const BezierSplineData& d = splineData(scene, name);
+    return BezierSpline<double, 3>(d.degree, d.closed, Points3(d.points), d.intervals);
+}
+
+/// The continuity report of joint j (the library's analysis of the spline as saved).
+inline JointContinuity<double> jointReport(const Scene& scene, const std::string& name, int j)
+{
+    for (const auto& c : continuityReport(splineOf(scene, name)))
+        if (c.joint == j) return c;
+    FAIL("no joint " << j);
+    return {};
+}
+
+/// The largest distance between a at a0 + u and b at b0 + u, u in [0, length] (201 samples, each
+/// clamped to its spline's domain).
+inline double maxDistance(const BezierSpline<double, 3>& a, double a0, const BezierSpline<double, 3>& b, double b0, double length)
+{
+    double worst = 0;
+    for (int i = 0; i <= 200; ++i) {
+        const double u = length * i / 200.0;
+        worst = std::max(worst, (a.evaluate(std::min(a0 + u, a.domainEnd())) - b.evaluate(std::min(b0 + u, b.domainEnd()))).norm());
+    }
+    return worst;
+}
+
+/// A press of `button` at pixel (x, y) whose pick ray starts at `origin` along `direction`.
+inline PointerEvent press(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, int button = 0, double x = 0, double y = 0)
+{
+    PointerEvent e;
+    e.type = PointerEvent::Type::Press;
+    e.button = button;
+    e.x = x;
+    e.y = y;
+    e.rayOrigin = origin;
+    e.rayDirection = direction.normalized();
+    return e;
+}
+
+/// A distorted box: eight vertices, six quads (none axis-aligned).
+inline const double kBox[8][3] = {{-1.0, -0.5, -0.25}, {1.2, -0.6, -0.2}, {1.1, 0.7, -0.3}, {-0.9, 0.5, -0.1},
+                                  {-1.05, -0.45, 0.8}, {1.0, -0.55, 0.9}, {1.15, 0.65, 0.75}, {-0.95, 0.55, 0.85}};
+
+/// Writes the distorted box as an OBJ file `name` in the tests' temporary folder; returns its path.
+inline std::string writeBox(const std::string& name)
+{
+    std::string text;
+    for (const auto& v : kBox) text += cat("v ", v[0], " ", v[1], " ", v[2], "\n");
+    text += "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    const std::string path = cat(FREEFORM_TEST_TMP, "/", name);
+    test::writeText(path, text);
+    return path;
+}
+
 } // namespace freeform::editor::tool_test
+
