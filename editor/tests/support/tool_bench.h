@@ -3,19 +3,23 @@
 // test_lattice_tool.cpp, test_nurbs_tool.cpp): a Scene driven through the tools' entry points with
 // the context the application would pass them, under a view whose pixels are worked out by hand;
 // the curve scene and the distorted box mesh they load, and readings of curves, splines and their
-// joints. Header only.
+// joints. The subdivision cage tests (test_subdivision_editing.cpp, test_cage_tool.cpp) have their
+// own bench, without a view, and their cage files, in cage_test below. Header only.
 
 #include <catch2/catch.hpp>
 
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <freeform/core/transform.h>
+#include <freeform/subdivision/subdivision_surface.h>
 
 #include "freeform/document/operations.h"
 #include "support/process.h"
@@ -154,3 +158,101 @@ inline std::string writeBox(const std::string& name)
 
 } // namespace freeform::editor::tool_test
 
+/// The subdivision cage tests (test_subdivision_editing.cpp, test_cage_tool.cpp): cages in mesh
+/// files (data/cages) copied beside a document, read by hand, and the library's limit surface to
+/// compare the editor's with.
+namespace freeform::editor::cage_test {
+
+namespace fs = std::filesystem;
+using tool_test::cat;
+
+inline const std::string kCages = std::string(FREEFORM_SOURCE_DIR) + "/data/cages";
+
+/// A fresh folder under the test folder with the named cage files copied into it.
+inline std::string folderWith(const std::string& name, const std::vector<std::string>& cages)
+{
+    const fs::path dir = fs::path(FREEFORM_TEST_TMP) / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const std::string& c : cages) fs::copy_file(fs::path(kCages) / c, dir / c);
+    return dir.string();
+}
+
+/// The `v` and `f` lines of an OBJ text, read here by hand (faces 0-based), so that the editor's
+/// cage is compared with the file and not with the library's reader.
+struct ObjCage {
+    Eigen::Matrix3Xd vertices;
+    std::vector<std::vector<int>> faces;
+};
+
+inline ObjCage readObjByHand(const std::string& path)
+{
+    std::istringstream in(test::slurp(path));
+    std::vector<Eigen::Vector3d> vs;
+    ObjCage cage;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream tokens(line);
+        std::string tag;
+        tokens >> tag;
+        if (tag == "v") {
+            Eigen::Vector3d p;
+            tokens >> p.x() >> p.y() >> p.z();
+            vs.push_back(p);
+        } else if (tag == "f") {
+            std::vector<int> face;
+            int v = 0;
+            while (tokens >> v) face.push_back(v - 1);
+            cage.faces.push_back(face);
+        }
+    }
+    cage.vertices.resize(3, static_cast<Eigen::Index>(vs.size()));
+    for (std::size_t i = 0; i < vs.size(); ++i) cage.vertices.col(static_cast<Eigen::Index>(i)) = vs[i];
+    return cage;
+}
+
+/// The library's limit surface of a cage with the options the editor's Builder uses: adaptive to
+/// `tolerance` (the display tolerance, for default object settings), or `level` segments per edge.
+inline PolygonMesh libraryTessellation(const SubdivisionCage& cage, double tolerance, int level = 8)
+{
+    const SubdivisionSurface surface(cage, SubdivisionScheme::Catmark);
+    SubdivisionTessellationOptions options;
+    options.tolerance = tolerance;
+    options.level = level;
+    return surface.tessellate(options);
+}
+
+/// The largest distance between corresponding vertices of two meshes with the same faces (infinity
+/// when the vertex counts or faces differ).
+inline double meshDistance(const PolygonMesh& a, const PolygonMesh& b)
+{
+    if (a.positions.cols() != b.positions.cols() || a.faceVertices != b.faceVertices || a.faceStart != b.faceStart)
+        return std::numeric_limits<double>::infinity();
+    return a.positions.cols() == 0 ? 0.0 : (a.positions - b.positions).colwise().norm().maxCoeff();
+}
+
+/// The distance from p to the nearest vertex of the mesh.
+inline double nearestVertex(const PolygonMesh& mesh, const Eigen::Vector3d& p)
+{
+    return (mesh.positions.colwise() - p).colwise().norm().minCoeff();
+}
+
+/// A v1 document text with these objects (JSON text, comma separated).
+inline std::string document(const std::string& objects)
+{
+    std::string text = R"({"format": "freeform", "version": 1, "objects": [)";
+    text += objects;
+    text += "]}";
+    return text;
+}
+
+/// A scene with selection, tools and the context the application would pass them (no GL).
+struct Bench {
+    explicit Bench(Scene s) : scene(std::move(s)) {}
+    Scene scene;
+    Selection selection;
+    Tools tools;
+    ToolContext context{scene, selection, 800, 500, Eigen::Matrix4d::Identity()};
+};
+
+} // namespace freeform::editor::cage_test
