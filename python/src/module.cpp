@@ -1,6 +1,6 @@
 // The Python module `freeform` (docs/python.md): freeform.Error, the kind table (kinds()) and the
-// bindings of lattice.cpp, geometry.cpp and nurbs.cpp. A front end on the document layer
-// (docs/architecture.md), like cli/.
+// bindings of lattice.cpp and lattice_points.cpp, geometry.cpp and nurbs.cpp. A front end on the
+// document layer (docs/architecture.md), like cli/.
 
 #include "arrays.h"
 
@@ -12,6 +12,7 @@
 
 namespace ffpy {
 void bindLattice(pybind11::module_& m);
+void bindLatticeWeights(pybind11::module_& m);
 void bindGeometry(pybind11::module_& m);
 void bindNurbs(pybind11::module_& m);
 } // namespace ffpy
@@ -74,6 +75,7 @@ PYBIND11_MODULE(freeform, m)
         "name, summary, nature ('curve', 'surface', 'volume'), parameters ('t', 'uv', 'face_uv', 'stu'), dimension "
         "(0: 2 or 3), rational, knots, pieces and the operations it supports.");
     ffpy::bindLattice(m);
+    ffpy::bindLatticeWeights(m); // after bindLattice: adds Lattice.weights, weights_matvec, weights_rmatvec
     ffpy::bindGeometry(m);
     ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve
     // For the tests of docs/python.md "Arrays": the array Lattice.bind, report and the other point
