@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the geometry bindings (geometry.cpp: curves, splines, patches, documents, meshes;
-// nurbs.cpp: the rational and NURBS types): the Python-side object structs and the array helpers
-// for many parameters at once (docs/python.md).
+// nurbs.cpp and nurbs_surface.cpp: the rational and NURBS types): the Python-side object structs
+// and the array helpers for many parameters at once (docs/python.md).
 
 #include "arrays.h"
 
@@ -172,7 +172,7 @@ inline void requireInRange(const py::array_t<double, py::array::c_style>& ts, do
     }
 }
 
-// ---------------------------------------------------------------- rational and NURBS (nurbs.cpp)
+// ------------------------------------------------- rational and NURBS (nurbs.cpp, nurbs_surface.cpp)
 
 struct PyRationalCurve {
     std::variant<freeform::RationalBezierCurve<double, 2>, freeform::RationalBezierCurve<double, 3>> c;
@@ -196,5 +196,6 @@ py::object geometryObject(const freeform::TypedDocument& doc, const freeform::Ty
 freeform::ObjectData objectData(py::handle object);
 
 void bindNurbs(py::module_& m);
+void bindNurbsSurfaces(py::module_& m);
 
 } // namespace ffpy

@@ -1,6 +1,6 @@
 // The Python module `freeform` (docs/python.md): freeform.Error, the kind table (kinds()) and the
-// bindings of lattice.cpp and lattice_points.cpp, geometry.cpp and nurbs.cpp. A front end on the
-// document layer (docs/architecture.md), like cli/.
+// bindings of lattice.cpp and lattice_points.cpp, geometry.cpp, nurbs.cpp and nurbs_surface.cpp. A
+// front end on the document layer (docs/architecture.md), like cli/.
 
 #include "arrays.h"
 
@@ -15,6 +15,7 @@ void bindLattice(pybind11::module_& m);
 void bindLatticeWeights(pybind11::module_& m);
 void bindGeometry(pybind11::module_& m);
 void bindNurbs(pybind11::module_& m);
+void bindNurbsSurfaces(pybind11::module_& m);
 } // namespace ffpy
 
 namespace {
@@ -77,7 +78,8 @@ PYBIND11_MODULE(freeform, m)
     ffpy::bindLattice(m);
     ffpy::bindLatticeWeights(m); // after bindLattice: adds Lattice.weights, weights_matvec, weights_rmatvec
     ffpy::bindGeometry(m);
-    ffpy::bindNurbs(m); // after bindLattice: adds Lattice.deform_curve
+    ffpy::bindNurbs(m);
+    ffpy::bindNurbsSurfaces(m); // after bindNurbs and bindLattice: adds Lattice.deform_curve
     // For the tests of docs/python.md "Arrays": the array Lattice.bind, report and the other point
     // calls read for their points (ffpy::rows): the argument itself for float64/float32
     // C-contiguous (N, 3) arrays, a float64 copy made once otherwise. (deform, det_j and
