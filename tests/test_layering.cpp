@@ -4,7 +4,8 @@
 // layer, or a stream header, nor print: the library reports through freeform::Error and the
 // warning handler (core/warning.h) only. This test reads every such file; snprintf and
 // to_chars, which format into memory, are allowed. The front ends (cli/, editor/, python/src/)
-// compare no type string: they dispatch on the kind table (document/kinds.h).
+// compare no type string: they dispatch on the kind table (document/kinds.h). No source file of
+// freeform/, cli/, editor/ or python/src/ is over 800 lines.
 
 #include <catch2/catch.hpp>
 
@@ -108,6 +109,26 @@ TEST_CASE("the front ends name no kind in code: they dispatch on the kind table"
         }
     }
     CHECK(files >= 80);
+}
+
+TEST_CASE("no source file of the library, the CLI, the editor or the Python module is over 800 lines", "[layers]")
+{
+    const fs::path root(FREEFORM_SOURCE_DIR);
+    int files = 0;
+    for (const char* folder : {"freeform", "cli", "editor", "python/src"}) {
+        REQUIRE(fs::is_directory(root / folder));
+        for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
+            const fs::path& path = entry.path();
+            if (!entry.is_regular_file() || (path.extension() != ".cpp" && path.extension() != ".h")) continue;
+            ++files;
+            std::ifstream in(path);
+            int lines = 0;
+            for (std::string line; std::getline(in, line);) ++lines;
+            INFO(path.string() << ": " << lines << " lines (docs/architecture.md: split it along its seams)");
+            CHECK(lines <= 800);
+        }
+    }
+    CHECK(files >= 200);
 }
 
 TEST_CASE("the violation check finds what it forbids", "[layers]")
