@@ -5,12 +5,15 @@
 
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
 
 #include "freeform/document/document.h"
 #include "freeform/document/object_data.h"
+#include "freeform/io/geometry_data.h"
 
 namespace test_kinds {
 
@@ -212,6 +215,31 @@ TEST_CASE("toData is the inverse of buildGeometry for every kind", "[kinds]")
     cage.holes = {0};
     const SubdivisionObject holed{SubdivisionSurface(cage, SubdivisionScheme::Catmark)};
     CHECK_THROWS_WITH(toData(holed), Catch::Contains("holes"));
+}
+
+TEST_CASE("a cage file with holes has no inline form: deformDocument and inlineCage refuse it, nothing changed", "[kinds]")
+{
+    const std::string dir = std::string(FREEFORM_TEST_TMP) + "/kinds_holes";
+    std::filesystem::create_directories(dir);
+    {
+        std::ifstream in(std::string(FREEFORM_SOURCE_DIR) + "/data/cages/cube.obj");
+        std::ofstream out(dir + "/holed.obj");
+        out << in.rdbuf() << "t hole 1/0/0 0\n";
+    }
+    const Document data = parseDocument(R"({"format": "freeform", "version": 1, "objects": [
+      {"name": "cage", "type": "subdivision_surface", "mesh": "holed.obj"},
+      {"name": "L", "type": "lattice", "degree": [1, 1, 1], "origin": [-2, -2, -2],
+       "axes": [[4,0,0],[0,4,0],[0,0,4]],
+       "points": [[-2,-2,-2],[-2,-2,2],[-2,2,-2],[-2,2,2],[2,-2,-2],[2,-2,2],[2,2,-2],[3,3,3]]}]})",
+                                        "holes.json");
+    TypedDocument doc(data, dir);
+    REQUIRE(std::get<SubdivisionObject>(doc.object("cage").geometry()).cage().holes == std::vector<int>{0});
+    const std::string before = formatDocument(doc.toDocument());
+    const Lattice lattice = std::get<Lattice>(doc.object("L").geometry());
+    CHECK_THROWS_WITH(deformDocument(doc, lattice), Catch::Contains("object \"cage\"") && Catch::Contains("holes"));
+    CHECK(formatDocument(doc.toDocument()) == before);
+    CHECK_THROWS_WITH(inlineCage(std::get<SubdivisionSurfaceData>(data.object("cage").data), dir, "\"cage\""),
+                      Catch::Contains("\"cage\"") && Catch::Contains("holes"));
 }
 
 } // namespace test_kinds
