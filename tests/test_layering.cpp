@@ -1,11 +1,11 @@
 // The library's layers read bottom-up: core -> geometry -> io -> document -> (cli, editor).
 // No file of the core and geometry layers (core/, curve/, surface/, volume/, subdivision/, mesh/,
-// tessellate/; headers and sources) may include a file format (nlohmann), the io or document
+// tessellate/, brep/; headers and sources) may include a file format (nlohmann), the io or document
 // layer, or a stream header, nor print: the library reports through freeform::Error and the
 // warning handler (core/warning.h) only. This test reads every such file; snprintf and
 // to_chars, which format into memory, are allowed. The front ends (cli/, editor/, python/src/)
 // compare no type string: they dispatch on the kind table (document/kinds.h). No source file of
-// freeform/, cli/, editor/ or python/src/ is over 800 lines.
+// freeform/, cad/, cli/, editor/ or python/src/ is over 800 lines.
 
 #include <catch2/catch.hpp>
 
@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kLowerLayers[] = {"core", "curve", "surface", "volume", "subdivision", "mesh", "tessellate"};
+const char* const kLowerLayers[] = {"core", "curve", "surface", "volume", "subdivision", "mesh", "tessellate", "brep"};
 
 /// What a line of a core or geometry file must not hold, or "" when it is clean.
 std::string violation(const std::string& line)
@@ -115,7 +115,7 @@ TEST_CASE("no source file of the library, the CLI, the editor or the Python modu
 {
     const fs::path root(FREEFORM_SOURCE_DIR);
     int files = 0;
-    for (const char* folder : {"freeform", "cli", "editor", "python/src"}) {
+    for (const char* folder : {"freeform", "cad", "cli", "editor", "python/src"}) {
         REQUIRE(fs::is_directory(root / folder));
         for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
             const fs::path& path = entry.path();

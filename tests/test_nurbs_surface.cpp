@@ -190,4 +190,25 @@ TEST_CASE("surface knot refinement in u and v keeps the surface", "[nurbs][surfa
     }
 }
 
+TEST_CASE("a surface restricted to a parameter box is the same surface there", "[nurbs][surface]")
+{
+    for (int p = 1; p <= 4; ++p) {
+        const Surface s = randomSurface(p, 5 - p, p % 2, true, 700u + p);
+        const double a = s.knotsU().front(), b = s.knotsU().back(), c = s.knotsV().front(), d = s.knotsV().back();
+        const double a0 = a + 0.21 * (b - a), a1 = a + 0.77 * (b - a), c0 = c + 0.4 * (d - c);
+        const Surface r = s.restrictedU(a0, a1).restrictedV(c0, d + 1); // d + 1: v keeps its end
+        CHECK(r.knotsU().front() == a0);
+        CHECK(r.knotsU().back() == a1);
+        CHECK(r.knotsV().front() == c0);
+        CHECK(r.knotsV().back() == d);
+        for (int i = 0; i <= 10; ++i)
+            for (int j = 0; j <= 10; ++j) {
+                const double u = a0 + (a1 - a0) * i / 10.0, v = c0 + (d - c0) * j / 10.0;
+                CHECK((r(u, v) - s(u, v)).norm() <= 1e-13);
+            }
+        // The restricted net's box holds the surface there and lies within the whole net's box.
+        CHECK(s.controlBox().contains(r.controlBox()));
+    }
+}
+
 } // namespace test_nurbs_surface

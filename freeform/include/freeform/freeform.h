@@ -2,6 +2,10 @@
 // Everything in one include: every public header of the library (tests/test_layering.cpp checks
 // that none is missing). Prefer the specific headers in larger code bases.
 
+#include "freeform/brep/exact_forms.h"
+#include "freeform/brep/parameter_map.h"
+#include "freeform/brep/part.h"
+#include "freeform/brep/trimmed_surface.h"
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
 #include "freeform/core/format.h"

@@ -449,6 +449,20 @@ public:
     }
 
     /// Box of the control points (contains the surface).
+    /// The surface over [a, b] of its u (or v) domain, by knot insertion at a and b (NurbsCurve::split
+    /// on every column): the same points at the same parameters there. An end outside the domain
+    /// (or on its end) leaves that end as it is.
+    NurbsSurface restrictedU(Scalar a, Scalar b) const
+    {
+        std::vector<NurbsCurve<Scalar, Dim>> cols = curvesU();
+        for (auto& c : cols) {
+            if (a > c.domainStart() && a < c.domainEnd()) c = c.split(a).second;
+            if (b > c.domainStart() && b < c.domainEnd()) c = c.split(b).first;
+        }
+        return fromCurvesU(cols, kv_);
+    }
+    NurbsSurface restrictedV(Scalar a, Scalar b) const { return transposed().restrictedU(a, b).transposed(); }
+
     Box<Scalar, Dim> controlBox() const
     {
         const Points p = controlPoints();

@@ -1,0 +1,63 @@
+// Parts: bounds and the topology and gap check (brep/part.h, docs/cad.md "Parts").
+
+#include "freeform/brep/part.h"
+
+#include <algorithm>
+#include <map>
+
+namespace freeform {
+
+std::vector<int> Part::looseFaces() const
+{
+    std::vector<char> inShell(faces.size(), 0);
+    for (const PartShell& s : shells)
+        for (int f : s.faces) inShell[static_cast<std::size_t>(f)] = 1;
+    std::vector<int> loose;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+        if (!inShell[f]) loose.push_back(static_cast<int>(f));
+    return loose;
+}
+
+Box<double, 3> Part::bounds() const
+{
+    Box<double, 3> box;
+    for (const PartFace& f : faces) box.extend(f.surface.bounds());
+    for (const PartVertex& v : vertices) box.extend(v.point);
+    return box;
+}
+
+PartCheck checkPart(const Part& part, int samples)
+{
+    PartCheck check;
+    for (const PartShell& shell : part.shells) {
+        std::map<int, int> uses; // edge -> uses in this shell (a seam counts twice in its face)
+        for (int f : shell.faces)
+            for (const TrimLoop& loop : part.faces[static_cast<std::size_t>(f)].surface.loops())
+                for (const TrimCurve& c : loop.curves)
+                    if (c.edge >= 0 && !part.edges[static_cast<std::size_t>(c.edge)].degenerate) ++uses[c.edge];
+        for (const auto& [edge, count] : uses) {
+            if (count == 1) ++check.openEdges;
+            if (count > 2) ++check.nonManifoldEdges;
+        }
+    }
+    check.closed = !part.shells.empty() && check.openEdges == 0 && check.nonManifoldEdges == 0;
+
+    for (const PartFace& face : part.faces)
+        for (const TrimLoop& loop : face.surface.loops())
+            for (const TrimCurve& c : loop.curves) {
+                if (c.edge < 0) continue;
+                const PartEdge& e = part.edges[static_cast<std::size_t>(c.edge)];
+                if (!e.curve) continue;
+                double gap = 0;
+                for (int k = 0; k <= samples; ++k) {
+                    const double t = e.first + (e.last - e.first) * k / samples;
+                    const Eigen::Vector2d uv = c.curve.point(t);
+                    gap = std::max(gap, (e.curve->point(t) - face.surface.point(uv.x(), uv.y())).norm());
+                }
+                check.maxGap = std::max(check.maxGap, gap);
+                if (gap > e.tolerance) ++check.gapsOverTolerance;
+            }
+    return check;
+}
+
+} // namespace freeform
