@@ -1,5 +1,7 @@
 // freeform info: the topology report of a mesh file.
 
+#include <cctype>
+#include <filesystem>
 #include <memory>
 
 #include "command.h"
@@ -32,6 +34,15 @@ Json componentJson(const ComponentReport& c)
     return j;
 }
 
+/// A STEP or IGES file, by its extension (as freeform/cad/cad_file.h's isCadFile, which a build
+/// without Open CASCADE lacks).
+bool isPartFile(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
+}
+
 struct InfoOptions {
     std::vector<std::string> positional;
     bool details = false;
@@ -41,6 +52,13 @@ Json info(const InfoOptions& o)
 {
     expectPositional(o.positional, 1, "the mesh file (freeform info MESH)");
     const std::string& path = o.positional[0];
+    if (isPartFile(path)) {
+#ifdef FREEFORM_HAVE_CAD
+        return partInfo(path, o.details);
+#else
+        throw Error(path + ": this freeform was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF); it reads no STEP or IGES");
+#endif
+    }
     const PolygonMesh mesh = readPolygonMesh(path);
     MeshReport r;
     try {
@@ -93,6 +111,10 @@ Action defineInfo(CLI::App& app)
                "is a closed orientable manifold (then it is the sum of (2 - chi) / 2 over the\n"
                "components); otherwise it is null and \"genus_note\" says why. docs/meshes.md explains\n"
                "every field.\n"
+               "A STEP (.step .stp) or IGES (.iges .igs) part gives instead\n"
+               "  {\"faces\": F, \"edges\": E, \"vertices\": V, \"shells\": S, \"solids\": N,\n"
+               "   \"closed\": true|false, \"units\": \"mm\", \"bounds\": {\"min\": [...], \"max\": [...]}, ...}\n"
+               "(docs/cad.md).\n"
                "Exit status: 0 ok, 1 bad input (missing, unreadable or malformed file), 2 bad usage.");
     addPositionals(app, "MESH", o->positional, "the mesh file");
     addFlag(app, "--details", o->details,

@@ -103,6 +103,9 @@ Json interpolateNurbsCommand(const PointColumns& points, const std::vector<doubl
                              int degree, const std::vector<double>& start, const std::vector<double>& end,
                              const std::string& source, const std::string& output);
 
+/// `freeform info` on a STEP or IGES part (info_part.cpp).
+Json partInfo(const std::string& path, bool details);
+
 // The commands (one file each).
 Action defineBench(CLI::App& app);       // cmd_bench.cpp
 Action defineContinuity(CLI::App& app);  // cmd_continuity.cpp

@@ -28,6 +28,8 @@ packages=(
   xdotool                               # editor test driving the real window under Xvfb (x11 label)
   clang libfuzzer-14-dev                # sanitizer + fuzzing build (scripts/test.sh, fuzz.sh): clang 14 + libFuzzer
   assimp-testmodels                     # files other tools wrote: fuzz seeds, reader tests
+  libocct-data-exchange-dev             # Open CASCADE 7.6: STEP and IGES parts (cad/, docs/cad.md) and the tests' reference
+  occt-misc                             # Open CASCADE's sample parts (STEP, IGES, .brep): the CAD tests read them
 )
 
 missing=()

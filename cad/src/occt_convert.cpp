@@ -1,0 +1,237 @@
+// Open CASCADE geometry into exact NURBS forms (occt_convert.h, docs/cad.md "Exact forms").
+
+#include "occt_convert.h"
+
+#include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_BezierCurve.hxx>
+#include <Geom2d_Circle.hxx>
+#include <Geom2d_Ellipse.hxx>
+#include <Geom2d_Hyperbola.hxx>
+#include <Geom2d_Line.hxx>
+#include <Geom2d_Parabola.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
+#include <gp_Lin2d.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <Geom_BezierSurface.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Hyperbola.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_Parabola.hxx>
+#include <Geom_Plane.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
+#include <Geom_ToroidalSurface.hxx>
+#include <Geom_TrimmedCurve.hxx>
+
+#include "freeform/core/error.h"
+
+namespace freeform::occt {
+namespace {
+
+Eigen::Vector3d vec(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
+Eigen::Vector3d vec(const gp_Pnt& p) { return vec(p.XYZ()); }
+Eigen::Vector3d vec(const gp_Dir& d) { return vec(d.XYZ()); }
+Eigen::Vector2d vec(const gp_Pnt2d& p) { return {p.X(), p.Y()}; }
+Eigen::Vector2d vec(const gp_Dir2d& d) { return {d.X(), d.Y()}; }
+
+/// A B-spline or Bézier curve of either dimension: its poles, weights and flat knots, made
+/// non-periodic (a periodic curve keeps its parameter through a periodic map).
+template <int Dim, typename BSpline>
+MappedCurve<Dim> fromBSpline(const Handle(BSpline)& source, double f, double l)
+{
+    Handle(BSpline) c = Handle(BSpline)::DownCast(source->Copy());
+    ParameterMap map;
+    if (c->IsPeriodic()) {
+        const double start = c->FirstParameter(), period = c->Period();
+        c->SetNotPeriodic();
+        map = ParameterMap::periodic(start, period);
+    }
+    const int n = c->NbPoles();
+    PointMatrix<double, Dim> p(Dim, n);
+    Eigen::VectorXd w(n);
+    for (int i = 1; i <= n; ++i) {
+        p.col(i - 1) = vec(c->Pole(i));
+        w[i - 1] = c->Weight(i);
+    }
+    std::vector<double> knots;
+    const TColStd_Array1OfReal& seq = c->KnotSequence();
+    for (int i = seq.Lower(); i <= seq.Upper(); ++i) knots.push_back(seq(i));
+    return exactRestriction<Dim>(NurbsCurve<double, Dim>(c->Degree(), std::move(knots), p, w), map, f, l);
+}
+
+template <int Dim, typename Bezier>
+MappedCurve<Dim> fromBezier(const Handle(Bezier)& c, double f, double l)
+{
+    const int n = c->NbPoles();
+    PointMatrix<double, Dim> p(Dim, n);
+    Eigen::VectorXd w(n);
+    for (int i = 1; i <= n; ++i) {
+        p.col(i - 1) = vec(c->Pole(i));
+        w[i - 1] = c->Weight(i);
+    }
+    std::vector<double> knots(static_cast<std::size_t>(n), 0.0);
+    knots.resize(static_cast<std::size_t>(2 * n), 1.0);
+    return exactRestriction<Dim>(NurbsCurve<double, Dim>(n - 1, std::move(knots), p, w), ParameterMap::identity(), f, l);
+}
+
+std::string typeName(const Handle(Standard_Transient)& t) { return t->DynamicType()->Name(); }
+
+} // namespace
+
+MappedCurve<3> exactCurve(const Handle(Geom_Curve)& curve, double f, double l)
+{
+    if (auto t = Handle(Geom_TrimmedCurve)::DownCast(curve)) return exactCurve(t->BasisCurve(), f, l);
+    if (auto c = Handle(Geom_Line)::DownCast(curve))
+        return exactLine<3>(vec(c->Lin().Location()), vec(c->Lin().Direction()), f, l);
+    if (auto c = Handle(Geom_Circle)::DownCast(curve)) {
+        const gp_Ax2& a = c->Position();
+        return exactEllipse<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Radius(), c->Radius(), f, l);
+    }
+    if (auto c = Handle(Geom_Ellipse)::DownCast(curve)) {
+        const gp_Ax2& a = c->Position();
+        return exactEllipse<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
+                               c->MinorRadius(), f, l);
+    }
+    if (auto c = Handle(Geom_Hyperbola)::DownCast(curve)) {
+        const gp_Ax2& a = c->Position();
+        return exactHyperbola<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
+                                 c->MinorRadius(), f, l);
+    }
+    if (auto c = Handle(Geom_Parabola)::DownCast(curve)) {
+        const gp_Ax2& a = c->Position();
+        return exactParabola<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Focal(), f, l);
+    }
+    if (auto c = Handle(Geom_BSplineCurve)::DownCast(curve)) return fromBSpline<3>(c, f, l);
+    if (auto c = Handle(Geom_BezierCurve)::DownCast(curve)) return fromBezier<3>(c, f, l);
+    throw Error("a curve of kind " + typeName(curve) + " has no exact rational form freeform reads");
+}
+
+MappedCurve<2> exactCurve2d(const Handle(Geom2d_Curve)& curve, double f, double l)
+{
+    if (auto t = Handle(Geom2d_TrimmedCurve)::DownCast(curve)) return exactCurve2d(t->BasisCurve(), f, l);
+    if (auto c = Handle(Geom2d_Line)::DownCast(curve))
+        return exactLine<2>(vec(c->Lin2d().Location()), vec(c->Lin2d().Direction()), f, l);
+    if (auto c = Handle(Geom2d_Circle)::DownCast(curve)) {
+        const gp_Ax22d& a = c->Position();
+        return exactEllipse<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Radius(), c->Radius(), f, l);
+    }
+    if (auto c = Handle(Geom2d_Ellipse)::DownCast(curve)) {
+        const gp_Ax22d& a = c->Position();
+        return exactEllipse<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
+                               c->MinorRadius(), f, l);
+    }
+    if (auto c = Handle(Geom2d_Hyperbola)::DownCast(curve)) {
+        const gp_Ax22d& a = c->Position();
+        return exactHyperbola<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
+                                 c->MinorRadius(), f, l);
+    }
+    if (auto c = Handle(Geom2d_Parabola)::DownCast(curve)) {
+        const gp_Ax22d& a = c->Position();
+        return exactParabola<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Focal(), f, l);
+    }
+    if (auto c = Handle(Geom2d_BSplineCurve)::DownCast(curve)) return fromBSpline<2>(c, f, l);
+    if (auto c = Handle(Geom2d_BezierCurve)::DownCast(curve)) return fromBezier<2>(c, f, l);
+    throw Error("a trim curve of kind " + typeName(curve) + " has no exact rational form freeform reads");
+}
+
+std::pair<MappedSurface, std::string> exactSurface(const Handle(Geom_Surface)& surface, double u0, double u1, double v0,
+                                                   double v1)
+{
+    if (auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface))
+        return exactSurface(t->BasisSurface(), u0, u1, v0, v1);
+    if (auto s = Handle(Geom_Plane)::DownCast(surface)) {
+        const gp_Ax3& a = s->Position();
+        return {exactPlane(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), u0, u1, v0, v1), "plane"};
+    }
+    // The elementary surfaces of revolution: a meridian in the plane of X and the axis Z, turned
+    // about X x Y (which is -Z in a left-handed frame, where Y = -(Z x X)).
+    auto revolve = [&](const gp_Ax3& a, const MappedCurve<3>& meridian) {
+        const Eigen::Vector3d X = vec(a.XDirection()), Y = vec(a.YDirection());
+        return exactRevolution(meridian, vec(a.Location()), X.cross(Y), u0, u1);
+    };
+    if (auto s = Handle(Geom_CylindricalSurface)::DownCast(surface)) {
+        const gp_Ax3& a = s->Position();
+        const Eigen::Vector3d O = vec(a.Location()), X = vec(a.XDirection()), Z = vec(a.Direction());
+        return {revolve(a, exactLine<3>(O + s->Radius() * X, Z, v0, v1)), "cylinder"};
+    }
+    if (auto s = Handle(Geom_ConicalSurface)::DownCast(surface)) {
+        const gp_Ax3& a = s->Position();
+        const Eigen::Vector3d O = vec(a.Location()), X = vec(a.XDirection()), Z = vec(a.Direction());
+        const double ang = s->SemiAngle();
+        return {revolve(a, exactLine<3>(O + s->RefRadius() * X, std::sin(ang) * X + std::cos(ang) * Z, v0, v1)), "cone"};
+    }
+    if (auto s = Handle(Geom_SphericalSurface)::DownCast(surface)) {
+        const gp_Ax3& a = s->Position();
+        const Eigen::Vector3d O = vec(a.Location()), X = vec(a.XDirection()), Z = vec(a.Direction());
+        return {revolve(a, exactEllipse<3>(O, X, Z, s->Radius(), s->Radius(), v0, v1)), "sphere"};
+    }
+    if (auto s = Handle(Geom_ToroidalSurface)::DownCast(surface)) {
+        const gp_Ax3& a = s->Position();
+        const Eigen::Vector3d O = vec(a.Location()), X = vec(a.XDirection()), Z = vec(a.Direction());
+        const double R = s->MajorRadius(), r = s->MinorRadius();
+        return {revolve(a, exactEllipse<3>(O + R * X, X, Z, r, r, v0, v1)), "torus"};
+    }
+    if (auto s = Handle(Geom_SurfaceOfRevolution)::DownCast(surface)) {
+        const gp_Ax1 axis = s->Axis();
+        return {exactRevolution(exactCurve(s->BasisCurve(), v0, v1), vec(axis.Location()), vec(axis.Direction()), u0, u1),
+                "revolution"};
+    }
+    if (auto s = Handle(Geom_SurfaceOfLinearExtrusion)::DownCast(surface))
+        return {exactExtrusion(exactCurve(s->BasisCurve(), u0, u1), vec(s->Direction()), v0, v1), "extrusion"};
+    if (auto src = Handle(Geom_BSplineSurface)::DownCast(surface)) {
+        Handle(Geom_BSplineSurface) s = Handle(Geom_BSplineSurface)::DownCast(src->Copy());
+        ParameterMap mapU, mapV;
+        double a0, a1, b0, b1;
+        s->Bounds(a0, a1, b0, b1);
+        if (s->IsUPeriodic()) {
+            mapU = ParameterMap::periodic(a0, s->UPeriod());
+            s->SetUNotPeriodic();
+        }
+        if (s->IsVPeriodic()) {
+            mapV = ParameterMap::periodic(b0, s->VPeriod());
+            s->SetVNotPeriodic();
+        }
+        const int nu = s->NbUPoles(), nv = s->NbVPoles();
+        PointMatrix<double, 3> p(3, nu * nv);
+        Eigen::VectorXd w(nu * nv);
+        for (int i = 1; i <= nu; ++i)
+            for (int j = 1; j <= nv; ++j) {
+                p.col((i - 1) * nv + j - 1) = vec(s->Pole(i, j));
+                w[(i - 1) * nv + j - 1] = s->Weight(i, j);
+            }
+        auto flat = [](const TColStd_Array1OfReal& seq) {
+            std::vector<double> k;
+            for (int i = seq.Lower(); i <= seq.Upper(); ++i) k.push_back(seq(i));
+            return k;
+        };
+        return {{NurbsSurface<double, 3>(s->UDegree(), s->VDegree(), flat(s->UKnotSequence()), flat(s->VKnotSequence()), p, w),
+                 mapU, mapV},
+                "bspline"};
+    }
+    if (auto s = Handle(Geom_BezierSurface)::DownCast(surface)) {
+        const int nu = s->NbUPoles(), nv = s->NbVPoles();
+        PointMatrix<double, 3> p(3, nu * nv);
+        Eigen::VectorXd w(nu * nv);
+        for (int i = 1; i <= nu; ++i)
+            for (int j = 1; j <= nv; ++j) {
+                p.col((i - 1) * nv + j - 1) = vec(s->Pole(i, j));
+                w[(i - 1) * nv + j - 1] = s->Weight(i, j);
+            }
+        auto clamped = [](int n) {
+            std::vector<double> k(static_cast<std::size_t>(n), 0.0);
+            k.resize(static_cast<std::size_t>(2 * n), 1.0);
+            return k;
+        };
+        return {{NurbsSurface<double, 3>(nu - 1, nv - 1, clamped(nu), clamped(nv), p, w), {}, {}}, "bezier"};
+    }
+    throw Error("a surface of kind " + typeName(surface) + " has no exact rational form freeform reads");
+}
+
+} // namespace freeform::occt

@@ -1,0 +1,50 @@
+// freeform info on a STEP or IGES part: counts, closedness, units, bounds (docs/cli.md, docs/cad.md).
+
+#include <map>
+
+#include "command.h"
+#include "freeform/brep/part.h"
+#include "freeform/cad/cad_file.h"
+
+namespace freeform::cli {
+
+Json partInfo(const std::string& path, bool details)
+{
+    const Part part = readCadFile(path);
+    const PartCheck check = checkPart(part);
+    Json j;
+    j["faces"] = part.faces.size();
+    j["edges"] = part.edges.size();
+    j["vertices"] = part.vertices.size();
+    j["shells"] = part.shells.size();
+    j["solids"] = part.solids.size();
+    j["closed"] = check.closed;
+    j["units"] = part.units;
+    const Box<double, 3> box = part.bounds();
+    j["bounds"] = {{"min", pointJson(box.min().data(), 3)}, {"max", pointJson(box.max().data(), 3)}};
+    j["loose_faces"] = part.looseFaces().size();
+    j["open_edges"] = check.openEdges;
+    j["non_manifold_edges"] = check.nonManifoldEdges;
+    j["max_gap"] = check.maxGap;
+    j["gaps_over_tolerance"] = check.gapsOverTolerance;
+    std::map<std::string, int> kinds;
+    for (const PartFace& f : part.faces) ++kinds[f.surfaceKind];
+    j["surfaces"] = Json::object();
+    for (const auto& [kind, count] : kinds) j["surfaces"][kind] = count;
+    if (details) {
+        j["face_reports"] = Json::array();
+        for (const PartFace& f : part.faces) {
+            const auto& s = f.surface.surface().nurbs;
+            Json face;
+            face["surface"] = f.surfaceKind;
+            face["degree"] = {s.degreeU(), s.degreeV()};
+            face["rational"] = s.isRational();
+            face["loops"] = f.surface.loops().size();
+            face["reversed"] = f.reversed;
+            j["face_reports"].push_back(face);
+        }
+    }
+    return j;
+}
+
+} // namespace freeform::cli

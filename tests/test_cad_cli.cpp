@@ -1,0 +1,122 @@
+// `freeform info PART` on STEP and IGES parts (docs/cli.md, docs/cad.md): the counts, closedness
+// and bounds against Open CASCADE's own reading of the same files, the key order of the contract,
+// and bad files (one error line, exit 1, nothing on stdout).
+
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <BRepBndLib.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <IGESControl_Reader.hxx>
+#include <STEPControl_Reader.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+
+#include <fstream>
+#include <string>
+
+#include "support/cli.h"
+#include "support/sanitizers.h"
+
+namespace test_cad_cli {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+TopoDS_Shape occtRead(const std::string& path)
+{
+    if (path.ends_with(".step")) {
+        STEPControl_Reader r;
+        REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
+        r.TransferRoots();
+        return r.OneShape();
+    }
+    IGESControl_Reader r;
+    REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
+    r.TransferRoots();
+    return r.OneShape();
+}
+
+int count(const TopoDS_Shape& s, TopAbs_ShapeEnum type)
+{
+    TopTools_IndexedMapOfShape m;
+    TopExp::MapShapes(s, type, m);
+    return m.Extent();
+}
+
+} // namespace
+
+TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE reads them", "[cli][cad]")
+{
+    // Under the sanitizers (support/sanitizers.h) one STEP and one IGES part: the four took 34 s there.
+    std::vector<const char*> files = {"step/screw.step", "step/linkrods.step", "iges/bearing.iges", "iges/hammer.iges"};
+    if (freeform::test::underSanitizers) files = {"step/screw.step", "iges/hammer.iges"};
+    for (const char* file : files) {
+        const std::string path = std::string("/usr/share/opencascade/data/") + file;
+        INFO(path);
+        const auto r = freeform::test::cliInProcess("info " + path);
+        REQUIRE(r.status == 0);
+        const Json j = Json::parse(r.out);
+        // The contract's keys first, in this order (docs/cli.md).
+        std::vector<std::string> keys;
+        for (const auto& [k, v] : j.items()) keys.push_back(k);
+        REQUIRE(keys.size() >= 8);
+        CHECK(std::vector<std::string>(keys.begin(), keys.begin() + 8) ==
+              std::vector<std::string>{"faces", "edges", "vertices", "shells", "solids", "closed", "units", "bounds"});
+        const TopoDS_Shape shape = occtRead(path);
+        CHECK(j["faces"] == count(shape, TopAbs_FACE));
+        CHECK(j["edges"] == count(shape, TopAbs_EDGE));
+        CHECK(j["vertices"] == count(shape, TopAbs_VERTEX));
+        CHECK(j["shells"] == count(shape, TopAbs_SHELL));
+        CHECK(j["solids"] == count(shape, TopAbs_SOLID));
+        bool closed = count(shape, TopAbs_SHELL) > 0;
+        TopTools_IndexedMapOfShape shells;
+        TopExp::MapShapes(shape, TopAbs_SHELL, shells);
+        for (int i = 1; i <= shells.Extent(); ++i) closed = closed && BRep_Tool::IsClosed(shells(i));
+        CHECK(j["closed"] == closed);
+        CHECK(j["units"] == "mm");
+        // The bounds hold every vertex Open CASCADE reads (vertices lie on the faces).
+        TopTools_IndexedMapOfShape vertices;
+        TopExp::MapShapes(shape, TopAbs_VERTEX, vertices);
+        for (int i = 1; i <= vertices.Extent(); ++i) {
+            const gp_Pnt p = BRep_Tool::Pnt(TopoDS::Vertex(vertices(i)));
+            const double xyz[3] = {p.X(), p.Y(), p.Z()};
+            for (int a = 0; a < 3; ++a) {
+                CHECK(j["bounds"]["min"][a].get<double>() <= xyz[a] + 1e-9);
+                CHECK(j["bounds"]["max"][a].get<double>() >= xyz[a] - 1e-9);
+            }
+        }
+        // And they are not loose: within 10% of Open CASCADE's box on every side.
+        Bnd_Box box;
+        BRepBndLib::Add(shape, box);
+        double lo[3], hi[3];
+        box.Get(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        for (int a = 0; a < 3; ++a) {
+            const double size = hi[a] - lo[a];
+            CHECK(j["bounds"]["min"][a].get<double>() >= lo[a] - 0.1 * size);
+            CHECK(j["bounds"]["max"][a].get<double>() <= hi[a] + 0.1 * size);
+        }
+        const auto d = freeform::test::cliInProcess("info --details " + path);
+        REQUIRE(d.status == 0);
+        CHECK(Json::parse(d.out)["face_reports"].size() == j["faces"].get<std::size_t>());
+    }
+}
+
+TEST_CASE("info on bad part files: one error line, exit 1, nothing on stdout", "[cli][cad]")
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    std::ofstream(dir + "/broken.stp") << "ISO-10303-21;\nHEADER;\nthis is not a STEP file\n";
+    for (const std::string& path : {dir + "/missing_part.step", dir + "/broken.stp"}) {
+        const auto r = freeform::test::cliInProcess("info " + path);
+        CHECK(r.status == 1);
+        CHECK(r.out.empty());
+        CHECK(r.err.rfind("error: " + path, 0) == 0);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    }
+}
+
+} // namespace test_cad_cli
