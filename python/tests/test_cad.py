@@ -1,0 +1,130 @@
+# freeform.Part, Face and Edge (docs/python.md "CAD parts", docs/cad.md) on the sample parts Debian
+# ships (occt-misc): the counts Open CASCADE gives (TopExp::MapShapes: screw.step has 10 faces, 22
+# edges, 14 vertices, one shell, one solid), face points against a NumPy Cox-de Boor evaluation of
+# the exposed NURBS at the mapped parameters, the half-angle map against the circle's own geometry
+# (equal angle steps give equal chords), the classification against a NumPy even-odd test of the
+# certified boundary, and bad input.
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import freeform as ff
+from test_nurbs import cox_de_boor
+
+DATA = pathlib.Path("/usr/share/opencascade/data")
+SCREW = DATA / "step" / "screw.step"
+
+pytestmark = pytest.mark.skipif(not hasattr(ff, "Part"), reason="the module was built without Open CASCADE")
+
+
+def test_screw_counts_and_topology_as_open_cascade_gives_them():
+    part = ff.Part.load(str(SCREW))
+    assert (len(part.faces), len(part.edges), len(part.vertices)) == (10, 22, 14)
+    assert part.shells == [list(range(10))] and part.solids == [[0]]
+    assert part.units == "mm"
+    check = part.check()
+    assert check["closed"] and check["open_edges"] == 0 and check["non_manifold_edges"] == 0
+    assert sorted(f.kind for f in part.faces) == ["cone"] * 2 + ["cylinder"] + ["plane"] * 4 + ["torus"] * 3
+    lo, hi = part.bounds
+    assert np.all(part.vertices >= lo - 1e-9) and np.all(part.vertices <= hi + 1e-9)
+    # Every edge's ends are its vertices (within the edge's tolerance).
+    for e in part.edges:
+        if e.curve is None:
+            continue
+        a, b = e.range
+        ends = e.points([a, b])
+        v0, v1 = e.vertices
+        assert np.linalg.norm(ends[0] - part.vertices[v0]) <= max(e.tolerance, 1e-7) * 10
+        assert np.linalg.norm(ends[1] - part.vertices[v1]) <= max(e.tolerance, 1e-7) * 10
+
+
+def nurbs_numpy(surface, st):
+    (p, q), (nu, nv) = surface.degree, surface.count
+    ku, kv = surface.knots_u, surface.knots_v
+    # Cox-de Boor's half-open spans: keep the parameters off the last knot.
+    s = np.minimum(st[:, 0], np.nextafter(ku[-1], -np.inf))
+    t = np.minimum(st[:, 1], np.nextafter(kv[-1], -np.inf))
+    Nu, Nv = cox_de_boor(ku, p, s), cox_de_boor(kv, q, t)
+    P, w = surface.control_points, surface.weights
+    num = np.einsum("ki,kj,ij,ijc->kc", Nu, Nv, w, P)
+    den = np.einsum("ki,kj,ij->k", Nu, Nv, w)
+    return num / den[:, None]
+
+
+@pytest.mark.parametrize("name", ["step/screw.step", "step/linkrods.step", "iges/hammer.iges"])
+def test_face_points_equal_numpy_nurbs_at_the_mapped_parameters(name):
+    part = ff.Part.load(str(DATA / name))
+    rng = np.random.default_rng(4)
+    for face in part.faces:
+        (u0, u1), (v0, v1) = face.domain
+        uv = np.column_stack([rng.uniform(u0, u1, 50), rng.uniform(v0, v1, 50)])
+        st = face.surface_parameters(uv)
+        size = max(1.0, np.abs(part.bounds[0]).max(), np.abs(part.bounds[1]).max())
+        np.testing.assert_allclose(face.points(uv), nurbs_numpy(face.surface, st), rtol=0, atol=1e-12 * size)
+        np.testing.assert_allclose(face.surface.evaluate(st), face.points(uv), rtol=0, atol=1e-13 * size)
+
+
+def test_half_angle_map_gives_equal_chords_for_equal_angles():
+    # On a cylinder, cone or torus face the file's u is an angle: at fixed v, points at equal steps
+    # of u are equally far apart (chord 2 r sin(step / 2)), which a wrong map would break.
+    part = ff.Part.load(str(SCREW))
+    checked = 0
+    for face in part.faces:
+        if face.kind not in ("cylinder", "cone", "torus"):
+            continue
+        (u0, u1), (v0, v1) = face.domain
+        for v in np.linspace(v0, v1, 5):
+            u = np.linspace(u0, u1, 41)
+            p = face.points(np.column_stack([u, np.full_like(u, v)]))
+            chords = np.linalg.norm(np.diff(p, axis=0), axis=1)
+            if chords.max() < 1e-9:
+                continue  # a degenerate circle (a cone's apex)
+            np.testing.assert_allclose(chords, chords.mean(), rtol=1e-12)
+            # The radius from the chord and the step equals the distance to the circle's centre,
+            # the mean of the points of a full turn when the face is closed.
+            r = chords.mean() / (2 * math.sin((u[1] - u[0]) / 2))
+            if abs(u1 - u0 - 2 * math.pi) < 1e-9:
+                centre = p[:-1].mean(axis=0)
+                np.testing.assert_allclose(np.linalg.norm(p - centre, axis=1), r, rtol=1e-12)
+            checked += 1
+    assert checked >= 10
+
+
+def even_odd(poly, pts):
+    a, b = poly, np.roll(poly, -1, axis=0)
+    inside = np.zeros(len(pts), dtype=bool)
+    for (ax, ay), (bx, by) in zip(a, b):
+        crosses = (ay > pts[:, 1]) != (by > pts[:, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = ax + (pts[:, 1] - ay) * (bx - ax) / (by - ay)
+        inside ^= crosses & (x > pts[:, 0])
+    return inside
+
+
+def test_classification_equals_numpy_even_odd_on_the_certified_boundary():
+    part = ff.Part.load(str(DATA / "step" / "linkrods.step"))
+    rng = np.random.default_rng(9)
+    for face in part.faces:
+        (u0, u1), (v0, v1) = face.domain
+        uv = np.column_stack([rng.uniform(u0, u1, 300), rng.uniform(v0, v1, 300)])
+        inside = np.zeros(len(uv), dtype=bool)
+        for k in range(len(face.loops)):
+            inside ^= even_odd(face.boundary(k), uv)
+        c = face.classify(uv)
+        sure = c != 0
+        assert sure.sum() > 250
+        np.testing.assert_array_equal(c[sure] == 1, inside[sure])
+
+
+def test_bad_parts_raise_freeform_errors(tmp_path):
+    with pytest.raises(ff.Error, match="missing.step: no such file"):
+        ff.Part.load(str(tmp_path / "missing.step"))
+    bad = tmp_path / "bad.igs"
+    bad.write_text("not IGES at all\n")
+    with pytest.raises(ff.Error, match="bad.igs"):
+        ff.Part.load(str(bad))
+    part = ff.Part.load(str(SCREW))
+    with pytest.raises(ff.Error, match="loop 5 of"):
+        part.faces[0].boundary(5)
