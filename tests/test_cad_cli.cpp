@@ -9,8 +9,6 @@
 #include <BRepBndLib.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
-#include <IGESControl_Reader.hxx>
-#include <STEPControl_Reader.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
@@ -19,36 +17,12 @@
 #include <string>
 
 #include "support/cli.h"
+#include "support/occt_reference.h"
 #include "support/sanitizers.h"
 
 namespace test_cad_cli {
 
 using Json = nlohmann::ordered_json;
-
-namespace {
-
-TopoDS_Shape occtRead(const std::string& path)
-{
-    if (path.ends_with(".step")) {
-        STEPControl_Reader r;
-        REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
-        r.TransferRoots();
-        return r.OneShape();
-    }
-    IGESControl_Reader r;
-    REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
-    r.TransferRoots();
-    return r.OneShape();
-}
-
-int count(const TopoDS_Shape& s, TopAbs_ShapeEnum type)
-{
-    TopTools_IndexedMapOfShape m;
-    TopExp::MapShapes(s, type, m);
-    return m.Extent();
-}
-
-} // namespace
 
 TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE reads them", "[cli][cad]")
 {
@@ -67,17 +41,14 @@ TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE r
         REQUIRE(keys.size() >= 8);
         CHECK(std::vector<std::string>(keys.begin(), keys.begin() + 8) ==
               std::vector<std::string>{"faces", "edges", "vertices", "shells", "solids", "closed", "units", "bounds"});
+        using namespace freeform::test;
         const TopoDS_Shape shape = occtRead(path);
-        CHECK(j["faces"] == count(shape, TopAbs_FACE));
-        CHECK(j["edges"] == count(shape, TopAbs_EDGE));
-        CHECK(j["vertices"] == count(shape, TopAbs_VERTEX));
-        CHECK(j["shells"] == count(shape, TopAbs_SHELL));
-        CHECK(j["solids"] == count(shape, TopAbs_SOLID));
-        bool closed = count(shape, TopAbs_SHELL) > 0;
-        TopTools_IndexedMapOfShape shells;
-        TopExp::MapShapes(shape, TopAbs_SHELL, shells);
-        for (int i = 1; i <= shells.Extent(); ++i) closed = closed && BRep_Tool::IsClosed(shells(i));
-        CHECK(j["closed"] == closed);
+        CHECK(j["faces"] == occtCount(shape, TopAbs_FACE));
+        CHECK(j["edges"] == occtCount(shape, TopAbs_EDGE));
+        CHECK(j["vertices"] == occtCount(shape, TopAbs_VERTEX));
+        CHECK(j["shells"] == occtCount(shape, TopAbs_SHELL));
+        CHECK(j["solids"] == occtCount(shape, TopAbs_SOLID));
+        CHECK(j["closed"] == occtClosed(shape));
         CHECK(j["units"] == "mm");
         // The bounds hold every vertex Open CASCADE reads (vertices lie on the faces).
         TopTools_IndexedMapOfShape vertices;

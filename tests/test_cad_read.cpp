@@ -62,6 +62,7 @@
 #include <random>
 #include <sstream>
 
+#include "support/occt_reference.h"
 #include "support/sanitizers.h"
 
 namespace test_cad_read {
@@ -73,30 +74,6 @@ namespace {
 const std::string kData = "/usr/share/opencascade/data";
 
 Eigen::Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-
-struct Counts {
-    int faces = 0, edges = 0, vertices = 0, shells = 0, solids = 0;
-};
-
-Counts occtCounts(const TopoDS_Shape& s)
-{
-    auto count = [&](TopAbs_ShapeEnum type) {
-        TopTools_IndexedMapOfShape m;
-        TopExp::MapShapes(s, type, m);
-        return m.Extent();
-    };
-    return {count(TopAbs_FACE), count(TopAbs_EDGE), count(TopAbs_VERTEX), count(TopAbs_SHELL), count(TopAbs_SOLID)};
-}
-
-bool occtClosed(const TopoDS_Shape& s)
-{
-    TopTools_IndexedMapOfShape shells;
-    TopExp::MapShapes(s, TopAbs_SHELL, shells);
-    if (shells.IsEmpty()) return false;
-    for (int i = 1; i <= shells.Extent(); ++i)
-        if (!BRep_Tool::IsClosed(shells(i))) return false;
-    return true;
-}
 
 /// Whether t lies within 1e-8 of a break of the B-spline pcurve (a knot of multiplicity >= its
 /// degree, where the pieces may differ by a rounding) or outside its domain. There Open CASCADE
@@ -124,13 +101,12 @@ struct Stats {
 Stats compare(const TopoDS_Shape& shape, const Part& part, const std::string& name)
 {
     INFO(name);
-    const Counts c = occtCounts(shape);
-    REQUIRE(part.faces.size() == static_cast<std::size_t>(c.faces));
-    REQUIRE(part.edges.size() == static_cast<std::size_t>(c.edges));
-    CHECK(part.vertices.size() == static_cast<std::size_t>(c.vertices));
-    CHECK(part.shells.size() == static_cast<std::size_t>(c.shells));
-    CHECK(part.solids.size() == static_cast<std::size_t>(c.solids));
-    CHECK(checkPart(part).closed == occtClosed(shape));
+    REQUIRE(part.faces.size() == static_cast<std::size_t>(test::occtCount(shape, TopAbs_FACE)));
+    REQUIRE(part.edges.size() == static_cast<std::size_t>(test::occtCount(shape, TopAbs_EDGE)));
+    CHECK(part.vertices.size() == static_cast<std::size_t>(test::occtCount(shape, TopAbs_VERTEX)));
+    CHECK(part.shells.size() == static_cast<std::size_t>(test::occtCount(shape, TopAbs_SHELL)));
+    CHECK(part.solids.size() == static_cast<std::size_t>(test::occtCount(shape, TopAbs_SOLID)));
+    CHECK(checkPart(part).closed == test::occtClosed(shape));
 
     Bnd_Box box;
     BRepBndLib::Add(shape, box);
@@ -229,26 +205,6 @@ Stats compare(const TopoDS_Shape& shape, const Part& part, const std::string& na
     return stats;
 }
 
-TopoDS_Shape readWithOcct(const std::string& path)
-{
-    if (path.ends_with(".step")) {
-        STEPControl_Reader r;
-        REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
-        r.TransferRoots();
-        return r.OneShape();
-    }
-    if (path.ends_with(".iges")) {
-        IGESControl_Reader r;
-        REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
-        r.TransferRoots();
-        return r.OneShape();
-    }
-    TopoDS_Shape s;
-    BRep_Builder b;
-    REQUIRE(BRepTools::Read(s, path.c_str(), b));
-    return s;
-}
-
 std::string writeStep(const TopoDS_Shape& shape, const std::string& name)
 {
     const std::string path = std::string(FREEFORM_TEST_TMP) + "/cad_" + name + ".step";
@@ -333,7 +289,7 @@ TEST_CASE("the sample parts Debian ships read as Open CASCADE reads them", "[cad
         std::vector<std::string> warnings;
         const Part part = readCadFile(path, &warnings);
         CHECK(part.units == "mm");
-        const Stats s = compare(readWithOcct(path), part, path);
+        const Stats s = compare(test::occtRead(path), part, path);
         INFO(path << ": " << s.edgePoints << " edge, " << s.trimPoints << " trim, " << s.facePoints
                   << " face points; worst " << s.worst << "; trim ends near breaks " << s.endsNearBreaks);
         CHECK(s.endsNearBreaks <= 8);
@@ -348,7 +304,7 @@ TEST_CASE("the sample parts Debian ships read as Open CASCADE reads them", "[cad
     if (test::underSanitizers) breps = {"Ball", "CrankArm", "Pump_Nut"};
     for (const char* file : breps) {
         const std::string path = kData + "/occ/" + file + ".brep";
-        const TopoDS_Shape shape = readWithOcct(path);
+        const TopoDS_Shape shape = test::occtRead(path);
         const Stats s = compare(shape, partFromShape(shape), path);
         CHECK(s.facePoints > 0);
     }
@@ -375,7 +331,7 @@ TEST_CASE("parts built with Open CASCADE read back from STEP as Open CASCADE rea
         CHECK(checkPart(direct).closed);
         const std::string path = writeStep(shape, name);
         const Part read = readCadFile(path);
-        const Stats s = compare(readWithOcct(path), read, path);
+        const Stats s = compare(test::occtRead(path), read, path);
         CHECK(s.facePoints >= 12);
         CHECK(checkPart(read).closed);
         CHECK(checkPart(read).openEdges == 0);

@@ -10,7 +10,6 @@
 #include <Geom2d_Line.hxx>
 #include <Geom2d_Parabola.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
-#include <gp_Lin2d.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierCurve.hxx>
@@ -83,62 +82,73 @@ MappedCurve<Dim> fromBezier(const Handle(Bezier)& c, double f, double l)
 
 std::string typeName(const Handle(Standard_Transient)& t) { return t->DynamicType()->Name(); }
 
+/// Open CASCADE's curve classes of one dimension: Geom_* in 3D, Geom2d_* in 2D. Their conics have
+/// the same members (Position() with Location, XDirection, YDirection; Radius, MajorRadius,
+/// MinorRadius, Focal), so one conversion serves both.
+struct Curves3 {
+    using Curve = Geom_Curve;
+    using Trimmed = Geom_TrimmedCurve;
+    using Line = Geom_Line;
+    using Circle = Geom_Circle;
+    using Ellipse = Geom_Ellipse;
+    using Hyperbola = Geom_Hyperbola;
+    using Parabola = Geom_Parabola;
+    using BSpline = Geom_BSplineCurve;
+    using Bezier = Geom_BezierCurve;
+    static constexpr const char* what = "a curve";
+};
+struct Curves2 {
+    using Curve = Geom2d_Curve;
+    using Trimmed = Geom2d_TrimmedCurve;
+    using Line = Geom2d_Line;
+    using Circle = Geom2d_Circle;
+    using Ellipse = Geom2d_Ellipse;
+    using Hyperbola = Geom2d_Hyperbola;
+    using Parabola = Geom2d_Parabola;
+    using BSpline = Geom2d_BSplineCurve;
+    using Bezier = Geom2d_BezierCurve;
+    static constexpr const char* what = "a trim curve";
+};
+
+template <int Dim, typename C>
+MappedCurve<Dim> exactAnyCurve(const Handle(typename C::Curve)& curve, double f, double l)
+{
+    if (auto t = Handle(typename C::Trimmed)::DownCast(curve)) return exactAnyCurve<Dim, C>(t->BasisCurve(), f, l);
+    if (auto c = Handle(typename C::Line)::DownCast(curve))
+        return exactLine<Dim>(vec(c->Position().Location()), vec(c->Position().Direction()), f, l);
+    if (auto c = Handle(typename C::Circle)::DownCast(curve)) {
+        const auto& a = c->Position();
+        return exactEllipse<Dim>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Radius(), c->Radius(), f, l);
+    }
+    if (auto c = Handle(typename C::Ellipse)::DownCast(curve)) {
+        const auto& a = c->Position();
+        return exactEllipse<Dim>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
+                                 c->MinorRadius(), f, l);
+    }
+    if (auto c = Handle(typename C::Hyperbola)::DownCast(curve)) {
+        const auto& a = c->Position();
+        return exactHyperbola<Dim>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
+                                   c->MinorRadius(), f, l);
+    }
+    if (auto c = Handle(typename C::Parabola)::DownCast(curve)) {
+        const auto& a = c->Position();
+        return exactParabola<Dim>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Focal(), f, l);
+    }
+    if (auto c = Handle(typename C::BSpline)::DownCast(curve)) return fromBSpline<Dim>(c, f, l);
+    if (auto c = Handle(typename C::Bezier)::DownCast(curve)) return fromBezier<Dim>(c, f, l);
+    throw Error(std::string(C::what) + " of kind " + typeName(curve) + " has no exact rational form freeform reads");
+}
+
 } // namespace
 
 MappedCurve<3> exactCurve(const Handle(Geom_Curve)& curve, double f, double l)
 {
-    if (auto t = Handle(Geom_TrimmedCurve)::DownCast(curve)) return exactCurve(t->BasisCurve(), f, l);
-    if (auto c = Handle(Geom_Line)::DownCast(curve))
-        return exactLine<3>(vec(c->Lin().Location()), vec(c->Lin().Direction()), f, l);
-    if (auto c = Handle(Geom_Circle)::DownCast(curve)) {
-        const gp_Ax2& a = c->Position();
-        return exactEllipse<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Radius(), c->Radius(), f, l);
-    }
-    if (auto c = Handle(Geom_Ellipse)::DownCast(curve)) {
-        const gp_Ax2& a = c->Position();
-        return exactEllipse<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
-                               c->MinorRadius(), f, l);
-    }
-    if (auto c = Handle(Geom_Hyperbola)::DownCast(curve)) {
-        const gp_Ax2& a = c->Position();
-        return exactHyperbola<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
-                                 c->MinorRadius(), f, l);
-    }
-    if (auto c = Handle(Geom_Parabola)::DownCast(curve)) {
-        const gp_Ax2& a = c->Position();
-        return exactParabola<3>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Focal(), f, l);
-    }
-    if (auto c = Handle(Geom_BSplineCurve)::DownCast(curve)) return fromBSpline<3>(c, f, l);
-    if (auto c = Handle(Geom_BezierCurve)::DownCast(curve)) return fromBezier<3>(c, f, l);
-    throw Error("a curve of kind " + typeName(curve) + " has no exact rational form freeform reads");
+    return exactAnyCurve<3, Curves3>(curve, f, l);
 }
 
 MappedCurve<2> exactCurve2d(const Handle(Geom2d_Curve)& curve, double f, double l)
 {
-    if (auto t = Handle(Geom2d_TrimmedCurve)::DownCast(curve)) return exactCurve2d(t->BasisCurve(), f, l);
-    if (auto c = Handle(Geom2d_Line)::DownCast(curve))
-        return exactLine<2>(vec(c->Lin2d().Location()), vec(c->Lin2d().Direction()), f, l);
-    if (auto c = Handle(Geom2d_Circle)::DownCast(curve)) {
-        const gp_Ax22d& a = c->Position();
-        return exactEllipse<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Radius(), c->Radius(), f, l);
-    }
-    if (auto c = Handle(Geom2d_Ellipse)::DownCast(curve)) {
-        const gp_Ax22d& a = c->Position();
-        return exactEllipse<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
-                               c->MinorRadius(), f, l);
-    }
-    if (auto c = Handle(Geom2d_Hyperbola)::DownCast(curve)) {
-        const gp_Ax22d& a = c->Position();
-        return exactHyperbola<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->MajorRadius(),
-                                 c->MinorRadius(), f, l);
-    }
-    if (auto c = Handle(Geom2d_Parabola)::DownCast(curve)) {
-        const gp_Ax22d& a = c->Position();
-        return exactParabola<2>(vec(a.Location()), vec(a.XDirection()), vec(a.YDirection()), c->Focal(), f, l);
-    }
-    if (auto c = Handle(Geom2d_BSplineCurve)::DownCast(curve)) return fromBSpline<2>(c, f, l);
-    if (auto c = Handle(Geom2d_BezierCurve)::DownCast(curve)) return fromBezier<2>(c, f, l);
-    throw Error("a trim curve of kind " + typeName(curve) + " has no exact rational form freeform reads");
+    return exactAnyCurve<2, Curves2>(curve, f, l);
 }
 
 std::pair<MappedSurface, std::string> exactSurface(const Handle(Geom_Surface)& surface, double u0, double u1, double v0,
