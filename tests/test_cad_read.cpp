@@ -41,6 +41,7 @@
 #include <Geom_Plane.hxx>
 #include <IGESControl_Reader.hxx>
 #include <Interface_Static.hxx>
+#include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -208,6 +209,7 @@ Stats compare(const TopoDS_Shape& shape, const Part& part, const std::string& na
 std::string writeStep(const TopoDS_Shape& shape, const std::string& name)
 {
     const std::string path = std::string(FREEFORM_TEST_TMP) + "/cad_" + name + ".step";
+    test::quietOcct();
     STEPControl_Writer w;
     REQUIRE(w.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone);
     REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
@@ -336,6 +338,40 @@ TEST_CASE("parts built with Open CASCADE read back from STEP as Open CASCADE rea
         CHECK(checkPart(read).closed);
         CHECK(checkPart(read).openEdges == 0);
     }
+}
+
+TEST_CASE("a part keeps the file's length unit: a STEP file written in inches reads in inches", "[cad]")
+{
+    // Open CASCADE writes the same box in inches when write.step.unit says so; freeform reads the
+    // file's unit and keeps its coordinates (a 25.4 mm edge is 1), where Open CASCADE's default
+    // reading converts them to millimetres.
+    const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(25.4, 0, -50.8), 25.4, 76.2, 127).Shape();
+    const std::string path = std::string(FREEFORM_TEST_TMP) + "/cad_box_inch.step";
+    {
+        test::quietOcct();
+        STEPControl_Controller::Init(); // registers write.step.unit
+        const std::string old = Interface_Static::CVal("write.step.unit");
+        Interface_Static::SetCVal("write.step.unit", "INCH");
+        STEPControl_Writer w;
+        REQUIRE(w.Transfer(box, STEPControl_AsIs) == IFSelect_RetDone);
+        REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
+        Interface_Static::SetCVal("write.step.unit", old.c_str());
+    }
+    const Part part = readCadFile(path);
+    CHECK(part.units == "in");
+    const Box<double, 3> b = part.bounds();
+    CHECK((b.min() - Eigen::Vector3d(1, 0, -2)).norm() < 1e-9);
+    CHECK((b.max() - Eigen::Vector3d(2, 3, 3)).norm() < 1e-9);
+    // Open CASCADE's own reading of the same file, in millimetres, is 25.4 times larger.
+    Bnd_Box mm;
+    BRepBndLib::Add(test::occtRead(path), mm);
+    double x0, y0, z0, x1, y1, z1;
+    mm.Get(x0, y0, z0, x1, y1, z1);
+    CHECK(x1 == Approx(2 * 25.4).margin(1e-3));
+    CHECK(z0 == Approx(-2 * 25.4).margin(1e-3));
+    // The unit setting of the transfer is put back: the next millimetre file reads in millimetres.
+    CHECK(readCadFile(kData + "/step/screw.step").units == "mm");
+    CHECK(std::string(Interface_Static::CVal("xstep.cascade.unit")) == "MM");
 }
 
 TEST_CASE("checkPart finds an edge moved off its faces, and open and closed shells", "[cad]")

@@ -8,6 +8,9 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <IGESControl_Reader.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
 #include <STEPControl_Reader.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -16,6 +19,13 @@
 #include <string>
 
 namespace freeform::test {
+
+/// Open CASCADE's writers print statistics to stdout; the tests that write with them call this
+/// first (freeform_cad removes the printer too, but only once it reads).
+inline void quietOcct()
+{
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
+}
 
 /// The shape of a .step, .iges or .brep file as Open CASCADE reads it (in millimetres, its default).
 inline TopoDS_Shape occtRead(const std::string& path)
