@@ -230,11 +230,11 @@ A rational Bézier patch in 3D on [0, 1]^2 (docs/nurbs.md): control points (m+1,
         .def("__deepcopy__", [](const PyRationalSurface& s, py::handle) { return s; }, py::arg("memo"))
         .def_property_readonly("degree", [](const PyRationalSurface& s) { return py::make_tuple(s.s.degreeU(), s.s.degreeV()); })
         .def_property_readonly("control_points", [](const PyRationalSurface& s) {
-            const auto d = freeform::rationalSurfaceData(s.s);
+            const auto d = freeform::toData(s.s);
             return grid(d.points, s.s.degreeU() + 1, s.s.degreeV() + 1);
         }, "(m+1, n+1, 3) float64 (a copy).")
         .def_property_readonly("weights", [](const PyRationalSurface& s) {
-            const auto d = freeform::rationalSurfaceData(s.s);
+            const auto d = freeform::toData(s.s);
             return py::array_t<double>({static_cast<py::ssize_t>(s.s.degreeU() + 1), static_cast<py::ssize_t>(s.s.degreeV() + 1)}, d.weights.data());
         }, "(m+1, n+1) float64 (a copy).")
         .def("evaluate", [](const PyRationalSurface& s, py::handle uv) {

@@ -175,13 +175,13 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 r.inside = controlPointsInside(lattice, rc->controlPoints());
                 const RationalBezierCurve<double, 3> moved = deformCurve(RationalLattice(lattice), *rc, w);
                 r.degree = {moved.degree()};
-                result = rationalCurveData(moved);
+                result = toData(moved);
             } else if (const auto* nc = std::get_if<NurbsCurve<double, 3>>(&g)) {
                 // Span by span through the Bézier extraction; the result keeps the breakpoints.
                 r.inside = controlPointsInside(lattice, nc->controlPoints());
                 const NurbsCurve<double, 3> moved = deformCurve(RationalLattice(lattice), *nc, w);
                 r.degree = {moved.degree()};
-                result = nurbsCurveData(moved);
+                result = toData(moved);
             } else if (const auto* rs = std::get_if<RationalBezierSurface<double, 3>>(&g)) {
                 // Exact composition (volume/deform_rational.h): degrees (m (l+m+n), n (l+m+n)).
                 const auto& h = rs->homogeneous().controlPoints();
@@ -190,13 +190,13 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 r.inside = controlPointsInside(lattice, points);
                 const RationalBezierSurface<double, 3> moved = deformSurface(RationalLattice(lattice), *rs, w);
                 r.degree = {moved.degreeU(), moved.degreeV()};
-                result = rationalSurfaceData(moved);
+                result = toData(moved);
             } else if (const auto* ns = std::get_if<NurbsSurface<double, 3>>(&g)) {
                 // Patch by patch through the Bézier extraction; the result keeps the breakpoints.
                 r.inside = controlPointsInside(lattice, ns->controlPoints());
                 const NurbsSurface<double, 3> moved = deformSurface(RationalLattice(lattice), *ns, w);
                 r.degree = {moved.degreeU(), moved.degreeV()};
-                result = nurbsSurfaceData(moved);
+                result = toData(moved);
             } else if (const auto* sub = std::get_if<SubdivisionObject>(&g)) {
                 const SubdivisionCage& cage = sub->cage();
                 const auto& data = std::get<SubdivisionSurfaceData>(o.data());

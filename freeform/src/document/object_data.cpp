@@ -90,22 +90,15 @@ SubdivisionSurfaceData toData(const SubdivisionObject& surface)
                       "subdivision_surface");
 }
 
-RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve) { return rationalCurveData(curve); }
-RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve) { return rationalCurveData(curve); }
-RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface) { return rationalSurfaceData(surface); }
-NurbsCurveData toData(const NurbsCurve<double, 2>& curve) { return nurbsCurveData(curve); }
-NurbsCurveData toData(const NurbsCurve<double, 3>& curve) { return nurbsCurveData(curve); }
-NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface) { return nurbsSurfaceData(surface); }
-
 ObjectData toData(const Geometry& geometry)
 {
     return std::visit([](const auto& g) -> ObjectData { return toData(g); }, geometry);
 }
 
-NurbsCurveData nurbsCurveData(const NurbsCurve<double, 2>& curve) { return curveData(curve); }
-NurbsCurveData nurbsCurveData(const NurbsCurve<double, 3>& curve) { return curveData(curve); }
+NurbsCurveData toData(const NurbsCurve<double, 2>& curve) { return curveData(curve); }
+NurbsCurveData toData(const NurbsCurve<double, 3>& curve) { return curveData(curve); }
 
-NurbsSurfaceData nurbsSurfaceData(const NurbsSurface<double, 3>& surface)
+NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface)
 {
     NurbsSurfaceData d;
     d.degree = {surface.degreeU(), surface.degreeV()};
@@ -117,10 +110,10 @@ NurbsSurfaceData nurbsSurfaceData(const NurbsSurface<double, 3>& surface)
     return d;
 }
 
-RationalBezierCurveData rationalCurveData(const RationalBezierCurve<double, 2>& curve) { return rationalData(curve); }
-RationalBezierCurveData rationalCurveData(const RationalBezierCurve<double, 3>& curve) { return rationalData(curve); }
+RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve) { return rationalData(curve); }
+RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve) { return rationalData(curve); }
 
-RationalBezierSurfaceData rationalSurfaceData(const RationalBezierSurface<double, 3>& surface)
+RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface)
 {
     RationalBezierSurfaceData d;
     const int m = surface.degreeU(), n = surface.degreeV();

@@ -209,7 +209,7 @@ ObjectData piecesData(const std::string& what, const NurbsCurve<double, Dim>& c)
         if (pieces.size() != 1)
             throw Error(what + ": a rational nurbs_curve of " + std::to_string(pieces.size()) +
                         " pieces has no single-object Bézier form (rational_bezier_curve holds one piece)");
-        return rationalCurveData(pieces.front());
+        return toData(pieces.front());
     }
     const int p = c.degree();
     BezierSplineData d;
@@ -233,17 +233,17 @@ ObjectData toNurbsData(const TypedDocument& doc, const TypedObject& object)
 {
     const std::string what = doc.what(object);
     const Geometry& g = object.geometry();
-    if (const auto* c = std::get_if<BezierCurve<double, 2>>(&g)) return nurbsCurveData(NurbsCurve<double, 2>::fromBezier(*c));
-    if (const auto* c = std::get_if<BezierCurve<double, 3>>(&g)) return nurbsCurveData(NurbsCurve<double, 3>::fromBezier(*c));
-    if (const auto* c = std::get_if<RationalBezierCurve<double, 2>>(&g)) return nurbsCurveData(NurbsCurve<double, 2>::fromRationalBezier(*c));
-    if (const auto* c = std::get_if<RationalBezierCurve<double, 3>>(&g)) return nurbsCurveData(NurbsCurve<double, 3>::fromRationalBezier(*c));
+    if (const auto* c = std::get_if<BezierCurve<double, 2>>(&g)) return toData(NurbsCurve<double, 2>::fromBezier(*c));
+    if (const auto* c = std::get_if<BezierCurve<double, 3>>(&g)) return toData(NurbsCurve<double, 3>::fromBezier(*c));
+    if (const auto* c = std::get_if<RationalBezierCurve<double, 2>>(&g)) return toData(NurbsCurve<double, 2>::fromRationalBezier(*c));
+    if (const auto* c = std::get_if<RationalBezierCurve<double, 3>>(&g)) return toData(NurbsCurve<double, 3>::fromRationalBezier(*c));
     if (const auto* s = std::get_if<BezierSpline<double, 2>>(&g)) return splineData(*s);
     if (const auto* s = std::get_if<BezierSpline<double, 3>>(&g)) return splineData(*s);
     if (const auto* s = std::get_if<DeBoorSpline<2>>(&g)) return splineData(s->bezier);
     if (const auto* s = std::get_if<DeBoorSpline<3>>(&g)) return splineData(s->bezier);
     if (const auto* s = std::get_if<BezierSurface<double, 3>>(&g))
-        return nurbsSurfaceData(NurbsSurface<double, 3>::fromBezier(RationalBezierSurface<double, 3>(*s)));
-    if (const auto* s = std::get_if<RationalBezierSurface<double, 3>>(&g)) return nurbsSurfaceData(NurbsSurface<double, 3>::fromBezier(*s));
+        return toData(NurbsSurface<double, 3>::fromBezier(RationalBezierSurface<double, 3>(*s)));
+    if (const auto* s = std::get_if<RationalBezierSurface<double, 3>>(&g)) return toData(NurbsSurface<double, 3>::fromBezier(*s));
     if (std::holds_alternative<NurbsCurve<double, 2>>(g) || std::holds_alternative<NurbsCurve<double, 3>>(g) ||
         std::holds_alternative<NurbsSurface<double, 3>>(g))
         throw Error(what + " is already a " + object.type());
@@ -263,7 +263,7 @@ ObjectData fromNurbsData(const TypedDocument& doc, const TypedObject& object)
         if (patches.size() != 1)
             throw Error(what + ": a nurbs_surface of " + std::to_string(patches.size()) +
                         " Bézier patches has no single-object Bézier form (one patch per object)");
-        RationalBezierSurfaceData d = rationalSurfaceData(patches.front());
+        RationalBezierSurfaceData d = toData(patches.front());
         if (!s->isRational()) return BezierSurfaceData{d.degree, std::move(d.points)};
         return d;
     }

@@ -12,22 +12,6 @@
 
 namespace freeform {
 
-/// A nurbs_curve: degree, knots, points; the weights only when the curve is rational (empty
-/// weights mean all 1 and are not written).
-NurbsCurveData nurbsCurveData(const NurbsCurve<double, 2>& curve);
-NurbsCurveData nurbsCurveData(const NurbsCurve<double, 3>& curve);
-
-/// A nurbs_surface: degrees, both knot vectors, the rows x cols grid (rows along u); the weights
-/// only when the surface is rational.
-NurbsSurfaceData nurbsSurfaceData(const NurbsSurface<double, 3>& surface);
-
-/// A rational_bezier_curve: points and weights (always written).
-RationalBezierCurveData rationalCurveData(const RationalBezierCurve<double, 2>& curve);
-RationalBezierCurveData rationalCurveData(const RationalBezierCurve<double, 3>& curve);
-
-/// A rational_bezier_surface: degrees, points at i*(n+1) + j and their weights (always written).
-RationalBezierSurfaceData rationalSurfaceData(const RationalBezierSurface<double, 3>& surface);
-
 /// The data of any geometry, so that buildGeometry(toData(g)) is g again (a spline's intervals as
 /// it holds them; a subdivision cage written inline, its file's crease tags as the object's creases
 /// and corners). Error when the format cannot hold it: a cage with holes, `creasemethod chaikin` or
@@ -36,18 +20,24 @@ BezierCurveData toData(const BezierCurve<double, 2>& curve);
 BezierCurveData toData(const BezierCurve<double, 3>& curve);
 BezierSplineData toData(const BezierSpline<double, 2>& spline);
 BezierSplineData toData(const BezierSpline<double, 3>& spline);
+/// A nurbs_curve: degree, knots, points; the weights only when the curve is rational (empty
+/// weights mean all 1 and are not written).
+NurbsCurveData toData(const NurbsCurve<double, 2>& curve);
+NurbsCurveData toData(const NurbsCurve<double, 3>& curve);
+/// A nurbs_surface: degrees, both knot vectors, the rows x cols grid (rows along u); the weights
+/// only when the surface is rational.
+NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface);
+/// A rational_bezier_curve: points and weights (always written).
+RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve);
+RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve);
+/// A rational_bezier_surface: degrees, points at i*(n+1) + j and their weights (always written).
+RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface);
 DeBoorSplineData toData(const DeBoorSpline<2>& spline);
 DeBoorSplineData toData(const DeBoorSpline<3>& spline);
 BezierSurfaceData toData(const BezierSurface<double, 3>& surface);
 DeBoorSurfaceData toData(const DeBoorSurface& surface);
 LatticeData toData(const Lattice& lattice);
 SubdivisionSurfaceData toData(const SubdivisionObject& surface);
-RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve);
-RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve);
-RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface);
-NurbsCurveData toData(const NurbsCurve<double, 2>& curve);
-NurbsCurveData toData(const NurbsCurve<double, 3>& curve);
-NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface);
 ObjectData toData(const Geometry& geometry);
 
 } // namespace freeform
