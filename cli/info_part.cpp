@@ -32,6 +32,10 @@ Json partInfo(const std::string& path, bool details)
     j["surfaces"] = Json::object();
     for (const auto& [kind, count] : kinds) j["surfaces"][kind] = count;
     if (details) {
+        // The areas are integrals over every face (docs/cad.md, "Area"): seconds on a part of many
+        // B-spline faces with many knots, so only on request.
+        j["area"] = 0.0;
+        double area = 0;
         j["face_reports"] = Json::array();
         for (const PartFace& f : part.faces) {
             const auto& s = f.surface.surface().nurbs;
@@ -41,8 +45,11 @@ Json partInfo(const std::string& path, bool details)
             face["rational"] = s.isRational();
             face["loops"] = f.surface.loops().size();
             face["reversed"] = f.reversed;
+            face["area"] = f.surface.area();
+            area += face["area"].get<double>();
             j["face_reports"].push_back(face);
         }
+        j["area"] = area; // Part::area(), without integrating every face twice
     }
     return j;
 }

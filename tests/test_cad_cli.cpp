@@ -71,9 +71,18 @@ TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE r
             CHECK(j["bounds"]["min"][a].get<double>() >= lo[a] - 0.1 * size);
             CHECK(j["bounds"]["max"][a].get<double>() <= hi[a] + 0.1 * size);
         }
+        // --details integrates every face's area: 6 s for linkrods.step's B-spline faces, whose
+        // areas test_cad_read does not check; its report is checked on the other three files.
+        if (path.ends_with("linkrods.step")) continue;
         const auto d = freeform::test::cliInProcess("info --details " + path);
         REQUIRE(d.status == 0);
-        CHECK(Json::parse(d.out)["face_reports"].size() == j["faces"].get<std::size_t>());
+        const Json details = Json::parse(d.out);
+        CHECK(details["face_reports"].size() == j["faces"].get<std::size_t>());
+        // The area is the sum of the faces' areas, each of which equals BRepGProp's (test_cad_read).
+        double sum = 0;
+        for (const auto& f : details["face_reports"]) sum += f["area"].get<double>();
+        CHECK(details["area"].get<double>() == Approx(sum).epsilon(1e-12));
+        CHECK_FALSE(j.contains("area"));
     }
 }
 

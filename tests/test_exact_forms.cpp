@@ -8,6 +8,7 @@
 
 #include <freeform/brep/part.h>
 #include <freeform/brep/trimmed_surface.h>
+#include <freeform/core/quadrature.h>
 
 #include <cmath>
 #include <numbers>
@@ -143,6 +144,54 @@ TEST_CASE("the trim classification of a square with a round hole is exact off th
     }
     // The certified polygon stays within the flatness: every vertex of the hole's polygon lies on the circle.
     for (const V2& q : face.polygons()[1]) CHECK(std::abs((q - V2(2, 2)).norm() - 1) < 1e-12);
+}
+
+TEST_CASE("the parameter maps' slopes equal central differences", "[brep]")
+{
+    for (const ParameterMap& m : {ParameterMap::halfAngle(-1, 4.5), ParameterMap::halfAngle(0.2, 0.9),
+                                  ParameterMap::exponential(), ParameterMap::identity()}) {
+        for (double t = -0.9; t < 0.85; t += 0.0731) {
+            const double h = 1e-5;
+            const double fd = (m(t + h) - m(t - h)) / (2 * h);
+            CHECK(m.derivative(t) == Approx(fd).epsilon(1e-8));
+            CHECK(m.derivative(t) > 0);
+        }
+    }
+}
+
+TEST_CASE("the area of trimmed planes, a torus and a sphere zone equals the closed forms", "[brep]")
+{
+    // The square [0, 4]^2 with a round hole of radius 1: 16 - pi.
+    const MappedSurface plane = exactPlane(V3::Zero(), V3(1, 0, 0), V3(0, 1, 0), 0, 4, 0, 4);
+    TrimLoop outer;
+    const V2 corners[4] = {V2(0, 0), V2(4, 0), V2(4, 4), V2(0, 4)};
+    for (int i = 0; i < 4; ++i)
+        outer.curves.push_back({exactLine<2>(corners[i], corners[(i + 1) % 4] - corners[i], 0, 1), false, -1});
+    TrimLoop hole;
+    hole.curves.push_back({exactEllipse<2>(V2(2, 2), V2(1, 0), V2(0, 1), 1, 1, 0, 2 * std::numbers::pi), true, -1});
+    const TrimmedSurface holed(plane, Box<double, 2>(V2(0, 0), V2(4, 4)), {outer, hole});
+    CHECK(holed.area() == Approx(16 - std::numbers::pi).epsilon(1e-12));
+    // No loops: the whole box of a torus patch, (u1 - u0) r (R (v1 - v0) + r (sin v1 - sin v0)).
+    const double R = 3, r = 0.75;
+    const MappedSurface torus =
+        exactRevolution(exactEllipse<3>(V3(R, 0, 0), V3(1, 0, 0), V3(0, 0, 1), r, r, -1.0, 2.5), V3::Zero(),
+                        V3(0, 0, 1), 0.3, 5.9);
+    const TrimmedSurface patch(torus, Box<double, 2>(V2(0.3, -1.0), V2(5.9, 2.5)), {});
+    const double want = 5.6 * r * (R * 3.5 + r * (std::sin(2.5) - std::sin(-1.0)));
+    CHECK(patch.area() == Approx(want).epsilon(1e-11));
+    // A sphere zone trimmed by a circle in its parameter plane, against the same integral done by
+    // hand: the disc |(u, v) - (1, 0.2)| < 0.5 of the unit sphere has area, the integral over the
+    // disc of cos v du dv = the integral of 2 sqrt(0.25 - (v - 0.2)^2) cos v dv; with
+    // v = 0.2 + 0.5 sin a, that of 0.5 cos^2 a cos(0.2 + 0.5 sin a) over [-pi/2, pi/2].
+    const MappedSurface sphere = exactRevolution(exactEllipse<3>(V3::Zero(), V3(1, 0, 0), V3(0, 0, 1), 1, 1, -1.5, 1.5),
+                                                 V3::Zero(), V3(0, 0, 1), 0, 3);
+    TrimLoop disc;
+    disc.curves.push_back({exactEllipse<2>(V2(1, 0.2), V2(1, 0), V2(0, 1), 0.5, 0.5, 0, 2 * std::numbers::pi), false, -1});
+    const TrimmedSurface zone(sphere, Box<double, 2>(V2(0, -1.5), V2(3, 1.5)), {disc});
+    const double byHand = integrate<double>(
+        [](double a) { return 0.5 * std::cos(a) * std::cos(a) * std::cos(0.2 + 0.5 * std::sin(a)); },
+        -std::numbers::pi / 2, std::numbers::pi / 2, 1e-15);
+    CHECK(zone.area() == Approx(byHand).epsilon(1e-11));
 }
 
 TEST_CASE("a periodic parameter map reduces into its period; maps refuse empty ranges", "[brep]")

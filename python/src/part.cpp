@@ -95,6 +95,7 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
         .def_property_readonly("units", [](const PyPart& p) { return p.part->units; }, "The file's length unit ('mm', 'm', 'in', ...).")
         .def_property_readonly("bounds", [](const PyPart& p) { return boxTuple<3>(p.part->bounds()); },
                                "(min, max): a box holding every face.")
+        .def_property_readonly("area", [](const PyPart& p) { return p.part->area(); }, "The sum of the faces' areas.")
         .def(
             "check",
             [](const PyPart& p) {
@@ -155,6 +156,8 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
             },
             py::arg("loop"), "The loop's certified polygon in the face's parameters, (n, 2), within the face's flatness of the trims.")
         .def_property_readonly("flatness", [](const PyFace& f) { return f.face().surface.flatness(); })
+        .def_property_readonly("area", [](const PyFace& f) { return f.face().surface.area(); },
+                               "The face's area (Green's theorem over its trims; docs/cad.md, 'Area').")
         .def(
             "points",
             [](const PyFace& f, py::handle uv) {

@@ -118,6 +118,25 @@ def test_classification_equals_numpy_even_odd_on_the_certified_boundary():
         np.testing.assert_array_equal(c[sure] == 1, inside[sure])
 
 
+def test_face_areas_equal_a_numpy_quadrature_of_the_area_element():
+    # Face.area against NumPy's shoelace area of the certified boundary polygons: on the screw's
+    # plane faces (orthonormal axes: parameter area is area) they differ by at most twice the
+    # flatness times the polygons' perimeter. The part's area is the sum of its faces'.
+    part = ff.Part.load(str(SCREW))
+    planes = [f for f in part.faces if f.kind == "plane"]
+    assert len(planes) == 4
+    for f in planes:
+        def shoelace(p):
+            x, y = p[:, 0], p[:, 1]
+            return 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+        polygon = shoelace(f.boundary(0)) - sum(shoelace(f.boundary(k)) for k in range(1, len(f.loops)))
+        perimeter = sum(np.linalg.norm(np.diff(np.vstack([b, b[:1]]), axis=0), axis=1).sum()
+                        for b in (f.boundary(k) for k in range(len(f.loops))))
+        assert abs(f.area - polygon) <= 2 * f.flatness * perimeter
+        assert polygon > 0
+    assert part.area == pytest.approx(sum(f.area for f in part.faces), rel=1e-14)
+
+
 def test_bad_parts_raise_freeform_errors(tmp_path):
     with pytest.raises(ff.Error, match="missing.step: no such file"):
         ff.Part.load(str(tmp_path / "missing.step"))

@@ -26,6 +26,13 @@ Box<double, 3> Part::bounds() const
     return box;
 }
 
+double Part::area(double relative) const
+{
+    double sum = 0;
+    for (const PartFace& f : faces) sum += f.surface.area(relative);
+    return sum;
+}
+
 PartCheck checkPart(const Part& part, int samples)
 {
     PartCheck check;

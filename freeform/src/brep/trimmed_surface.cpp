@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "freeform/core/error.h"
+#include "freeform/core/quadrature.h"
 
 namespace freeform {
 namespace {
@@ -109,6 +110,99 @@ TrimClass TrimmedSurface::classify(const Eigen::Vector2d& uv) const
     }
     if (nearest <= flatness_ * flatness_ * 4) return TrimClass::Boundary;
     return inside ? TrimClass::Inside : TrimClass::Outside;
+}
+
+namespace {
+
+/// The file's parameters of a curve's or a direction's knots inside (a, b), with a and b: the
+/// pieces an adaptive quadrature integrates one by one (the integrand is smooth inside each).
+std::vector<double> breakpoints(const std::vector<double>& knots, const ParameterMap& map, double a, double b)
+{
+    std::vector<double> out{a};
+    for (double k : knots) {
+        const double t = map.inverse(k);
+        if (t > out.back() && t < b) out.push_back(t);
+    }
+    out.push_back(b);
+    return out;
+}
+
+/// The 15-point Kronrod rule on [a, b] split into `panels`: a fixed rule, so that the inner
+/// integral F(u, v) of area() is a smooth function of (u, v), which the outer adaptive rule needs
+/// (an adaptive inner rule's error jumps from one (u, v) to the next, and the outer rule then
+/// never meets its tolerance).
+template <typename F>
+double fixedKronrod(const F& f, double a, double b, int panels)
+{
+    double sum = 0;
+    const double width = (b - a) / panels;
+    for (int p = 0; p < panels; ++p) {
+        const double lo = a + p * width, half = width / 2, centre = lo + half;
+        double s = double(detail::kKronrodWeights[7]) * f(centre);
+        for (int i = 0; i < 7; ++i) {
+            const double dx = half * double(detail::kGkNodes[i]);
+            s += double(detail::kKronrodWeights[i]) * (f(centre - dx) + f(centre + dx));
+        }
+        sum += s * half;
+    }
+    return sum;
+}
+
+} // namespace
+
+double TrimmedSurface::area(double relative) const
+{
+    const MappedSurface& S = surface_;
+    const Box<double, 3> box = bounds();
+    const Eigen::Vector3d d = box.diagonal();
+    const double scale = std::max({d.x() * d.y(), d.y() * d.z(), d.z() * d.x(), 1e-300});
+    const double tol = relative * scale;
+    const std::vector<double>& uKnots = S.nurbs.knotsU().knots();
+    const double u0 = domain_.min().x();
+    // |P_u x P_v| in the file's parameters: the NURBS's area element times both maps' slopes.
+    auto element = [&](double u, double v) {
+        const auto jet = S.nurbs.jet(S.mapU(u), S.mapV(v), 1);
+        return Eigen::Vector3d(jet.col(1)).cross(Eigen::Vector3d(jet.col(2))).norm() * S.mapU.derivative(u) *
+               S.mapV.derivative(v);
+    };
+    // F(u, v): the integral of the element along u from u0 to u. (Along v for surfaces with more
+    // knots in u was slower on linkrods.step's B-spline faces: 14.9 s for the part against 5.9 s.)
+    auto F = [&](double u, double v) {
+        if (u == u0) return 0.0;
+        const std::vector<double> cuts = breakpoints(uKnots, S.mapU, std::min(u0, u), std::max(u0, u));
+        double sum = 0;
+        for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+            sum += fixedKronrod([&](double x) { return element(x, v); }, cuts[i], cuts[i + 1], 2);
+        return u > u0 ? sum : -sum;
+    };
+    if (loops_.empty()) {
+        // The whole box: only the side u = u1 of its boundary has F dv != 0.
+        const double u1 = domain_.max().x();
+        const std::vector<double> cuts =
+            breakpoints(S.nurbs.knotsV().knots(), S.mapV, domain_.min().y(), domain_.max().y());
+        double sum = 0;
+        for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+            sum += integrate<double>([&](double v) { return F(u1, v); }, cuts[i], cuts[i + 1], tol);
+        return sum;
+    }
+    double total = 0;
+    for (std::size_t l = 0; l < loops_.size(); ++l) {
+        double loop = 0;
+        for (const TrimCurve& trim : loops_[l].curves) {
+            const MappedCurve<2>& c = trim.curve;
+            // F(c(t)) c_v'(t) over the curve's own pieces, in the file's parameter.
+            auto integrand = [&](double t) {
+                const auto jet = c.nurbs.derivatives(c.map(t), 1);
+                return F(jet(0, 0), jet(1, 0)) * jet(1, 1) * c.map.derivative(t);
+            };
+            const std::vector<double> cuts = breakpoints(c.nurbs.knots(), c.map, c.first, c.last);
+            double sum = 0;
+            for (std::size_t i = 0; i + 1 < cuts.size(); ++i) sum += integrate<double>(integrand, cuts[i], cuts[i + 1], tol);
+            loop += trim.reversed ? -sum : sum;
+        }
+        total += l == 0 ? std::abs(loop) : -std::abs(loop);
+    }
+    return total;
 }
 
 Box<double, 3> TrimmedSurface::bounds() const

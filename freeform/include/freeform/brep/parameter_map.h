@@ -19,7 +19,8 @@
 //                weights 1, cos alpha, 1 is the circle parameterised by tan(phi / 2), linearly;
 //   Exponential  s = e^t (hyperbolas: cosh t = (s^2 + 1) / 2s, sinh t = (s^2 - 1) / 2s).
 //
-// inverse() is the map back; both are exact to a few units in the last place.
+// inverse() is the map back and derivative() its slope; all are exact to a few units in the last
+// place.
 
 #include <algorithm>
 #include <cmath>
@@ -68,6 +69,22 @@ struct ParameterMap {
             return std::exp(t);
         }
         return t;
+    }
+
+    /// ds/dt: the derivative of operator() (positive everywhere: the map is increasing).
+    double derivative(double t) const
+    {
+        switch (kind) {
+        case Kind::Identity:
+            return 1;
+        case Kind::HalfAngle: {
+            const double mid = start + (arc(t) + 0.5) * span, c = std::cos(0.5 * (t - mid));
+            return span / (4 * std::tan(0.25 * span) * c * c);
+        }
+        case Kind::Exponential:
+            return std::exp(t);
+        }
+        return 1;
     }
 
     /// The file's parameter of the NURBS parameter s (the inverse of operator()).

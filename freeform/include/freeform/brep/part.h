@@ -59,6 +59,8 @@ struct Part {
     std::vector<int> looseFaces() const;
     /// A box holding every face (the union of TrimmedSurface::bounds()) and every vertex.
     Box<double, 3> bounds() const;
+    /// The sum of the faces' areas (TrimmedSurface::area).
+    double area(double relative = 1e-10) const;
 };
 
 struct PartCheck {

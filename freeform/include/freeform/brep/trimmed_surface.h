@@ -55,6 +55,13 @@ public:
     Eigen::Vector3d point(double u, double v) const { return surface_.point(u, v); }
     Eigen::Vector3d normal(double u, double v) const { return surface_.normal(u, v); }
     TrimClass classify(const Eigen::Vector2d& uv) const;
+    /// The area of the face: the integral of |P_u x P_v| over the trimmed domain, by Green's theorem
+    /// in the parameter plane (docs/cad.md, "Area"): over each loop's trim curves themselves (not
+    /// the polygon), of F(u, v) dv with F(u, v) the integral of |P_u x P_v| from the domain's u0 to
+    /// u (a fixed 15-point Kronrod rule on two panels per knot span) by adaptive Gauss-Kronrod split
+    /// at the curves' knots; the outer loop's absolute value less the holes'. `relative` is the
+    /// outer quadrature's tolerance against the area of the surface's box.
+    double area(double relative = 1e-10) const;
     /// A box holding the surface over its parameter box: the control box of the surface restricted
     /// to that box (the convex hull of a NURBS's control points holds it).
     Box<double, 3> bounds() const;
