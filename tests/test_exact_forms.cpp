@@ -25,6 +25,17 @@ using V2 = Eigen::Vector2d;
 using V3 = Eigen::Vector3d;
 using LD = long double;
 
+/// The plane z = 0 over [0, 4]^2 and the loop of its four sides.
+MappedSurface squarePlane() { return exactPlane(V3::Zero(), V3(1, 0, 0), V3(0, 1, 0), 0, 4, 0, 4); }
+TrimLoop squareLoop()
+{
+    TrimLoop outer;
+    const V2 corners[4] = {V2(0, 0), V2(4, 0), V2(4, 4), V2(0, 4)};
+    for (int i = 0; i < 4; ++i)
+        outer.curves.push_back({exactLine<2>(corners[i], corners[(i + 1) % 4] - corners[i], 0, 1), false, -1});
+    return outer;
+}
+
 } // namespace
 
 TEST_CASE("ellipse and circle arcs equal a cos t, b sin t in the file's parameter", "[brep]")
@@ -108,11 +119,8 @@ TEST_CASE("the trim classification of a square with a round hole is exact off th
 {
     // The plane z = 0 over [0, 4]^2; the outer loop four lines, the hole a circle of radius 1 about
     // (2, 2) given as two half circles (one reversed), as a file would.
-    const MappedSurface plane = exactPlane(V3::Zero(), V3(1, 0, 0), V3(0, 1, 0), 0, 4, 0, 4);
-    TrimLoop outer;
-    const V2 corners[4] = {V2(0, 0), V2(4, 0), V2(4, 4), V2(0, 4)};
-    for (int i = 0; i < 4; ++i)
-        outer.curves.push_back({exactLine<2>(corners[i], corners[(i + 1) % 4] - corners[i], 0, 1), false, -1});
+    const MappedSurface plane = squarePlane();
+    const TrimLoop outer = squareLoop();
     TrimLoop hole;
     hole.curves.push_back({exactEllipse<2>(V2(2, 2), V2(1, 0), V2(0, 1), 1, 1, 0, std::numbers::pi), false, -1});
     // The second half, stored from 2 pi back to pi and traversed reversed.
@@ -162,11 +170,8 @@ TEST_CASE("the parameter maps' slopes equal central differences", "[brep]")
 TEST_CASE("the area of trimmed planes, a torus and a sphere zone equals the closed forms", "[brep]")
 {
     // The square [0, 4]^2 with a round hole of radius 1: 16 - pi.
-    const MappedSurface plane = exactPlane(V3::Zero(), V3(1, 0, 0), V3(0, 1, 0), 0, 4, 0, 4);
-    TrimLoop outer;
-    const V2 corners[4] = {V2(0, 0), V2(4, 0), V2(4, 4), V2(0, 4)};
-    for (int i = 0; i < 4; ++i)
-        outer.curves.push_back({exactLine<2>(corners[i], corners[(i + 1) % 4] - corners[i], 0, 1), false, -1});
+    const MappedSurface plane = squarePlane();
+    const TrimLoop outer = squareLoop();
     TrimLoop hole;
     hole.curves.push_back({exactEllipse<2>(V2(2, 2), V2(1, 0), V2(0, 1), 1, 1, 0, 2 * std::numbers::pi), true, -1});
     const TrimmedSurface holed(plane, Box<double, 2>(V2(0, 0), V2(4, 4)), {outer, hole});
