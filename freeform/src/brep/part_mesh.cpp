@@ -1,0 +1,502 @@
+// Certified watertight tessellation of a part (brep/part_mesh.h, docs/cad.md "Tessellation").
+//
+// Three passes: a grid per face (the NURBS surface's knot lines, each knot span cut evenly as the
+// rational patch bound asks); the samples of each edge (the points where any of its pcurves
+// crosses a grid line of its face, and as many more as keep the trim polygon within the face's
+// deviation target); then each face: its trim polygon from the edge samples, clipped cell by cell
+// and cut into triangles by ear clipping.
+
+#include "freeform/brep/part_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "freeform/tessellate/tessellate_rational.h"
+#include "part_mesh_internal.h"
+
+namespace freeform {
+namespace {
+
+using namespace part_mesh;
+
+/// Bound on |S_u| and |S_v| of a rational patch over [0, 1]^2: S_u = (h'_u - (S - c) w_u) / w with
+/// h' = h - c w, c the centre and rho the half diagonal of the control box.
+std::pair<double, double> patchSlopes(const RationalPatch& patch)
+{
+    const int m = patch.degreeU(), n = patch.degreeV();
+    const Box<double, 3> box = patch.controlBox();
+    const Eigen::Vector3d c = box.center();
+    const double rho = 0.5 * box.diagonal().norm();
+    const auto& h = patch.homogeneous();
+    double wmin = kInf;
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) wmin = std::min(wmin, h.controlPoint(i, j)[3]);
+    auto shifted = [&](int i, int j) {
+        const Eigen::Vector4d p = h.controlPoint(i, j);
+        return Eigen::Vector3d(p.head<3>() - p[3] * c);
+    };
+    double hu = 0, wu = 0, hv = 0, wv = 0;
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            hu = std::max(hu, m * (shifted(i + 1, j) - shifted(i, j)).norm());
+            wu = std::max(wu, m * std::abs(h.controlPoint(i + 1, j)[3] - h.controlPoint(i, j)[3]));
+        }
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j < n; ++j) {
+            hv = std::max(hv, n * (shifted(i, j + 1) - shifted(i, j)).norm());
+            wv = std::max(wv, n * std::abs(h.controlPoint(i, j + 1)[3] - h.controlPoint(i, j)[3]));
+        }
+    return {(hu + rho * wu) / wmin, (hv + rho * wv) / wmin};
+}
+
+AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStart, double domainEnd, std::size_t f,
+                const char* dir)
+{
+    AxisMap a{map, 0};
+    if (map.kind == ParameterMap::Kind::Identity && map.period > 0) {
+        const double tol = 1e-9 * map.period;
+        double s0 = map(lo);
+        if (s0 + (hi - lo) > domainEnd + tol) s0 -= map.period;
+        if (s0 < domainStart - tol || s0 + (hi - lo) > domainEnd + tol)
+            throw Error(faceName(f) + ": its " + dir + " range straddles the start of its periodic surface's period");
+        a.centre = s0 + 0.5 * (hi - lo);
+    }
+    return a;
+}
+
+FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
+{
+    const TrimmedSurface& ts = face.surface;
+    const NurbsSurface<double, 3>& nurbs = ts.surface().nurbs;
+    const Box<double, 2>& dom = ts.domain();
+    FaceGrid g;
+    g.mu = axisMap(ts.surface().mapU, dom.min().x(), dom.max().x(), nurbs.knotsU().breakpoints().front(),
+                   nurbs.knotsU().breakpoints().back(), f, "u");
+    g.mv = axisMap(ts.surface().mapV, dom.min().y(), dom.max().y(), nurbs.knotsV().breakpoints().front(),
+                   nurbs.knotsV().breakpoints().back(), f, "v");
+    // The box ends a hair from a knot are moved onto it (the trims then snap onto the box): a cell
+    // that thin would defeat the cell walk.
+    auto onKnot = [](double x, const std::vector<double>& knots, double width) {
+        for (double k : knots)
+            if (std::abs(k - x) <= 1e-9 * width) return k;
+        return x;
+    };
+    const std::vector<double> ku = nurbs.knotsU().breakpoints(), kv = nurbs.knotsV().breakpoints();
+    double su0 = g.mu(dom.min().x()), su1 = g.mu(dom.max().x());
+    double sv0 = g.mv(dom.min().y()), sv1 = g.mv(dom.max().y());
+    if (!(su1 > su0) || !(sv1 > sv0)) throw Error(faceName(f) + ": its parameter box is empty");
+    su0 = onKnot(su0, ku, su1 - su0);
+    su1 = onKnot(su1, ku, su1 - su0);
+    sv0 = onKnot(sv0, kv, sv1 - sv0);
+    sv1 = onKnot(sv1, kv, sv1 - sv0);
+    const NurbsSurface<double, 3> r = nurbs.restrictedU(su0, su1).restrictedV(sv0, sv1);
+    const std::vector<double> bu = r.knotsU().breakpoints(), bv = r.knotsV().breakpoints();
+    const std::vector<RationalPatch> patches = r.bezierPatches();
+    const std::size_t cols = bv.size() - 1;
+    std::vector<int> nu(bu.size() - 1, 1), nv(cols, 1);
+    for (std::size_t a = 0; a + 1 < bu.size(); ++a)
+        for (std::size_t b = 0; b < cols; ++b) {
+            const std::array<int, 2> n = rationalAdaptiveSegments(patches[a * cols + b], target);
+            nu[a] = std::max(nu[a], n[0]);
+            nv[b] = std::max(nv[b], n[1]);
+        }
+    double lu = 0, lv = 0;
+    for (std::size_t a = 0; a + 1 < bu.size(); ++a)
+        for (std::size_t b = 0; b < cols; ++b) {
+            const RationalPatch& p = patches[a * cols + b];
+            g.bound = std::max(g.bound, rationalTessellationErrorBound(p, nu[a], nv[b]));
+            const auto [su, sv] = patchSlopes(p);
+            lu = std::max(lu, su / (bu[a + 1] - bu[a]));
+            lv = std::max(lv, sv / (bv[b + 1] - bv[b]));
+        }
+    g.lipschitz = std::hypot(lu, lv);
+    auto lines = [](const std::vector<double>& knots, const std::vector<int>& counts) {
+        std::vector<double> out;
+        for (std::size_t k = 0; k + 1 < knots.size(); ++k)
+            for (int i = 0; i < counts[k]; ++i) out.push_back(knots[k] + (knots[k + 1] - knots[k]) * i / counts[k]);
+        out.push_back(knots.back());
+        return out;
+    };
+    g.gu = lines(bu, nu);
+    g.gv = lines(bv, nv);
+    g.snapU = 1e-7 * (g.gu.back() - g.gu.front());
+    g.snapV = 1e-7 * (g.gv.back() - g.gv.front());
+    // A hole inside one cell would be a hole the cell walk cannot join to its cell: cut it. (The
+    // outer loop, the one of the largest box, may lie in one cell.)
+    std::vector<Box<double, 2>> boxes;
+    for (const std::vector<Eigen::Vector2d>& poly : ts.polygons()) {
+        Box<double, 2> bb;
+        for (const Eigen::Vector2d& p : poly) bb.extend(g.toS(p));
+        boxes.push_back(bb);
+    }
+    std::size_t outer = 0;
+    for (std::size_t l = 0; l < boxes.size(); ++l)
+        if (boxes[l].volume() > boxes[outer].volume()) outer = l;
+    for (std::size_t l = 0; l < boxes.size(); ++l) {
+        const Box<double, 2>& bb = boxes[l];
+        if (l == outer || bb.isEmpty() || !(bb.max().x() > bb.min().x())) continue;
+        auto inside = [](const std::vector<double>& l, double lo, double hi) {
+            const auto it = std::upper_bound(l.begin(), l.end(), lo);
+            return it != l.end() && *it < hi;
+        };
+        if (!inside(g.gu, bb.min().x(), bb.max().x()) && !inside(g.gv, bb.min().y(), bb.max().y())) {
+            g.gu.push_back(0.5 * (bb.min().x() + bb.max().x()));
+            std::sort(g.gu.begin(), g.gu.end());
+        }
+    }
+    return g;
+}
+
+// ------------------------------------------------------------------------------------------ edges
+
+/// One use of an edge by a face: the trim curve and the face's grid.
+struct EdgeUse {
+    const TrimCurve* trim;
+    const FaceGrid* grid;
+    double deviationTarget;
+    double edgeFirst, edgeLast;
+
+    double trimParameter(double t) const
+    {
+        const MappedCurve<2>& c = trim->curve;
+        if (c.first == edgeFirst && c.last == edgeLast) return t;
+        return c.first + (t - edgeFirst) / (edgeLast - edgeFirst) * (c.last - c.first);
+    }
+    Eigen::Vector2d raw(double t) const { return grid->toS(trim->curve.point(trimParameter(t))); }
+    Eigen::Vector2d at(double t) const { return grid->snap(raw(t)); }
+
+    /// Certified distance in the face's NURBS parameters between the polygon side from at(ta) to
+    /// at(tb) and the trim between them.
+    double deviation(double ta, double tb) const
+    {
+        const MappedCurve<2>& c = trim->curve;
+        const double ca = trimParameter(ta), cb = trimParameter(tb);
+        const double lo = std::min(ca, cb), hi = std::max(ca, cb);
+        // Control points whose hull holds the trim over [lo, hi]; a periodic trim is unrolled and,
+        // where [lo, hi] runs over the end of its period, taken in two pieces.
+        std::vector<Eigen::Vector2d> hull;
+        // A cut a hair from a knot leaves a span too short for the next cut's ratios: cut at the knot.
+        const std::vector<double>& knots = c.nurbs.breakpoints();
+        const double nearKnot = 1e-11 * (knots.back() - knots.front());
+        auto atKnot = [&](double x) {
+            const auto it = std::lower_bound(knots.begin(), knots.end(), x);
+            if (it != knots.end() && *it - x <= nearKnot) return *it;
+            if (it != knots.begin() && x - *(it - 1) <= nearKnot) return *(it - 1);
+            return x;
+        };
+        auto addPiece = [&](double s0, double s1) {
+            s0 = atKnot(s0);
+            s1 = atKnot(s1);
+            NurbsCurve<double, 2> piece = c.nurbs;
+            if (s0 > piece.domainStart() && s0 < piece.domainEnd()) piece = piece.split(s0).second;
+            if (s1 > piece.domainStart() && s1 < piece.domainEnd()) piece = piece.split(s1).first;
+            for (int i = 0; i < piece.controlCount(); ++i) hull.push_back(piece.controlPoint(i));
+        };
+        const double s0 = c.map(lo);
+        double s1 = c.map(hi);
+        if (c.map.kind == ParameterMap::Kind::Identity && c.map.period > 0) {
+            s1 = s0 + (hi - lo);
+            const double end = c.nurbs.domainEnd();
+            if (s1 > end) {
+                addPiece(s0, end);
+                addPiece(c.nurbs.domainStart(), std::min(end, s1 - c.map.period));
+            } else {
+                addPiece(s0, s1);
+            }
+        } else {
+            if (!(s1 > s0)) return kInf;
+            addPiece(s0, s1);
+        }
+        const Eigen::Vector2d pa = c.point(ca), pb = c.point(cb);
+        const Eigen::Vector2d d = pb - pa;
+        const double len2 = d.squaredNorm();
+        double dev = 0;
+        Eigen::Vector2d qlo = pa.cwiseMin(pb), qhi = pa.cwiseMax(pb);
+        for (const Eigen::Vector2d& q : hull) {
+            qlo = qlo.cwiseMin(q);
+            qhi = qhi.cwiseMax(q);
+            const double s = len2 > 0 ? std::clamp((q - pa).dot(d) / len2, 0.0, 1.0) : 0.0;
+            dev = std::max(dev, (q - pa - s * d).norm());
+        }
+        const auto [u1, u2] = grid->mu.slopes(qlo.x(), qhi.x());
+        const auto [v1, v2] = grid->mv.slopes(qlo.y(), qhi.y());
+        const double bend = 0.125 * std::hypot(u2 * d.x() * d.x(), v2 * d.y() * d.y());
+        const double snapped = (at(ta) - raw(ta)).norm() + (at(tb) - raw(tb)).norm();
+        return std::max(u1, v1) * dev + bend + snapped;
+    }
+};
+
+/// The samples of one edge: every crossing of a grid line by a use, and cuts in half until every
+/// use's polygon side is within its deviation target. Returns the samples (increasing, from
+/// first to last); `worst` receives per use the largest deviation left.
+std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, double last, int maxSamples,
+                               std::vector<double>& worst)
+{
+    std::vector<double> ts{first, last};
+    const double minStep = 1e-12 * std::max(1.0, std::abs(last - first));
+    for (int round = 0; round < 16; ++round) {
+        bool changed = false;
+        for (const EdgeUse& use : uses) {
+            std::vector<double> out{ts.front()};
+            // Depth-first over the sides; each is cut at a crossing or in half until it passes.
+            for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+                std::vector<std::pair<double, int>> stack{{ts[k + 1], 0}};
+                double ta = ts[k];
+                while (!stack.empty()) {
+                    const auto [tb, depth] = stack.back();
+                    const Eigen::Vector2d a = use.at(ta), b = use.at(tb);
+                    const auto [axis, line] = use.grid->crossing(a, b);
+                    const bool room = depth < 200 && tb - ta > minStep && static_cast<int>(out.size() + ts.size()) < maxSamples;
+                    double cut = std::numeric_limits<double>::quiet_NaN();
+                    if (axis >= 0 && room) {
+                        const bool below = a[axis] < line;
+                        double lo = ta, hi = tb;
+                        for (int it = 0; it < 200; ++it) {
+                            const double mid = 0.5 * (lo + hi);
+                            if (mid <= lo || mid >= hi) break;
+                            const double s = use.raw(mid)[axis];
+                            if (s == line) { lo = hi = mid; break; }
+                            ((s < line) == below ? lo : hi) = mid;
+                        }
+                        cut = 0.5 * (lo + hi);
+                        if (!(cut > ta && cut < tb)) cut = std::numeric_limits<double>::quiet_NaN();
+                    } else if (room && use.deviation(ta, tb) > use.deviationTarget) {
+                        cut = 0.5 * (ta + tb);
+                    }
+                    if (std::isnan(cut)) {
+                        out.push_back(tb);
+                        ta = tb;
+                        stack.pop_back();
+                    } else {
+                        stack.back().second = depth + 1;
+                        stack.push_back({cut, depth + 1});
+                        changed = true;
+                    }
+                }
+            }
+            ts = std::move(out);
+        }
+        if (!changed) break;
+    }
+    // Crossings found for two faces at one point (a vertex on both faces' grid lines) differ in the
+    // last bits: keep one sample (the snap puts it on both lines).
+    const double merge = 1e-10 * std::abs(last - first);
+    std::vector<double> kept{ts.front()};
+    for (std::size_t k = 1; k + 1 < ts.size(); ++k)
+        if (ts[k] - kept.back() > merge && ts.back() - ts[k] > merge) kept.push_back(ts[k]);
+    kept.push_back(ts.back());
+    ts = std::move(kept);
+    worst.assign(uses.size(), 0);
+    for (std::size_t u = 0; u < uses.size(); ++u)
+        for (std::size_t k = 0; k + 1 < ts.size(); ++k) worst[u] = std::max(worst[u], uses[u].deviation(ts[k], ts[k + 1]));
+    return ts;
+}
+
+} // namespace
+
+/// One meshing of the part with the grid of face f aimed at cellTarget[f]; cellBound receives the
+/// grid bound e of each face.
+static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const std::vector<double>& cellTarget,
+                  std::vector<double>& cellBound)
+{
+    const double tol = options.tolerance;
+    std::vector<FaceGrid> grids;
+    grids.reserve(part.faces.size());
+    long long estimate = 0;
+    for (std::size_t f = 0; f < part.faces.size(); ++f) {
+        grids.push_back(makeGrid(part.faces[f], f, cellTarget[f]));
+        estimate += 2LL * static_cast<long long>(grids.back().gu.size() - 1) * static_cast<long long>(grids.back().gv.size() - 1);
+    }
+    if (options.maxTriangles > 0 && estimate > options.maxTriangles)
+        throw Error("tessellatePart: about " + std::to_string(estimate) + " triangles exceed the limit of " +
+                    std::to_string(options.maxTriangles));
+
+    // Edge samples, and the largest trim deviation of each face.
+    std::vector<std::vector<EdgeUse>> uses(part.edges.size());
+    std::vector<std::vector<std::size_t>> useFace(part.edges.size());
+    for (std::size_t f = 0; f < part.faces.size(); ++f)
+        for (const TrimLoop& loop : part.faces[f].surface.loops())
+            for (const TrimCurve& c : loop.curves) {
+                if (c.edge < 0 || static_cast<std::size_t>(c.edge) >= part.edges.size())
+                    throw Error(faceName(f) + ": a trim curve names no edge of the part");
+                const PartEdge& e = part.edges[static_cast<std::size_t>(c.edge)];
+                const double lip = std::max(grids[f].lipschitz, 1e-300);
+                uses[static_cast<std::size_t>(c.edge)].push_back({&c, &grids[f], tol / (8 * lip), e.first, e.last});
+                useFace[static_cast<std::size_t>(c.edge)].push_back(f);
+            }
+    std::vector<double> faceDeviation(part.faces.size(), 0);
+    std::vector<std::vector<double>> samples(part.edges.size());
+    for (std::size_t e = 0; e < part.edges.size(); ++e) {
+        if (uses[e].empty()) continue;
+        std::vector<double> worst;
+        samples[e] = sampleEdge(uses[e], part.edges[e].first, part.edges[e].last, options.maxEdgeSamples, worst);
+        for (std::size_t u = 0; u < worst.size(); ++u)
+            faceDeviation[useFace[e][u]] = std::max(faceDeviation[useFace[e][u]], worst[u]);
+    }
+
+    // The mesh vertices of the part's vertices and of every edge sample.
+    Builder out;
+    std::vector<int> vertexId(part.vertices.size(), -1);
+    auto partVertex = [&](int v, const Eigen::Vector3d& fallback) {
+        if (v < 0) return out.add(fallback);
+        int& id = vertexId[static_cast<std::size_t>(v)];
+        if (id < 0) id = out.add(part.vertices[static_cast<std::size_t>(v)].point);
+        return id;
+    };
+    std::vector<std::vector<int>> sampleVertex(part.edges.size());
+    for (std::size_t e = 0; e < part.edges.size(); ++e) {
+        if (samples[e].empty()) continue;
+        const PartEdge& edge = part.edges[e];
+        const EdgeUse& use = uses[e].front();
+        auto position = [&](double t) -> Eigen::Vector3d {
+            if (edge.curve && !edge.degenerate) return edge.curve->point(t);
+            const Eigen::Vector2d s = use.at(t);
+            return part.faces[useFace[e].front()].surface.surface().nurbs.evaluate(s.x(), s.y());
+        };
+        std::vector<int>& ids = sampleVertex[e];
+        const std::size_t n = samples[e].size();
+        ids.resize(n);
+        ids.front() = partVertex(edge.start, position(samples[e].front()));
+        ids.back() = edge.start == edge.end && edge.start >= 0 ? ids.front() : partVertex(edge.end, position(samples[e].back()));
+        for (std::size_t k = 1; k + 1 < n; ++k) ids[k] = edge.degenerate ? ids.front() : out.add(position(samples[e][k]));
+    }
+
+    PartMesh result;
+    PartMeshReport& report = result.report;
+    report.faceBound.assign(part.faces.size(), 0);
+    for (std::size_t f = 0; f < part.faces.size(); ++f) {
+        const PartFace& face = part.faces[f];
+        // Two points of one vertex (where trims meet) this near are one polygon point.
+        const FaceGrid& g = grids[f];
+        auto near = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+            return std::abs(a.x() - b.x()) <= g.snapU && std::abs(a.y() - b.y()) <= g.snapV;
+        };
+        std::vector<std::vector<PolyPoint>> loops;
+        for (const TrimLoop& loop : face.surface.loops()) {
+            std::vector<PolyPoint> pts;
+            for (const TrimCurve& c : loop.curves) {
+                const std::size_t e = static_cast<std::size_t>(c.edge);
+                const EdgeUse* use = nullptr;
+                for (const EdgeUse& u : uses[e])
+                    if (u.trim == &c) use = &u;
+                const std::size_t n = samples[e].size();
+                for (std::size_t k = 0; k < n; ++k) {
+                    const std::size_t idx = c.reversed ? n - 1 - k : k;
+                    const PolyPoint p{use->at(samples[e][idx]), sampleVertex[e][idx]};
+                    if (!pts.empty() && pts.back().vertex == p.vertex) {
+                        if (near(pts.back().s, p.s)) continue;
+                        joinAcrossLines(grids[f], pts.back(), p, pts);
+                    }
+                    if (pts.empty() || pts.back().s != p.s || pts.back().vertex != p.vertex) pts.push_back(p);
+                }
+            }
+            while (pts.size() > 1 && pts.front().vertex == pts.back().vertex && near(pts.front().s, pts.back().s)) pts.pop_back();
+            if (pts.size() > 1 && pts.front().vertex == pts.back().vertex) joinAcrossLines(grids[f], pts.back(), pts.front(), pts);
+            loops.push_back(std::move(pts));
+        }
+        const double delta = meshFace(face, f, grids[f], std::move(loops), out);
+        const double trim = 2 * grids[f].lipschitz * faceDeviation[f];
+        report.faceBound[f] = grids[f].bound + delta + trim;
+        report.errorBound = std::max(report.errorBound, report.faceBound[f]);
+        report.maxVertexGap = std::max(report.maxVertexGap, delta);
+        report.maxTrimDeviation = std::max(report.maxTrimDeviation, trim);
+        ++report.faces;
+    }
+    report.certified = report.errorBound <= tol;
+    cellBound.resize(part.faces.size());
+    for (std::size_t f = 0; f < part.faces.size(); ++f) cellBound[f] = grids[f].bound;
+
+    // Two faces that cut an ear from the same three samples of their common edge would cover the
+    // sliver between the edge's polygon and its chord twice: such a pair of triangles goes (the
+    // faces then meet along the chord; leaving triangles out never moves the mesh from the part).
+    {
+        std::map<std::array<int, 3>, std::size_t> seen;
+        std::vector<char> drop(out.triangles.size(), 0);
+        for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+            std::array<int, 3> key = out.triangles[t];
+            std::sort(key.begin(), key.end());
+            const auto [it, fresh] = seen.try_emplace(key, t);
+            if (!fresh && !drop[it->second] && out.triangleFace[it->second] != out.triangleFace[t]) {
+                drop[it->second] = drop[t] = 1;
+                seen.erase(it);
+            }
+        }
+        std::size_t kept = 0;
+        for (std::size_t t = 0; t < out.triangles.size(); ++t)
+            if (!drop[t]) {
+                out.triangles[kept] = out.triangles[t];
+                out.triangleFace[kept++] = out.triangleFace[t];
+            }
+        out.triangles.resize(kept);
+        out.triangleFace.resize(kept);
+    }
+
+    // Watertightness: every mesh edge of a closed shell in exactly two of its triangles.
+    std::vector<int> shellOf(part.faces.size(), -1);
+    for (std::size_t s = 0; s < part.shells.size(); ++s) {
+        std::map<int, int> edgeUses;
+        for (int f : part.shells[s].faces)
+            for (const TrimLoop& loop : part.faces[static_cast<std::size_t>(f)].surface.loops())
+                for (const TrimCurve& c : loop.curves)
+                    if (!part.edges[static_cast<std::size_t>(c.edge)].degenerate) ++edgeUses[c.edge];
+        const bool closed = !edgeUses.empty() && std::all_of(edgeUses.begin(), edgeUses.end(), [](const auto& u) { return u.second == 2; });
+        if (!closed) continue;
+        ++report.closedShells;
+        for (int f : part.shells[s].faces) shellOf[static_cast<std::size_t>(f)] = static_cast<int>(s);
+    }
+    std::map<std::tuple<int, int, int>, int> meshEdges;
+    for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+        const int s = shellOf[static_cast<std::size_t>(out.triangleFace[t])];
+        if (s < 0) continue;
+        for (int k = 0; k < 3; ++k) {
+            const int a = out.triangles[t][static_cast<std::size_t>(k)], b = out.triangles[t][static_cast<std::size_t>((k + 1) % 3)];
+            ++meshEdges[{s, std::min(a, b), std::max(a, b)}];
+        }
+    }
+    for (const auto& [key, count] : meshEdges) report.openMeshEdges += count != 2 ? 1 : 0;
+    report.watertight = report.closedShells > 0 && report.openMeshEdges == 0;
+
+    // The mesh, without the vertices no triangle uses.
+    std::vector<int> remap(out.positions.size(), -1);
+    int used = 0;
+    for (const auto& t : out.triangles)
+        for (int v : t)
+            if (remap[static_cast<std::size_t>(v)] < 0) remap[static_cast<std::size_t>(v)] = used++;
+    PolygonMesh& mesh = result.mesh;
+    mesh.positions.resize(3, used);
+    for (std::size_t v = 0; v < out.positions.size(); ++v)
+        if (remap[v] >= 0) mesh.positions.col(remap[v]) = out.positions[v];
+    mesh.faceVertices.reserve(3 * out.triangles.size());
+    for (const auto& t : out.triangles) mesh.addFace({remap[static_cast<std::size_t>(t[0])], remap[static_cast<std::size_t>(t[1])],
+                                                      remap[static_cast<std::size_t>(t[2])]});
+    result.triangleFace = std::move(out.triangleFace);
+    return result;
+}
+
+PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
+{
+    if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
+        throw Error("tessellatePart: the tolerance must be positive and finite");
+    const double tol = options.tolerance;
+    // The grid aims at half the tolerance; a face whose gaps (delta) and trim deviation leave less
+    // than that is meshed again with its grid aimed at what they leave.
+    std::vector<double> target(part.faces.size(), 0.5 * tol), bound;
+    PartMesh mesh = meshPart(part, options, target, bound);
+    for (int pass = 0; pass < 2 && !mesh.report.certified; ++pass) {
+        bool again = false;
+        for (std::size_t f = 0; f < part.faces.size(); ++f) {
+            const double rest = mesh.report.faceBound[f] - bound[f]; // delta + 2 L deviation
+            if (mesh.report.faceBound[f] > tol && rest < 0.9 * tol) {
+                target[f] = std::min(target[f], 0.95 * (tol - rest));
+                again = true;
+            }
+        }
+        if (!again) break;
+        mesh = meshPart(part, options, target, bound);
+    }
+    return mesh;
+}
+
+} // namespace freeform

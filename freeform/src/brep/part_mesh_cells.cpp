@@ -1,0 +1,306 @@
+// One face of the part tessellation (brep/part_mesh.h, docs/cad.md "Tessellation"): its trim
+// polygon cut by the grid cells. Each side of the polygon lies in one cell (the edge samples hold
+// every crossing of a grid line); a cell's region is walked from chain to chain of the polygon's
+// sides in it and along the cell's sides between them, and cut into triangles by ear clipping.
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+#include "freeform/mesh/triangulate.h"
+#include "part_mesh_internal.h"
+
+namespace freeform::part_mesh {
+
+namespace {
+
+double signedArea(const std::vector<PolyPoint>& loop)
+{
+    double a = 0;
+    for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
+        const Eigen::Vector2d& p = loop[i].s;
+        const Eigen::Vector2d& q = loop[(i + 1) % n].s;
+        a += p.x() * q.y() - q.x() * p.y();
+    }
+    return 0.5 * a;
+}
+
+bool insideLoops(const std::vector<std::vector<PolyPoint>>& loops, const Eigen::Vector2d& x)
+{
+    bool in = false;
+    for (const auto& loop : loops)
+        for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
+            const Eigen::Vector2d& a = loop[i].s;
+            const Eigen::Vector2d& b = loop[(i + 1) % n].s;
+            if ((a.y() > x.y()) != (b.y() > x.y()) && x.x() < a.x() + (x.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+                in = !in;
+        }
+    return in;
+}
+
+} // namespace
+
+void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, std::vector<PolyPoint>& out)
+{
+    std::vector<std::pair<double, Eigen::Vector2d>> cuts;
+    for (int axis = 0; axis < 2; ++axis) {
+        const std::vector<double>& lines = axis == 0 ? g.gu : g.gv;
+        const double lo = std::min(a.s[axis], b.s[axis]), hi = std::max(a.s[axis], b.s[axis]);
+        for (auto it = std::upper_bound(lines.begin(), lines.end(), lo); it != lines.end() && *it < hi; ++it) {
+            const double lambda = (*it - a.s[axis]) / (b.s[axis] - a.s[axis]);
+            Eigen::Vector2d p = a.s + lambda * (b.s - a.s);
+            p[axis] = *it;
+            p[1 - axis] = std::clamp(p[1 - axis], std::min(a.s[1 - axis], b.s[1 - axis]), std::max(a.s[1 - axis], b.s[1 - axis]));
+            cuts.push_back({lambda, g.snap(p)});
+        }
+    }
+    std::sort(cuts.begin(), cuts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& c : cuts)
+        if (out.back().s != c.second) out.push_back({c.second, a.vertex});
+}
+
+/// Meshes one face: its loops (in NURBS parameters, with the vertices of the edge samples) clipped
+/// by the grid cells. Returns the largest distance between a polygon vertex and the surface.
+double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vector<std::vector<PolyPoint>> loops,
+                Builder& out)
+{
+    const NurbsSurface<double, 3>& S = face.surface.surface().nurbs;
+    double delta = 0;
+    // Orientation: the loop of largest area counter-clockwise (the face on its left), the others clockwise.
+    std::size_t outer = 0;
+    std::vector<double> areas;
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+        areas.push_back(signedArea(loops[l]));
+        if (std::abs(areas[l]) > std::abs(areas[outer])) outer = l;
+    }
+    for (std::size_t l = 0; l < loops.size(); ++l)
+        if ((l == outer) != (areas[l] > 0)) std::reverse(loops[l].begin(), loops[l].end());
+    std::erase_if(loops, [](const auto& loop) { return loop.size() < 3 || signedArea(loop) == 0; });
+
+    const int Nu = static_cast<int>(g.gu.size()) - 1, Nv = static_cast<int>(g.gv.size()) - 1;
+    // Polygon points on grid lines (for the cells on either side) and at grid nodes.
+    std::map<std::pair<double, double>, int> atPoint;
+    std::vector<std::vector<std::pair<double, int>>> onU(g.gu.size()), onV(g.gv.size());
+    auto lineIndex = [](const std::vector<double>& l, double x) {
+        const auto it = std::lower_bound(l.begin(), l.end(), x);
+        return it != l.end() && *it == x ? static_cast<int>(it - l.begin()) : -1;
+    };
+    for (const auto& loop : loops)
+        for (const PolyPoint& p : loop) {
+            delta = std::max(delta, (out.positions[static_cast<std::size_t>(p.vertex)] - S.evaluate(p.s.x(), p.s.y())).norm());
+            atPoint.emplace(std::make_pair(p.s.x(), p.s.y()), p.vertex);
+            if (const int i = lineIndex(g.gu, p.s.x()); i >= 0) onU[static_cast<std::size_t>(i)].push_back({p.s.y(), p.vertex});
+            if (const int j = lineIndex(g.gv, p.s.y()); j >= 0) onV[static_cast<std::size_t>(j)].push_back({p.s.x(), p.vertex});
+        }
+    for (auto& l : onU) std::sort(l.begin(), l.end());
+    for (auto& l : onV) std::sort(l.begin(), l.end());
+    std::map<std::pair<int, int>, int> node;
+    auto nodeVertex = [&](int i, int j) {
+        const double u = g.gu[static_cast<std::size_t>(i)], v = g.gv[static_cast<std::size_t>(j)];
+        if (auto it = atPoint.find({u, v}); it != atPoint.end()) return it->second;
+        auto [it, fresh] = node.try_emplace({i, j}, -1);
+        if (fresh) it->second = out.add(S.evaluate(u, v));
+        return it->second;
+    };
+
+    // Each side of the polygon goes to the cell holding it: the cell of its midpoint, or for a side
+    // along a grid line the cell on its left (the face's side).
+    auto cellOf = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) -> long long {
+        const Eigen::Vector2d m = 0.5 * (a + b);
+        auto index = [](const std::vector<double>& l, double x, double along) {
+            const auto it = std::upper_bound(l.begin(), l.end(), x);
+            int i = static_cast<int>(it - l.begin()) - 1;
+            if (i >= 0 && l[static_cast<std::size_t>(i)] == x && along != 0) i = along > 0 ? i - 1 : i;
+            return i;
+        };
+        const bool alongU = a.x() == b.x() && lineIndex(g.gu, a.x()) >= 0;
+        const bool alongV = a.y() == b.y() && lineIndex(g.gv, a.y()) >= 0;
+        const int i = index(g.gu, m.x(), alongU ? b.y() - a.y() : 0.0);  // going up: the cell on the left
+        const int j = index(g.gv, m.y(), alongV ? a.x() - b.x() : 0.0);  // going right: the cell above
+        if (i < 0 || i >= Nu || j < 0 || j >= Nv) return -1;
+        return static_cast<long long>(i) * Nv + j;
+    };
+    // A side between two points of one vertex (where trims meet) may turn back along a grid line,
+    // and one between two vertices snapped to one point has no direction: such a side stays with
+    // the side before it (or after it) when that cell holds it.
+    auto holds = [&](long long c, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+        if (c < 0) return false;
+        const std::size_t i = static_cast<std::size_t>(c / Nv), j = static_cast<std::size_t>(c % Nv);
+        auto in = [&](const Eigen::Vector2d& p) {
+            return p.x() >= g.gu[i] && p.x() <= g.gu[i + 1] && p.y() >= g.gv[j] && p.y() <= g.gv[j + 1];
+        };
+        return in(a) && in(b);
+    };
+    std::vector<std::vector<long long>> sideCell(loops.size());
+    std::unordered_map<long long, std::vector<std::pair<int, int>>> cellSides;
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+        const auto& loop = loops[l];
+        const std::size_t n = loop.size();
+        for (std::size_t k = 0; k < n; ++k) sideCell[l].push_back(cellOf(loop[k].s, loop[(k + 1) % n].s));
+        for (std::size_t k = 0; k < n; ++k) {
+            const PolyPoint &a = loop[k], &b = loop[(k + 1) % n];
+            if (a.vertex != b.vertex && a.s != b.s) continue;
+            const long long before = sideCell[l][(k + n - 1) % n], after = sideCell[l][(k + 1) % n];
+            if (holds(before, a.s, b.s)) sideCell[l][k] = before;
+            else if (holds(after, a.s, b.s)) sideCell[l][k] = after;
+        }
+        for (std::size_t k = 0; k < n; ++k)
+            if (sideCell[l][k] >= 0) cellSides[sideCell[l][k]].push_back({static_cast<int>(l), static_cast<int>(k)});
+    }
+
+    auto emit = [&](const std::vector<PolyPoint>& poly) {
+        if (poly.size() < 3) return;
+        Eigen::Matrix<double, 2, Eigen::Dynamic> corners(2, static_cast<Eigen::Index>(poly.size()));
+        for (std::size_t k = 0; k < poly.size(); ++k) corners.col(static_cast<Eigen::Index>(k)) = poly[k].s;
+        for (const auto& t : triangulatePolygon2(corners)) {
+            const int a = poly[static_cast<std::size_t>(t[0])].vertex, b = poly[static_cast<std::size_t>(t[1])].vertex,
+                      c = poly[static_cast<std::size_t>(t[2])].vertex;
+            if (a == b || b == c || a == c) continue; // collapsed (a pole)
+            out.triangles.push_back(face.reversed ? std::array<int, 3>{a, c, b} : std::array<int, 3>{a, b, c});
+            out.triangleFace.push_back(static_cast<int>(f));
+        }
+    };
+
+    for (int i = 0; i < Nu; ++i)
+        for (int j = 0; j < Nv; ++j) {
+            const double u0 = g.gu[static_cast<std::size_t>(i)], u1 = g.gu[static_cast<std::size_t>(i) + 1];
+            const double v0 = g.gv[static_cast<std::size_t>(j)], v1 = g.gv[static_cast<std::size_t>(j) + 1];
+            auto perimeter = [&](const Eigen::Vector2d& p) {
+                if (p.y() == v0 && p.x() < u1) return (p.x() - u0) / (u1 - u0);
+                if (p.x() == u1 && p.y() < v1) return 1 + (p.y() - v0) / (v1 - v0);
+                if (p.y() == v1 && p.x() > u0) return 2 + (u1 - p.x()) / (u1 - u0);
+                if (p.x() == u0 && p.y() > v0) return 3 + (v1 - p.y()) / (v1 - v0);
+                return -1.0;
+            };
+            // The cell's boundary points: its corners and the polygon points on its sides.
+            std::vector<std::pair<double, PolyPoint>> rim{{0, {{u0, v0}, -2}}, {1, {{u1, v0}, -3}}, {2, {{u1, v1}, -4}}, {3, {{u0, v1}, -5}}};
+            auto addSide = [&](const std::vector<std::pair<double, int>>& l, double lo, double hi, bool vertical, double fixed) {
+                for (auto it = std::upper_bound(l.begin(), l.end(), std::make_pair(lo, std::numeric_limits<int>::max()));
+                     it != l.end() && it->first < hi; ++it) {
+                    const Eigen::Vector2d p = vertical ? Eigen::Vector2d(fixed, it->first) : Eigen::Vector2d(it->first, fixed);
+                    rim.push_back({perimeter(p), {p, it->second}});
+                }
+            };
+            addSide(onV[static_cast<std::size_t>(j)], u0, u1, false, v0);
+            addSide(onU[static_cast<std::size_t>(i) + 1], v0, v1, true, u1);
+            addSide(onV[static_cast<std::size_t>(j) + 1], u0, u1, false, v1);
+            addSide(onU[static_cast<std::size_t>(i)], v0, v1, true, u0);
+            std::sort(rim.begin(), rim.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+            auto vertexOf = [&](const PolyPoint& p) {
+                if (p.vertex >= 0) return p;
+                const int k = -p.vertex - 2;
+                return PolyPoint{p.s, nodeVertex(i + (k == 1 || k == 2), j + (k >= 2))};
+            };
+
+            const long long cell = static_cast<long long>(i) * Nv + j;
+            const auto found = cellSides.find(cell);
+            if (found == cellSides.end()) {
+                if (!insideLoops(loops, {0.5 * (u0 + u1), 0.5 * (v0 + v1)})) continue;
+                std::vector<PolyPoint> poly;
+                for (const auto& r : rim) poly.push_back(vertexOf(r.second));
+                emit(poly);
+                continue;
+            }
+            // Chains: maximal runs of consecutive sides in this cell.
+            struct Chain {
+                std::vector<PolyPoint> points;
+                double in = 0, out = 0;
+            };
+            std::vector<Chain> chains;
+            for (const auto& [l, k] : found->second) {
+                const auto& loop = loops[static_cast<std::size_t>(l)];
+                const int n = static_cast<int>(loop.size());
+                const auto& cells = sideCell[static_cast<std::size_t>(l)];
+                const bool closed = std::all_of(cells.begin(), cells.end(), [&](long long c) { return c == cell; });
+                if (closed) {
+                    if (k != 0) continue;
+                    if (signedArea(loop) < 0) throw Error(faceName(f) + ": a hole lies inside one grid cell");
+                    emit(loop);
+                    continue;
+                }
+                if (cells[static_cast<std::size_t>((k + n - 1) % n)] == cell) continue; // not a chain's first side
+                Chain ch;
+                int m = k;
+                ch.points.push_back(loop[static_cast<std::size_t>(m)]);
+                while (cells[static_cast<std::size_t>(m)] == cell) {
+                    m = (m + 1) % n;
+                    ch.points.push_back(loop[static_cast<std::size_t>(m)]);
+                }
+                ch.in = perimeter(ch.points.front().s);
+                ch.out = perimeter(ch.points.back().s);
+                if (ch.in < 0 || ch.out < 0)
+                    throw Error(faceName(f) + ": the trim polygon leaves grid cell (" + std::to_string(i) + ", " +
+                                std::to_string(j) + ") away from its sides");
+                chains.push_back(std::move(ch));
+            }
+            auto ahead = [](double from, double to) { return to >= from ? to - from : to - from + 4; };
+            std::vector<char> used(chains.size(), 0);
+            for (std::size_t c0 = 0; c0 < chains.size(); ++c0) {
+                if (used[c0]) continue;
+                std::vector<PolyPoint> poly;
+                auto push = [&](const PolyPoint& p) {
+                    if (poly.empty() || poly.back().s != p.s) poly.push_back(p);
+                };
+                std::size_t cur = c0;
+                for (std::size_t guard = 0;; ++guard) {
+                    if (guard > chains.size()) throw Error(faceName(f) + ": the trim polygon does not close in a grid cell");
+                    used[cur] = 1;
+                    for (const PolyPoint& p : chains[cur].points) push(p);
+                    const double exit = chains[cur].out;
+                    // Where chains start at the very point this one leaves (the face pinched to a
+                    // point on the cell's side), the turn farthest to the left keeps to this
+                    // region: one of those chains, or on along the side.
+                    const std::vector<PolyPoint>& pts = chains[cur].points;
+                    const Eigen::Vector2d in = pts.back().s - pts[pts.size() - 2].s;
+                    auto turn = [&](const Eigen::Vector2d& d) { return std::atan2(in.x() * d.y() - in.y() * d.x(), in.dot(d)); };
+                    const double side = std::floor(exit);
+                    const Eigen::Vector2d along = side == 0 || side == 4 ? Eigen::Vector2d(1, 0) : side == 1 ? Eigen::Vector2d(0, 1)
+                                                : side == 2 ? Eigen::Vector2d(-1, 0) : Eigen::Vector2d(0, -1);
+                    double leftmost = turn(along);
+                    std::size_t next = chains.size();
+                    double best = kInf;
+                    for (std::size_t c = 0; c < chains.size(); ++c) {
+                        if (used[c] && c != c0) continue;
+                        const double d = ahead(exit, chains[c].in);
+                        if (d == 0 && chains[c].points.size() > 1) {
+                            const double t = turn(chains[c].points[1].s - chains[c].points[0].s);
+                            if (t > leftmost) {
+                                leftmost = t;
+                                best = 0;
+                                next = c;
+                            }
+                        } else if (d > 0 && d < best && !(best == 0)) {
+                            best = d;
+                            next = c;
+                        }
+                    }
+                    if (best > 0) { // no chain at the point won: the nearest one ahead (a full turn for those at it)
+                        best = kInf;
+                        for (std::size_t c = 0; c < chains.size(); ++c) {
+                            if (used[c] && c != c0) continue;
+                            const double d = ahead(exit, chains[c].in) == 0 ? 4 : ahead(exit, chains[c].in);
+                            if (d < best) {
+                                best = d;
+                                next = c;
+                            }
+                        }
+                    }
+                    if (next == chains.size()) throw Error(faceName(f) + ": the trim polygon does not close in a grid cell");
+                    std::vector<std::pair<double, PolyPoint>> between;
+                    for (const auto& r : rim) {
+                        const double d = ahead(exit, r.first);
+                        if (d > 0 && d < best) between.push_back({d, r.second});
+                    }
+                    std::sort(between.begin(), between.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+                    for (const auto& b : between) push(vertexOf(b.second));
+                    if (next == c0) break;
+                    cur = next;
+                }
+                if (poly.size() > 1 && poly.front().s == poly.back().s) poly.pop_back();
+                emit(poly);
+            }
+        }
+    return delta;
+}
+
+} // namespace freeform::part_mesh

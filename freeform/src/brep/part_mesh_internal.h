@@ -1,0 +1,119 @@
+#pragma once
+// Internals of the part tessellation (brep/part_mesh.h), shared by part_mesh.cpp (grids, edge
+// samples, the whole part) and part_mesh_cells.cpp (one face's trim polygon cut by its grid cells).
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "freeform/brep/part.h"
+
+namespace freeform::part_mesh {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+inline std::string faceName(std::size_t f) { return "face " + std::to_string(f); }
+
+/// A face's file parameter to its NURBS parameter in one direction; a periodic direction is
+/// unrolled next to `centre` so that the face's box stays in one piece.
+struct AxisMap {
+    ParameterMap map;
+    double centre = 0;
+
+    double operator()(double u) const
+    {
+        double s = map(u);
+        if (map.kind == ParameterMap::Kind::Identity && map.period > 0)
+            s += std::round((centre - s) / map.period) * map.period;
+        return s;
+    }
+    /// Bounds on |ds/du| and |d2s/du2| for u in [lo, hi].
+    std::pair<double, double> slopes(double lo, double hi) const
+    {
+        switch (map.kind) {
+        case ParameterMap::Kind::Identity:
+            return {1, 0};
+        case ParameterMap::Kind::Exponential:
+            return {std::exp(hi), std::exp(hi)};
+        case ParameterMap::Kind::HalfAngle: {
+            // s' = span sec^2(phi/2) / (4 tan(span/4)), s'' = s' tan(phi/2), |phi| <= span/2 on an
+            // arc (more where [lo, hi] reaches past the arcs).
+            const double end = map.start + map.spans * map.span;
+            const double over = std::max({0.0, map.start - lo, hi - end});
+            const double half = 0.5 * (0.5 * map.span + over);
+            if (half >= 0.49 * std::numbers::pi) return {kInf, kInf};
+            const double c = std::cos(half), d1 = map.span / (4 * std::tan(0.25 * map.span) * c * c);
+            return {d1, d1 * std::tan(half)};
+        }
+        }
+        return {kInf, kInf};
+    }
+};
+
+/// The grid of one face in its NURBS parameters.
+struct FaceGrid {
+    AxisMap mu, mv;
+    std::vector<double> gu, gv; // grid lines
+    double snapU = 0, snapV = 0;
+    double bound = 0;     // the largest certified cell bound
+    double lipschitz = 0; // bound on |grad S| in NURBS parameters
+
+    Eigen::Vector2d toS(const Eigen::Vector2d& uv) const { return {mu(uv.x()), mv(uv.y())}; }
+
+    static double snapTo(double s, const std::vector<double>& lines, double tol)
+    {
+        if (s <= lines.front()) return lines.front();
+        if (s >= lines.back()) return lines.back();
+        const auto it = std::lower_bound(lines.begin(), lines.end(), s);
+        if (*it - s <= tol) return *it;
+        if (s - *(it - 1) <= tol) return *(it - 1);
+        return s;
+    }
+    /// On a grid line when within the snapping distance of it, and inside the grid's box.
+    Eigen::Vector2d snap(const Eigen::Vector2d& s) const { return {snapTo(s.x(), gu, snapU), snapTo(s.y(), gv, snapV)}; }
+
+    /// A grid line strictly between a and b: (axis, value), axis -1 when there is none.
+    std::pair<int, double> crossing(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const
+    {
+        for (int axis = 0; axis < 2; ++axis) {
+            const std::vector<double>& lines = axis == 0 ? gu : gv;
+            const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
+            const auto it = std::upper_bound(lines.begin(), lines.end(), lo);
+            if (it != lines.end() && *it < hi) return {axis, *it};
+        }
+        return {-1, 0};
+    }
+};
+
+/// A point of a face's trim polygon: its NURBS parameters and its mesh vertex.
+struct PolyPoint {
+    Eigen::Vector2d s;
+    int vertex;
+};
+
+/// The mesh being built: positions, triangles and their faces.
+struct Builder {
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<std::array<int, 3>> triangles;
+    std::vector<int> triangleFace;
+    int add(const Eigen::Vector3d& p)
+    {
+        positions.push_back(p);
+        return static_cast<int>(positions.size()) - 1;
+    }
+};
+
+/// Where the trims of two edges (or of one closed edge) do not quite meet in the parameter plane,
+/// the polygon joins them by a side whose ends are the same vertex; its points on grid lines
+/// (the same vertex again) keep every side inside one cell. Appends them to `out`.
+void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, std::vector<PolyPoint>& out);
+
+/// Meshes one face: its loops (in NURBS parameters, with the vertices of the edge samples) clipped
+/// by the grid cells, each clipped cell cut by ear clipping. Returns the largest distance between a
+/// polygon vertex and the surface.
+double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vector<std::vector<PolyPoint>> loops,
+                Builder& out);
+
+} // namespace freeform::part_mesh
