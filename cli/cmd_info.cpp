@@ -34,15 +34,6 @@ Json componentJson(const ComponentReport& c)
     return j;
 }
 
-/// A STEP or IGES file, by its extension (as freeform/cad/cad_file.h's isCadFile, which a build
-/// without Open CASCADE lacks).
-bool isPartFile(const std::string& path)
-{
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
-}
-
 struct InfoOptions {
     std::vector<std::string> positional;
     bool details = false;
@@ -56,7 +47,7 @@ Json info(const InfoOptions& o)
 #ifdef FREEFORM_HAVE_CAD
         return partInfo(path, o.details);
 #else
-        throw Error(path + ": this freeform was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF); it reads no STEP or IGES");
+        refusePartFile(path);
 #endif
     }
     const PolygonMesh mesh = readPolygonMesh(path);

@@ -68,11 +68,30 @@ Json subdivisionCommand(const SubdivisionSurface& surface, const TessellateOptio
     return out;
 }
 
+/// A STEP or IGES part: the certified watertight mesh of freeform/brep/part_mesh.h.
+Json partCommand(const TessellateOptions& o)
+{
+    const std::string& input = o.positional[0];
+    if (!hasExtension(o.output, ".obj") && !hasExtension(o.output, ".ply") && !hasExtension(o.output, ".stl"))
+        throw UsageError("option -o: a part's mesh must be an .obj, .ply or .stl file");
+    if (!given(o.toleranceGiven)) throw UsageError("a part needs --tolerance E (the certified distance bound)");
+    if (!(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
+    if (given(o.segmentsGiven) || given(o.objectGiven) || o.outward || o.refinement != "local" || o.measure != "parametric")
+        throw UsageError("a part takes only --tolerance and --max-triangles");
+    if (o.maxTriangles < 0) throw UsageError("option --max-triangles: must be 0 (no limit) or positive");
+#ifdef FREEFORM_HAVE_CAD
+    return partTessellate(input, o.output, o.tolerance, o.maxTriangles);
+#else
+    refusePartFile(input);
+#endif
+}
+
 Json tessellateCommand(const TessellateOptions& o)
 {
-    expectPositional(o.positional, 1, "the input (freeform tessellate IN.json|IN.bpt -o OUT.obj)");
+    expectPositional(o.positional, 1, "the input (freeform tessellate IN.json|IN.bpt|PART.step -o OUT.obj)");
     const std::string& input = o.positional[0];
     const std::string& output = o.output;
+    if (isPartFile(input)) return partCommand(o);
     if (!hasExtension(output, ".obj")) throw UsageError("option -o: the output must be an .obj file");
     if (given(o.toleranceGiven) && given(o.segmentsGiven)) throw UsageError("give either --tolerance or --segments, not both");
     TessellationOptions options;
@@ -133,6 +152,12 @@ Action defineTessellate(CLI::App& app)
                "\"measured_parametric\": MP, \"measured_geometric\": MG} with B the largest certified distance\n"
                "bound over the patches, MP and MG the largest deviations found at 12 points per triangle\n"
                "(triangle point to the surface point with the same (u, v); to its foot point).\n"
+               "\n"
+               "A STEP (.step .stp) or IGES (.iges .igs) part, with --tolerance E and -o OUT.obj|.ply|.stl,\n"
+               "gives its certified watertight mesh (docs/cad.md): every edge sampled once for both of its\n"
+               "faces, every triangle within B <= E of its face. Output: {\"output\", \"faces\", \"triangles\",\n"
+               "\"vertices\", \"watertight\", \"error_bound\": B, \"certified\", \"closed_shells\",\n"
+               "\"open_mesh_edges\", \"max_vertex_gap\", \"max_trim_deviation\"}.\n"
                "Exit status: 0 ok, 1 bad input, 2 bad usage.");
     addPositionals(app, "IN", o->positional, "the document (IN.json) or Bézier patch file (IN.bpt)");
     app.add_option("-o,--output", o->output, "the .obj file to write (written to a temporary file, then renamed)")

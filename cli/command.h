@@ -103,8 +103,17 @@ Json interpolateNurbsCommand(const PointColumns& points, const std::vector<doubl
                              int degree, const std::vector<double>& start, const std::vector<double>& end,
                              const std::string& source, const std::string& output);
 
+/// A STEP or IGES file, by its extension (as freeform/cad/cad_file.h's isCadFile, which a build
+/// without Open CASCADE lacks); command.cpp.
+bool isPartFile(const std::string& path);
+/// The error for a part file in a build without Open CASCADE.
+[[noreturn]] void refusePartFile(const std::string& path);
+
 /// `freeform info` on a STEP or IGES part (info_part.cpp).
 Json partInfo(const std::string& path, bool details);
+/// `freeform tessellate` on a STEP or IGES part (tessellate_part.cpp): the certified watertight
+/// mesh (freeform/brep/part_mesh.h) written to `output` (.obj, .ply, .stl).
+Json partTessellate(const std::string& path, const std::string& output, double tolerance, long long maxTriangles);
 
 // The commands (one file each).
 Action defineBench(CLI::App& app);       // cmd_bench.cpp

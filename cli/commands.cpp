@@ -4,6 +4,9 @@
 
 #include "command.h"
 
+#include <cctype>
+#include <filesystem>
+
 namespace freeform::cli {
 
 const std::vector<Command>& commands()
@@ -13,7 +16,7 @@ const std::vector<Command>& commands()
         {"continuity", "continuity of every joint of a spline (C and G levels, jumps)", defineContinuity},
         {"interpolate", "C2 cubic spline through points (natural, clamped, periodic ends)", defineInterpolate},
         {"convert", "convert splines between forms, documents to and from OBJ free-form", defineConvert},
-        {"tessellate", "surfaces (document or .bpt) to a triangle mesh (OBJ with normals and uv)", defineTessellate},
+        {"tessellate", "surfaces (document, .bpt, STEP or IGES part) to a triangle mesh", defineTessellate},
         {"subdivide", "the limit surface of a control cage (Catmull-Clark or Loop) as a triangle mesh", defineSubdivide},
         {"info", "topology of a mesh file (counts, boundary, manifoldness, genus)", defineInfo},
         {"lattice", "write the identity FFD lattice around a mesh", defineLattice},
@@ -21,6 +24,18 @@ const std::vector<Command>& commands()
         {"bench", "measure free-form deformation speed on this machine", defineBench},
     };
     return list;
+}
+
+bool isPartFile(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
+}
+
+void refusePartFile(const std::string& path)
+{
+    throw Error(path + ": this freeform was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF); it reads no STEP or IGES");
 }
 
 Evaluator evaluatorFor(const KindInfo& kind)

@@ -1,6 +1,7 @@
-// `freeform info PART` on STEP and IGES parts (docs/cli.md, docs/cad.md): the counts, closedness
-// and bounds against Open CASCADE's own reading of the same files, the key order of the contract,
-// and bad files (one error line, exit 1, nothing on stdout).
+// `freeform info PART` and `freeform tessellate PART` on STEP and IGES parts (docs/cli.md,
+// docs/cad.md): the counts, closedness and bounds against Open CASCADE's own reading of the same
+// files, the key order of the contracts, the mesh written against the one the JSON describes, and
+// bad files and usage (one error line, exit 1 or 2, nothing on stdout, nothing written).
 
 #include <catch2/catch.hpp>
 
@@ -13,9 +14,11 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
+#include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "freeform/io/mesh_io.h"
 #include "support/cli.h"
 #include "support/occt_reference.h"
 #include "support/sanitizers.h"
@@ -96,6 +99,59 @@ TEST_CASE("info on bad part files: one error line, exit 1, nothing on stdout", "
         CHECK(r.out.empty());
         CHECK(r.err.rfind("error: " + path, 0) == 0);
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    }
+}
+
+TEST_CASE("tessellate on a part: the contract's keys, a closed mesh as the JSON says, in OBJ, PLY and STL", "[cli][cad]")
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    const std::string screw = "/usr/share/opencascade/data/step/screw.step";
+    for (const char* ext : {".obj", ".ply", ".stl"}) {
+        const std::string out = dir + "/screw_mesh" + ext;
+        std::filesystem::remove(out);
+        const auto r = freeform::test::cliInProcess("tessellate " + screw + " -o " + out + " --tolerance 0.05");
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        const Json j = Json::parse(r.out);
+        std::vector<std::string> keys;
+        for (const auto& [k, v] : j.items()) keys.push_back(k);
+        REQUIRE(keys.size() >= 7);
+        CHECK(std::vector<std::string>(keys.begin(), keys.begin() + 7) ==
+              std::vector<std::string>{"output", "faces", "triangles", "vertices", "watertight", "error_bound", "certified"});
+        CHECK(j["faces"] == 10);
+        CHECK(j["watertight"] == true);
+        CHECK(j["certified"] == true);
+        CHECK(j["error_bound"].get<double>() <= 0.05);
+        CHECK(j["closed_shells"] == 1);
+        const freeform::PolygonMesh mesh = freeform::readPolygonMesh(out);
+        CHECK(mesh.faceCount() == j["triangles"].get<int>());
+        if (std::string(ext) != ".stl") CHECK(mesh.vertexCount() == j["vertices"].get<int>()); // STL keeps no shared vertices
+    }
+}
+
+TEST_CASE("tessellate on bad parts and bad usage: one error line, nothing on stdout, nothing written", "[cli][cad]")
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    const std::string screw = "/usr/share/opencascade/data/step/screw.step";
+    const std::string out = dir + "/never_written.obj";
+    std::ofstream(dir + "/broken_mesh.step") << "ISO-10303-21;\nHEADER;\nthis is not a STEP file\n";
+    const std::pair<std::string, int> cases[] = {
+        {"tessellate " + dir + "/broken_mesh.step -o " + out + " --tolerance 0.1", 1},
+        {"tessellate " + screw + " -o " + out + " --tolerance 1e-9 --max-triangles 1000", 1},
+        {"tessellate " + screw + " -o " + out, 2},                                  // no tolerance
+        {"tessellate " + screw + " -o " + out + " --tolerance 0", 2},
+        {"tessellate " + screw + " -o " + out + " --tolerance 0.1 --segments 4", 2}, // a document option
+        {"tessellate " + screw + " -o " + dir + "/mesh.gltf --tolerance 0.1", 2},     // not OBJ, PLY or STL
+    };
+    for (const auto& [args, status] : cases) {
+        INFO(args);
+        std::filesystem::remove(out);
+        const auto r = freeform::test::cliInProcess(args);
+        CHECK(r.status == status);
+        CHECK(r.out.empty());
+        CHECK(r.err.rfind("error: ", 0) == 0);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK_FALSE(std::filesystem::exists(out));
     }
 }
 

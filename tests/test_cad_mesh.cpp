@@ -1,0 +1,181 @@
+// The certified watertight mesh of a part (freeform/brep/part_mesh.h) against Open CASCADE as the
+// independent reference, on the sample parts Debian ships and on parts built here with Open
+// CASCADE: the mesh is closed and consistently oriented on every closed solid (counted here from
+// its triangles, not taken from the report), points of its triangles lie within the reported bound
+// of their face as Open CASCADE measures the distance (BRepExtrema_DistShapeShape to the trimmed
+// face), and its volume is within the bound times the area of BRepGProp's volume.
+
+#include <catch2/catch.hpp>
+
+#include <freeform/brep/part_mesh.h>
+#include <freeform/cad/cad_file.h>
+#include <freeform/cad/occt_bridge.h>
+
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <GProp_GProps.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+
+#include <map>
+
+#include "support/occt_parts.h"
+#include "support/occt_reference.h"
+#include "support/sanitizers.h"
+
+namespace test_cad_mesh {
+
+using namespace freeform;
+
+namespace {
+
+const std::string kData = "/usr/share/opencascade/data";
+
+struct Measured {
+    bool closed = true;      // every directed edge once, and its reverse once
+    double volume = 0;       // divergence theorem over the triangles
+    double worst = 0;        // the largest distance found from a triangle point to its face
+    int samples = 0;
+};
+
+/// The mesh measured against the shape: `points` triangle points in all, spread over the triangles.
+Measured measure(const TopoDS_Shape& shape, const PartMesh& m, int points)
+{
+    Measured out;
+    const PolygonMesh& mesh = m.mesh;
+    std::map<std::pair<int, int>, int> directed;
+    for (int t = 0; t < mesh.faceCount(); ++t) {
+        REQUIRE(mesh.faceSize(t) == 3);
+        const int* v = mesh.face(t);
+        for (int k = 0; k < 3; ++k) ++directed[{v[k], v[(k + 1) % 3]}];
+        const Eigen::Vector3d a = mesh.positions.col(v[0]), b = mesh.positions.col(v[1]), c = mesh.positions.col(v[2]);
+        out.volume += a.dot(b.cross(c)) / 6;
+    }
+    for (const auto& [e, n] : directed) {
+        const auto back = directed.find({e.second, e.first});
+        if (n != 1 || back == directed.end() || back->second != 1) out.closed = false;
+    }
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(shape, TopAbs_FACE, faces);
+    const int stride = std::max(1, mesh.faceCount() * 4 / points);
+    const double bary[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.7, 0.2, 0.1}, {0.1, 0.7, 0.2}, {0.2, 0.1, 0.7}};
+    for (int t = 0; t < mesh.faceCount(); t += stride) {
+        const int* v = mesh.face(t);
+        const TopoDS_Shape& face = faces(m.triangleFace[static_cast<std::size_t>(t)] + 1);
+        for (const auto& w : bary) {
+            const Eigen::Vector3d p = w[0] * mesh.positions.col(v[0]) + w[1] * mesh.positions.col(v[1]) + w[2] * mesh.positions.col(v[2]);
+            BRepExtrema_DistShapeShape d(BRepBuilderAPI_MakeVertex(gp_Pnt(p.x(), p.y(), p.z())).Vertex(), face);
+            REQUIRE(d.IsDone());
+            out.worst = std::max(out.worst, d.Value());
+            ++out.samples;
+        }
+    }
+    return out;
+}
+
+struct Case {
+    std::string name;
+    TopoDS_Shape shape;
+    Part part;
+    double tolerance;
+};
+
+std::vector<Case> cases()
+{
+    std::vector<Case> out;
+    auto built = [&](const std::string& name, const TopoDS_Shape& shape, double tol) {
+        out.push_back({name, shape, partFromShape(shape), tol});
+    };
+    auto file = [&](const std::string& rel, double tol) {
+        const std::string path = kData + "/" + rel;
+        out.push_back({rel, test::occtRead(path), readCadFile(path), tol});
+    };
+    file("step/screw.step", 0.05);
+    file("step/linkrods.step", 0.01);
+    built("box_with_holes", test::boxWithHoles(), 0.01);
+    built("filleted_box", test::filletedBox(), 0.005);
+    built("bspline_revolution", test::bsplineRevolution(), 0.01);
+    built("torus", BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 1), gp_Dir(0, 1, 1)), 4, 1).Shape(), 0.01);
+    built("sphere", BRepPrimAPI_MakeSphere(gp_Pnt(1, -1, 0), 3).Shape(), 0.01);
+    built("cone", BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 3, 1, 4).Shape(), 0.01);
+    if (!test::underSanitizers) {
+        built("bspline_prism", test::bsplinePrism(), 0.01);
+        built("fused", BRepAlgoAPI_Fuse(test::filletedBox(), BRepPrimAPI_MakeSphere(gp_Pnt(2, 1, 2), 1.5).Shape()).Shape(), 0.01);
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("a part's mesh is watertight, within its certified bound of Open CASCADE's faces, and holds its volume", "[cad]")
+{
+    for (const Case& c : cases()) {
+        INFO(c.name << " at tolerance " << c.tolerance);
+        PartMeshOptions options;
+        options.tolerance = c.tolerance;
+        const PartMesh m = tessellatePart(c.part, options);
+        const PartMeshReport& r = m.report;
+        INFO(m.mesh.faceCount() << " triangles, bound " << r.errorBound << " (gaps " << r.maxVertexGap << ", trims "
+                                << r.maxTrimDeviation << ")");
+        CHECK(r.faces == static_cast<int>(c.part.faces.size()));
+        CHECK(static_cast<int>(m.triangleFace.size()) == m.mesh.faceCount());
+        CHECK(r.certified);
+        CHECK(r.errorBound <= c.tolerance);
+        // Every face is meshed.
+        std::vector<int> perFace(c.part.faces.size(), 0);
+        for (int f : m.triangleFace) ++perFace[static_cast<std::size_t>(f)];
+        CHECK(std::count(perFace.begin(), perFace.end(), 0) == 0);
+
+        const Measured got = measure(c.shape, m, test::underSanitizers ? 40 : 160);
+        INFO("largest distance found " << got.worst << " at " << got.samples << " points");
+        // Closed solids: closed, consistently oriented (outward: positive volume), and the report agrees.
+        REQUIRE(test::occtClosed(c.shape));
+        CHECK(got.closed);
+        CHECK(r.watertight);
+        CHECK(r.openMeshEdges == 0);
+        CHECK(got.worst <= r.errorBound * (1 + 1e-9) + 1e-12);
+        GProp_GProps volume, area;
+        BRepGProp::VolumeProperties(c.shape, volume);
+        BRepGProp::SurfaceProperties(c.shape, area);
+        INFO("volume " << got.volume << ", Open CASCADE's " << volume.Mass() << ", area " << area.Mass());
+        CHECK(got.volume > 0);
+        CHECK(std::abs(got.volume - volume.Mass()) <= r.errorBound * area.Mass());
+    }
+}
+
+TEST_CASE("a finer tolerance gives a finer mesh whose bound follows it", "[cad]")
+{
+    const Part part = partFromShape(BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 4, 1).Shape());
+    int previous = 0;
+    for (double tol : {0.1, 0.01, 0.001}) {
+        PartMeshOptions options;
+        options.tolerance = tol;
+        const PartMesh m = tessellatePart(part, options);
+        INFO(tol << ": " << m.mesh.faceCount() << " triangles, bound " << m.report.errorBound);
+        CHECK(m.report.errorBound <= tol);
+        CHECK(m.report.errorBound > tol / 8); // no more triangles than the bound asks for, within a factor
+        CHECK(m.mesh.faceCount() > previous);
+        CHECK(m.report.watertight);
+        previous = m.mesh.faceCount();
+    }
+}
+
+TEST_CASE("tessellatePart refuses a bad tolerance and a mesh over its triangle limit", "[cad]")
+{
+    const Part part = partFromShape(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 1).Shape());
+    PartMeshOptions options;
+    for (double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+        options.tolerance = bad;
+        CHECK_THROWS_WITH(tessellatePart(part, options), Catch::Contains("tolerance"));
+    }
+    options.tolerance = 1e-6;
+    options.maxTriangles = 1000;
+    CHECK_THROWS_WITH(tessellatePart(part, options), Catch::Contains("exceed the limit of 1000"));
+}
+
+} // namespace test_cad_mesh
