@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
+#include <tuple>
 
 #include "freeform/tessellate/tessellate_rational.h"
 #include "part_mesh_internal.h"
@@ -49,6 +51,66 @@ std::pair<double, double> patchSlopes(const RationalPatch& patch)
             wv = std::max(wv, n * std::abs(h.controlPoint(i, j + 1)[3] - h.controlPoint(i, j)[3]));
         }
     return {(hu + rho * wu) / wmin, (hv + rho * wv) / wmin};
+}
+
+/// The largest bound of the cells of an nu x nv grid on the patch, each from its own sub-net:
+/// rationalTessellationErrorBound of the cell's patch, with its own centre and radius, so the
+/// weights' share, (radius) x (weight differences), shrinks with the cell instead of staying the
+/// whole patch's radius (a tall cylinder's quarter turn: a thousand cells fewer).
+double cellsBound(const RationalPatch& p, int nu, int nv)
+{
+    double worst = 0;
+    RationalPatch rest = p;
+    for (int i = 0; i < nu; ++i) {
+        RationalPatch column = rest;
+        if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
+        RationalPatch restV = column;
+        for (int j = 0; j < nv; ++j) {
+            RationalPatch cell = restV;
+            if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
+            worst = std::max(worst, rationalTessellationErrorBound(cell, 1, 1));
+        }
+    }
+    return worst;
+}
+
+/// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
+/// cells' own.
+double gridBound(const RationalPatch& p, int nu, int nv, bool local)
+{
+    const double whole = rationalTessellationErrorBound(p, nu, nv);
+    return local ? std::min(whole, cellsBound(p, nu, nv)) : whole;
+}
+
+/// A patch whose weights differ (where the cells' own bounds beat the whole net's).
+bool weighted(const RationalPatch& p)
+{
+    const double w0 = p.weight(0, 0);
+    for (int i = 0; i <= p.degreeU(); ++i)
+        for (int j = 0; j <= p.degreeV(); ++j)
+            if (p.weight(i, j) != w0) return true;
+    return false;
+}
+
+/// The grid with the fewest cells whose bound is at most target: from the whole net's bound
+/// (rationalAdaptiveSegments), then, on a weighted patch of not too many cells, the fewest cells
+/// whose own bounds are within it.
+std::array<int, 2> patchSegments(const RationalPatch& p, double target)
+{
+    std::array<int, 2> best = rationalAdaptiveSegments(p, target);
+    if (!weighted(p) || best[0] * best[1] > 4096) return best;
+    const std::array<int, 2> upper = best;
+    for (int nu = 1; nu <= upper[0] && nu < best[0] * best[1]; ++nu) {
+        if (cellsBound(p, nu, upper[1]) > target) continue;
+        int lo = 1, hi = upper[1];
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (cellsBound(p, nu, mid) <= target) hi = mid;
+            else lo = mid + 1;
+        }
+        if (nu * lo < best[0] * best[1]) best = {nu, lo};
+    }
+    return best;
 }
 
 AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStart, double domainEnd, std::size_t f,
@@ -98,7 +160,7 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
     std::vector<int> nu(bu.size() - 1, 1), nv(cols, 1);
     for (std::size_t a = 0; a + 1 < bu.size(); ++a)
         for (std::size_t b = 0; b < cols; ++b) {
-            const std::array<int, 2> n = rationalAdaptiveSegments(patches[a * cols + b], target);
+            const std::array<int, 2> n = patchSegments(patches[a * cols + b], target);
             nu[a] = std::max(nu[a], n[0]);
             nv[b] = std::max(nv[b], n[1]);
         }
@@ -106,7 +168,7 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
     for (std::size_t a = 0; a + 1 < bu.size(); ++a)
         for (std::size_t b = 0; b < cols; ++b) {
             const RationalPatch& p = patches[a * cols + b];
-            g.bound = std::max(g.bound, rationalTessellationErrorBound(p, nu[a], nv[b]));
+            g.bound = std::max(g.bound, gridBound(p, nu[a], nv[b], weighted(p)));
             const auto [su, sv] = patchSlopes(p);
             lu = std::max(lu, su / (bu[a + 1] - bu[a]));
             lv = std::max(lv, sv / (bv[b + 1] - bv[b]));
@@ -157,6 +219,8 @@ struct EdgeUse {
     const FaceGrid* grid;
     double deviationTarget;
     double edgeFirst, edgeLast;
+    std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces; // the trim's, once
+    std::shared_ptr<const std::vector<double>> breaks;
 
     double trimParameter(double t) const
     {
@@ -177,22 +241,22 @@ struct EdgeUse {
         // Control points whose hull holds the trim over [lo, hi]; a periodic trim is unrolled and,
         // where [lo, hi] runs over the end of its period, taken in two pieces.
         std::vector<Eigen::Vector2d> hull;
-        // A cut a hair from a knot leaves a span too short for the next cut's ratios: cut at the knot.
-        const std::vector<double>& knots = c.nurbs.breakpoints();
-        const double nearKnot = 1e-11 * (knots.back() - knots.front());
-        auto atKnot = [&](double x) {
-            const auto it = std::lower_bound(knots.begin(), knots.end(), x);
-            if (it != knots.end() && *it - x <= nearKnot) return *it;
-            if (it != knots.begin() && x - *(it - 1) <= nearKnot) return *(it - 1);
-            return x;
-        };
+        // The trim's Bézier pieces over [s0, s1], cut by de Casteljau (no knot insertion: a cut a
+        // hair from a knot would leave a span too short for its ratios).
         auto addPiece = [&](double s0, double s1) {
-            s0 = atKnot(s0);
-            s1 = atKnot(s1);
-            NurbsCurve<double, 2> piece = c.nurbs;
-            if (s0 > piece.domainStart() && s0 < piece.domainEnd()) piece = piece.split(s0).second;
-            if (s1 > piece.domainStart() && s1 < piece.domainEnd()) piece = piece.split(s1).first;
-            for (int i = 0; i < piece.controlCount(); ++i) hull.push_back(piece.controlPoint(i));
+            const std::vector<double>& b = *breaks;
+            const std::size_t first = static_cast<std::size_t>(
+                std::max<std::ptrdiff_t>(0, std::upper_bound(b.begin(), b.end(), s0) - b.begin() - 1));
+            for (std::size_t k = first; k + 1 < b.size() && b[k] < s1; ++k) {
+                const double w = b[k + 1] - b[k];
+                const double a = std::clamp((s0 - b[k]) / w, 0.0, 1.0), e = std::clamp((s1 - b[k]) / w, 0.0, 1.0);
+                if (!(e > a)) continue;
+                RationalBezierCurve<double, 2> piece = (*pieces)[k];
+                if (a > 0) piece = piece.split(a).second;
+                const double e2 = a > 0 ? (e - a) / (1 - a) : e;
+                if (e2 < 1) piece = piece.split(e2).first;
+                for (int i = 0; i <= piece.degree(); ++i) hull.push_back(piece.controlPoint(i));
+            }
         };
         const double s0 = c.map(lo);
         double s1 = c.map(hi);
@@ -323,7 +387,10 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
                     throw Error(faceName(f) + ": a trim curve names no edge of the part");
                 const PartEdge& e = part.edges[static_cast<std::size_t>(c.edge)];
                 const double lip = std::max(grids[f].lipschitz, 1e-300);
-                uses[static_cast<std::size_t>(c.edge)].push_back({&c, &grids[f], tol / (8 * lip), e.first, e.last});
+                uses[static_cast<std::size_t>(c.edge)].push_back(
+                    {&c, &grids[f], tol / (8 * lip), e.first, e.last,
+                     std::make_shared<const std::vector<RationalBezierCurve<double, 2>>>(c.curve.nurbs.bezierPieces()),
+                     std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints())});
                 useFace[static_cast<std::size_t>(c.edge)].push_back(f);
             }
     std::vector<double> faceDeviation(part.faces.size(), 0);
