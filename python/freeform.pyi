@@ -1,7 +1,7 @@
 # Type stubs of the freeform Python module (docs/python.md). Arrays are NumPy arrays: points
 # (N, 3) float64 or float32 C-contiguous are used without a copy; other layouts are converted once.
 # Checked against the built module by mypy.stubtest and by argument name (python/tests/test_module.py).
-from typing import Any, Dict, List, Optional, Sequence, Tuple, TypeAlias, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, TypeAlias, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -388,6 +388,10 @@ class Part(metaclass=_Pybind11Type):
     @property
     def area(self) -> float: ...
     def check(self) -> Dict[str, Any]: ...
+    @overload
+    def tessellate(self, tolerance: float, max_triangles: int = ..., report: Literal[False] = ...) -> Tuple[_F64, np.ndarray]: ...
+    @overload
+    def tessellate(self, tolerance: float, max_triangles: int = ..., *, report: Literal[True]) -> Tuple[_F64, np.ndarray, Dict[str, Any]]: ...
 
 class Face(metaclass=_Pybind11Type):
     @property

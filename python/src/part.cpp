@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "freeform/brep/part_mesh.h"
 #include "freeform/cad/cad_file.h"
 #include "nurbs.h"
 
@@ -96,6 +97,41 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
         .def_property_readonly("bounds", [](const PyPart& p) { return boxTuple<3>(p.part->bounds()); },
                                "(min, max): a box holding every face.")
         .def_property_readonly("area", [](const PyPart& p) { return p.part->area(); }, "The sum of the faces' areas.")
+        .def(
+            "tessellate",
+            [](const PyPart& p, double tolerance, long long maxTriangles, bool withReport) -> py::tuple {
+                freeform::PartMeshOptions o;
+                o.tolerance = tolerance;
+                o.maxTriangles = maxTriangles;
+                const freeform::PartMesh m = freeform::tessellatePart(*p.part, o);
+                py::array_t<double> V({static_cast<py::ssize_t>(m.mesh.vertexCount()), py::ssize_t{3}});
+                std::copy(m.mesh.positions.data(), m.mesh.positions.data() + m.mesh.positions.size(), V.mutable_data());
+                py::array_t<int> F({static_cast<py::ssize_t>(m.mesh.faceCount()), py::ssize_t{3}});
+                std::copy(m.mesh.faceVertices.begin(), m.mesh.faceVertices.end(), F.mutable_data());
+                if (!withReport) return py::make_tuple(V, F);
+                const freeform::PartMeshReport& r = m.report;
+                py::dict d;
+                d["faces"] = r.faces;
+                d["triangles"] = m.mesh.faceCount();
+                d["vertices"] = m.mesh.vertexCount();
+                d["watertight"] = r.watertight;
+                d["error_bound"] = r.errorBound;
+                d["certified"] = r.certified;
+                d["closed_shells"] = r.closedShells;
+                d["open_mesh_edges"] = r.openMeshEdges;
+                d["max_vertex_gap"] = r.maxVertexGap;
+                d["max_trim_deviation"] = r.maxTrimDeviation;
+                d["face_bounds"] = r.faceBound;
+                py::array_t<int> faceOf(static_cast<py::ssize_t>(m.triangleFace.size()));
+                std::copy(m.triangleFace.begin(), m.triangleFace.end(), faceOf.mutable_data());
+                d["triangle_faces"] = faceOf;
+                return py::make_tuple(V, F, d);
+            },
+            py::arg("tolerance"), py::arg("max_triangles") = 10'000'000LL, py::arg("report") = false,
+            "The certified watertight mesh (docs/cad.md, 'Tessellation'): (V (N, 3) float64, F (T, 3) int32), "
+            "every triangle within the bound of its face (<= tolerance when certified), each edge sampled once "
+            "for both of its faces. report=True adds a dict: the counts, watertight, error_bound, certified, "
+            "face_bounds and triangle_faces (the face of each triangle).")
         .def(
             "check",
             [](const PyPart& p) {

@@ -75,11 +75,11 @@ double cellsBound(const RationalPatch& p, int nu, int nv)
 }
 
 /// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
-/// cells' own.
+/// cells' own (up to 4096 cells).
 double gridBound(const RationalPatch& p, int nu, int nv, bool local)
 {
     const double whole = rationalTessellationErrorBound(p, nu, nv);
-    return local ? std::min(whole, cellsBound(p, nu, nv)) : whole;
+    return local && nu * nv <= 4096 ? std::min(whole, cellsBound(p, nu, nv)) : whole;
 }
 
 /// A patch whose weights differ (where the cells' own bounds beat the whole net's).
@@ -93,22 +93,29 @@ bool weighted(const RationalPatch& p)
 }
 
 /// The grid with the fewest cells whose bound is at most target: from the whole net's bound
-/// (rationalAdaptiveSegments), then, on a weighted patch of not too many cells, the fewest cells
-/// whose own bounds are within it.
+/// (rationalAdaptiveSegments), then, on a weighted patch of at most 1024 such cells, the fewest
+/// cells whose own bounds are within it.
 std::array<int, 2> patchSegments(const RationalPatch& p, double target)
 {
     std::array<int, 2> best = rationalAdaptiveSegments(p, target);
-    if (!weighted(p) || best[0] * best[1] > 4096) return best;
+    if (!weighted(p) || best[0] * best[1] > 1024) return best;
+    // Per count along the shorter side, the fewest cells along the other by bisection (the cells'
+    // bound falls as they narrow).
     const std::array<int, 2> upper = best;
-    for (int nu = 1; nu <= upper[0] && nu < best[0] * best[1]; ++nu) {
-        if (cellsBound(p, nu, upper[1]) > target) continue;
-        int lo = 1, hi = upper[1];
+    const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
+    auto bound = [&](int na, int nb) { return a == 0 ? cellsBound(p, na, nb) : cellsBound(p, nb, na); };
+    for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
+        if (bound(na, upper[b]) > target) continue;
+        int lo = 1, hi = upper[b];
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
-            if (cellsBound(p, nu, mid) <= target) hi = mid;
+            if (bound(na, mid) <= target) hi = mid;
             else lo = mid + 1;
         }
-        if (nu * lo < best[0] * best[1]) best = {nu, lo};
+        if (na * lo < best[0] * best[1]) {
+            best[static_cast<std::size_t>(a)] = na;
+            best[static_cast<std::size_t>(b)] = lo;
+        }
     }
     return best;
 }
