@@ -482,9 +482,10 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     cellBound.resize(part.faces.size());
     for (std::size_t f = 0; f < part.faces.size(); ++f) cellBound[f] = grids[f].bound;
 
-    // Two faces that cut an ear from the same three samples of their common edge would cover the
-    // sliver between the edge's polygon and its chord twice: such a pair of triangles goes (the
-    // faces then meet along the chord; leaving triangles out never moves the mesh from the part).
+    // Two faces that cut an ear from the same three samples of their common edge cover the sliver
+    // between the edge's polygon and its chord twice, and a face pinched to a point can give a
+    // triangle and its reverse: such a pair of one triangle goes (what is left meets along the
+    // chord; leaving triangles out never moves the mesh from the part).
     {
         std::map<std::array<int, 3>, std::size_t> seen;
         std::vector<char> drop(out.triangles.size(), 0);
@@ -492,7 +493,13 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             std::array<int, 3> key = out.triangles[t];
             std::sort(key.begin(), key.end());
             const auto [it, fresh] = seen.try_emplace(key, t);
-            if (!fresh && !drop[it->second] && out.triangleFace[it->second] != out.triangleFace[t]) {
+            // The reverse of triangle t runs its corners the other way: (a, c, b) after (a, b, c).
+            auto reversed = [&](const std::array<int, 3>& x, const std::array<int, 3>& y) {
+                for (int r = 0; r < 3; ++r)
+                    if (x[0] == y[static_cast<std::size_t>(r)] && x[1] == y[static_cast<std::size_t>((r + 2) % 3)]) return true;
+                return false;
+            };
+            if (!fresh && !drop[it->second] && reversed(out.triangles[it->second], out.triangles[t])) {
                 drop[it->second] = drop[t] = 1;
                 seen.erase(it);
             }

@@ -4,6 +4,7 @@
 // sides in it and along the cell's sides between them, and cut into triangles by ear clipping.
 
 #include <algorithm>
+#include <numbers>
 #include <map>
 #include <unordered_map>
 
@@ -77,6 +78,21 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
         if ((l == outer) != (areas[l] > 0)) std::reverse(loops[l].begin(), loops[l].end());
     std::erase_if(loops, [](const auto& loop) { return loop.size() < 3 || signedArea(loop) == 0; });
 
+    // A trim that runs across the seam of a closed surface leaves its parameter box on one side and
+    // comes back on the other: not cut at the seam yet (docs/cad.md, "Tessellation").
+    auto period = [](const AxisMap& a) {
+        if (a.map.kind == ParameterMap::Kind::Identity) return a.map.period;
+        if (a.map.kind == ParameterMap::Kind::HalfAngle && a.map.spans * a.map.span >= 2 * std::numbers::pi * (1 - 1e-9))
+            return a.map.spans * a.map.span; // NURBS parameters run with the angle at the arcs' ends
+        return 0.0;
+    };
+    const double pu = period(g.mu), pv = period(g.mv);
+    for (const auto& loop : loops)
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+            const Eigen::Vector2d jump = (loop[(k + 1) % loop.size()].s - loop[k].s).cwiseAbs();
+            if ((pu > 0 && jump.x() > 0.5 * pu) || (pv > 0 && jump.y() > 0.5 * pv))
+                throw Error(faceName(f) + ": a trim crosses the seam of its closed surface, which the tessellation does not cut yet");
+        }
     const int Nu = static_cast<int>(g.gu.size()) - 1, Nv = static_cast<int>(g.gv.size()) - 1;
     // Polygon points on grid lines (for the cells on either side) and at grid nodes.
     std::map<std::pair<double, double>, int> atPoint;
