@@ -294,7 +294,9 @@ struct EdgeUse {
         const auto [u1, u2] = grid->mu.slopes(qlo.x(), qhi.x());
         const auto [v1, v2] = grid->mv.slopes(qlo.y(), qhi.y());
         const double bend = 0.125 * std::hypot(u2 * d.x() * d.x(), v2 * d.y() * d.y());
-        const double snapped = (at(ta) - raw(ta)).norm() + (at(tb) - raw(tb)).norm();
+        // How far the snap moved the side's ends (pa, pb are the trim's points there: raw() of them).
+        const Eigen::Vector2d ra = grid->toS(pa), rb = grid->toS(pb);
+        const double snapped = (grid->snap(ra) - ra).norm() + (grid->snap(rb) - rb).norm();
         return std::max(u1, v1) * dev + bend + snapped;
     }
 };
