@@ -5,6 +5,7 @@
 #include "freeform/brep/exact_forms.h"
 #include "freeform/brep/parameter_map.h"
 #include "freeform/brep/part.h"
+#include "freeform/brep/part_deform.h"
 #include "freeform/brep/part_mesh.h"
 #include "freeform/brep/trimmed_surface.h"
 #include "freeform/core/bernstein.h"

@@ -79,23 +79,7 @@ bool allPatchesInside(const Lattice& lattice, const PatchComplex& complex)
 
 bool isAffineLattice(const Lattice& lattice, double strength)
 {
-    if (strength == 0 || lattice.isRest()) return true;
-    const auto& deg = lattice.degrees();
-    const Lattice::Points& d = lattice.displacements();
-    const Eigen::Vector3d d0 = d.col(lattice.index(0, 0, 0));
-    const Eigen::Vector3d ds = d.col(lattice.index(deg[0], 0, 0)) - d0;
-    const Eigen::Vector3d dt = d.col(lattice.index(0, deg[1], 0)) - d0;
-    const Eigen::Vector3d du = d.col(lattice.index(0, 0, deg[2])) - d0;
-    double scale = lattice.axes().colwise().norm().maxCoeff();
-    scale = std::max(scale, d.colwise().norm().maxCoeff());
-    for (int i = 0; i <= deg[0]; ++i)
-        for (int j = 0; j <= deg[1]; ++j)
-            for (int k = 0; k <= deg[2]; ++k) {
-                // Bernstein polynomials reproduce linear functions with coefficients at i/l, j/m, k/n.
-                const Eigen::Vector3d affine = d0 + (double(i) / deg[0]) * ds + (double(j) / deg[1]) * dt + (double(k) / deg[2]) * du;
-                if ((d.col(lattice.index(i, j, k)) - affine).norm() > 1e-12 * scale) return false;
-            }
-    return true;
+    return affineMap(lattice, strength).has_value();
 }
 
 DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, const DeformDocumentOptions& options)

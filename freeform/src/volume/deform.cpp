@@ -456,4 +456,47 @@ DirectManipulation directManipulation(const Lattice& lattice, const Eigen::Matri
     return {std::move(moved), change.transpose(), residual, static_cast<int>(cod.rank())};
 }
 
+std::optional<AffineMap> affineMap(const Lattice& lattice, double strength)
+{
+    if (strength == 0 || lattice.isRest()) return AffineMap{};
+    const auto& deg = lattice.degrees();
+    const Lattice::Points& d = lattice.displacements();
+    const Eigen::Vector3d d0 = d.col(lattice.index(0, 0, 0));
+    Eigen::Matrix3d D;
+    D.col(0) = d.col(lattice.index(deg[0], 0, 0)) - d0;
+    D.col(1) = d.col(lattice.index(0, deg[1], 0)) - d0;
+    D.col(2) = d.col(lattice.index(0, 0, deg[2])) - d0;
+    const double scale = std::max(lattice.axes().colwise().norm().maxCoeff(), d.colwise().norm().maxCoeff());
+    for (int i = 0; i <= deg[0]; ++i)
+        for (int j = 0; j <= deg[1]; ++j)
+            for (int k = 0; k <= deg[2]; ++k) {
+                const Eigen::Vector3d stu(double(i) / deg[0], double(j) / deg[1], double(k) / deg[2]);
+                if ((d.col(lattice.index(i, j, k)) - (d0 + D * stu)).norm() > 1e-12 * scale) return std::nullopt;
+            }
+    AffineMap map;
+    map.linear = Eigen::Matrix3d::Identity() + strength * D * lattice.dual();
+    map.offset = strength * (d0 - D * lattice.dual() * lattice.origin());
+    return map;
+}
+
+double lipschitzBound(const Lattice& lattice, double strength)
+{
+    const auto& deg = lattice.degrees();
+    const Lattice::Points& d = lattice.displacements();
+    double sum = 0;
+    for (int a = 0; a < 3; ++a) {
+        double largest = 0;
+        for (int i = 0; i <= deg[0]; ++i)
+            for (int j = 0; j <= deg[1]; ++j)
+                for (int k = 0; k <= deg[2]; ++k) {
+                    const int next[3] = {i + (a == 0), j + (a == 1), k + (a == 2)};
+                    if (next[0] > deg[0] || next[1] > deg[1] || next[2] > deg[2]) continue;
+                    largest = std::max(largest, (d.col(lattice.index(next[0], next[1], next[2])) -
+                                                 d.col(lattice.index(i, j, k))).norm());
+                }
+        sum += deg[static_cast<std::size_t>(a)] * largest * lattice.dual().row(a).norm();
+    }
+    return 1 + std::abs(strength) * sum;
+}
+
 } // namespace freeform

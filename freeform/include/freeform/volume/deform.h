@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,26 @@ struct Certificate {
 /// maxDepth halvings per direction), so det J > 0 throughout the lattice; folds: det J <= 0 at a
 /// corner of a piece (the coefficient there is the value there; `witness`); undecided otherwise.
 Certificate certify(const Lattice& lattice, double strength = 1, int maxDepth = 4);
+
+// ------------------------------------------------------------------------ affine lattices, Lipschitz bound
+
+/// The lattice map as x -> A x + b when its displacement field (times strength) is an affine
+/// function of (s, t, u) within 1e-12 of the lattice's size (Bernstein polynomials reproduce
+/// linear functions, so then every displacement equals the affine one at (i/l, j/m, k/n)):
+/// A = I + w D dual, b = w (d0 - D dual X0) with D = [d_l00 - d0, d_0m0 - d0, d_00n - d0].
+/// Nothing when it is not affine. The rest lattice gives (I, 0).
+struct AffineMap {
+    Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+};
+std::optional<AffineMap> affineMap(const Lattice& lattice, double strength = 1);
+
+/// A bound of the operator norm of the Jacobian of the lattice map over the lattice box:
+/// J = I + w sum_a (dd/da) dual_a^T, and |dd/da| <= deg_a max |d_(next along a) - d| over the
+/// control net (the derivative volume's control points, convex hull), so
+/// |J| <= 1 + |w| sum_a deg_a max|delta_a d| |dual_a|. Points of the box move apart by at most this
+/// factor (the box is convex).
+double lipschitzBound(const Lattice& lattice, double strength = 1);
 
 // ------------------------------------------------------------------------ exact composition
 
