@@ -2,8 +2,6 @@
 
 #include "freeform/cad/cad_file.h"
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <map>
 #include <utility>
@@ -14,10 +12,6 @@
 #include <IGESControl_Reader.hxx>
 #include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESModel.hxx>
-#include <Interface_Static.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <Message_Printer.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
@@ -34,57 +28,15 @@
 #include "freeform/cad/occt_bridge.h"
 #include "freeform/core/error.h"
 #include "freeform/core/warning.h"
+#include "occt_common.h"
 #include "occt_convert.h"
 
 namespace freeform {
 namespace {
 
-/// Collects Open CASCADE's messages (warnings and worse) while it is installed; Open CASCADE's own
-/// printer to standard output is removed once, for good: the library never prints.
-class CollectingPrinter : public Message_Printer {
-public:
-    explicit CollectingPrinter(std::vector<std::string>* out) : out_(out) { SetTraceLevel(Message_Warning); }
-
-protected:
-    void send(const TCollection_AsciiString& text, const Message_Gravity gravity) const override
-    {
-        if (gravity < Message_Warning) return;
-        // Open CASCADE frames its messages in asterisks: "**** ERR StepFile : ... ****".
-        std::string m = text.ToCString();
-        const auto first = m.find_first_not_of("* \t\n"), last = m.find_last_not_of("* \t\n");
-        if (first != std::string::npos) out_->push_back(m.substr(first, last - first + 1));
-    }
-
-private:
-    std::vector<std::string>* out_;
-};
-
-class MessageScope {
-public:
-    MessageScope() : printer_(new CollectingPrinter(&messages))
-    {
-        const Handle(Message_Messenger)& m = Message::DefaultMessenger();
-        m->RemovePrinters(STANDARD_TYPE(Message_Printer));
-        m->AddPrinter(printer_);
-    }
-    ~MessageScope() { Message::DefaultMessenger()->RemovePrinter(printer_); }
-    MessageScope(const MessageScope&) = delete;
-    MessageScope& operator=(const MessageScope&) = delete;
-
-    std::vector<std::string> messages;
-
-    /// " (Open CASCADE: first message)" for an error text, or "".
-    std::string firstMessage() const { return messages.empty() ? "" : " (Open CASCADE: " + messages.front() + ")"; }
-
-private:
-    Handle(Message_Printer) printer_;
-};
-
-std::string lower(std::string s)
-{
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
+using occt::CascadeUnit;
+using occt::lower;
+using occt::MessageScope;
 
 /// Open CASCADE's name of a length unit ("xstep.cascade.unit") and freeform's.
 struct Unit {
@@ -119,22 +71,6 @@ Unit igesUnit(int flag)
     default: return {"MM", "mm"};
     }
 }
-
-/// Sets xstep.cascade.unit for one transfer (so coordinates stay in the file's unit) and puts
-/// the old value back.
-class CascadeUnit {
-public:
-    explicit CascadeUnit(const char* unit) : old_(Interface_Static::CVal("xstep.cascade.unit"))
-    {
-        Interface_Static::SetCVal("xstep.cascade.unit", unit);
-    }
-    ~CascadeUnit() { Interface_Static::SetCVal("xstep.cascade.unit", old_.c_str()); }
-    CascadeUnit(const CascadeUnit&) = delete;
-    CascadeUnit& operator=(const CascadeUnit&) = delete;
-
-private:
-    std::string old_;
-};
 
 std::pair<TopoDS_Shape, std::string> readShape(const std::string& path, const MessageScope& messages)
 {

@@ -25,4 +25,22 @@ bool isCadFile(const std::string& path);
 /// freeform::warn (core/warning.h) like every warning of the library.
 Part readCadFile(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
+/// The highest B-spline degree Open CASCADE (and so the writer) takes: 25.
+int cadMaxDegree();
+
+/// What writing a part found (docs/cad.md, "Writing").
+struct CadWriteReport {
+    bool valid = false;       // BRepCheck_Analyzer finds the written shape valid
+    int fittedPcurves = 0;    // trims written as fitted B-splines (see occt_write.cpp)
+    double maxPcurveGap = 0;  // the largest measured 3D distance of a fitted trim from the exact one
+    int raisedTolerances = 0; // edges whose tolerance was raised to their measured gap (see occt_write.cpp)
+    double maxTolerance = 0;  // the largest edge tolerance written
+};
+
+/// Writes the part as STEP (.step .stp) or IGES (.iges .igs, B-rep entities), in the part's unit:
+/// faces as B-spline surfaces of their NURBS, edges as B-spline curves, trims in the surfaces'
+/// parameters. Throws freeform::Error naming the file, and the face or edge whose degree is over
+/// Open CASCADE's 25; nothing is written then (the file is written beside the target and renamed).
+CadWriteReport writeCadFile(const Part& part, const std::string& path);
+
 } // namespace freeform
