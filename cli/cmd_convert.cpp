@@ -13,6 +13,19 @@ namespace {
 
 Json convert(const ConvertOptions& o)
 {
+    if (!o.positional.empty() && isPartFile(o.positional[0])) {
+        expectPositional(o.positional, 1, "the part (freeform convert PART.step -o OUT.step|.iges)");
+        if (given(o.toGiven) || given(o.endGiven) || given(o.objectGiven))
+            throw UsageError("a part takes only -o (freeform convert PART.step -o OUT.step|.iges)");
+        if (!isPartFile(o.output))
+            throw UsageError("option -o: a part is written as STEP or IGES (.step .stp .iges .igs); documents do not "
+                             "hold parts yet");
+#ifdef FREEFORM_HAVE_CAD
+        return partConvert(o.positional[0], o.output);
+#else
+        refusePartFile(o.positional[0]);
+#endif
+    }
     if (given(o.toGiven)) return convertSpline(o);
     if (given(o.endGiven)) throw UsageError("option --end: goes with --to deboor_spline only");
     return convertObjFreeform(o);
@@ -24,11 +37,13 @@ Action defineConvert(CLI::App& app)
 {
     auto o = std::make_shared<ConvertOptions>();
     // --to and --end are checked by convertSpline: docs/cli.md and the tests pin their messages.
-    app.footer("Three forms:\n"
+    app.footer("Four forms:\n"
                "  freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
                "                   [--end open|clamped|closed] -o OUT.json\n"
                "  freeform convert DOC.json -o OUT.obj   (Bézier curves and surfaces as OBJ cstype bezier)\n"
                "  freeform convert IN.obj -o OUT.json    (OBJ free-form Bézier geometry to a document)\n"
+               "  freeform convert PART.step|.iges -o OUT.step|.iges   (a part, every face as a B-spline\n"
+               "                   surface; prints the counts and Open CASCADE's validity check)\n"
                "Exit status: 0 ok, 1 bad input, 2 bad usage.");
     addPositionals(app, "IN", o->positional, "the document (DOC.json) or OBJ file (IN.obj) to convert");
     o->objectGiven = app.add_option("--object", o->object, "the spline to convert (with --to)")->type_name("NAME");

@@ -81,12 +81,33 @@ Json runFfdDocument(const std::string& input, const std::string& output, const D
 struct FfdOptions {
     std::vector<std::string> positional;
     std::string lattice, object, output, normals = "jacobian", report;
-    double strength = 1;
+    double strength = 1, tolerance = 0;
     int threads = 0;
     const CLI::Option* objectGiven = nullptr;
     const CLI::Option* normalsGiven = nullptr;
     const CLI::Option* reportGiven = nullptr;
+    const CLI::Option* toleranceGiven = nullptr;
 };
+
+/// freeform ffd PART.step: the exact deformation of a part, written as STEP or IGES.
+Json ffdPart(const FfdOptions& o, const DocumentObject& object, const Lattice& lattice,
+             const std::optional<std::string>& reportPath)
+{
+    const std::string& input = o.positional[0];
+    if (!isPartFile(o.output))
+        throw UsageError("option -o: a part is written as STEP or IGES (.step .stp .iges .igs); documents do not hold "
+                         "parts yet");
+    if (given(o.normalsGiven)) throw UsageError("option --normals: applies to meshes only, not to a part");
+    if (given(o.toleranceGiven) && !(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
+#ifdef FREEFORM_HAVE_CAD
+    Json j = partFfd(input, o.output, object.name, lattice, o.strength, o.tolerance, o.threads);
+    if (reportPath) writeFileAtomically(*reportPath, j.dump(2) + "\n");
+    return j;
+#else
+    (void)object, (void)lattice, (void)reportPath;
+    refusePartFile(input);
+#endif
+}
 
 Json ffd(const FfdOptions& o)
 {
@@ -99,10 +120,12 @@ Json ffd(const FfdOptions& o)
     options.threads = o.threads;
     if (options.threads < 0) throw UsageError("option --threads: must not be negative");
     const std::optional<std::string> reportPath = given(o.reportGiven) ? std::optional<std::string>(o.report) : std::nullopt;
-    if (endsWithJson(meshPath) != endsWithJson(output))
+    if (!isPartFile(meshPath) && given(o.toleranceGiven))
+        throw UsageError("option --tolerance: applies to parts (STEP, IGES) only");
+    if (!isPartFile(meshPath) && endsWithJson(meshPath) != endsWithJson(output))
         throw UsageError(endsWithJson(meshPath) ? "option -o: a document is deformed into a document (OUT.json)"
                                                 : "option -o: a mesh is deformed into a mesh file, not a document");
-    if (endsWithJson(meshPath) && given(o.normalsGiven))
+    if (!isPartFile(meshPath) && endsWithJson(meshPath) && given(o.normalsGiven))
         throw UsageError("option --normals: applies to meshes only, not to a document");
 
     const Document doc = readDocument(o.lattice);
@@ -110,6 +133,7 @@ Json ffd(const FfdOptions& o)
         findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt,
                         "choose one with --object");
     const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
+    if (isPartFile(meshPath)) return ffdPart(o, object, lattice, reportPath);
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);
 
@@ -149,11 +173,13 @@ Json ffd(const FfdOptions& o)
 Action defineFfd(CLI::App& app)
 {
     auto o = std::make_shared<FfdOptions>();
-    app.footer("Two forms:\n"
+    app.footer("Three forms:\n"
                "  freeform ffd MESH --lattice LATTICE.json -o OUT [--object NAME] [--normals jacobian|recompute]\n"
                "               [--strength W] [--threads T] [--report REPORT.json]\n"
                "  freeform ffd DOC.json --lattice LATTICE.json -o OUT.json [--object NAME] [--strength W]\n"
                "               [--report REPORT.json]\n"
+               "  freeform ffd PART.step|.iges --lattice LATTICE.json -o OUT.step|.iges [--object NAME]\n"
+               "               [--strength W] [--tolerance E] [--threads T] [--report REPORT.json]\n"
                "\n"
                "Moves every vertex of MESH through the lattice (p' = p + W sum B (P - R)) and writes\n"
                "OUT in the format of its extension. Written back in the same format, the file keeps\n"
@@ -181,9 +207,18 @@ Action defineFfd(CLI::App& app)
                "For a document it prints {\"input\", \"output\", \"lattice\", \"objects\": [{\"name\",\n"
                "\"from\", \"type\", \"degree\", \"inside\"}], \"skipped\": [{\"name\", \"type\", \"reason\"}],\n"
                "\"certificate\"}. --normals applies to meshes only.\n"
+               "\n"
+               "A part (STEP or IGES) is deformed exactly (docs/cad.md, Deformation): every face's\n"
+               "surface and every edge's curve composed with the lattice, trims kept, vertices mapped;\n"
+               "a face or edge above Open CASCADE's degree 25 is degree reduced within --tolerance E\n"
+               "(default 1e-6 of the part's size, certified). Prints {\"input\", \"output\",\n"
+               "\"lattice\", \"faces\", \"exact_faces\", \"approximated_faces\",\n"
+               "\"max_approximation_error\", \"max_degree\", \"max_gap\", \"valid\", ...}.\n"
                "Exit status: 0 ok, 1 bad input (mesh, document, lattice, a degree above 67), 2 bad\n"
                "usage. On error no output file is written.");
-    addPositionals(app, "MESH", o->positional, "the mesh (.obj .ply .stl .off .gltf .glb) or document (.json) to deform");
+    addPositionals(app, "MESH", o->positional,
+                   "the mesh (.obj .ply .stl .off .gltf .glb), document (.json) or part (.step .stp .iges .igs) "
+                   "to deform");
     app.add_option("--lattice", o->lattice, "a document with the lattice object")->type_name("FILE")->required();
     o->objectGiven = app.add_option("--object", o->object, "which lattice, when the document has several")->type_name("NAME");
     app.add_option("-o,--output", o->output, "the deformed mesh (.obj .ply .stl .off .gltf .glb) or document, atomically")
@@ -197,6 +232,9 @@ Action defineFfd(CLI::App& app)
                           ->capture_default_str();
     addNumber(app, "--strength", o->strength, "scales the deformation")->type_name("W")->capture_default_str();
     addNumber(app, "--threads", o->threads, "worker threads (0: all cores)")->type_name("T")->capture_default_str();
+    o->toleranceGiven = addNumber(app, "--tolerance", o->tolerance,
+                                  "a part: the largest error of a face or edge degree reduced to 25")
+                            ->type_name("E");
     o->reportGiven = app.add_option("--report", o->report, "also write the report (below) to FILE")->type_name("FILE");
     return [o] { return ffd(*o); };
 }

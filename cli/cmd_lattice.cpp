@@ -44,8 +44,21 @@ Json lattice(const LatticeOptions& o)
     const std::string& name = o.name;
     if (name.empty()) throw UsageError("option --name: the name must not be empty");
 
-    const PolygonMesh mesh = readPolygonMesh(meshPath);
-    const Lattice fitted = Lattice::fit(mesh.positions, degree, margin, outside);
+    // A part's box is the box of its faces' control nets and vertices (it holds the part).
+    Lattice::Points positions;
+    long long vertices = 0;
+    if (isPartFile(meshPath)) {
+#ifdef FREEFORM_HAVE_CAD
+        positions = partBoxCorners(meshPath, vertices);
+#else
+        refusePartFile(meshPath);
+#endif
+    } else {
+        PolygonMesh mesh = readPolygonMesh(meshPath);
+        vertices = mesh.vertexCount();
+        positions = std::move(mesh.positions);
+    }
+    const Lattice fitted = Lattice::fit(positions, degree, margin, outside);
     Document doc;
     doc.objects.push_back({name, latticeToData(fitted), ""});
     writeDocument(doc, output);
@@ -53,7 +66,7 @@ Json lattice(const LatticeOptions& o)
     Json out;
     out["output"] = output;
     out["object"] = name;
-    out["vertices"] = mesh.vertexCount();
+    out["vertices"] = vertices;
     out["degree"] = Json::array({degree[0], degree[1], degree[2]});
     out["origin"] = pointJson(fitted.origin().data(), 3);
     Json axes = Json::array();
@@ -68,11 +81,14 @@ Action defineLattice(CLI::App& app)
 {
     auto o = std::make_shared<LatticeOptions>();
     app.footer("Writes a document with one lattice object: the identity (rest) lattice of degrees\n"
-               "(L, M, N) around the axis-aligned bounding box of the mesh's vertices.\n"
+               "(L, M, N) around the axis-aligned bounding box of the mesh's vertices (of a part's\n"
+               "faces and vertices for a STEP or IGES part).\n"
                "\n"
                "Prints {\"output\", \"object\", \"vertices\", \"degree\", \"origin\", \"axes\"}.\n"
                "Exit status: 0 ok, 1 bad input (mesh file), 2 bad usage.");
-    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb)")->type_name("MESH")->required();
+    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb) or part (.step .stp .iges .igs)")
+        ->type_name("MESH")
+        ->required();
     app.add_option("--degree", o->degree, "degrees in s, t, u (3,3,3: 4 x 4 x 4 control points)")
         ->type_name("L,M,N")
         ->capture_default_str();

@@ -114,6 +114,15 @@ Json partInfo(const std::string& path, bool details);
 /// `freeform tessellate` on a STEP or IGES part (tessellate_part.cpp): the certified watertight
 /// mesh (freeform/brep/part_mesh.h) written to `output` (.obj, .ply, .stl).
 Json partTessellate(const std::string& path, const std::string& output, double tolerance, long long maxTriangles);
+/// `freeform ffd` on a part (ffd_part.cpp): composed exactly with the lattice, faces and edges over
+/// Open CASCADE's degree approximated within `tolerance` (<= 0: 1e-6 of the part's size), written
+/// as STEP or IGES.
+Json partFfd(const std::string& path, const std::string& output, const std::string& latticeName,
+             const Lattice& lattice, double strength, double tolerance, int threads);
+/// The two corners of a part's box (Part::bounds), and its vertex count (ffd_part.cpp).
+Lattice::Points partBoxCorners(const std::string& path, long long& vertices);
+/// `freeform convert` of a part to STEP or IGES (ffd_part.cpp).
+Json partConvert(const std::string& path, const std::string& output);
 
 // The commands (one file each).
 Action defineBench(CLI::App& app);       // cmd_bench.cpp
