@@ -4,8 +4,10 @@
 
 #include <memory>
 
+#include "freeform/brep/part_deform.h"
 #include "freeform/brep/part_mesh.h"
 #include "freeform/cad/cad_file.h"
+#include "lattice.h"
 #include "nurbs.h"
 
 namespace ffpy {
@@ -146,6 +148,62 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
             },
             "The topology and gap check (as `freeform info`): closed, open_edges, non_manifold_edges, max_gap, "
             "gaps_over_tolerance.")
+        .def(
+            "deform",
+            [](const PyPart& p, PyLattice& lattice, double strength, int maxDegree, double tolerance) {
+                freeform::PartDeformOptions o;
+                o.strength = strength;
+                o.maxDegree = maxDegree;
+                o.tolerance = tolerance;
+                const freeform::Lattice l = lattice.snapshot();
+                freeform::DeformedPart d;
+                {
+                    py::gil_scoped_release release;
+                    d = freeform::deformPart(*p.part, freeform::RationalLattice(l), o);
+                }
+                const freeform::PartDeformReport& r = d.report;
+                py::dict report;
+                report["faces"] = r.faces;
+                report["exact_faces"] = r.exactFaces;
+                report["approximated_faces"] = r.approximatedFaces;
+                report["face_errors"] = r.faceErrors;
+                report["max_approximation_error"] = r.maxApproximationError;
+                report["max_degree"] = r.maxDegree;
+                report["max_gap"] = r.maxGap;
+                report["outside_faces"] = r.outsideFaces;
+                report["approximated_edges"] = r.approximatedEdges;
+                report["affine"] = r.affine;
+                report["lipschitz"] = r.lipschitz;
+                report["max_tolerance"] = r.maxTolerance;
+                return py::make_tuple(PyPart{std::make_shared<const Part>(std::move(d.part))}, report);
+            },
+            py::arg("lattice"), py::arg("strength") = 1.0, py::arg("max_degree") = 0, py::arg("tolerance") = 0.0,
+            "The part through the lattice, exactly (docs/cad.md, Deformation): (Part, report). Every face's surface "
+            "and edge's curve composed with the lattice, trims kept, vertices mapped. max_degree > 0 (25 for save()) "
+            "reduces faces and edges above it within tolerance (<= 0: 1e-6 of the part's size), certified. The "
+            "report: faces, exact_faces, approximated_faces (indices), face_errors, max_approximation_error, "
+            "max_degree, max_gap, outside_faces, approximated_edges, affine, lipschitz, max_tolerance.")
+        .def(
+            "save",
+            [](const PyPart& p, const std::string& path) {
+                freeform::CadWriteReport w;
+                {
+                    py::gil_scoped_release release;
+                    w = freeform::writeCadFile(*p.part, path);
+                }
+                py::dict d;
+                d["valid"] = w.valid;
+                d["fitted_trims"] = w.fittedPcurves;
+                d["max_trim_gap"] = w.maxPcurveGap;
+                d["raised_tolerances"] = w.raisedTolerances;
+                d["max_tolerance"] = w.maxTolerance;
+                return d;
+            },
+            py::arg("path"),
+            "Writes the part as STEP (.step .stp) or IGES (.iges .igs) through Open CASCADE (docs/cad.md, Writing); "
+            "returns valid (Open CASCADE's check), fitted_trims, max_trim_gap, raised_tolerances, max_tolerance. "
+            "freeform.Error for a face or edge over degree 25 (deform with max_degree=25) or a bad path; nothing "
+            "is written then.")
         .def("__repr__", [](const PyPart& p) {
             return "<freeform.Part: " + std::to_string(p.part->faces.size()) + " faces, " +
                    std::to_string(p.part->edges.size()) + " edges, " + std::to_string(p.part->solids.size()) + " solids, " +

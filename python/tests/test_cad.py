@@ -191,3 +191,48 @@ def test_tessellate_refuses_a_bad_tolerance_and_a_mesh_over_the_limit():
             part.tessellate(bad)
     with pytest.raises(ff.Error, match="exceed the limit of 100"):
         part.tessellate(1e-6, max_triangles=100)
+
+
+def test_deform_moves_every_face_as_a_numpy_lattice_moves_its_points(tmp_path):
+    from conftest import reference_deform
+
+    part = ff.Part.load(str(SCREW))
+    lo, hi = part.bounds
+    lat = ff.Lattice.fit(np.array([lo, hi]), degree=2, margin=0.1)
+    rng = np.random.default_rng(4)
+    lat.control_points += rng.uniform(-1.0, 1.0, lat.control_points.shape)
+    moved, report = part.deform(lat)
+    assert report["faces"] == report["exact_faces"] == 10
+    assert report["approximated_faces"] == [] and report["outside_faces"] == 0
+    assert not report["affine"] and report["lipschitz"] > 1
+    size = np.linalg.norm(np.subtract(hi, lo))
+    for before, after in zip(part.faces, moved.faces):
+        (u0, u1), (v0, v1) = before.domain
+        uv = np.column_stack([rng.uniform(u0, u1, 20), rng.uniform(v0, v1, 20)])
+        uv = uv[before.classify(uv) == 1]
+        expected = reference_deform(lat, before.points(uv))
+        assert np.max(np.linalg.norm(after.points(uv) - expected, axis=1)) < 1e-12 * size
+    # Over degree 25 (a cubic lattice): reduced within the tolerance, and written as STEP that reads back.
+    lat3 = ff.Lattice.fit(np.array([lo, hi]), degree=3, margin=0.1)
+    lat3.control_points += rng.uniform(-1.0, 1.0, lat3.control_points.shape)
+    capped, r3 = part.deform(lat3, max_degree=25, tolerance=1e-7)
+    assert r3["max_degree"] <= 25 and r3["max_approximation_error"] <= 1e-7
+    saved = capped.save(str(tmp_path / "screw.step"))
+    assert saved["valid"]
+    back = ff.Part.load(str(tmp_path / "screw.step"))
+    assert (len(back.faces), len(back.edges), len(back.vertices)) == (10, 22, 14)
+    assert back.check()["closed"]
+
+
+def test_save_refuses_a_degree_over_25_and_a_bad_name_and_writes_nothing(tmp_path):
+    part = ff.Part.load(str(SCREW))
+    lo, hi = part.bounds
+    lat = ff.Lattice.fit(np.array([lo, hi]), degree=3, margin=0.1)
+    lat.control_points += np.random.default_rng(5).uniform(-1.0, 1.0, lat.control_points.shape)
+    moved, report = part.deform(lat)
+    assert report["max_degree"] > 25
+    with pytest.raises(ff.Error, match="over Open CASCADE's 25"):
+        moved.save(str(tmp_path / "x.step"))
+    with pytest.raises(ff.Error, match="not a STEP"):
+        part.save(str(tmp_path / "x.json"))
+    assert list(tmp_path.iterdir()) == []
