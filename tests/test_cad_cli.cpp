@@ -14,6 +14,7 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -152,6 +153,96 @@ TEST_CASE("tessellate on bad parts and bad usage: one error line, nothing on std
         CHECK(r.err.rfind("error: ", 0) == 0);
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
         CHECK_FALSE(std::filesystem::exists(out));
+    }
+}
+
+} // namespace test_cad_cli
+
+namespace test_cad_cli {
+
+/// A lattice document around screw.step (freeform lattice --fit PART), its points moved.
+std::string movedScrewLattice(int degree)
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    const std::string rest = dir + "/screw_lattice.json", moved = dir + "/screw_lattice_moved.json";
+    const auto r = freeform::test::cliInProcess("lattice --fit /usr/share/opencascade/data/step/screw.step --degree " +
+                                                std::to_string(degree) + "," + std::to_string(degree) + "," +
+                                                std::to_string(degree) + " -o " + rest);
+    REQUIRE(r.status == 0);
+    CHECK(Json::parse(r.out)["vertices"] == 14);
+    Json doc = Json::parse(std::ifstream(rest));
+    auto& points = doc["objects"][0]["points"];
+    for (std::size_t i = 0; i < points.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) points[i][c] = points[i][c].get<double>() + 0.7 * std::sin(1.0 + 3.0 * i + c);
+    std::ofstream(moved) << doc.dump();
+    return moved;
+}
+
+TEST_CASE("ffd on a part: the contract's keys, a valid STEP and IGES as Open CASCADE reads them", "[cli][cad]")
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    const std::string screw = "/usr/share/opencascade/data/step/screw.step";
+    const std::string lattice = movedScrewLattice(3);
+    for (const char* ext : {".step", ".iges"}) {
+        const std::string out = dir + "/screw_deformed" + ext;
+        std::filesystem::remove(out);
+        const auto r = freeform::test::cliInProcess("ffd " + screw + " --lattice " + lattice + " -o " + out);
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        const Json j = Json::parse(r.out);
+        for (const char* key : {"faces", "exact_faces", "approximated_faces", "max_approximation_error", "max_degree",
+                                "max_gap", "valid"})
+            CHECK(j.contains(key));
+        CHECK(j["faces"] == 10);
+        CHECK(j["exact_faces"].get<int>() + j["approximated_faces"].get<int>() == 10);
+        CHECK(j["max_degree"].get<int>() <= 25);
+        CHECK(j["max_approximation_error"].get<double>() <= j["tolerance"].get<double>());
+        CHECK(j["valid"] == true);
+        const TopoDS_Shape back = freeform::test::occtRead(out);
+        CHECK(freeform::test::occtCount(back, TopAbs_FACE) == 10);
+        CHECK(freeform::test::occtCount(back, TopAbs_EDGE) == 22);
+        CHECK(freeform::test::occtClosed(back));
+    }
+    // convert: the part written as it is, and read back with the same counts.
+    const std::string out = dir + "/bearing_converted.step";
+    const auto r = freeform::test::cliInProcess("convert /usr/share/opencascade/data/iges/bearing.iges -o " + out);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const Json j = Json::parse(r.out);
+    CHECK(j["faces"] == 213);
+    CHECK(j["valid"] == true);
+    CHECK(freeform::test::occtCount(freeform::test::occtRead(out), TopAbs_FACE) == 213);
+    CHECK(freeform::test::occtCount(freeform::test::occtRead(out), TopAbs_EDGE) == 941);
+}
+
+TEST_CASE("ffd and convert on bad parts and bad usage: one error line, nothing on stdout, nothing written", "[cli][cad]")
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    const std::string screw = "/usr/share/opencascade/data/step/screw.step";
+    const std::string lattice = movedScrewLattice(2);
+    const std::string out = dir + "/never_written.step";
+    std::ofstream(dir + "/broken_part.step") << "ISO-10303-21;\nHEADER;\nthis is not a STEP file\n";
+    const std::pair<std::string, int> cases[] = {
+        {"ffd " + dir + "/broken_part.step --lattice " + lattice + " -o " + out, 1},
+        {"ffd " + screw + " --lattice " + dir + "/no_such_lattice.json -o " + out, 1},
+        {"ffd " + screw + " --lattice " + lattice + " -o " + dir + "/part.json", 2}, // documents hold no parts yet
+        {"ffd " + screw + " --lattice " + lattice + " -o " + dir + "/part.obj", 2},
+        {"ffd " + screw + " --lattice " + lattice + " -o " + out + " --normals recompute", 2},
+        {"ffd " + screw + " --lattice " + lattice + " -o " + out + " --tolerance 0", 2},
+        {"convert " + dir + "/broken_part.step -o " + out, 1},
+        {"convert " + screw + " -o " + dir + "/part.json", 2},
+        {"convert " + screw + " -o " + out + " --to bezier_spline", 2},
+    };
+    for (const auto& [args, status] : cases) {
+        INFO(args);
+        std::filesystem::remove(out);
+        const auto r = freeform::test::cliInProcess(args);
+        CHECK(r.status == status);
+        CHECK(r.out.empty());
+        CHECK(r.err.rfind("error: ", 0) == 0);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK_FALSE(std::filesystem::exists(out));
+        CHECK_FALSE(std::filesystem::exists(dir + "/part.json"));
     }
 }
 
