@@ -25,6 +25,7 @@
 #include "freeform/curve/interpolation.h"
 #include "freeform/curve/joins.h"
 #include "freeform/curve/knot_vector.h"
+#include "freeform/curve/least_squares.h"
 #include "freeform/curve/nurbs_continuity.h"
 #include "freeform/curve/nurbs_curve.h"
 #include "freeform/curve/nurbs_interpolation.h"

@@ -17,13 +17,12 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/QR>
-
 #include "freeform/core/bernstein.h"
 #include "freeform/core/polynomial.h"
 #include "freeform/core/quadrature.h"
 #include "freeform/core/types.h"
 #include "freeform/curve/batch.h"
+#include "freeform/curve/least_squares.h"
 
 namespace freeform {
 
@@ -415,7 +414,7 @@ typename BezierCurve<Scalar, Dim>::Reduction BezierCurve<Scalar, Dim>::reduced()
         const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = e.block(0, 1, n + 1, m - 1);
         Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> rhs = points_.transpose();
         rhs -= e.col(0) * points_.col(0).transpose() + e.col(m) * points_.col(n).transpose();
-        const Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> x = a.colPivHouseholderQr().solve(rhs);
+        const Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> x = detail::leastSquaresSolve<Scalar, Dim>(a, rhs);
         c.middleCols(1, m - 1) = x.transpose();
     }
     const Points diff = c * e.transpose() - points_;

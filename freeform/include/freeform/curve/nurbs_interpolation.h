@@ -18,14 +18,12 @@
 // the hundreds of points of a design curve. Errors (freeform::Error) name the point or option.
 // A degree-p interpolant reproduces any polynomial curve of degree <= p sampled at its parameters.
 
-#include <Eigen/LU>
-#include <Eigen/QR>
-
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "freeform/curve/interpolation.h"
+#include "freeform/curve/least_squares.h"
 #include "freeform/curve/nurbs_curve.h"
 
 namespace freeform {
@@ -140,7 +138,7 @@ NurbsCurve<Scalar, Dim> interpolateNurbs(const PointMatrix<Scalar, Dim>& points,
     for (int k = 1; k < n; ++k) addRow(ub[k], 0, points.col(k));
     if (ends) addRow(Scalar(1), 1, *options.endDerivative);
     addRow(ub[n], 0, points.col(n));
-    const Matrix x = a.partialPivLu().solve(rhs);
+    const Matrix x = detail::linearSolve<Scalar>(a, rhs);
     PointMatrix<Scalar, Dim> ctrl = x.transpose();
     requireFinite(ctrl, what + " (singular system)");
     return NurbsCurve<Scalar, Dim>(p, kv.knots(), ctrl);
@@ -185,7 +183,7 @@ NurbsCurve<Scalar, Dim> approximateNurbs(const PointMatrix<Scalar, Dim>& points,
     PointMatrix<Scalar, Dim> ctrl(Dim, n + 1);
     ctrl.col(0) = points.col(0);
     ctrl.col(n) = points.col(m);
-    if (n >= 2) ctrl.middleCols(1, n - 1) = Matrix(a.colPivHouseholderQr().solve(rhs)).transpose();
+    if (n >= 2) ctrl.middleCols(1, n - 1) = detail::leastSquaresSolve<Scalar, Eigen::Dynamic>(a, rhs).transpose();
     requireFinite(ctrl, what + " (singular system)");
     return NurbsCurve<Scalar, Dim>(p, kv.knots(), ctrl);
 }

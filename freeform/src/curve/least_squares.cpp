@@ -1,0 +1,10 @@
+// Explicit instantiations of the curves' dense solves (curve/least_squares.h).
+
+#include "freeform/curve/least_squares.h"
+
+namespace freeform::detail {
+FREEFORM_LEAST_SQUARES_FIXED(template, float)
+FREEFORM_LEAST_SQUARES_FIXED(template, double)
+FREEFORM_LEAST_SQUARES_FIXED(template, long double)
+FREEFORM_LEAST_SQUARES_DYNAMIC(template, double)
+} // namespace freeform::detail
