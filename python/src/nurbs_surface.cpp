@@ -556,7 +556,8 @@ per control point (index as Lattice.control_points; None: all 1, the polynomial 
         },
         py::arg("curve"),
         "The 3D curve pushed through the lattice exactly (docs/ffd.md): a BezierCurve of degree d (l+m+n); a "
-        "RationalBezierCurve or NurbsCurve of degree d (1 + l+m+n) (the rational composition with unit weights).");
+        "RationalBezierCurve or NurbsCurve of degree d (l+m+n) (the rational composition, whose denominator is "
+        "then W^(l+m+n)).");
 }
 
 } // namespace ffpy

@@ -544,8 +544,10 @@ def test_rational_lattice_deforms_points_and_curves_exactly():
     dr = rl.deform_curve(r)
     assert isinstance(dr, ff.RationalBezierCurve)
     np.testing.assert_allclose(dr.evaluate(t), rl.deform(r.evaluate(t)), atol=1e-11)
-    # the polynomial lattice: NURBS through the rational composition with unit weights, Bézier exactly
-    np.testing.assert_allclose(lat.deform_curve(c).evaluate(t), lat.deform(c.evaluate(t)), atol=1e-11)
+    # the polynomial lattice: a rational NURBS of degree d (l+m+n) (its denominator W^(l+m+n)), Bézier exactly
+    pc = lat.deform_curve(c)
+    assert isinstance(pc, ff.NurbsCurve) and pc.degree == 3 * 5
+    np.testing.assert_allclose(pc.evaluate(t), lat.deform(c.evaluate(t)), atol=1e-11)
     b = ff.BezierCurve(rng.uniform(-1, 1, (4, 3)))
     db = lat.deform_curve(b)
     assert isinstance(db, ff.BezierCurve) and db.degree == 3 * 5

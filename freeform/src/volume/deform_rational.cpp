@@ -145,10 +145,13 @@ RationalBezierCurve<double, 3> deformCurve(const RationalLattice& rl, const Rati
     const auto& deg = lattice.degrees();
     const int d = curve.degree();
     const int sum = deg[0] + deg[1] + deg[2];
-    const int degree = d * (1 + sum);
+    // A polynomial lattice has D~ = W^(l+m+n) identically (each axis's basis sums to W^L), so the
+    // quotient loses one factor W: degree d (l+m+n) instead of d (1 + l+m+n).
+    const bool polynomial = rl.isPolynomial();
+    const int degree = polynomial ? d * sum : d * (1 + sum);
     if (degree > kMaxDegree)
         throw Error("deformCurve: the deformed curve would have degree " + std::to_string(degree) +
-                    " (d (1 + l+m+n)), above " + std::to_string(kMaxDegree));
+                    (polynomial ? " (d (l+m+n))" : " (d (1 + l+m+n))") + ", above " + std::to_string(kMaxDegree));
     if (!std::isfinite(strength)) throw Error("deformCurve: strength is not finite");
     const auto& h = curve.homogeneous().controlPoints(); // 4 x (d+1): (w b, w)
     Poly W(static_cast<std::size_t>(d + 1)), A[3];
@@ -193,9 +196,22 @@ RationalBezierCurve<double, 3> deformCurve(const RationalLattice& rl, const Rati
                 for (int c = 0; c < 3; ++c) addTo(N[c], stu, w * static_cast<long double>(disp(c, idx)));
             }
         }
+    PointMatrix<double, 4> out(4, degree + 1);
+    if (polynomial) {
+        // p' = (A W^(L-1) + strength N~) / W^L, L = l+m+n.
+        Poly power{1.0L};
+        for (int k = 1; k < sum; ++k) power = bernsteinPolyProduct(power, W);
+        const Poly weight = bernsteinPolyProduct(power, W);
+        for (int c = 0; c < 3; ++c) {
+            const Poly a = bernsteinPolyProduct(A[c], power);
+            for (int i = 0; i <= degree; ++i)
+                out(c, i) = static_cast<double>(a[i] + static_cast<long double>(strength) * N[c][i]);
+        }
+        for (int i = 0; i <= degree; ++i) out(3, i) = static_cast<double>(weight[i]);
+        return RationalBezierCurve<double, 3>(BezierCurve<double, 4>(std::move(out)));
+    }
     // p' = (A D~ + strength W N~) / (W D~).
     const Poly weight = bernsteinPolyProduct(W, D);
-    PointMatrix<double, 4> out(4, degree + 1);
     for (int c = 0; c < 3; ++c) {
         const Poly a = bernsteinPolyProduct(A[c], D), b = bernsteinPolyProduct(W, N[c]);
         for (int i = 0; i <= degree; ++i) out(c, i) = static_cast<double>(a[i] + static_cast<long double>(strength) * b[i]);

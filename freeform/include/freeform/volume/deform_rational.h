@@ -17,7 +17,8 @@
 // are (S_a(t) / W(t)), B_i^l(S/W) = C(l,i) S^i (W - S)^(l-i) / W^l, so
 //     p'(t) = (A D~ + w_s W N~) / (W D~)
 // with N~, D~ the numerator and denominator above composed in homogeneous form: a rational Bézier
-// curve of degree d (1 + l + m + n). Products of Bernstein polynomials are formed in long double
+// curve of degree d (1 + l + m + n). For a polynomial lattice (every weight 1) D~ = W^(l+m+n)
+// identically, so p'(t) = (A W^(L-1) + w_s N~) / W^L, L = l+m+n: degree d L, as for surfaces. Products of Bernstein polynomials are formed in long double
 // (core/polynomial.h). A NURBS curve is composed per knot span through its Bézier extraction; the
 // result is a NURBS of that degree with the original breakpoints (interior knots of full
 // multiplicity). Both equal the point-wise map wherever the curve lies in the lattice box (and
@@ -77,13 +78,14 @@ DeformReport deformPoints(const RationalLattice& lattice, Eigen::Matrix<double, 
 /// Deforms a mesh in place: positions, and normals by cof(J) when the mesh has them.
 DeformReport deformMesh(const RationalLattice& lattice, PolygonMesh& mesh, const DeformOptions& options = {});
 
-/// The rational Bézier curve pushed through the (rational) lattice exactly: degree d (1 + l+m+n).
+/// The rational Bézier curve pushed through the (rational) lattice exactly: degree d (1 + l+m+n),
+/// d (l+m+n) for a polynomial lattice.
 /// Error when the degree would exceed kMaxDegree or the strength is not finite.
 RationalBezierCurve<double, 3> deformCurve(const RationalLattice& lattice, const RationalBezierCurve<double, 3>& curve,
                                            double strength = 1);
 
 /// The NURBS curve pushed through the lattice exactly, span by span: a NURBS of degree
-/// p (1 + l+m+n) with the curve's breakpoints.
+/// p (1 + l+m+n) (p (l+m+n) for a polynomial lattice) with the curve's breakpoints.
 NurbsCurve<double, 3> deformCurve(const RationalLattice& lattice, const NurbsCurve<double, 3>& curve,
                                   double strength = 1);
 
