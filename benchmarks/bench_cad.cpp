@@ -4,15 +4,24 @@
 // same run. Counters: triangles; watertight (1 when every mesh edge of the closed shells is in two
 // triangles; for BRepMesh, its per-face triangulations joined at equal node positions) and
 // open_edges (mesh edges in one triangle or in more than two); bound (the library's certified
-// bound; BRepMesh gives none). Figures: docs/performance.md.
+// bound; BRepMesh gives none).
+//
+// Deformation (freeform/brep/part_deform.h): an affine lattice beside Open CASCADE's
+// BRepBuilderAPI_GTransform with the same map (the peer: it converts the faces to B-splines and
+// transforms their poles); a general quadratic lattice (every point moved by up to 3% of the
+// part's size, fixed seed), exact and with faces over degree 25 reduced (no peer: Open CASCADE has
+// no FFD). Writing (freeform/cad/cad_file.h) beside STEPControl_Writer on the original shape.
+// Figures: docs/performance.md.
 //
 //   build/bin/bench_cad --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
 
+#include <freeform/brep/part_deform.h>
 #include <freeform/brep/part_mesh.h>
 #include <freeform/cad/cad_file.h>
 
+#include <BRepBuilderAPI_GTransform.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
 #include <IGESControl_Reader.hxx>
@@ -20,12 +29,15 @@
 #include <Message_Messenger.hxx>
 #include <Message_Printer.hxx>
 #include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <gp_GTrsf.hxx>
 #include <TopoDS_Shape.hxx>
 
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -156,10 +168,114 @@ void BM_BRepMesh(benchmark::State& state)
     state.counters["open_edges"] = static_cast<double>(open);
 }
 
+
+/// The map of the affine benchmarks: a shear with unequal scales.
+Eigen::Matrix3d affineLinear()
+{
+    Eigen::Matrix3d A;
+    A << 1.2, 0.3, 0.0, -0.1, 0.8, 0.25, 0.05, 0.0, 1.4;
+    return A;
+}
+const Eigen::Vector3d kAffineOffset(0.5, -2, 1);
+
+freeform::Lattice latticeAround(const freeform::Part& p, int degree)
+{
+    const freeform::Box<double, 3> box = p.bounds();
+    freeform::Lattice::Points corners(3, 2);
+    corners.col(0) = box.min();
+    corners.col(1) = box.max();
+    return freeform::Lattice::fit(corners, {degree, degree, degree}, 0.1);
+}
+
+void BM_DeformAffine(benchmark::State& state)
+{
+    const int i = static_cast<int>(state.range(0));
+    state.SetLabel(kSamples[i].file);
+    const freeform::Part& p = part(i);
+    freeform::Lattice lattice = latticeAround(p, 1);
+    for (int a = 0; a <= 1; ++a)
+        for (int b = 0; b <= 1; ++b)
+            for (int c = 0; c <= 1; ++c)
+                lattice.setControlPoint(a, b, c, affineLinear() * lattice.restPoint(a, b, c) + kAffineOffset);
+    const freeform::RationalLattice rational(lattice);
+    freeform::DeformedPart moved;
+    for (auto _ : state) moved = freeform::deformPart(p, rational);
+    state.counters["max_degree"] = moved.report.maxDegree;
+}
+
+void BM_GTransform(benchmark::State& state)
+{
+    const int i = static_cast<int>(state.range(0));
+    state.SetLabel(kSamples[i].file);
+    const TopoDS_Shape shape = occtShape(i);
+    const Eigen::Matrix3d A = affineLinear();
+    gp_GTrsf g;
+    g.SetVectorialPart(gp_Mat(A(0, 0), A(0, 1), A(0, 2), A(1, 0), A(1, 1), A(1, 2), A(2, 0), A(2, 1), A(2, 2)));
+    g.SetTranslationPart(gp_XYZ(kAffineOffset.x(), kAffineOffset.y(), kAffineOffset.z()));
+    for (auto _ : state) {
+        BRepBuilderAPI_GTransform transform(shape, g, Standard_True);
+        benchmark::DoNotOptimize(transform.Shape());
+    }
+}
+
+/// A quadratic lattice around the part, every point moved by up to 3% of its size; range(1): the
+/// degree cap (0: exact).
+void BM_Deform(benchmark::State& state)
+{
+    const int i = static_cast<int>(state.range(0));
+    state.SetLabel(kSamples[i].file);
+    const freeform::Part& p = part(i);
+    freeform::Lattice lattice = latticeAround(p, 2);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double size = p.bounds().diagonal().norm();
+    for (int a = 0; a <= 2; ++a)
+        for (int b = 0; b <= 2; ++b)
+            for (int c = 0; c <= 2; ++c)
+                lattice.setControlPoint(a, b, c, lattice.controlPoint(a, b, c) + 0.03 * size * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    freeform::PartDeformOptions options;
+    options.maxDegree = static_cast<int>(state.range(1));
+    const freeform::RationalLattice rational(lattice);
+    freeform::DeformedPart moved;
+    for (auto _ : state) moved = freeform::deformPart(p, rational, options);
+    state.counters["max_degree"] = moved.report.maxDegree;
+    state.counters["approximated"] = static_cast<double>(moved.report.approximatedFaces.size());
+    state.counters["error"] = moved.report.maxApproximationError;
+}
+
+void BM_WriteStep(benchmark::State& state)
+{
+    const int i = static_cast<int>(state.range(0));
+    state.SetLabel(kSamples[i].file);
+    const freeform::Part& p = part(i);
+    const std::string path = "/tmp/bench_cad_" + std::to_string(getpid()) + ".step";
+    for (auto _ : state) benchmark::DoNotOptimize(freeform::writeCadFile(p, path).valid);
+    std::remove(path.c_str());
+}
+
+void BM_OcctWriteStep(benchmark::State& state)
+{
+    const int i = static_cast<int>(state.range(0));
+    state.SetLabel(kSamples[i].file);
+    const TopoDS_Shape shape = occtShape(i);
+    const std::string path = "/tmp/bench_cad_occt_" + std::to_string(getpid()) + ".step";
+    for (auto _ : state) {
+        STEPControl_Writer writer;
+        writer.Transfer(shape, STEPControl_AsIs);
+        benchmark::DoNotOptimize(writer.Write(path.c_str()));
+    }
+    std::remove(path.c_str());
+}
+
 constexpr int kParts = static_cast<int>(std::size(kSamples));
 BENCHMARK(BM_Read)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Tessellate)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BRepMesh)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DeformAffine)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GTransform)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Deform)->ArgsProduct({benchmark::CreateDenseRange(0, kParts - 1, 1), {0, 25}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteStep)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OcctWriteStep)->DenseRange(0, kParts - 1)->Unit(benchmark::kMillisecond);
 
 } // namespace
 
