@@ -157,10 +157,13 @@ std::optional<ReducedSurface> reduceSurface(const NurbsSurface<double, 3>& surfa
     work = work.refinedU(missingKnots(work.knotsU())).refinedV(missingKnots(work.knotsV()));
     best = std::numeric_limits<double>::infinity();
     for (int split = 0;; ++split) {
-        double h = 0;
+        // The u pass moves the surface by at most hu, the v pass the result by at most hv: the
+        // bound is their sum.
+        double hu = 0, hv = 0;
         NurbsSurface<double, 3> r = work;
-        if (r.degreeU() > cap) r = reduceU(r, cap, h);
-        if (r.degreeV() > cap) r = reduceU(r.transposed(), cap, h).transposed();
+        if (r.degreeU() > cap) r = reduceU(r, cap, hu);
+        if (r.degreeV() > cap) r = reduceU(r.transposed(), cap, hv).transposed();
+        double h = hu + hv;
         for (Eigen::Index i = 0; i < r.homogeneousPoints().cols(); ++i)
             if (!(r.homogeneousPoints()(3, i) > 0)) h = std::numeric_limits<double>::infinity();
         const double error = std::isfinite(h) ? euclideanBound(h, work, r) : h;
