@@ -25,6 +25,11 @@
 #include "freeform/mesh/polygon_mesh.h"
 #include "freeform/tessellate/tessellate.h"
 
+namespace freeform {
+struct Part;      // freeform/brep/part.h
+struct PartCheck; // freeform/brep/part.h
+} // namespace freeform
+
 namespace freeform::cli {
 
 using Json = nlohmann::ordered_json;
@@ -109,6 +114,9 @@ bool isPartFile(const std::string& path);
 /// The error for a part file in a build without Open CASCADE.
 [[noreturn]] void refusePartFile(const std::string& path);
 
+/// The counts `info` and `convert` print for a part, in their order: faces, edges, vertices,
+/// shells, solids, closed, units (info_part.cpp).
+void addPartCounts(Json& j, const Part& part, const PartCheck& check);
 /// `freeform info` on a STEP or IGES part (info_part.cpp).
 Json partInfo(const std::string& path, bool details);
 /// `freeform tessellate` on a STEP or IGES part (tessellate_part.cpp): the certified watertight

@@ -78,13 +78,7 @@ Json partConvert(const std::string& path, const std::string& output)
     Json j;
     j["input"] = path;
     j["output"] = output;
-    j["faces"] = part.faces.size();
-    j["edges"] = part.edges.size();
-    j["vertices"] = part.vertices.size();
-    j["shells"] = part.shells.size();
-    j["solids"] = part.solids.size();
-    j["closed"] = check.closed;
-    j["units"] = part.units;
+    addPartCounts(j, part, check);
     addWriteReport(j, written);
     return j;
 }

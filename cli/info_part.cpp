@@ -8,11 +8,8 @@
 
 namespace freeform::cli {
 
-Json partInfo(const std::string& path, bool details)
+void addPartCounts(Json& j, const Part& part, const PartCheck& check)
 {
-    const Part part = readCadFile(path);
-    const PartCheck check = checkPart(part);
-    Json j;
     j["faces"] = part.faces.size();
     j["edges"] = part.edges.size();
     j["vertices"] = part.vertices.size();
@@ -20,6 +17,14 @@ Json partInfo(const std::string& path, bool details)
     j["solids"] = part.solids.size();
     j["closed"] = check.closed;
     j["units"] = part.units;
+}
+
+Json partInfo(const std::string& path, bool details)
+{
+    const Part part = readCadFile(path);
+    const PartCheck check = checkPart(part);
+    Json j;
+    addPartCounts(j, part, check);
     const Box<double, 3> box = part.bounds();
     j["bounds"] = {{"min", pointJson(box.min().data(), 3)}, {"max", pointJson(box.max().data(), 3)}};
     j["loose_faces"] = part.looseFaces().size();
