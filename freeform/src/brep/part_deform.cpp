@@ -49,7 +49,7 @@ std::vector<double> spanMiddles(const std::vector<double>& breaks, int times)
 /// The face's NURBS cut down (by knot insertion, the parameters kept) to the face's parameter box
 /// where the file's surface is larger (a B-spline surface the face uses a part of), so that less
 /// is composed and the box test sees only the face. Periodic maps are left alone.
-NurbsSurface<double, 3> restrictedToDomain(const MappedSurface& s, const Box<double, 2>& domain)
+NurbsSurface<double, 3> cutToFaceBox(const MappedSurface& s, const Box<double, 2>& domain)
 {
     NurbsSurface<double, 3> n = s.nurbs;
     if (s.mapU.period == 0) {
@@ -290,7 +290,7 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
         const PartFace& face = part.faces[f];
         try {
             MappedSurface next = face.surface.surface();
-            next.nurbs = restrictedToDomain(next, face.surface.domain());
+            next.nurbs = cutToFaceBox(next, face.surface.domain());
             faceOutside[f] = !extrapolate && !insideBox(lattice.lattice(), next.nurbs.controlPoints());
             next.nurbs = affine ? affineImage(*affine, next.nurbs) : deformSurface(map, next.nurbs, w);
             if (!next.nurbs.homogeneousPoints().allFinite())
