@@ -13,17 +13,21 @@ namespace {
 
 Json convert(const ConvertOptions& o)
 {
-    if (!o.positional.empty() && isPartFile(o.positional[0])) {
-        expectPositional(o.positional, 1, "the part (freeform convert PART.step -o OUT.step|.iges)");
-        if (given(o.toGiven) || given(o.endGiven) || given(o.objectGiven))
-            throw UsageError("a part takes only -o (freeform convert PART.step -o OUT.step|.iges)");
-        if (!isPartFile(o.output))
-            throw UsageError("option -o: a part is written as STEP or IGES (.step .stp .iges .igs); documents do not "
-                             "hold parts yet");
+    const bool partIn = !o.positional.empty() && isPartFile(o.positional[0]);
+    if (partIn || isPartFile(o.output)) {
+        expectPositional(o.positional, 1, "the part (freeform convert PART.step -o OUT.step|.iges|.json)");
+        if (given(o.toGiven) || given(o.endGiven))
+            throw UsageError("a part takes only -o (freeform convert PART.step -o OUT.step|.iges|.json)");
+        if (partIn && given(o.objectGiven))
+            throw UsageError("option --object: picks the part of a document (freeform convert DOC.json --object NAME -o OUT.step)");
+        if (partIn && !isPartFile(o.output) && lowerExtension(o.output) != ".json")
+            throw UsageError("option -o: a part is written as STEP, IGES (.step .stp .iges .igs) or a document (.json)");
+        if (!partIn && lowerExtension(o.positional[0]) != ".json")
+            throw UsageError("option -o: STEP and IGES are written from a part: a STEP or IGES file or a document (.json)");
 #ifdef FREEFORM_HAVE_CAD
-        return partConvert(o.positional[0], o.output);
+        return partConvert(o.positional[0], o.output, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
 #else
-        refusePartFile(o.positional[0]);
+        refusePartFile(partIn ? o.positional[0] : o.output);
 #endif
     }
     if (given(o.toGiven)) return convertSpline(o);
@@ -37,16 +41,18 @@ Action defineConvert(CLI::App& app)
 {
     auto o = std::make_shared<ConvertOptions>();
     // --to and --end are checked by convertSpline: docs/cli.md and the tests pin their messages.
-    app.footer("Four forms:\n"
+    app.footer("Five forms:\n"
                "  freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
                "                   [--end open|clamped|closed] -o OUT.json\n"
                "  freeform convert DOC.json -o OUT.obj   (Bézier curves and surfaces as OBJ cstype bezier)\n"
                "  freeform convert IN.obj -o OUT.json    (OBJ free-form Bézier geometry to a document)\n"
-               "  freeform convert PART.step|.iges -o OUT.step|.iges   (a part, every face as a B-spline\n"
-               "                   surface; prints the counts and Open CASCADE's validity check)\n"
+               "  freeform convert PART.step|.iges -o OUT.step|.iges|.json   (a part, every face as a\n"
+               "                   B-spline surface; prints the counts and Open CASCADE's validity check;\n"
+               "                   .json: a document of one part object)\n"
+               "  freeform convert DOC.json [--object NAME] -o OUT.step|.iges   (a document's part)\n"
                "Exit status: 0 ok, 1 bad input, 2 bad usage.");
     addPositionals(app, "IN", o->positional, "the document (DOC.json) or OBJ file (IN.obj) to convert");
-    o->objectGiven = app.add_option("--object", o->object, "the spline to convert (with --to)")->type_name("NAME");
+    o->objectGiven = app.add_option("--object", o->object, "the spline to convert (with --to), or the part to write as STEP or IGES")->type_name("NAME");
     o->toGiven = app.add_option("--to", o->to,
                                 "bezier_spline: the A-frame turns a deboor_spline into Bézier segments; "
                                 "deboor_spline: recovers the de Boor points of a C2 cubic bezier_spline")

@@ -11,15 +11,6 @@
 
 namespace freeform::cli {
 
-namespace {
-std::string lowerExtension(const std::string& path)
-{
-    std::string e = std::filesystem::path(path).extension().string();
-    for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return e;
-}
-} // namespace
-
 Json convertObjFreeform(const ConvertOptions& o)
 {
     expectPositional(o.positional, 1, "the input file (freeform convert IN -o OUT)");

@@ -94,9 +94,8 @@ Json ffdPart(const FfdOptions& o, const DocumentObject& object, const Lattice& l
              const std::optional<std::string>& reportPath)
 {
     const std::string& input = o.positional[0];
-    if (!isPartFile(o.output))
-        throw UsageError("option -o: a part is written as STEP or IGES (.step .stp .iges .igs); documents do not hold "
-                         "parts yet");
+    if (!isPartFile(o.output) && lowerExtension(o.output) != ".json")
+        throw UsageError("option -o: a part is written as STEP, IGES (.step .stp .iges .igs) or a document (.json)");
     if (given(o.normalsGiven)) throw UsageError("option --normals: applies to meshes only, not to a part");
     if (given(o.toleranceGiven) && !(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
 #ifdef FREEFORM_HAVE_CAD

@@ -121,6 +121,18 @@ Json tessellateCommand(const TessellateOptions& o)
         const TypedObject* object = given(o.objectGiven) ? &doc.object(o.object) : nullptr;
         if (const auto* sub = object ? std::get_if<SubdivisionObject>(&object->geometry()) : nullptr)
             return subdivisionCommand(sub->surface, o, output);
+        if (object && (object->kind() == ObjectKind::Part || object->kind() == ObjectKind::TrimmedSurface)) {
+            // A part (or trimmed surface) named by --object: the certified watertight part mesh,
+            // reported as for a STEP or IGES part.
+            if (!given(o.toleranceGiven)) throw UsageError("a part needs --tolerance E (the certified distance bound)");
+            if (o.outward || o.refinement != "local" || o.measure != "parametric")
+                throw UsageError("a part takes only --tolerance and --max-triangles");
+            std::string name;
+            const Part part = documentPart(input, object->name(), name);
+            Json out = partMeshCommand(part, output, o.tolerance, o.maxTriangles);
+            out["object"] = name;
+            return out;
+        }
         result = tessellateDocument(doc, object, options); // the document layer (document/operations.h)
     }
     const PolygonMesh& mesh = result.mesh;

@@ -102,12 +102,15 @@ Json evalLattice(const TypedDocument&, const TypedObject&, const std::string& at
 Json evalSubdivision(const TypedDocument&, const TypedObject&, const std::string& at, int order); // eval_subdivision.cpp
 Json evalSurface(const TypedDocument&, const TypedObject&, const std::string& at, int order);     // eval_surface.cpp
 Json evalRational(const TypedDocument&, const TypedObject&, const std::string& at, int order);    // eval_rational.cpp
+Json evalPart(const TypedDocument&, const TypedObject&, const std::string& at, int order);        // eval_part.cpp
 
 /// `freeform interpolate --degree P` (interpolate_nurbs.cpp): writes the nurbs_curve "interpolant".
 Json interpolateNurbsCommand(const PointColumns& points, const std::vector<double>& params, Parametrization param,
                              int degree, const std::vector<double>& start, const std::vector<double>& end,
                              const std::string& source, const std::string& output);
 
+/// The file's extension in lower case, with its dot (".json"), or empty; commands.cpp.
+std::string lowerExtension(const std::string& path);
 /// A STEP or IGES file, by its extension (as freeform/cad/cad_file.h's isCadFile, which a build
 /// without Open CASCADE lacks); command.cpp.
 bool isPartFile(const std::string& path);
@@ -117,20 +120,30 @@ bool isPartFile(const std::string& path);
 /// The counts `info` and `convert` print for a part, in their order: faces, edges, vertices,
 /// shells, solids, closed, units (info_part.cpp).
 void addPartCounts(Json& j, const Part& part, const PartCheck& check);
-/// `freeform info` on a STEP or IGES part (info_part.cpp).
+/// `freeform info` on a STEP or IGES part, or on a document's only part (info_part.cpp).
 Json partInfo(const std::string& path, bool details);
+/// The report `info` prints for a part (info_part.cpp).
+Json partReport(const Part& part, bool details);
+/// The part of a document: the object called `name`, or its only part (or trimmed surface, as a
+/// part of one face); `chosen` receives its name. Error naming the document when there is none,
+/// several, or the object is of another kind (info_part.cpp).
+Part documentPart(const std::string& path, const std::optional<std::string>& name, std::string& chosen);
 /// `freeform tessellate` on a STEP or IGES part (tessellate_part.cpp): the certified watertight
 /// mesh (freeform/brep/part_mesh.h) written to `output` (.obj, .ply, .stl).
 Json partTessellate(const std::string& path, const std::string& output, double tolerance, long long maxTriangles);
+/// The same for a part in memory (a document's part object; tessellate_part.cpp).
+Json partMeshCommand(const Part& part, const std::string& output, double tolerance, long long maxTriangles);
 /// `freeform ffd` on a part (ffd_part.cpp): composed exactly with the lattice, faces and edges over
 /// Open CASCADE's degree approximated within `tolerance` (<= 0: 1e-6 of the part's size), written
-/// as STEP or IGES.
+/// as STEP or IGES; or, to OUT.json, composed exactly (no cap) into a document of one part object.
 Json partFfd(const std::string& path, const std::string& output, const std::string& latticeName,
              const Lattice& lattice, double strength, double tolerance, int threads);
 /// The two corners of a part's box (Part::bounds), and its vertex count (ffd_part.cpp).
 Lattice::Points partBoxCorners(const std::string& path, long long& vertices);
-/// `freeform convert` of a part to STEP or IGES (ffd_part.cpp).
-Json partConvert(const std::string& path, const std::string& output);
+/// `freeform convert` of a part (ffd_part.cpp): a STEP or IGES file to STEP, IGES or a document
+/// (one part object named after the file), or a document's part (`object`, or its only one) to
+/// STEP or IGES.
+Json partConvert(const std::string& path, const std::string& output, const std::optional<std::string>& object);
 
 // The commands (one file each).
 Action defineBench(CLI::App& app);       // cmd_bench.cpp

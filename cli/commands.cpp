@@ -26,10 +26,16 @@ const std::vector<Command>& commands()
     return list;
 }
 
-bool isPartFile(const std::string& path)
+std::string lowerExtension(const std::string& path)
 {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+bool isPartFile(const std::string& path)
+{
+    const std::string ext = lowerExtension(path);
     return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
 }
 
@@ -41,6 +47,7 @@ void refusePartFile(const std::string& path)
 Evaluator evaluatorFor(const KindInfo& kind)
 {
     if (!kind.supports(KindOperation::Evaluate)) return nullptr;
+    if (kind.kind == ObjectKind::TrimmedSurface || kind.nature == KindNature::Part) return evalPart;
     if (kind.rational) return evalRational;
     switch (kind.parameters) {
     case KindParameters::T: return evalCurve;

@@ -5,6 +5,7 @@
 #include "command.h"
 #include "freeform/brep/part.h"
 #include "freeform/cad/cad_file.h"
+#include "freeform/document/model.h"
 
 namespace freeform::cli {
 
@@ -19,9 +20,39 @@ void addPartCounts(Json& j, const Part& part, const PartCheck& check)
     j["units"] = part.units;
 }
 
-Json partInfo(const std::string& path, bool details)
+/// The part of a document: the object called `name`, or its only part (or trimmed surface, as a
+/// part of one face). Error naming the document when there is none, several, or the object is of
+/// another kind.
+Part documentPart(const std::string& path, const std::optional<std::string>& name, std::string& chosen)
 {
-    const Part part = readCadFile(path);
+    const TypedDocument doc = TypedDocument::read(path);
+    auto partOf = [&](const TypedObject& o) -> std::optional<Part> {
+        if (const auto* p = std::get_if<Part>(&o.geometry())) return *p;
+        if (const auto* t = std::get_if<TrimmedSurface>(&o.geometry())) return singleFacePart(*t);
+        return std::nullopt;
+    };
+    if (name) {
+        const TypedObject& o = doc.object(*name);
+        std::optional<Part> p = partOf(o);
+        if (!p) throw Error(doc.what(o) + ": is a " + o.type() + ", not a part or trimmed_surface");
+        chosen = o.name();
+        return std::move(*p);
+    }
+    std::vector<const TypedObject*> found;
+    for (const TypedObject& o : doc.objects())
+        if (partOf(o)) found.push_back(&o);
+    if (found.empty()) throw Error(path + ": has no part or trimmed_surface object");
+    if (found.size() > 1) {
+        std::string list;
+        for (const TypedObject* o : found) list += (list.empty() ? "" : ", ") + o->name();
+        throw Error(path + ": has several parts (" + list + "); choose one with --object");
+    }
+    chosen = found.front()->name();
+    return std::move(*partOf(*found.front()));
+}
+
+Json partReport(const Part& part, bool details)
+{
     const PartCheck check = checkPart(part);
     Json j;
     addPartCounts(j, part, check);
@@ -57,6 +88,19 @@ Json partInfo(const std::string& path, bool details)
         j["area"] = area; // Part::area(), without integrating every face twice
     }
     return j;
+}
+
+Json partInfo(const std::string& path, bool details)
+{
+    if (lowerExtension(path) == ".json") {
+        std::string name;
+        const Part part = documentPart(path, std::nullopt, name);
+        Json j;
+        j["object"] = name;
+        j.update(partReport(part, details));
+        return j;
+    }
+    return partReport(readCadFile(path), details);
 }
 
 } // namespace freeform::cli

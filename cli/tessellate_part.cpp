@@ -10,7 +10,11 @@ namespace freeform::cli {
 
 Json partTessellate(const std::string& path, const std::string& output, double tolerance, long long maxTriangles)
 {
-    const Part part = readCadFile(path);
+    return partMeshCommand(readCadFile(path), output, tolerance, maxTriangles);
+}
+
+Json partMeshCommand(const Part& part, const std::string& output, double tolerance, long long maxTriangles)
+{
     PartMeshOptions options;
     options.tolerance = tolerance;
     options.maxTriangles = maxTriangles;

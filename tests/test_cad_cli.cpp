@@ -10,15 +10,20 @@
 #include <BRepBndLib.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <Geom_Surface.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "freeform/cad/cad_file.h"
+#include "freeform/document/model.h"
+#include "freeform/document/object_data.h"
 #include "freeform/io/mesh_io.h"
 #include "support/cli.h"
 #include "support/occt_reference.h"
@@ -225,13 +230,17 @@ TEST_CASE("ffd and convert on bad parts and bad usage: one error line, nothing o
     const std::pair<std::string, int> cases[] = {
         {"ffd " + dir + "/broken_part.step --lattice " + lattice + " -o " + out, 1},
         {"ffd " + screw + " --lattice " + dir + "/no_such_lattice.json -o " + out, 1},
-        {"ffd " + screw + " --lattice " + lattice + " -o " + dir + "/part.json", 2}, // documents hold no parts yet
         {"ffd " + screw + " --lattice " + lattice + " -o " + dir + "/part.obj", 2},
         {"ffd " + screw + " --lattice " + lattice + " -o " + out + " --normals recompute", 2},
         {"ffd " + screw + " --lattice " + lattice + " -o " + out + " --tolerance 0", 2},
         {"convert " + dir + "/broken_part.step -o " + out, 1},
-        {"convert " + screw + " -o " + dir + "/part.json", 2},
+        {"convert " + screw + " -o " + dir + "/part.obj", 2},
         {"convert " + screw + " -o " + out + " --to bezier_spline", 2},
+        {"convert " + screw + " -o " + out + " --object screw", 2},
+        // A document without a part, and one whose --object is not a part.
+        {"convert " + std::string(FREEFORM_SOURCE_DIR) + "/data/ffd_every_type.json -o " + out, 1},
+        {"convert " + std::string(FREEFORM_SOURCE_DIR) + "/data/ffd_every_type.json --object L -o " + out, 1},
+        {"convert " + std::string(FREEFORM_SOURCE_DIR) + "/data/teapot.bpt -o " + out, 2},
     };
     for (const auto& [args, status] : cases) {
         INFO(args);
@@ -244,6 +253,95 @@ TEST_CASE("ffd and convert on bad parts and bad usage: one error line, nothing o
         CHECK_FALSE(std::filesystem::exists(out));
         CHECK_FALSE(std::filesystem::exists(dir + "/part.json"));
     }
+}
+
+TEST_CASE("a part through a document: convert to JSON and back, info, eval, tessellate and ffd on it", "[cli][cad]")
+{
+    const std::string dir = FREEFORM_TEST_TMP;
+    const std::string screw = "/usr/share/opencascade/data/step/screw.step";
+    const std::string json = dir + "/screw_part.json";
+    std::filesystem::remove(json);
+    auto run = [](const std::string& args) {
+        const auto r = freeform::test::cliInProcess(args);
+        INFO(args << "\n" << r.err);
+        REQUIRE(r.status == 0);
+        return Json::parse(r.out);
+    };
+    const Json converted = run("convert " + screw + " -o " + json);
+    CHECK(converted["object"] == "screw"); // named after the file it came from
+    CHECK(converted["faces"] == 10);
+    // The document holds the part to the bit: the part read from it is the part read from the
+    // STEP file (the same document text), and its info is the STEP file's.
+    const freeform::Part fromStep = freeform::readCadFile(screw);
+    const freeform::TypedDocument doc = freeform::TypedDocument::read(json);
+    REQUIRE(doc.objects().size() == 1);
+    const auto& part = std::get<freeform::Part>(doc.objects()[0].geometry());
+    auto text = [](const freeform::Part& p) {
+        return freeform::formatDocument(freeform::Document{{freeform::DocumentObject{"p", freeform::toData(p), ""}}, "", ""});
+    };
+    CHECK(text(part) == text(fromStep));
+    Json info = run("info " + json);
+    Json stepInfo = run("info " + screw);
+    CHECK(info["object"] == "screw");
+    info.erase("object");
+    CHECK(info == stepInfo);
+    // eval: a face point inside its trims equals Open CASCADE's point of the STEP face.
+    const TopoDS_Shape shape = freeform::test::occtRead(screw);
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(shape, TopAbs_FACE, faces);
+    int evaluated = 0;
+    for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+        const freeform::TrimmedSurface& t = part.faces[static_cast<std::size_t>(f)].surface;
+        const Eigen::Vector2d c = t.domain().center();
+        if (t.classify(c) != freeform::TrimClass::Inside) continue;
+        char at[128];
+        std::snprintf(at, sizeof at, "%d,%.17g,%.17g", f, c.x(), c.y());
+        const Json e = run("eval " + json + " --object screw --at " + at);
+        CHECK(e["trim"] == "inside");
+        const gp_Pnt p = BRep_Tool::Surface(TopoDS::Face(faces(f + 1)))->Value(c.x(), c.y());
+        const double size = 100; // the screw is about 60 mm long
+        CHECK(std::abs(e["point"][0].get<double>() - p.X()) <= 1e-12 * size);
+        CHECK(std::abs(e["point"][1].get<double>() - p.Y()) <= 1e-12 * size);
+        CHECK(std::abs(e["point"][2].get<double>() - p.Z()) <= 1e-12 * size);
+        ++evaluated;
+    }
+    CHECK(evaluated >= 3);
+    // tessellate --object: the part's certified watertight mesh, as for the STEP file.
+    const Json mesh = run("tessellate " + json + " --object screw --tolerance 0.05 -o " + dir + "/screw_doc.obj");
+    const Json stepMesh = run("tessellate " + screw + " --tolerance 0.05 -o " + dir + "/screw_step.obj");
+    CHECK(mesh["watertight"] == true);
+    CHECK(mesh["certified"] == true);
+    CHECK(mesh["triangles"] == stepMesh["triangles"]);
+    // Back to STEP and IGES: valid, with Open CASCADE's counts.
+    for (const char* ext : {".step", ".iges"}) {
+        const std::string out = dir + "/screw_from_json" + ext;
+        const Json back = run("convert " + json + " -o " + out);
+        CHECK(back["valid"] == true);
+        const TopoDS_Shape again = freeform::test::occtRead(out);
+        CHECK(freeform::test::occtCount(again, TopAbs_FACE) == 10);
+        CHECK(freeform::test::occtCount(again, TopAbs_EDGE) == 22);
+        CHECK(freeform::test::occtClosed(again));
+    }
+    // ffd to a document: composed exactly (no degree cap), every face counted exact.
+    const std::string bent = dir + "/screw_bent.json";
+    const Json ffd = run("ffd " + screw + " --lattice " + movedScrewLattice(3) + " -o " + bent);
+    CHECK(ffd["exact_faces"] == 10);
+    CHECK(ffd["approximated_faces"] == 0);
+    CHECK(ffd["max_degree"].get<int>() > 25); // the document holds what STEP cannot
+    CHECK(ffd["valid"] == true);
+    const freeform::TypedDocument bentDoc = freeform::TypedDocument::read(bent);
+    const auto& bentPart = std::get<freeform::Part>(bentDoc.objects()[0].geometry());
+    int top = 0;
+    for (const freeform::PartFace& f : bentPart.faces)
+        top = std::max({top, f.surface.surface().nurbs.degreeU(), f.surface.surface().nurbs.degreeV()});
+    for (const freeform::PartEdge& e : bentPart.edges)
+        if (e.curve) top = std::max(top, e.curve->nurbs.degree());
+    CHECK(top == ffd["max_degree"].get<int>());
+    // The deformed document back to STEP: over Open CASCADE's degree 25, refused with the edge named.
+    const auto refused = freeform::test::cliInProcess("convert " + bent + " -o " + dir + "/screw_bent.step");
+    CHECK(refused.status == 1);
+    CHECK(refused.err.find("edge 1: degree 27 is over Open CASCADE's 25") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir + "/screw_bent.step"));
 }
 
 } // namespace test_cad_cli

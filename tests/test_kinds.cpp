@@ -1,7 +1,7 @@
 // The kind table (document/kinds.h): its names are the format's type strings, and every claim a
 // row makes (what the kind is, its parameters, dimension, weights and knots, and each operation it
 // supports or not) is checked against the document layer's operations on real objects of that kind:
-// data/ffd_every_type.json and examples/data/nurbs.json hold all eleven.
+// data/ffd_every_type.json, examples/data/nurbs.json and data/parts/ hold all thirteen.
 
 #include <catch2/catch.hpp>
 
@@ -26,6 +26,10 @@ TypedDocument everyKind()
     TypedDocument doc = TypedDocument::read(std::string(FREEFORM_SOURCE_DIR) + "/data/ffd_every_type.json");
     const TypedDocument nurbs = TypedDocument::read(std::string(FREEFORM_SOURCE_DIR) + "/examples/data/nurbs.json");
     for (const TypedObject& o : nurbs.objects()) doc.add(o.name(), o.data());
+    for (const char* file : {"/data/parts/plate.json", "/data/parts/trimmed_square.json"}) {
+        const TypedDocument part = TypedDocument::read(std::string(FREEFORM_SOURCE_DIR) + file);
+        for (const TypedObject& o : part.objects()) doc.add(o.name(), o.data());
+    }
     // Objects every conversion applies to: a C2 cubic bezier_spline (the A-frame of a de Boor
     // spline) and NURBS forms of a polynomial spline and patch (one object of Bézier pieces each).
     doc.add("c2", toBezierSplineData(doc, doc.object("deboor3")));
@@ -48,6 +52,10 @@ bool succeeds(const std::function<void()>& f)
 std::vector<double> inside(const TypedObject& o)
 {
     const std::vector<double> domain = parameterDomain(o);
+    // A trimmed surface's domain is its parameter box (u0, u1, v0, v1); a part's face 0 has one.
+    if (const auto* t = std::get_if<TrimmedSurface>(&o.geometry())) return {t->domain().center().x(), t->domain().center().y()};
+    if (const auto* p = std::get_if<Part>(&o.geometry()))
+        return {0, p->faces[0].surface.domain().center().x(), p->faces[0].surface.domain().center().y()};
     switch (o.info().parameters) {
     case KindParameters::T: return {0.5 * domain.at(0)};
     case KindParameters::UV: return {0.5 * domain.at(0), 0.5 * domain.at(1)};
@@ -61,6 +69,9 @@ bool hasMember(const ObjectData& data, bool knots)
 {
     return std::visit(
         [&](const auto& d) {
+            // A trimmed surface's and a part's NURBS hold them (every face's, every trim's).
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, TrimmedSurfaceData> || std::is_same_v<T, PartData>) return true;
             if (knots) return requires { d.knots; };
             return requires { d.weights; };
         },
@@ -74,7 +85,8 @@ TEST_CASE("the kind table names every kind as the format does, in ObjectData's o
     const ObjectData samples[] = {BezierCurveData{},         BezierSplineData{},      DeBoorSplineData{},
                                   BezierSurfaceData{},       DeBoorSurfaceData{},     LatticeData{},
                                   SubdivisionSurfaceData{},  RationalBezierCurveData{}, RationalBezierSurfaceData{},
-                                  NurbsCurveData{},          NurbsSurfaceData{}};
+                                  NurbsCurveData{},          NurbsSurfaceData{},      TrimmedSurfaceData{},
+                                  PartData{}};
     REQUIRE(std::size(samples) == objectKinds().size());
     std::set<std::string_view> names;
     for (std::size_t k = 0; k < objectKinds().size(); ++k) {
@@ -128,7 +140,7 @@ TEST_CASE("every claim of a row holds for real objects of that kind", "[kinds]")
         ObjectTessellation coarse;
         coarse.segments = 2;
         CHECK(tessellateObject(o, coarse).has_value() == info.supports(KindOperation::Tessellate));
-        CHECK(info.supports(KindOperation::Tessellate) == info.isSurface());
+        CHECK(info.supports(KindOperation::Tessellate) == (info.isSurface() || info.nature == KindNature::Part));
         CHECK(succeeds([&] { continuity(doc, o); }) == info.supports(KindOperation::Continuity));
         CHECK(succeeds([&] { toNurbsData(doc, o); }) == info.supports(KindOperation::ToNurbs));
         if (!info.supports(KindOperation::FromNurbs)) CHECK_FALSE(succeeds([&] { fromNurbsData(doc, o); }));

@@ -306,6 +306,18 @@ PcurveResult Writer::pcurve(const PartFace& face, const TrimCurve& trim, const P
     return best;
 }
 
+/// The signed area of a closed polygon (positive counter-clockwise).
+double signedArea(const std::vector<Eigen::Vector2d>& polygon)
+{
+    double twice = 0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Eigen::Vector2d& a = polygon[i];
+        const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+        twice += a.x() * b.y() - a.y() * b.x();
+    }
+    return 0.5 * twice;
+}
+
 TopoDS_Shape Writer::build(CadWriteReport& report)
 {
     for (const PartVertex& v : part_.vertices) {
@@ -346,7 +358,17 @@ TopoDS_Shape Writer::build(CadWriteReport& report)
         std::map<int, int> uses;
         for (const TrimLoop& loop : face.surface.loops())
             for (const TrimCurve& c : loop.curves) ++uses[c.edge];
-        for (const TrimLoop& loop : face.surface.loops()) {
+        const auto& loops = face.surface.loops();
+        const Box<double, 2>& domain = face.surface.domain();
+        const double domainArea = domain.sizes().prod();
+        for (std::size_t l = 0; l < loops.size(); ++l) {
+            const TrimLoop& loop = loops[l];
+            // Open CASCADE wants the outer loop counter-clockwise in the forward face's parameters
+            // and the holes clockwise; a part's loops may run either way (a trimmed surface written
+            // by hand: TrimmedSurface's classification does not depend on it). A loop that
+            // encloses no area (a circle around a periodic direction) keeps its direction.
+            const double area = signedArea(face.surface.polygons()[l]) * (face.reversed ? -1 : 1);
+            const bool flip = std::abs(area) > 1e-9 * domainArea && (area > 0) != (l == 0);
             TopoDS_Wire wire;
             builder_.MakeWire(wire);
             for (const TrimCurve& c : loop.curves) {
@@ -361,7 +383,7 @@ TopoDS_Shape Writer::build(CadWriteReport& report)
                 // The part's orientations are as seen from the oriented face (Open CASCADE's
                 // explorers compose them); the face is built forward, so a reversed face's edges
                 // flip back.
-                const bool reversed = c.reversed != face.reversed;
+                const bool reversed = (c.reversed != face.reversed) != flip;
                 if (uses[c.edge] == 2) {
                     auto& pair = seams[c.edge];
                     (reversed ? pair.second : pair.first) = pc.curve;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "freeform/document/object_data.h"
 #include "freeform/document/document.h"
 #include "freeform/document/operations.h"
 #include "freeform/io/geometry_data.h"
@@ -59,14 +60,10 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> storedPoints(const ObjectData& data, co
         }
         return out;
     }
-    std::visit(
-        [&](const auto& d) {
-            if constexpr (!std::is_same_v<std::decay_t<decltype(d)>, SubdivisionSurfaceData>) {
-                out = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, d.points.cols());
-                out.topRows(std::min<Eigen::Index>(3, d.points.rows())) = d.points.topRows(std::min<Eigen::Index>(3, d.points.rows()));
-            }
-        },
-        data);
+    if (const PointColumns* p = dataPoints(data)) {
+        out = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, p->cols());
+        out.topRows(std::min<Eigen::Index>(3, p->rows())) = p->topRows(std::min<Eigen::Index>(3, p->rows()));
+    }
     return out;
 }
 

@@ -48,16 +48,6 @@ long nextId()
 
 namespace {
 
-PointColumns& pointsOf(ObjectData& data)
-{
-    return std::visit(
-        [](auto& d) -> PointColumns& {
-            using T = std::decay_t<decltype(d)>;
-            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return d.vertices;
-            else return d.points;
-        },
-        data);
-}
 
 } // namespace
 
@@ -167,7 +157,9 @@ void Scene::setControlPoints(int i, const std::vector<int>& ks, const Eigen::Mat
     // crease tags) when one of its vertices is edited; the file itself is left as it is.
     if (auto* sub = std::get_if<SubdivisionSurfaceData>(&data); sub && !sub->mesh.empty())
         *sub = inlineCage(*sub, documentDirectory(), "\"" + o.name + "\"");
-    PointColumns& points = pointsOf(data);
+    PointColumns* held = dataPoints(data);
+    if (!held) throw Error("\"" + o.name + "\" is a " + objectType(data) + ": it has no control points to edit");
+    PointColumns& points = *held;
     for (std::size_t j = 0; j < ks.size(); ++j) {
         const int k = ks[j];
         if (k < 0 || k >= points.cols()) throw Error("\"" + o.name + "\" has no control point " + std::to_string(k));
@@ -192,13 +184,9 @@ Eigen::Matrix3Xd Scene::controlPoints(int i) const
     if (item(i).kind != SceneItem::Kind::DocumentObject) return {};
     if (const auto* sub = std::get_if<SubdivisionSurfaceData>(&object(i).data); sub && !sub->mesh.empty())
         return item(i).geometry.netPoints; // a file-backed cage: its vertices as read
-    const PointColumns& p = std::visit(
-        [](const auto& d) -> const PointColumns& {
-            using T = std::decay_t<decltype(d)>;
-            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return d.vertices;
-            else return d.points;
-        },
-        object(i).data);
+    const PointColumns* held = dataPoints(object(i).data);
+    if (!held) return {};
+    const PointColumns& p = *held;
     Eigen::Matrix3Xd out = Eigen::Matrix3Xd::Zero(3, p.cols());
     out.topRows(std::min<Eigen::Index>(3, p.rows())) = p.topRows(std::min<Eigen::Index>(3, p.rows()));
     return out;
@@ -209,13 +197,8 @@ int Scene::controlPointCount(int i) const
     if (item(i).kind != SceneItem::Kind::DocumentObject) return 0;
     if (const auto* sub = std::get_if<SubdivisionSurfaceData>(&object(i).data); sub && !sub->mesh.empty())
         return static_cast<int>(item(i).geometry.netPoints.cols());
-    return static_cast<int>(std::visit(
-        [](const auto& d) {
-            using T = std::decay_t<decltype(d)>;
-            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return d.vertices.cols();
-            else return d.points.cols();
-        },
-        object(i).data));
+    const PointColumns* held = dataPoints(object(i).data);
+    return held ? static_cast<int>(held->cols()) : 0;
 }
 
 void Scene::setSettings(int i, const ObjectSettings& settings, const std::string& label)

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <string>
 
+#include "freeform/document/object_data.h"
 #include "tools/tools.h"
 #include "ui/ui_internal.h"
 
@@ -122,12 +123,9 @@ Eigen::Ref<const Eigen::MatrixXd> tablePoints(const Scene& scene, int index)
         if (!cage->mesh.empty()) return scene.item(index).geometry.netPoints;
         return cage->vertices;
     }
-    return std::visit(
-        [](const auto& d) -> Eigen::Ref<const Eigen::MatrixXd> {
-            if constexpr (std::is_same_v<std::decay_t<decltype(d)>, SubdivisionSurfaceData>) return d.vertices;
-            else return d.points;
-        },
-        object.data);
+    static const Eigen::MatrixXd none(3, 0); // a part: its faces are not edited point by point
+    const PointColumns* held = dataPoints(object.data);
+    return held ? Eigen::Ref<const Eigen::MatrixXd>(*held) : Eigen::Ref<const Eigen::MatrixXd>(none);
 }
 
 /// Editable control points of a document object: a table of one row per point, its number and

@@ -36,6 +36,7 @@ py::dict evaluationDict(const freeform::Evaluation& e)
     if (e.normal) d["normal"] = fromVector(*e.normal);
     if (e.det) d["det"] = *e.det;
     if (e.face >= 0) d["face"] = e.face;
+    if (e.trim) d["trim"] = *e.trim == freeform::TrimClass::Inside ? "inside" : *e.trim == freeform::TrimClass::Outside ? "outside" : "boundary";
     return d;
 }
 

@@ -31,7 +31,7 @@ pybind11::dict kindDict(const freeform::KindInfo& k)
         {Op::Evaluate, "evaluate"},   {Op::Polyline, "polyline"},         {Op::Tessellate, "tessellate"},
         {Op::Deform, "deform"},       {Op::Continuity, "continuity"},     {Op::ConvertSpline, "convert_spline"},
         {Op::ToNurbs, "to_nurbs"},    {Op::FromNurbs, "from_nurbs"},      {Op::DeformsOthers, "deforms_others"}};
-    static const char* const natures[] = {"curve", "surface", "volume"};
+    static const char* const natures[] = {"curve", "surface", "volume", "brep"}; // KindNature's order
     static const char* const parameters[] = {"t", "uv", "face_uv", "stu"};
     pybind11::list ops;
     for (const auto& [op, name] : operations)

@@ -2,11 +2,15 @@
 // faces' surfaces and the edges' curves come out as the existing NurbsSurface and NurbsCurve (in
 // their NURBS parameters); points(), normals() and classify() take the file's parameters.
 
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "freeform/brep/part_deform.h"
 #include "freeform/brep/part_mesh.h"
 #include "freeform/cad/cad_file.h"
+#include "freeform/document/model.h"
+#include "freeform/document/object_data.h"
 #include "lattice.h"
 #include "nurbs.h"
 
@@ -48,7 +52,29 @@ py::list indexLists(const std::vector<std::vector<int>>& lists)
     return out;
 }
 
+/// The document's part (its only part object), for Part.load of a .json file.
+Part documentPart(const std::string& path)
+{
+    const freeform::TypedDocument doc = freeform::TypedDocument::read(path);
+    const Part* found = nullptr;
+    for (const freeform::TypedObject& o : doc.objects())
+        if (const auto* p = std::get_if<Part>(&o.geometry())) {
+            if (found) throw freeform::Error(path + ": has several parts; load it as a Document and take one with object()");
+            found = p;
+        }
+    if (!found) throw freeform::Error(path + ": has no part object");
+    return *found;
+}
+
 } // namespace
+
+py::object partObject(const Part& part) { return py::cast(PyPart{std::make_shared<const Part>(part)}); }
+
+std::optional<freeform::ObjectData> partData(py::handle h)
+{
+    if (!py::isinstance<PyPart>(h)) return std::nullopt;
+    return freeform::ObjectData(freeform::toData(*h.cast<const PyPart&>().part));
+}
 
 void bindPart(py::module_& m)
 {
@@ -57,8 +83,14 @@ A CAD part read from a STEP (.step .stp) or IGES (.iges .igs) file through Open 
 faces (trimmed NURBS surfaces in their exact forms), edges, vertices, shells and solids, in the
 file's length unit. Faces and edges are numbered as Open CASCADE numbers them, from 0.)doc")
         .def_static(
-            "load", [](const std::string& path) { return PyPart{std::make_shared<const Part>(freeform::readCadFile(path))}; },
-            py::arg("path"), "Reads a STEP or IGES file (freeform.Error naming the file and the face or edge on bad input).")
+            "load",
+            [](const std::string& path) {
+                const bool document = std::filesystem::path(path).extension() == ".json";
+                return PyPart{std::make_shared<const Part>(document ? documentPart(path) : freeform::readCadFile(path))};
+            },
+            py::arg("path"),
+            "Reads a STEP or IGES file, or the part object of a document (.json; docs/format.md) (freeform.Error "
+            "naming the file and the face or edge on bad input).")
         .def_property_readonly("faces",
                                [](const PyPart& p) {
                                    py::list out;
@@ -187,6 +219,20 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
             "save",
             [](const PyPart& p, const std::string& path) {
                 freeform::CadWriteReport w;
+                if (std::filesystem::path(path).extension() == ".json") {
+                    // A document of one part object named after the file (docs/format.md).
+                    std::string name = std::filesystem::path(path).stem().string();
+                    freeform::Document doc;
+                    doc.objects.push_back({name.empty() ? std::string("unnamed") : name, freeform::toData(*p.part), {}});
+                    freeform::writeDocument(doc, path);
+                    const freeform::PartCheck check = freeform::checkPart(*p.part);
+                    w.valid = check.gapsOverTolerance == 0;
+                    for (const auto& e : p.part->edges) w.maxTolerance = std::max(w.maxTolerance, e.tolerance);
+                    py::dict d;
+                    d["valid"] = w.valid;
+                    d["max_tolerance"] = w.maxTolerance;
+                    return d;
+                }
                 {
                     py::gil_scoped_release release;
                     w = freeform::writeCadFile(*p.part, path);
@@ -200,7 +246,9 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
                 return d;
             },
             py::arg("path"),
-            "Writes the part as STEP (.step .stp) or IGES (.iges .igs) through Open CASCADE (docs/cad.md, Writing); "
+            "Writes the part as STEP (.step .stp) or IGES (.iges .igs) through Open CASCADE (docs/cad.md, Writing), or "
+            "as a document of one part object named after the file (.json: every degree kept, up to 67; returns "
+            "valid (every sampled gap within its edge's tolerance) and max_tolerance); "
             "returns valid (Open CASCADE's check), fitted_trims, max_trim_gap, raised_tolerances, max_tolerance. "
             "freeform.Error for a face or edge over degree 25 (deform with max_degree=25) or a bad path; nothing "
             "is written then.")

@@ -234,5 +234,38 @@ def test_save_refuses_a_degree_over_25_and_a_bad_name_and_writes_nothing(tmp_pat
     with pytest.raises(ff.Error, match="over Open CASCADE's 25"):
         moved.save(str(tmp_path / "x.step"))
     with pytest.raises(ff.Error, match="not a STEP"):
-        part.save(str(tmp_path / "x.json"))
+        part.save(str(tmp_path / "x.obj"))
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_part_in_a_document_is_the_part_of_its_step_file(tmp_path):
+    # Part.save(.json) writes a document of one part object; Document.object gives it back as a
+    # Part whose faces evaluate to the STEP file's face points to the bit, and Document.evaluate
+    # reports the trim class (inside the face) at a face's centre.
+    part = ff.Part.load(str(SCREW))
+    path = str(tmp_path / "screw.json")
+    report = part.save(path)
+    assert report["valid"] in (True, False)  # screw.step has two gaps over its tolerance already
+    doc = ff.Document.load(path)
+    assert doc.names == ["screw"]
+    assert doc.type("screw") == "part"
+    again = doc.object("screw")
+    assert isinstance(again, ff.Part)
+    assert len(again.faces) == len(part.faces) == 10
+    for a, b in zip(part.faces, again.faces):
+        (u0, u1), (v0, v1) = a.domain
+        uv = np.array([[u0 + (u1 - u0) * s, v0 + (v1 - v0) * (1 - s)] for s in np.linspace(0, 1, 7)])
+        assert np.array_equal(a.points(uv), b.points(uv))
+    inside = 0
+    for i, face in enumerate(again.faces):
+        (u0, u1), (v0, v1) = face.domain
+        c = np.array([[0.5 * (u0 + u1), 0.5 * (v0 + v1)]])
+        e = doc.evaluate("screw", [i, c[0, 0], c[0, 1]])
+        assert np.allclose(e["point"], face.points(c)[0], rtol=0, atol=1e-12)
+        assert e["trim"] in ("inside", "outside", "boundary")
+        inside += e["trim"] == "inside"
+    assert inside >= 3
+    # Part.load of the document, and a document without a part: freeform.Error.
+    assert len(ff.Part.load(path).edges) == 22
+    with pytest.raises(ff.Error, match="has no part object"):
+        ff.Part.load(str(pathlib.Path(__file__).resolve().parents[2] / "data" / "ffd_every_type.json"))

@@ -228,22 +228,34 @@ def test_kinds_table_describes_every_object_of_the_documents():
     # checked against what the Document calls do with a real object of that kind.
     kinds = ff.kinds()
     table = {k["name"]: k for k in kinds}
-    assert len(table) == len(kinds) == 11
+    assert len(table) == len(kinds) == 13
     at = {"t": [0.0], "uv": [0.0, 0.0], "face_uv": [0, 0.5, 0.5], "stu": [0.5, 0.25, 0.75]}
     seen = set()
-    for path in (ROOT / "data" / "ffd_every_type.json", ROOT / "examples" / "data" / "nurbs.json"):
+    for path in (ROOT / "data" / "ffd_every_type.json", ROOT / "examples" / "data" / "nurbs.json",
+                 ROOT / "data" / "parts" / "plate.json", ROOT / "data" / "parts" / "trimmed_square.json"):
         doc = ff.Document.load(str(path))
         for o in json.loads(path.read_text())["objects"]:
             name = o["name"]
             k = table[doc.type(name)]
             assert k["name"] == o["type"]
             seen.add(k["name"])
-            assert k["rational"] == (o["type"].startswith("rational") or o["type"].startswith("nurbs"))
-            assert k["knots"] == ("knots" in o)
-            r = doc.evaluate(name, at[k["parameters"]])
+            # A part's faces and a trimmed surface are NURBS (weights and knots where their
+            # surfaces have them); a part is evaluated at FACE,U,V inside its face's box.
+            trimmed = o["type"] in ("part", "trimmed_surface")
+            surface = o["faces"][0] if o["type"] == "part" else o
+            param = list(at[k["parameters"]])
+            if trimmed:
+                u0, u1, v0, v1 = surface["domain"]
+                param = param[:-2] + [0.5 * (u0 + u1), 0.5 * (v0 + v1)]
+                assert k["nature"] == ("brep" if o["type"] == "part" else "surface")
+            assert k["rational"] == (trimmed or o["type"].startswith("rational") or o["type"].startswith("nurbs"))
+            assert k["knots"] == ("knots" in surface)
+            r = doc.evaluate(name, param)
             assert len(r["point"]) == (k["dimension"] or len(o["points"][0]))
+            if trimmed:
+                assert r["trim"] in ("inside", "outside", "boundary")
             with pytest.raises(ff.Error):
-                doc.evaluate(name, at[k["parameters"]][:-1])
+                doc.evaluate(name, param[:-1])
             if k["nature"] == "curve":
                 doc.curve(name)
             else:

@@ -18,6 +18,41 @@ std::vector<int> Part::looseFaces() const
     return loose;
 }
 
+Part singleFacePart(const TrimmedSurface& surface)
+{
+    Part part;
+    std::vector<TrimLoop> loops = surface.loops();
+    for (TrimLoop& loop : loops) {
+        // One vertex where each trim starts, shared with the end of the trim before it (the loop
+        // is closed); its tolerance covers the gap between the two ends in space.
+        const int first = static_cast<int>(part.vertices.size());
+        const int n = static_cast<int>(loop.curves.size());
+        for (int k = 0; k < n; ++k) {
+            const TrimCurve& trim = loop.curves[static_cast<std::size_t>(k)];
+            const TrimCurve& before = loop.curves[static_cast<std::size_t>((k + n - 1) % n)];
+            const Eigen::Vector2d a = trim.start(), b = before.end();
+            const Eigen::Vector3d p = surface.point(a.x(), a.y());
+            part.vertices.push_back({p, (surface.point(b.x(), b.y()) - p).norm()});
+        }
+        for (int k = 0; k < n; ++k) {
+            TrimCurve& trim = loop.curves[static_cast<std::size_t>(k)];
+            PartEdge edge;
+            edge.first = trim.curve.first;
+            edge.last = trim.curve.last;
+            int start = first + k, end = first + (k + 1) % n;
+            if (trim.reversed) std::swap(start, end);
+            edge.start = start;
+            edge.end = end;
+            edge.tolerance = std::max(part.vertices[static_cast<std::size_t>(start)].tolerance,
+                                      part.vertices[static_cast<std::size_t>(end)].tolerance);
+            trim.edge = static_cast<int>(part.edges.size());
+            part.edges.push_back(std::move(edge));
+        }
+    }
+    part.faces.push_back({TrimmedSurface(surface.surface(), surface.domain(), std::move(loops), surface.flatness()), false, "", 0});
+    return part;
+}
+
 Box<double, 3> Part::bounds() const
 {
     Box<double, 3> box;

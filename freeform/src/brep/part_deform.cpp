@@ -360,8 +360,11 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
     for (std::size_t f = 0; f < part.faces.size(); ++f) {
         const PartFace& face = part.faces[f];
         const TrimmedSurface& t = face.surface;
+        // What the face is now: an affine map keeps a plane a plane; any other image is a B-spline
+        // surface (a cylinder under a non-uniform scale is no cylinder).
+        const std::string kind = report.affine && face.surfaceKind == "plane" ? "plane" : "bspline";
         result.faces.push_back({TrimmedSurface(std::move(*surfaces[f]), t.domain(), t.loops(), t.flatness()),
-                                face.reversed, face.surfaceKind, L * face.tolerance + report.faceErrors[f]});
+                                face.reversed, kind, L * face.tolerance + report.faceErrors[f]});
         if (report.faceErrors[f] > 0) report.approximatedFaces.push_back(static_cast<int>(f));
         if (faceOutside[f]) ++report.outsideFaces;
         if (report.faceErrors[f] == 0 && !faceOutside[f]) ++report.exactFaces;

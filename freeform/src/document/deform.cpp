@@ -2,8 +2,11 @@
 // deformation, written out in docs/ffd.md ("Documents").
 
 #include <cmath>
+#include <type_traits>
 
+#include "freeform/brep/part_deform.h"
 #include "freeform/core/error.h"
+#include "freeform/core/format.h"
 #include "freeform/document/object_data.h"
 #include "freeform/document/operations.h"
 #include "freeform/volume/deform_rational.h"
@@ -24,14 +27,27 @@ std::string firstNonFinite(const ObjectData& data)
 {
     return std::visit(
         [](const auto& d) -> std::string {
-            if constexpr (requires { d.points; })
-                if (!d.points.allFinite()) return "points";
-            if constexpr (requires { d.vertices; })
-                if (!d.vertices.allFinite()) return "vertices";
-            if constexpr (requires { d.weights; })
-                for (double x : d.weights)
-                    if (!std::isfinite(x)) return "weights";
-            return "";
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, TrimmedSurfaceData>) {
+                return d.surface.points.allFinite() ? "" : "points";
+            } else if constexpr (std::is_same_v<T, PartData>) {
+                for (const PartFaceData& f : d.faces)
+                    if (!f.surface.surface.points.allFinite()) return "face points";
+                for (const PartEdgeData& e : d.edges)
+                    if (e.curve && !e.curve->nurbs.points.allFinite()) return "edge points";
+                for (const PartVertexData& v : d.vertices)
+                    if (!v.point.allFinite()) return "vertices";
+                return "";
+            } else {
+                if constexpr (requires { d.points; })
+                    if (!d.points.allFinite()) return "points";
+                if constexpr (requires { d.vertices; })
+                    if (!d.vertices.allFinite()) return "vertices";
+                if constexpr (requires { d.weights; })
+                    for (double x : d.weights)
+                        if (!std::isfinite(x)) return "weights";
+                return "";
+            }
         },
         data);
 }
@@ -181,6 +197,28 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
                 const NurbsSurface<double, 3> moved = deformSurface(RationalLattice(lattice), *ns, w);
                 r.degree = {moved.degreeU(), moved.degreeV()};
                 result = toData(moved);
+            } else if (std::holds_alternative<TrimmedSurface>(g) || std::holds_alternative<Part>(g)) {
+                // Every face and edge composed exactly (brep/part_deform.h, no degree cap: the
+                // document holds degrees up to 67); a trimmed surface alone as a part of one face.
+                const auto* t = std::get_if<TrimmedSurface>(&g);
+                const Part part = t ? singleFacePart(*t) : std::get<Part>(g);
+                PartDeformOptions deform;
+                deform.strength = w;
+                deform.threads = options.threads;
+                const DeformedPart moved = deformPart(part, RationalLattice(lattice), deform);
+                r.inside = moved.report.outsideFaces == 0;
+                r.degree = {moved.report.maxDegree};
+                if (std::holds_alternative<TrimmedSurface>(g)) {
+                    TrimmedSurfaceData d = toData(moved.part.faces.front().surface);
+                    for (auto& loop : d.loops)
+                        for (TrimCurveData& trim : loop) trim.edge = -1; // the part's edges were singleFacePart's
+                    result = std::move(d);
+                } else {
+                    result = toData(moved.part);
+                    note = std::to_string(moved.report.faces) + " faces composed exactly; edge tolerances x " +
+                           formatNumber(moved.report.lipschitz) + " (the lattice's Lipschitz bound), largest gap " +
+                           formatNumber(moved.report.maxGap);
+                }
             } else if (const auto* sub = std::get_if<SubdivisionObject>(&g)) {
                 const SubdivisionCage& cage = sub->cage();
                 const auto& data = std::get<SubdivisionSurfaceData>(o.data());

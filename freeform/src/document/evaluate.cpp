@@ -8,6 +8,7 @@
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
 #include "evaluation.h"
+#include "part_ops.h"
 #include "rational.h"
 
 namespace freeform {
@@ -47,6 +48,15 @@ Evaluation surfaceEvaluation(const Eigen::Ref<const Eigen::MatrixXd>& jet, const
             e.derivatives.push_back(jet.col(Patch::jetIndex(a, k - a)));
         }
     return e;
+}
+
+void gridEdges(std::vector<std::pair<int, int>>& edges, int rows, int cols)
+{
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            if (j + 1 < cols) edges.emplace_back(i * cols + j, i * cols + j + 1);
+            if (i + 1 < rows) edges.emplace_back(i * cols + j, (i + 1) * cols + j);
+        }
 }
 
 } // namespace detail
@@ -135,6 +145,7 @@ Evaluation evaluate(const TypedDocument& doc, const TypedObject& object, const s
     if (const auto* lattice = std::get_if<Lattice>(&object.geometry())) return evaluateLattice(what, *lattice, at, order);
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry())) return evaluateSubdivision(what, *s, at, order);
     if (auto e = detail::evaluateRational(what, object, at, order)) return std::move(*e);
+    if (auto e = detail::evaluatePartObject(what, object, at, order)) return std::move(*e);
     throw Error(what + ": eval does not support type \"" + object.type() + "\" yet");
 }
 
@@ -147,6 +158,7 @@ std::vector<double> parameterDomain(const TypedObject& object)
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry()))
         return {static_cast<double>(s->surface.faceCount()), 1, 1};
     if (auto d = detail::rationalDomain(object)) return *d;
+    if (auto d = detail::partDomain(object)) return *d;
     return {};
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "freeform/document/operations.h"
@@ -25,5 +26,8 @@ Evaluation curveEvaluation(const Eigen::Ref<const Eigen::MatrixXd>& derivatives,
 /// A surface's point, normal and partial derivatives of orders 1..order from its jet (columns by
 /// BezierSurface::jetIndex), keyed "u", "v", "uu", "uv", "vv", ... (u-order first).
 Evaluation surfaceEvaluation(const Eigen::Ref<const Eigen::MatrixXd>& jet, const Eigen::Vector3d& normal, int order);
+
+/// The edges of a rows x cols grid of points (index i * cols + j): along each row and each column.
+void gridEdges(std::vector<std::pair<int, int>>& edges, int rows, int cols);
 
 } // namespace freeform::detail

@@ -11,6 +11,7 @@
 #include "freeform/io/geometry_data.h"
 #include "../io/object_lookup.h"
 #include "overloaded.h"
+#include "part_data.h"
 
 namespace freeform {
 namespace {
@@ -77,6 +78,8 @@ Geometry build(const ObjectData& data, const std::string& directory, const std::
                 const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(d.weights.data(), static_cast<Eigen::Index>(d.weights.size()));
                 return NurbsSurface<double, 3>(d.degree[0], d.degree[1], d.knots[0], d.knots[1], PointMatrix<double, 3>(d.points), w);
             },
+            [](const TrimmedSurfaceData& d) -> Geometry { return detail::trimmedSurfaceFromData(d); },
+            [](const PartData& d) -> Geometry { return detail::partFromData(d); },
             [&](const SubdivisionSurfaceData& d) -> Geometry {
                 // surfaceFromData prefixes its own errors with `what`; unwrap below avoids doubling.
                 return SubdivisionObject{surfaceFromData(d, directory, what)};

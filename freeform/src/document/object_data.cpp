@@ -4,6 +4,9 @@
 
 #include "freeform/io/geometry_data.h"
 
+#include <type_traits>
+#include <variant>
+
 namespace freeform {
 namespace {
 
@@ -126,5 +129,20 @@ RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface
         }
     return d;
 }
+
+PointColumns* dataPoints(ObjectData& data)
+{
+    return std::visit(
+        [](auto& d) -> PointColumns* {
+            using T = std::decay_t<decltype(d)>;
+            if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) return &d.vertices;
+            else if constexpr (std::is_same_v<T, TrimmedSurfaceData>) return &d.surface.points;
+            else if constexpr (std::is_same_v<T, PartData>) return nullptr;
+            else return &d.points;
+        },
+        data);
+}
+
+const PointColumns* dataPoints(const ObjectData& data) { return dataPoints(const_cast<ObjectData&>(data)); }
 
 } // namespace freeform

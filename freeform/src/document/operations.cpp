@@ -8,12 +8,15 @@
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
 #include "freeform/curve/nurbs_continuity.h"
+#include "evaluation.h"
+#include "part_ops.h"
 #include "rational.h"
 #include "overloaded.h"
 
 namespace freeform {
 namespace {
 
+using detail::gridEdges;
 using detail::Overloaded;
 
 Eigen::Matrix<double, 3, Eigen::Dynamic> to3d(const PointColumns& p)
@@ -29,14 +32,6 @@ void polygonEdges(std::vector<std::pair<int, int>>& edges, int count, bool close
     if (closed && count > 2) edges.emplace_back(count - 1, 0);
 }
 
-void gridEdges(std::vector<std::pair<int, int>>& edges, int rows, int cols)
-{
-    for (int i = 0; i < rows; ++i)
-        for (int j = 0; j < cols; ++j) {
-            if (j + 1 < cols) edges.emplace_back(i * cols + j, i * cols + j + 1);
-            if (i + 1 < rows) edges.emplace_back(i * cols + j, (i + 1) * cols + j);
-        }
-}
 
 std::string splineError(const TypedDocument& doc, const TypedObject& object)
 {
@@ -113,6 +108,7 @@ std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const Obj
         }
         return mesh;
     }
+    if (auto mesh = detail::tessellatePartObject(object, options, report)) return mesh;
     return detail::tessellateRationalObject(object, options, report);
 }
 
@@ -125,7 +121,7 @@ std::optional<Eigen::Matrix<double, 3, Eigen::Dynamic>> objectPolyline(const Typ
 ControlNet controlNet(const TypedObject& object)
 {
     ControlNet net;
-    if (detail::rationalControlNet(object, net)) return net;
+    if (detail::rationalControlNet(object, net) || detail::partControlNet(object, net)) return net;
     std::visit(
         Overloaded{
             [&](const BezierCurveData& d) {
@@ -171,7 +167,7 @@ ControlNet controlNet(const TypedObject& object)
                     }
                 net.edges.assign(edges.begin(), edges.end());
             },
-            [](const auto&) {}, // the rational types: rationalControlNet above
+            [](const auto&) {}, // the rational types, parts: rationalControlNet, partControlNet above
         },
         object.data());
     return net;
@@ -180,7 +176,10 @@ ControlNet controlNet(const TypedObject& object)
 DocumentTessellation tessellateDocument(const TypedDocument& doc, const TypedObject* object,
                                         const TessellationOptions& options)
 {
-    auto rationalSurface = [](const TypedObject& o) { return o.info().rational && o.info().isSurface(); };
+    // Rational surfaces, trimmed surfaces and parts: each meshed alone (tessellateObject).
+    auto rationalSurface = [](const TypedObject& o) {
+        return o.info().rational && (o.info().isSurface() || o.info().nature == KindNature::Part);
+    };
     PatchComplex complex;
     std::vector<const TypedObject*> rational;
     if (object) {

@@ -81,14 +81,6 @@ void polygonEdges(std::vector<std::pair<int, int>>& edges, int count)
     for (int i = 0; i + 1 < count; ++i) edges.emplace_back(i, i + 1);
 }
 
-void gridEdges(std::vector<std::pair<int, int>>& edges, int rows, int cols)
-{
-    for (int i = 0; i < rows; ++i)
-        for (int j = 0; j < cols; ++j) {
-            if (j + 1 < cols) edges.emplace_back(i * cols + j, i * cols + j + 1);
-            if (i + 1 < rows) edges.emplace_back(i * cols + j, (i + 1) * cols + j);
-        }
-}
 
 Eigen::Matrix<double, 3, Eigen::Dynamic> to3d(const PointColumns& p)
 {

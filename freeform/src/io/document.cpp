@@ -16,27 +16,12 @@
 #include "freeform/core/error.h"
 #include "freeform/io/file.h"
 #include "freeform/io/json_check.h"
+#include "document_json.h"
 #include "object_lookup.h"
 
 namespace freeform {
 
-using Json = nlohmann::ordered_json;
-
-namespace {
-
-/// Context for messages: "source: object \"name\": field \"points\"".
-struct Where {
-    std::string source;
-    std::string object;
-
-    [[noreturn]] void fail(const std::string& field, const std::string& message) const
-    {
-        std::string where = source + ": ";
-        if (!object.empty()) where += object + ": ";
-        if (!field.empty()) where += "field \"" + field + "\": ";
-        throw Error(where + message);
-    }
-};
+namespace document_json {
 
 std::string typeName(const Json& j)
 {
@@ -132,19 +117,6 @@ std::vector<double> positiveNumbers(const Json& j, const std::string& field, con
 std::vector<double> positiveList(const Json& j, const std::string& field, const Where& w)
 {
     return positiveNumbers(j, field, "interval length", w);
-}
-
-template <std::size_t N>
-std::array<int, N> degreeArray(const Json& j, const Where& w)
-{
-    if (!j.is_array() || j.size() != N)
-        w.fail("degree", "expected an array of " + std::to_string(N) + " integers");
-    std::array<int, N> out{};
-    for (std::size_t i = 0; i < N; ++i) {
-        out[i] = integer(j[i], "degree[" + std::to_string(i) + "]", w);
-        if (out[i] < 1 || out[i] > 67) w.fail("degree[" + std::to_string(i) + "]", "must be in 1..67");
-    }
-    return out;
 }
 
 /// Rejects members of obj not in allowed.
@@ -263,6 +235,39 @@ void patchGrid(const Json& obj, std::array<int, 2>& degree, PointColumns& points
                              std::to_string(degree[0] + 1) + " x " + std::to_string(degree[1] + 1));
 }
 
+NurbsCurveData nurbsCurveFields(const Json& obj, int dim, const Where& w)
+{
+    NurbsCurveData d;
+    d.degree = curveDegree(obj, w);
+    d.points = pointList(member(obj, "points", w), "points", dim, w);
+    const long count = static_cast<long>(d.points.cols());
+    if (count < d.degree + 1)
+        w.fail("points", std::to_string(count) + " points are too few for degree " + std::to_string(d.degree) +
+                             " (needs at least " + std::to_string(d.degree + 1) + ")");
+    d.knots = knotList(member(obj, "knots", w), "knots", d.degree, count, w);
+    d.weights = weightsOf(obj, 0, static_cast<int>(count), false, w);
+    return d;
+}
+
+NurbsSurfaceData nurbsSurfaceFields(const Json& obj, const Where& w)
+{
+    NurbsSurfaceData d;
+    d.degree = degreeArray<2>(member(obj, "degree", w), w);
+    d.points = pointGrid(member(obj, "points", w), d.rows, d.cols, w);
+    if (d.rows < d.degree[0] + 1)
+        w.fail("points", std::to_string(d.rows) + " rows are too few for degree " + std::to_string(d.degree[0]) +
+                             " in u (needs at least " + std::to_string(d.degree[0] + 1) + ")");
+    if (d.cols < d.degree[1] + 1)
+        w.fail("points", std::to_string(d.cols) + " points per row are too few for degree " +
+                             std::to_string(d.degree[1]) + " in v (needs at least " + std::to_string(d.degree[1] + 1) + ")");
+    const Json& knots = member(obj, "knots", w);
+    if (!knots.is_array() || knots.size() != 2) w.fail("knots", "expected an array of two knot vectors (u, v)");
+    d.knots[0] = knotList(knots[0], "knots[0]", d.degree[0], d.rows, w);
+    d.knots[1] = knotList(knots[1], "knots[1]", d.degree[1], d.cols, w);
+    d.weights = weightsOf(obj, d.rows, d.cols, false, w);
+    return d;
+}
+
 ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
 {
     const std::optional<ObjectKind> kind = kindNamed(type);
@@ -281,37 +286,16 @@ ObjectData parseObject(const Json& obj, const std::string& type, const Where& w)
         d.weights = weightsOf(obj, d.degree[0] + 1, d.degree[1] + 1, true, w);
         return d;
     }
-    case ObjectKind::NurbsCurve: {
+    case ObjectKind::NurbsCurve:
         onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
-        NurbsCurveData d;
-        d.degree = curveDegree(obj, w);
-        d.points = pointList(member(obj, "points", w), "points", 0, w);
-        const long count = static_cast<long>(d.points.cols());
-        if (count < d.degree + 1)
-            w.fail("points", std::to_string(count) + " points are too few for degree " + std::to_string(d.degree) +
-                                 " (needs at least " + std::to_string(d.degree + 1) + ")");
-        d.knots = knotList(member(obj, "knots", w), "knots", d.degree, count, w);
-        d.weights = weightsOf(obj, 0, static_cast<int>(count), false, w);
-        return d;
-    }
-    case ObjectKind::NurbsSurface: {
+        return nurbsCurveFields(obj, 0, w);
+    case ObjectKind::NurbsSurface:
         onlyKnown(obj, {"name", "type", "degree", "knots", "points", "weights", "editor"}, w);
-        NurbsSurfaceData d;
-        d.degree = degreeArray<2>(member(obj, "degree", w), w);
-        d.points = pointGrid(member(obj, "points", w), d.rows, d.cols, w);
-        if (d.rows < d.degree[0] + 1)
-            w.fail("points", std::to_string(d.rows) + " rows are too few for degree " + std::to_string(d.degree[0]) +
-                                 " in u (needs at least " + std::to_string(d.degree[0] + 1) + ")");
-        if (d.cols < d.degree[1] + 1)
-            w.fail("points", std::to_string(d.cols) + " points per row are too few for degree " +
-                                 std::to_string(d.degree[1]) + " in v (needs at least " + std::to_string(d.degree[1] + 1) + ")");
-        const Json& knots = member(obj, "knots", w);
-        if (!knots.is_array() || knots.size() != 2) w.fail("knots", "expected an array of two knot vectors (u, v)");
-        d.knots[0] = knotList(knots[0], "knots[0]", d.degree[0], d.rows, w);
-        d.knots[1] = knotList(knots[1], "knots[1]", d.degree[1], d.cols, w);
-        d.weights = weightsOf(obj, d.rows, d.cols, false, w);
-        return d;
-    }
+        return nurbsSurfaceFields(obj, w);
+    case ObjectKind::TrimmedSurface:
+        return trimmedSurfaceObject(obj, w);
+    case ObjectKind::Part:
+        return partObject(obj, w);
     case ObjectKind::BezierCurve: {
         onlyKnown(obj, {"name", "type", "points", "editor"}, w);
         BezierCurveData d;
@@ -573,29 +557,35 @@ struct ObjectWriter {
         patch(d.degree, d.points);
         j["weights"] = weightsGridJson(d.weights, d.degree[0] + 1, d.degree[1] + 1);
     }
-    void operator()(const NurbsCurveData& d) const
-    {
-        j["degree"] = d.degree;
-        j["knots"] = d.knots;
-        j["points"] = pointsJson(d.points);
-        if (!d.weights.empty()) j["weights"] = d.weights;
-    }
-    void operator()(const NurbsSurfaceData& d) const
-    {
-        j["degree"] = d.degree;
-        j["knots"] = Json::array({Json(d.knots[0]), Json(d.knots[1])});
-        j["points"] = gridJson(d.points, d.rows, d.cols);
-        if (!d.weights.empty()) j["weights"] = weightsGridJson(d.weights, d.rows, d.cols);
-    }
+    void operator()(const NurbsCurveData& d) const { writeNurbsCurve(j, d); }
+    void operator()(const NurbsSurfaceData& d) const { writeNurbsSurface(j, d); }
+    void operator()(const TrimmedSurfaceData& d) const { writeTrimmedSurface(j, d); }
+    void operator()(const PartData& d) const { writePart(j, d); }
 };
 
-} // namespace
+void writeNurbsCurve(Json& j, const NurbsCurveData& d)
+{
+    j["degree"] = d.degree;
+    j["knots"] = d.knots;
+    j["points"] = pointsJson(d.points);
+    if (!d.weights.empty()) j["weights"] = d.weights;
+}
+
+void writeNurbsSurface(Json& j, const NurbsSurfaceData& d)
+{
+    j["degree"] = d.degree;
+    j["knots"] = Json::array({Json(d.knots[0]), Json(d.knots[1])});
+    j["points"] = gridJson(d.points, d.rows, d.cols);
+    if (!d.weights.empty()) j["weights"] = weightsGridJson(d.weights, d.rows, d.cols);
+}
+
+} // namespace document_json
 
 namespace {
 constexpr std::string_view kindNames[] = {"bezier_curve",   "bezier_spline", "deboor_spline",      "bezier_surface",
                                           "deboor_surface", "lattice",       "subdivision_surface",
                                           "rational_bezier_curve", "rational_bezier_surface", "nurbs_curve",
-                                          "nurbs_surface"};
+                                          "nurbs_surface", "trimmed_surface", "part"};
 static_assert(std::variant_size_v<ObjectData> == std::size(kindNames));
 static_assert(objectKindCount == std::size(kindNames));
 } // namespace
@@ -661,6 +651,7 @@ const DocumentObject* Document::find(const std::string& name) const
 
 Document parseDocument(const std::string& text, const std::string& sourceName)
 {
+    using namespace document_json;
     checkJsonText(text, sourceName); // depth limit and duplicate keys (docs/mesh-io.md, "Hostile input")
     Json root;
     try {
@@ -721,12 +712,12 @@ namespace {
 
 // An editor member held as text (a Document built in memory need not come from readDocument)
 // passes the one JSON gate before it becomes a tree: nlohmann's dump below recurses on depth.
-Json editorJson(const std::string& text, const std::string& source)
+document_json::Json editorJson(const std::string& text, const std::string& source)
 {
     checkJsonText(text, source);
     try {
-        return Json::parse(text);
-    } catch (const Json::exception& e) {
+        return document_json::Json::parse(text);
+    } catch (const document_json::Json::exception& e) {
         throw Error(source + ": not valid JSON: " + e.what());
     }
 }
@@ -735,6 +726,7 @@ Json editorJson(const std::string& text, const std::string& source)
 
 std::string formatDocument(const Document& document)
 {
+    using namespace document_json;
     Json root;
     root["format"] = "freeform";
     root["version"] = 1;

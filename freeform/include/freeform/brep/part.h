@@ -63,6 +63,13 @@ struct Part {
     double area(double relative = 1e-10) const;
 };
 
+/// A trimmed surface as a part of one face (no shell): each of its trim curves becomes an edge of
+/// its own, without a 3D curve (the trim through the surface is the edge), from a vertex where it
+/// starts to the next trim's; a vertex's and an edge's tolerance is the gap in space between the
+/// two trim ends that meet there. So the part's mesh, deformation and writers apply to a surface
+/// that stands alone.
+Part singleFacePart(const TrimmedSurface& surface);
+
 struct PartCheck {
     int openEdges = 0;        // used by exactly one face of a shell
     int nonManifoldEdges = 0; // used by more than two faces of a shell

@@ -18,13 +18,14 @@ enum class KindNature {
     Curve,   ///< one parameter, 2D or 3D
     Surface, ///< two parameters (a subdivision surface: FACE,U,V on its cage's faces)
     Volume,  ///< three parameters: the FFD lattice
+    Part,    ///< a CAD part: trimmed faces stitched along edges (a B-rep); FACE,U,V on its faces
 };
 
 /// The parameter an evaluation takes (`freeform eval --at`, Python's evaluate).
 enum class KindParameters {
     T,      ///< a curve's t or a spline's global T
     UV,     ///< a surface's (u, v)
-    FaceUV, ///< a subdivision surface's face and (u, v) in it
+    FaceUV, ///< a subdivision surface's or a part's face and (u, v) in it
     STU,    ///< a lattice's (s, t, u) in [0, 1]^3
 };
 

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "freeform/brep/part.h"
 #include "freeform/curve/aframe.h"
 #include "freeform/curve/bezier_curve.h"
 #include "freeform/curve/bezier_spline.h"
@@ -64,7 +65,7 @@ using Geometry = std::variant<BezierCurve<double, 2>, BezierCurve<double, 3>, Be
                               BezierSpline<double, 3>, DeBoorSpline<2>, DeBoorSpline<3>, BezierSurface<double, 3>,
                               DeBoorSurface, Lattice, SubdivisionObject, RationalBezierCurve<double, 2>,
                               RationalBezierCurve<double, 3>, RationalBezierSurface<double, 3>, NurbsCurve<double, 2>,
-                              NurbsCurve<double, 3>, NurbsSurface<double, 3>>;
+                              NurbsCurve<double, 3>, NurbsSurface<double, 3>, TrimmedSurface, Part>;
 
 /// The geometry of a data object. documentDirectory resolves a subdivision cage's relative mesh
 /// path; Error prefixed with `what` (e.g. `doc.json: object "c"`) when the data is not valid.

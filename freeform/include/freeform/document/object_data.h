@@ -3,6 +3,7 @@
 // fields as docs/format.md spells them), what every front end writes back into a document after
 // an edit, a conversion or a deformation, said once here.
 
+#include "freeform/brep/part.h"
 #include "freeform/curve/nurbs_curve.h"
 #include "freeform/curve/rational_bezier_curve.h"
 #include "freeform/document/model.h"
@@ -37,7 +38,17 @@ DeBoorSplineData toData(const DeBoorSpline<3>& spline);
 BezierSurfaceData toData(const BezierSurface<double, 3>& surface);
 DeBoorSurfaceData toData(const DeBoorSurface& surface);
 LatticeData toData(const Lattice& lattice);
+/// A trimmed_surface: its NURBS, parameter maps, parameter box and loops (src/document/part_data.cpp).
+TrimmedSurfaceData toData(const TrimmedSurface& surface);
+/// A part: every face, edge and vertex, the shells and solids, the units.
+PartData toData(const Part& part);
 SubdivisionSurfaceData toData(const SubdivisionObject& surface);
 ObjectData toData(const Geometry& geometry);
+
+/// The control points of an object as its data holds them (dim x count): a curve's, surface's or
+/// lattice's points, a subdivision cage's inline vertices (empty when its mesh is a file), a
+/// trimmed surface's NURBS grid; nullptr for a part (its faces are not edited point by point).
+const PointColumns* dataPoints(const ObjectData& data);
+PointColumns* dataPoints(ObjectData& data);
 
 } // namespace freeform

@@ -31,14 +31,20 @@ namespace freeform {
 ///   lattice             at = {s, t, u} in [0,1]^3, order 0 or 1; keys "s", "t", "u" and det
 ///                       (det J of the world-space map);
 ///   subdivision_surface at = {face, u, v}; order 0 or 1 (the first derivatives are always given,
-///                       keys "u", "v"); normal.
+///                       keys "u", "v"); normal;
+///   trimmed_surface     at = {u, v} in the file's parameters, inside the face's parameter box;
+///                       order 0 or 1 (keys "u", "v"); normal; trim (inside, outside, boundary);
+///   part                at = {face, u, v}: as trimmed_surface on that face, the normal outward
+///                       (negated on a reversed face).
 struct Evaluation {
     Eigen::VectorXd point;
     std::vector<Eigen::VectorXd> derivatives;
     std::vector<std::string> keys; // empty for curves and splines, else one per derivative
     std::optional<Eigen::Vector3d> normal;
     std::optional<double> det; // lattice, order 1
-    int face = -1;             // subdivision_surface
+    int face = -1;             // subdivision_surface, part
+    /// trimmed_surface, part: where (u, v) lies against the face's trims (TrimmedSurface::classify).
+    std::optional<TrimClass> trim;
 };
 
 /// Error (prefixed with the object) when the parameter count is wrong, the parameter lies outside

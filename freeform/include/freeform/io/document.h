@@ -20,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "freeform/brep/parameter_map.h"
 #include "freeform/io/file.h"
 #include "freeform/volume/lattice.h"
 
@@ -106,9 +107,63 @@ struct NurbsSurfaceData {
     std::vector<double> weights; // rows*cols, same index, or empty (all 1, not written)
 };
 
+/// A NURBS curve of a CAD form in the file's parameter t (brep/exact_forms.h: point(t) =
+/// nurbs(map(t)) on [first, last]); map empty: the identity.
+struct MappedCurveData {
+    NurbsCurveData nurbs;
+    ParameterMap map;
+    double first = 0, last = 1;
+};
+
+/// One trim curve of a loop (2D, in the face's parameters), traversed from last to first when
+/// reversed, on the part's edge `edge` (-1: none).
+struct TrimCurveData {
+    MappedCurveData curve;
+    bool reversed = false;
+    int edge = -1;
+};
+
+/// A trimmed surface (brep/trimmed_surface.h): a NURBS surface with a parameter map per direction,
+/// the parameter box of the face (u0, u1, v0, v1) and its loops (the first the outer boundary; no
+/// loops: the whole box).
+struct TrimmedSurfaceData {
+    NurbsSurfaceData surface;
+    std::array<ParameterMap, 2> map{};
+    std::array<double, 4> domain{0, 1, 0, 1};
+    std::vector<std::vector<TrimCurveData>> loops;
+};
+
+/// A part (brep/part.h): faces, edges, vertices, shells and solids, indices into each other.
+struct PartFaceData {
+    TrimmedSurfaceData surface;
+    bool reversed = false;
+    std::string kind;     // the file's surface kind ("plane", "bspline", ...), empty when unknown
+    double tolerance = 0;
+};
+struct PartEdgeData {
+    std::optional<MappedCurveData> curve; // none: degenerate, or only pcurves
+    double first = 0, last = 0;
+    int start = -1, end = -1;
+    double tolerance = 0;
+    bool degenerate = false;
+};
+struct PartVertexData {
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    double tolerance = 0;
+};
+struct PartData {
+    std::string units = "mm";
+    std::vector<PartFaceData> faces;
+    std::vector<PartEdgeData> edges;
+    std::vector<PartVertexData> vertices;
+    std::vector<std::vector<int>> shells; // face indices
+    std::vector<std::vector<int>> solids; // shell indices
+};
+
 using ObjectData = std::variant<BezierCurveData, BezierSplineData, DeBoorSplineData, BezierSurfaceData,
                                 DeBoorSurfaceData, LatticeData, SubdivisionSurfaceData, RationalBezierCurveData,
-                                RationalBezierSurfaceData, NurbsCurveData, NurbsSurfaceData>;
+                                RationalBezierSurfaceData, NurbsCurveData, NurbsSurfaceData, TrimmedSurfaceData,
+                                PartData>;
 
 struct DocumentObject {
     std::string name;
@@ -141,8 +196,10 @@ enum class ObjectKind {
     RationalBezierSurface,
     NurbsCurve,
     NurbsSurface,
+    TrimmedSurface,
+    Part,
 };
-inline constexpr int objectKindCount = 11;
+inline constexpr int objectKindCount = 13;
 
 inline ObjectKind objectKind(const ObjectData& data) { return static_cast<ObjectKind>(data.index()); }
 

@@ -1,0 +1,113 @@
+// eval, tessellate and the control net of trimmed_surface and part objects (document/operations.h;
+// docs/format.md, "Trimmed surfaces and parts"). A part's faces are meshed together by
+// tessellatePart (brep/part_mesh.h: each edge discretised once, so a closed solid gives a closed
+// mesh); a trimmed surface alone is a part of one face without edges.
+
+#include "part_ops.h"
+
+#include "freeform/brep/part_mesh.h"
+#include "freeform/core/error.h"
+#include "freeform/core/format.h"
+#include "evaluation.h"
+
+namespace freeform::detail {
+namespace {
+
+/// A trimmed surface at (u, v) in the file's parameters: the point, the unit normal (negated for a
+/// reversed face), and with order 1 the first derivatives in those parameters (the NURBS's at
+/// (mapU(u), mapV(v)) times the maps' slopes).
+Evaluation evaluateFace(const std::string& what, const TrimmedSurface& face, bool reversed, double u, double v, int order)
+{
+    if (order > 1)
+        throw Error(what + ": a trimmed surface gives first derivatives only (--derivatives 0 or 1), not " + std::to_string(order));
+    const Box<double, 2>& box = face.domain();
+    inDomain(what, "u", u, box.min().x(), box.max().x(), "face");
+    inDomain(what, "v", v, box.min().y(), box.max().y(), "face");
+    const MappedSurface& s = face.surface();
+    const auto jet = s.nurbs.jet(s.mapU(u), s.mapV(v), order);
+    Evaluation e;
+    e.point = jet.col(0);
+    const Eigen::Vector3d n = face.normal(u, v);
+    e.normal = reversed ? Eigen::Vector3d(-n) : n;
+    if (order == 1) {
+        e.keys = {"u", "v"};
+        e.derivatives = {jet.col(1) * s.mapU.derivative(u), jet.col(2) * s.mapV.derivative(v)};
+    }
+    e.trim = face.classify(Eigen::Vector2d(u, v));
+    return e;
+}
+
+} // namespace
+
+std::optional<Evaluation> evaluatePartObject(const std::string& what, const TypedObject& object,
+                                             const std::vector<double>& at, int order)
+{
+    if (const auto* t = std::get_if<TrimmedSurface>(&object.geometry())) {
+        expectCount(what, at, 2, "U,V");
+        return evaluateFace(what, *t, false, at[0], at[1], order);
+    }
+    if (const auto* p = std::get_if<Part>(&object.geometry())) {
+        expectCount(what, at, 3, "FACE,U,V");
+        const auto faces = static_cast<double>(p->faces.size());
+        if (at[0] != std::floor(at[0]) || at[0] < 0 || at[0] >= faces)
+            throw Error(what + ": FACE must be an integer in 0.." + std::to_string(p->faces.size() - 1) + " (FACE,U,V)");
+        const int f = static_cast<int>(at[0]);
+        const PartFace& face = p->faces[static_cast<std::size_t>(f)];
+        Evaluation e = evaluateFace(what + ": face " + std::to_string(f), face.surface, face.reversed, at[1], at[2], order);
+        e.face = f;
+        return e;
+    }
+    return std::nullopt;
+}
+
+std::optional<std::vector<double>> partDomain(const TypedObject& object)
+{
+    if (const auto* t = std::get_if<TrimmedSurface>(&object.geometry())) {
+        const Box<double, 2>& b = t->domain();
+        return std::vector<double>{b.min().x(), b.max().x(), b.min().y(), b.max().y()};
+    }
+    if (const auto* p = std::get_if<Part>(&object.geometry())) return std::vector<double>{static_cast<double>(p->faces.size())};
+    return std::nullopt;
+}
+
+std::optional<PolygonMesh> tessellatePartObject(const TypedObject& object, const ObjectTessellation& options,
+                                                TessellationReport* report)
+{
+    const Part* part = std::get_if<Part>(&object.geometry());
+    Part single;
+    if (const auto* t = std::get_if<TrimmedSurface>(&object.geometry())) {
+        single = singleFacePart(*t);
+        part = &single;
+    }
+    if (!part) return std::nullopt;
+    PartMeshOptions o;
+    // Without a tolerance (the editor's uniform mode): a fixed fraction of the part's size, finer
+    // as the segment count grows (8 segments: 1/400 of the box diagonal).
+    const double diagonal = part->bounds().diagonal().norm();
+    o.tolerance = options.tolerance > 0 ? options.tolerance : diagonal / (50.0 * std::max(1, options.segments));
+    PartMesh mesh = tessellatePart(*part, o);
+    if (options.flip) {
+        for (int f = 0; f < mesh.mesh.faceCount(); ++f)
+            std::swap(mesh.mesh.faceVertices[3 * f + 1], mesh.mesh.faceVertices[3 * f + 2]);
+        mesh.mesh.normals = -mesh.mesh.normals;
+    }
+    if (report) {
+        *report = {};
+        report->errorBound = mesh.report.errorBound;
+        report->patchBound = mesh.report.faceBound;
+        report->worstRatio = o.tolerance > 0 ? mesh.report.errorBound / o.tolerance : 0;
+    }
+    return std::move(mesh.mesh);
+}
+
+bool partControlNet(const TypedObject& object, ControlNet& net)
+{
+    if (const auto* d = std::get_if<TrimmedSurfaceData>(&object.data())) {
+        net.points = d->surface.points;
+        gridEdges(net.edges, d->surface.rows, d->surface.cols);
+        return true;
+    }
+    return std::holds_alternative<PartData>(object.data()); // no net drawn for a part
+}
+
+} // namespace freeform::detail
