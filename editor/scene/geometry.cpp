@@ -126,6 +126,7 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
         options.tolerance = t.mode == Tessellation::Mode::Uniform ? 0 : tol;
         options.segments = t.segments;
         options.flip = t.flip;
+        options.splitFaces = true; // a part's faces shaded apart (creases stay sharp)
         if (view.on() && t.mode == Tessellation::Mode::Adaptive && !(t.tolerance > 0)) {
             // Per patch to the view: each patch's tolerance from its own control-point box.
             if (const auto surface = AnySurface::of(object)) {

@@ -5,6 +5,8 @@
 
 #include "part_ops.h"
 
+#include <map>
+
 #include "freeform/brep/part_mesh.h"
 #include "freeform/core/error.h"
 #include "freeform/core/format.h"
@@ -12,6 +14,44 @@
 
 namespace freeform::detail {
 namespace {
+
+/// The mesh with each face's triangles on vertices of their own and area-weighted normals of that
+/// face's triangles only.
+PolygonMesh splitByFace(const PolygonMesh& mesh, const std::vector<int>& triangleFace)
+{
+    PolygonMesh out;
+    std::map<std::pair<int, int>, int> index; // (face, vertex) -> new vertex
+    std::vector<Eigen::Vector3d> positions, normals;
+    std::vector<int> triangles;
+    for (int t = 0; t < mesh.faceCount(); ++t) {
+        const int face = triangleFace[static_cast<std::size_t>(t)];
+        int corner[3];
+        for (int k = 0; k < 3; ++k) {
+            const int v = mesh.faceVertices[static_cast<std::size_t>(3 * t + k)];
+            const auto [it, added] = index.try_emplace({face, v}, static_cast<int>(positions.size()));
+            if (added) {
+                positions.push_back(mesh.positions.col(v));
+                normals.push_back(Eigen::Vector3d::Zero());
+            }
+            corner[k] = it->second;
+        }
+        const Eigen::Vector3d a = positions[static_cast<std::size_t>(corner[0])];
+        const Eigen::Vector3d n = (positions[static_cast<std::size_t>(corner[1])] - a).cross(positions[static_cast<std::size_t>(corner[2])] - a);
+        for (int k = 0; k < 3; ++k) {
+            normals[static_cast<std::size_t>(corner[k])] += n;
+            triangles.push_back(corner[k]);
+        }
+    }
+    out.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
+    out.normals.resize(3, static_cast<Eigen::Index>(positions.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        out.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
+        const double length = normals[i].norm();
+        out.normals.col(static_cast<Eigen::Index>(i)) = length > 0 ? Eigen::Vector3d(normals[i] / length) : Eigen::Vector3d::Zero();
+    }
+    for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) out.addFace({triangles[t], triangles[t + 1], triangles[t + 2]});
+    return out;
+}
 
 /// A trimmed surface at (u, v) in the file's parameters: the point, the unit normal (negated for a
 /// reversed face), and with order 1 the first derivatives in those parameters (the NURBS's at
@@ -86,6 +126,7 @@ std::optional<PolygonMesh> tessellatePartObject(const TypedObject& object, const
     const double diagonal = part->bounds().diagonal().norm();
     o.tolerance = options.tolerance > 0 ? options.tolerance : diagonal / (50.0 * std::max(1, options.segments));
     PartMesh mesh = tessellatePart(*part, o);
+    if (options.splitFaces) mesh.mesh = splitByFace(mesh.mesh, mesh.triangleFace);
     if (options.flip) {
         for (int f = 0; f < mesh.mesh.faceCount(); ++f)
             std::swap(mesh.mesh.faceVertices[3 * f + 1], mesh.mesh.faceVertices[3 * f + 2]);

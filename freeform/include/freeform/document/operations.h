@@ -101,6 +101,10 @@ struct ObjectTessellation {
     /// cell's min(tolerance, toleranceOf(box)) (SubdivisionTessellationOptions::toleranceOf;
     /// empty: `tolerance` everywhere); other types ignore it.
     std::function<double(const Eigen::AlignedBox3d&)> toleranceOf;
+    /// part and trimmed_surface: each face's triangles on vertices of their own, with normals
+    /// averaged over that face only (how a viewer shades the creases between faces); false: the
+    /// watertight mesh, every edge's vertices shared by its faces, no normals.
+    bool splitFaces = false;
 };
 
 /// The triangle mesh of a bezier_surface, deboor_surface (tessellate()) or subdivision_surface
