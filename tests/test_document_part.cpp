@@ -158,6 +158,28 @@ TEST_CASE("the plate's mesh is closed and holds the plate's volume within the bo
     const double area = 2 * (1200 - 36 * std::numbers::pi) + 2 * (40 + 30) * 10 + 2 * std::numbers::pi * 6 * 10;
     CHECK(std::abs(meshVolume(*mesh) - volume) <= report.errorBound * area * 1.01);
     CHECK(meshVolume(*mesh) > 0); // outward triangles
+
+    // Split by face (the editor's shading): every planar face's vertices carry its own normal, the
+    // hole's point to its axis; the same triangles, more vertices (each edge's once per face).
+    settings.splitFaces = true;
+    const std::optional<PolygonMesh> split = tessellateObject(o, settings);
+    REQUIRE(split);
+    CHECK(split->faceCount() == mesh->faceCount());
+    CHECK(split->vertexCount() > mesh->vertexCount());
+    REQUIRE(split->normals.cols() == split->vertexCount());
+    int planar = 0;
+    for (int v = 0; v < split->vertexCount(); ++v) {
+        const Eigen::Vector3d n = split->normals.col(v), p = split->positions.col(v);
+        const bool side = std::abs(std::hypot(p.x() - 20, p.y() - 15) - 6) <= 1e-9 && p.z() > 1e-9 && p.z() < 10 - 1e-9;
+        if (side) continue; // the hole's wall: a smooth average of its own triangles
+        const int axes = (std::abs(n.x()) > 1 - 1e-12) + (std::abs(n.y()) > 1 - 1e-12) + (std::abs(n.z()) > 1 - 1e-12);
+        const bool onHole = std::abs(std::hypot(p.x() - 20, p.y() - 15) - 6) <= 1e-9;
+        if (!onHole) {
+            CHECK(axes == 1);
+            ++planar;
+        }
+    }
+    CHECK(planar > 0);
 }
 
 TEST_CASE("a lattice moves a part exactly: affine images and the lattice at every face point", "[part]")
