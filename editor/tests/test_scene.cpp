@@ -130,6 +130,48 @@ TEST_CASE("importing a .bpt orients the teapot outwards", "[editor]")
     CHECK(faceNormal.dot(body.normals.col(t[0])) > 0);
 }
 
+TEST_CASE("a part opens shaded face by face, its points not editable, and saves back the same bytes", "[editor]")
+{
+    // data/parts/plate.json: a 40 x 30 x 10 plate with a hole of radius 6 (docs/cad.md, "Documents").
+    Scene scene = Scene::load(kSource + "/data/parts/plate.json");
+    REQUIRE(scene.itemCount() == 1);
+    scene.updateGeometry();
+    const ItemGeometry& g = scene.item(0).geometry;
+    INFO(g.error);
+    CHECK(g.error.empty());
+    REQUIRE(g.surface);
+    CHECK(g.netPoints.cols() == 0); // a part draws no control net
+    const PolygonMesh& m = *g.surface;
+    REQUIRE(m.normals.cols() == m.vertexCount());
+    // Each face on vertices of its own (ObjectTessellation::splitFaces): on the top face z = 10
+    // every vertex normal is +z (to the rounding of the slivers at the hole's rim), on the bottom -z, though the rims join other faces.
+    int top = 0, bottom = 0;
+    for (int f = 0; f < m.faceCount(); ++f) {
+        const int* t = m.face(f);
+        const bool flat = m.positions(2, t[0]) == m.positions(2, t[1]) && m.positions(2, t[1]) == m.positions(2, t[2]);
+        if (!flat) continue;
+        const double z = m.positions(2, t[0]);
+        for (int k = 0; k < 3; ++k) {
+            INFO(m.normals.col(t[k]).transpose() << " at " << m.positions.col(t[k]).transpose());
+            if (z == 10) CHECK(m.normals.col(t[k]).isApprox(Eigen::Vector3d(0, 0, 1), 1e-9));
+            if (z == 0) CHECK(m.normals.col(t[k]).isApprox(Eigen::Vector3d(0, 0, -1), 1e-9));
+        }
+        top += z == 10, bottom += z == 0;
+    }
+    CHECK(top > 0);
+    CHECK(bottom > 0);
+    CHECK(scene.controlPointCount(0) == 0);
+    CHECK_THROWS_WITH(scene.setControlPoint(0, 0, Eigen::Vector3d::Zero()), Catch::Contains("no control points to edit"));
+    const std::string out = kTmp + "/plate_saved.json";
+    fs::remove(out);
+    scene.save(out);
+    const std::string saved = test::slurp(out);
+    // The part's object is the file's, byte for byte (the editor adds its settings after it).
+    const std::string original = test::slurp(kSource + "/data/parts/plate.json");
+    const std::string objectText = original.substr(original.find("\"faces\""), original.find("\"solids\"") - original.find("\"faces\""));
+    CHECK(saved.find(objectText) != std::string::npos);
+}
+
 TEST_CASE("camera matrices are the transform.h matrices of its frame", "[editor][camera]")
 {
     Camera c;
