@@ -43,7 +43,13 @@ Json info(const InfoOptions& o)
 {
     expectPositional(o.positional, 1, "the mesh file (freeform info MESH)");
     const std::string& path = o.positional[0];
-    if (lowerExtension(path) == ".json") return partInfo(path, o.details); // a document's part
+    if (lowerExtension(path) == ".json") { // a document's part
+#ifdef FREEFORM_HAVE_CAD
+        return partInfo(path, o.details);
+#else
+        refusePartFile(path);
+#endif
+    }
     if (isPartFile(path)) {
 #ifdef FREEFORM_HAVE_CAD
         return partInfo(path, o.details);

@@ -127,11 +127,15 @@ Json tessellateCommand(const TessellateOptions& o)
             if (!given(o.toleranceGiven)) throw UsageError("a part needs --tolerance E (the certified distance bound)");
             if (o.outward || o.refinement != "local" || o.measure != "parametric")
                 throw UsageError("a part takes only --tolerance and --max-triangles");
+#ifdef FREEFORM_HAVE_CAD
             std::string name;
             const Part part = documentPart(input, object->name(), name);
             Json out = partMeshCommand(part, output, o.tolerance, o.maxTriangles);
             out["object"] = name;
             return out;
+#else
+            refusePartFile(input);
+#endif
         }
         result = tessellateDocument(doc, object, options); // the document layer (document/operations.h)
     }
