@@ -321,9 +321,18 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                     const auto [tb, depth] = stack.back();
                     const Eigen::Vector2d a = use.at(ta), b = use.at(tb);
                     const auto [axis, line] = use.grid->crossing(a, b);
-                    const bool room = depth < 200 && tb - ta > minStep && static_cast<int>(out.size() + ts.size()) < maxSamples;
+                    const std::size_t count = out.size() + stack.size() + (ts.size() - k - 1); // samples so far
+                    const bool full = count >= static_cast<std::size_t>(std::max(maxSamples, 2));
+                    // Every crossing of a grid line must be a sample (the face's cells are walked
+                    // from one to the next): where the cap stops that, the mesh cannot be made.
+                    if (axis >= 0 && full)
+                        throw Error("tessellatePart: an edge needs more than " + std::to_string(maxSamples) +
+                                    " samples at this tolerance (PartMeshOptions::maxEdgeSamples); use a coarser tolerance");
+                    const bool room = depth < 200 && tb - ta > minStep && !full;
                     double cut = std::numeric_limits<double>::quiet_NaN();
+                    bool crossed = false;
                     if (axis >= 0 && room) {
+                        crossed = true;
                         const bool below = a[axis] < line;
                         double lo = ta, hi = tb;
                         for (int it = 0; it < 200; ++it) {
@@ -343,7 +352,10 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                         ta = tb;
                         stack.pop_back();
                     } else {
-                        stack.back().second = depth + 1;
+                        // A cut at a crossing leaves the rest of the side one grid line fewer to
+                        // cross: its depth stays (an edge along thousands of grid lines is cut at
+                        // each), while halvings count towards the depth limit.
+                        if (!crossed) stack.back().second = depth + 1;
                         stack.push_back({cut, depth + 1});
                         changed = true;
                     }

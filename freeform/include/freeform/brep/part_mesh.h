@@ -37,7 +37,8 @@ namespace freeform {
 struct PartMeshOptions {
     double tolerance = 0;                 // > 0: the distance bound to aim for (the part's units)
     long long maxTriangles = 10'000'000;  // refuse (Error, with the estimate) a larger mesh; 0: no limit
-    int maxEdgeSamples = 200'000;         // per edge; where it binds, the bound grows instead
+    int maxEdgeSamples = 200'000;         // per edge; where it stops halvings the bound grows instead,
+                                          // where it stops a grid crossing: Error
 };
 
 struct PartMeshReport {
