@@ -6,6 +6,7 @@
 #include "freeform/brep/part.h"
 #include "freeform/cad/cad_file.h"
 #include "freeform/document/model.h"
+#include "freeform/document/operations.h"
 
 namespace freeform::cli {
 
@@ -26,29 +27,9 @@ void addPartCounts(Json& j, const Part& part, const PartCheck& check)
 Part documentPart(const std::string& path, const std::optional<std::string>& name, std::string& chosen)
 {
     const TypedDocument doc = TypedDocument::read(path);
-    auto partOf = [&](const TypedObject& o) -> std::optional<Part> {
-        if (const auto* p = std::get_if<Part>(&o.geometry())) return *p;
-        if (const auto* t = std::get_if<TrimmedSurface>(&o.geometry())) return singleFacePart(*t);
-        return std::nullopt;
-    };
-    if (name) {
-        const TypedObject& o = doc.object(*name);
-        std::optional<Part> p = partOf(o);
-        if (!p) throw Error(doc.what(o) + ": is a " + o.type() + ", not a part or trimmed_surface");
-        chosen = o.name();
-        return std::move(*p);
-    }
-    std::vector<const TypedObject*> found;
-    for (const TypedObject& o : doc.objects())
-        if (partOf(o)) found.push_back(&o);
-    if (found.empty()) throw Error(path + ": has no part or trimmed_surface object");
-    if (found.size() > 1) {
-        std::string list;
-        for (const TypedObject* o : found) list += (list.empty() ? "" : ", ") + o->name();
-        throw Error(path + ": has several parts (" + list + "); choose one with --object");
-    }
-    chosen = found.front()->name();
-    return std::move(*partOf(*found.front()));
+    const TypedObject& o = freeform::documentPart(doc, name);
+    chosen = o.name();
+    return *objectPart(o);
 }
 
 Json partReport(const Part& part, bool details)

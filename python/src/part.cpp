@@ -10,6 +10,7 @@
 #include "freeform/brep/part_mesh.h"
 #include "freeform/cad/cad_file.h"
 #include "freeform/document/model.h"
+#include "freeform/document/operations.h"
 #include "freeform/document/object_data.h"
 #include "lattice.h"
 #include "nurbs.h"
@@ -52,18 +53,11 @@ py::list indexLists(const std::vector<std::vector<int>>& lists)
     return out;
 }
 
-/// The document's part (its only part object), for Part.load of a .json file.
+/// The document's part (its only part or trimmed surface), for Part.load of a .json file.
 Part documentPart(const std::string& path)
 {
     const freeform::TypedDocument doc = freeform::TypedDocument::read(path);
-    const Part* found = nullptr;
-    for (const freeform::TypedObject& o : doc.objects())
-        if (const auto* p = std::get_if<Part>(&o.geometry())) {
-            if (found) throw freeform::Error(path + ": has several parts; load it as a Document and take one with object()");
-            found = p;
-        }
-    if (!found) throw freeform::Error(path + ": has no part object");
-    return *found;
+    return *freeform::objectPart(freeform::documentPart(doc));
 }
 
 } // namespace

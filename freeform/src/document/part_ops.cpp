@@ -152,3 +152,36 @@ bool partControlNet(const TypedObject& object, ControlNet& net)
 }
 
 } // namespace freeform::detail
+
+namespace freeform {
+
+std::optional<Part> objectPart(const TypedObject& object)
+{
+    if (const auto* p = std::get_if<Part>(&object.geometry())) return *p;
+    if (const auto* t = std::get_if<TrimmedSurface>(&object.geometry())) return singleFacePart(*t);
+    return std::nullopt;
+}
+
+const TypedObject& documentPart(const TypedDocument& doc, const std::optional<std::string>& name)
+{
+    auto isPart = [](const TypedObject& o) {
+        return std::holds_alternative<Part>(o.geometry()) || std::holds_alternative<TrimmedSurface>(o.geometry());
+    };
+    if (name) {
+        const TypedObject& o = doc.object(*name);
+        if (!isPart(o)) throw Error(doc.what(o) + ": is a " + o.type() + ", not a part or trimmed_surface");
+        return o;
+    }
+    std::vector<const TypedObject*> found;
+    for (const TypedObject& o : doc.objects())
+        if (isPart(o)) found.push_back(&o);
+    if (found.empty()) throw Error(doc.source + ": has no part or trimmed_surface object");
+    if (found.size() > 1) {
+        std::string list;
+        for (const TypedObject* o : found) list += (list.empty() ? "" : ", ") + o->name();
+        throw Error(doc.source + ": has several parts (" + list + "): name the one to take");
+    }
+    return *found.front();
+}
+
+} // namespace freeform

@@ -214,4 +214,16 @@ DeformDocumentReport deformDocument(TypedDocument& doc, const Lattice& lattice, 
 /// within a relative tolerance of 1e-12 of the lattice size (the rest lattice is).
 bool isAffineLattice(const Lattice& lattice, double strength = 1);
 
+// ---------------------------------------------------------------- parts (docs/cad.md)
+
+/// The part an object is, for what takes whole parts (STEP and IGES output, the part report): a
+/// part itself, or a trimmed surface as a part of one face (singleFacePart, brep/part.h); nullopt
+/// for every other kind.
+std::optional<Part> objectPart(const TypedObject& object);
+
+/// The document's part: the object named `name` (Error when it is of another kind), else the
+/// document's only part or trimmed surface (Error naming the document when there is none, or
+/// listing them when there are several).
+const TypedObject& documentPart(const TypedDocument& doc, const std::optional<std::string>& name = std::nullopt);
+
 } // namespace freeform
