@@ -68,6 +68,7 @@ public:
     bool saveAs(const std::string& path) override;
     void importFile(const std::string& path) override;
     void exportMesh(const std::string& path) override;
+    void exportPart(const std::string& path) override;
     void quit() override;
     void fit(bool selectionOnly) override;
     void setView(const std::string& name) override;

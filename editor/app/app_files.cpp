@@ -117,9 +117,13 @@ void App::importFile(const std::string& path)
     try {
         const std::optional<UpAxis> format = formatUpAxis(path);
         const UpAxis up = format.value_or(ui_.importUp);
-        scene_.importFile(path, up);
+        const int added = scene_.importFile(path, up);
         fit(false); // the camera takes in the scene with the imported object
-        if (scene_.itemCount() > 0 && scene_.item(scene_.itemCount() - 1).kind == SceneItem::Kind::ImportedMesh)
+        if (added < scene_.itemCount() && scene_.item(added).is(ObjectKind::Part))
+            ui_.notice = std::string("imported ") + fs::path(path).filename().string() + " as the part \"" + scene_.item(added).name +
+                         "\": " + partSummary(std::get<PartData>(scene_.object(added).data)) +
+                         "; select it and press L to fit a lattice";
+        else if (scene_.itemCount() > 0 && scene_.item(scene_.itemCount() - 1).kind == SceneItem::Kind::ImportedMesh)
             ui_.notice = std::string("imported ") + fs::path(path).filename().string() + " as " + (up == UpAxis::Y ? "Y" : "Z") +
                          " up (" + (format ? "the glTF convention" : "the Import dialog's choice") +
                          "); Properties > up axis changes it";
@@ -135,6 +139,23 @@ void App::exportMesh(const std::string& path)
     try {
         scene_.exportMesh(path);
         ui_.notice = "exported the tessellation to " + path;
+    } catch (const Error& e) {
+        ui_.error = e.what();
+    }
+}
+
+void App::exportPart(const std::string& path)
+{
+    try {
+        const Scene::PartExport e = scene_.exportPart(scene_.partItem(ui_.selection.item), path);
+        ui_.notice = "wrote the part \"" + e.name + "\" to " + path + " (" + std::to_string(e.faces) + " faces";
+        if (e.deform.approximatedFaces.size() + static_cast<std::size_t>(e.deform.approximatedEdges) > 0) {
+            char error[32];
+            std::snprintf(error, sizeof error, "%.2g", e.deform.maxApproximationError);
+            ui_.notice += ", " + std::to_string(e.deform.approximatedFaces.size()) + " faces and " + std::to_string(e.deform.approximatedEdges) +
+                          " edges over degree 25 approximated at 25, certified error <= " + error;
+        }
+        ui_.notice += e.valid ? ", a valid shape)" : ", Open CASCADE's check finds the shape invalid)";
     } catch (const Error& e) {
         ui_.error = e.what();
     }

@@ -86,8 +86,9 @@ const char* helpText()
 
 usage: freeform-editor [FILE] [options]
 
-FILE is a freeform document (.json), a Bezier patch file (.bpt) or a mesh (.obj .ply .stl .off
-.gltf .glb). Without --screenshot, --save or --frames the editor opens a window (it needs a display).
+FILE is a freeform document (.json), a Bezier patch file (.bpt), a mesh (.obj .ply .stl .off .gltf
+.glb) or a STEP or IGES part (.step .stp .iges .igs). Without --screenshot, --save or --frames the
+editor opens a window (it needs a display).
 
 headless use:
   --screenshot OUT.png   render one frame off-screen and write it as PNG, then exit

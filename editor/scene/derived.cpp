@@ -65,7 +65,7 @@ void Scene::updateDerived()
     for (const auto& [id, li] : lattices) {
         const SceneItem& latticeItem = items_[static_cast<std::size_t>(li)];
         const int m = indexOf(latticeItem.deforms);
-        if (m < 0 || items_[static_cast<std::size_t>(m)].kind != SceneItem::Kind::ImportedMesh) continue;
+        if (m < 0 || !isFfdTarget(items_[static_cast<std::size_t>(m)])) continue;
         SceneItem& mesh = items_[static_cast<std::size_t>(m)];
         if (!mesh.geometry.surface) continue;
         FfdLink& link = ffdLinks_[id];
@@ -73,14 +73,17 @@ void Scene::updateDerived()
         const double strength = latticeItem.settings.ffd.strength;
         try {
             const Lattice lattice = latticeFromData(data);
-            const bool rebind = !link.session || link.meshId != mesh.id || link.meshKey != mesh.key || !link.session->matches(lattice);
+            const bool rebind = !link.session || link.meshId != mesh.id || link.meshKey != mesh.key ||
+                                link.meshTopology != mesh.topology || !link.session->matches(lattice);
             if (rebind) {
-                // The rest mesh: the item's geometry as read, unless this link deformed it.
+                // The rest mesh: the item's geometry as read (or as tessellated), unless this link deformed it.
                 PolygonMesh rest = *mesh.geometry.surface;
-                if (link.session && link.meshKey == mesh.key && link.appliedRevision == mesh.revision) rest = link.session->rest();
+                if (link.session && link.meshKey == mesh.key && link.meshTopology == mesh.topology && link.appliedRevision == mesh.revision)
+                    rest = link.session->rest();
                 link = FfdLink{};
                 link.meshId = mesh.id;
                 link.meshKey = mesh.key;
+                link.meshTopology = mesh.topology;
                 link.session = std::make_shared<FfdSession>(lattice, std::move(rest));
             }
             // While a drag goes on (the history merges its changes), a frame may be the linear

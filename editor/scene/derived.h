@@ -1,7 +1,11 @@
 #pragma once
 // Derived items: results the scene computes from other items and never stores in the document.
 // Today one kind: the mesh a lattice deforms (the lattice's editor member "ffd" names the mesh;
-// at run time the link is the mesh item's stable id, SceneItem::deforms). Scene::updateGeometry
+// at run time the link is the mesh item's stable id, SceneItem::deforms). The "mesh" is an imported
+// mesh, or the tessellation of a part or trimmed surface object (isFfdTarget): a preview, which the
+// lattice tool's "apply exactly" replaces by the exact composition (docs/cad.md, "In the editor").
+// A part's tessellation is rebuilt when the view's tolerance changes (a new SceneItem::topology):
+// the link then binds the new rest mesh. Scene::updateGeometry
 // evaluates every link after rebuilding dirty items: the one path by which a deformed mesh is
 // written. Its inputs are the lattice's points, frame and outside policy, the strength and the
 // mesh item's content (key) and revision; when none changed, nothing is computed (except the full
@@ -23,6 +27,7 @@ namespace freeform::editor {
 struct FfdLink {
     long meshId = 0;                        // SceneItem::id of the mesh
     long meshKey = 0;                       // SceneItem::key of the mesh when bound
+    int meshTopology = 0;                   // SceneItem::topology of the mesh when bound
     std::shared_ptr<FfdSession> session;    // shared by copies of the scene (a cache)
     PointColumns appliedPoints;             // the lattice points last applied
     double appliedStrength = 0;

@@ -45,6 +45,19 @@ PolygonMesh withNormals(PolygonMesh mesh)
     return mesh;
 }
 
+std::string partSummary(const PartData& part)
+{
+    auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+    return count(part.faces.size(), "face", "faces") + ", " + count(part.edges.size(), "edge", "edges") + ", " +
+           count(part.vertices.size(), "vertex", "vertices") + ", " + count(part.shells.size(), "shell", "shells") + ", " +
+           count(part.solids.size(), "solid", "solids") + ", units " + part.units;
+}
+
+bool isFfdTarget(const SceneItem& item)
+{
+    return item.kind == SceneItem::Kind::ImportedMesh || item.is(ObjectKind::Part) || item.is(ObjectKind::TrimmedSurface);
+}
+
 namespace {
 
 /// The control points of an object the document layer refuses, as stored (2D with z = 0; a cage's

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "freeform/document/kinds.h"
+#include "freeform/brep/part_deform.h"
 #include "freeform/io/document.h"
 #include "freeform/io/up_axis.h"
 #include "freeform/mesh/polygon_mesh.h"
@@ -158,14 +159,33 @@ public:
     static Scene recover(const std::string& autosavePath, const std::string& originalPath, double aspect = 4.0 / 3.0);
     std::string text() const { return formatDocument(toDocument()); }
 
-    /// Adds the patches of a .bpt file or a mesh file to this scene (Error: nothing changes).
-    /// A mesh is read with `up` as its file's up axis (Y-up files are turned to the Z-up world);
-    /// nullopt: the format's own convention (glTF and GLB: Y), else Z.
-    void importFile(const std::string& path, std::optional<UpAxis> up = std::nullopt);
+    /// Adds the patches of a .bpt file, a mesh file or the part of a STEP or IGES file (one `part`
+    /// object named after the file) to this scene (Error: nothing changes); returns the index of
+    /// the first item added. A mesh is read with `up` as its file's up axis (Y-up files are turned
+    /// to the Z-up world); nullopt: the format's own convention (glTF and GLB: Y), else Z.
+    int importFile(const std::string& path, std::optional<UpAxis> up = std::nullopt);
     /// Sets imported mesh i's up axis (one undo step; the mesh is read again).
     void setUpAxis(int i, UpAxis up);
     /// The tessellation of every visible surface and mesh, merged, written by extension (.obj ...).
     void exportMesh(const std::string& path);
+    /// What writing a part as STEP or IGES did (File > Export part, the lattice panel's export).
+    struct PartExport {
+        std::string name;          // the object written
+        int faces = 0;
+        bool deformed = false;     // through a lattice (the fields below)
+        PartDeformReport deform;   // exact faces, approximated ones and their certified error
+        bool valid = false;        // Open CASCADE's BRepCheck on the written shape
+    };
+    /// The part to export: item `selected` when it is a part or trimmed surface, else the
+    /// document's only one (Error saying why when there is none, or several).
+    int partItem(int selected) const;
+    /// Writes object i (a part or trimmed surface) as STEP or IGES by the path's extension,
+    /// deformed exactly by `lattice` (times strength) when one is given, faces over Open CASCADE's
+    /// degree 25 approximated at 25 with a certified error (deformPart); else as it is, where a
+    /// face or edge over degree 25 (an exact composition) is approximated the same way through the
+    /// rest lattice of the part's box (an affine map: the other faces to rounding). Error: nothing
+    /// is written.
+    PartExport exportPart(int i, const std::string& path, const Lattice* lattice = nullptr, double strength = 1) const;
     PolygonMesh mergedMesh();
 
     const Document& document() const { return document_; }
@@ -341,5 +361,11 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
 ItemGeometry buildMeshGeometry(const std::string& path, UpAxis up = UpAxis::Z);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.
 PolygonMesh withNormals(PolygonMesh mesh);
+/// A part's counts in words, as the status line and Properties show them: "10 faces, 22 edges,
+/// 14 vertices, 1 shell, 1 solid, units mm".
+std::string partSummary(const PartData& part);
+/// Whether a lattice can deform item i live (a link, scene/derived.h): an imported mesh, or a
+/// part or trimmed surface object, whose tessellation follows the drag (applied exactly on request).
+bool isFfdTarget(const SceneItem& item);
 
 } // namespace freeform::editor

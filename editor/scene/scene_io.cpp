@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "freeform/document/model.h"
 #include "freeform/document/object_data.h"
+#include "freeform/document/operations.h"
 #include "freeform/io/bpt.h"
 #include "freeform/io/file.h"
 #include "freeform/io/geometry_data.h"
@@ -17,6 +19,9 @@
 #include "freeform/io/mesh_io.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/tessellate/tessellate.h"
+#ifdef FREEFORM_HAVE_CAD
+#include "freeform/cad/cad_file.h"
+#endif
 #include "scene/json_read.h"
 #include "scene/scene_internal.h"
 
@@ -37,6 +42,54 @@ bool isMeshFile(const std::string& ext)
 {
     return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".off" || ext == ".gltf" || ext == ".glb";
 }
+
+/// STEP (.step .stp) or IGES (.iges .igs): read as one part object (docs/cad.md, "In the editor").
+bool isCadExtension(const std::string& ext)
+{
+    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
+}
+
+/// The part of a STEP or IGES file as one document object named after the file. Open CASCADE's
+/// warnings go to freeform::warn (the status line shows them). A build without Open CASCADE
+/// refuses the file.
+DocumentObject cadObject(const std::string& path)
+{
+#ifdef FREEFORM_HAVE_CAD
+    return {fs::path(path).stem().string(), toData(readCadFile(path)), ""};
+#else
+    throw Error(path + ": this editor was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF): it reads no STEP or IGES file");
+#endif
+}
+
+/// 1/1000 of the diagonal of the box of a part's control points: the tessellation tolerance a part
+/// read from a CAD file asks of the scene at least (its unit may be mm or m: an absolute default
+/// would give millions of triangles, or a few).
+Eigen::AlignedBox3d partBox(const PartData& part)
+{
+    Eigen::AlignedBox3d box;
+    for (const PartFaceData& f : part.faces)
+        for (Eigen::Index k = 0; k < f.surface.surface.points.cols(); ++k) box.extend(Eigen::Vector3d(f.surface.surface.points.col(k)));
+    return box;
+}
+
+double partTolerance(const PartData& part)
+{
+    const Eigen::AlignedBox3d box = partBox(part);
+    return box.isEmpty() ? 0.0 : 1e-3 * box.diagonal().norm();
+}
+
+#ifdef FREEFORM_HAVE_CAD
+/// The largest degree of a part's faces and edges.
+int partDegree(const Part& part)
+{
+    int degree = 0;
+    for (const PartFace& f : part.faces)
+        degree = std::max({degree, f.surface.surface().nurbs.degreeU(), f.surface.surface().nurbs.degreeV()});
+    for (const PartEdge& e : part.edges)
+        if (e.curve) degree = std::max(degree, e.curve->nurbs.degree());
+    return degree;
+}
+#endif
 
 /// Six times the signed volume enclosed by a triangle mesh (positive when its triangles face out).
 double signedVolume6(const PolygonMesh& mesh)
@@ -77,6 +130,12 @@ Scene Scene::load(const std::string& path, double aspect)
     if (ext == ".bpt") {
         scene.document_.objects = bptObjects(path);
         scene.document_.source = path;
+    } else if (isCadExtension(ext)) {
+        // A new document holding the part; Save asks for a .json path (a part is written back as
+        // STEP or IGES through File > Export part).
+        scene.document_.objects.push_back(cadObject(path));
+        scene.document_.source = path;
+        scene.display.tolerance = std::max(scene.display.tolerance, partTolerance(std::get<PartData>(scene.document_.objects.back().data)));
     } else if (isMeshFile(ext)) {
         scene.document_.source = path;
         scene.addMeshItem(fs::path(path).stem().string(), fs::absolute(path).string());
@@ -224,9 +283,10 @@ void Scene::save(const std::string& path)
     modified_ = false;
 }
 
-void Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
+int Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
 {
     const std::string ext = lowerExtension(path);
+    int first = static_cast<int>(document_.objects.size());
     if (ext == ".bpt") {
         std::vector<DocumentObject> objects = bptObjects(path);
         const std::string stem = fs::path(path).stem().string();
@@ -255,10 +315,17 @@ void Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
         items_.back().geometry = std::move(g);
         items_.back().geometryDirty = false;
         items_.back().revision = items_.back().topology = scene_detail::nextRevision();
+        first = itemCount() - 1;
+    } else if (isCadExtension(ext)) {
+        DocumentObject part = cadObject(path); // read first: an Error leaves the scene as it was
+        const double tolerance = partTolerance(std::get<PartData>(part.data));
+        first = addObject(std::move(part), std::string("import ").append(fs::path(path).filename().string()));
+        display.tolerance = std::max(display.tolerance, tolerance); // (not an undo step: a display setting)
     } else {
-        throw Error(path + ": cannot import this kind of file (.bpt or a mesh: .obj .ply .stl .off .gltf .glb)");
+        throw Error(path + ": cannot import this kind of file (.bpt, a mesh: .obj .ply .stl .off .gltf .glb, or a part: .step .stp .iges .igs)");
     }
     modified_ = true;
+    return first;
 }
 
 void Scene::setUpAxis(int i, UpAxis up)
@@ -317,6 +384,65 @@ void Scene::exportMesh(const std::string& path)
     const PolygonMesh mesh = exportedMesh(meshes);
     if (mesh.faceCount() == 0) throw Error("export: the scene has no visible surfaces or meshes");
     writePolygonMesh(mesh, path);
+}
+
+int Scene::partItem(int selected) const
+{
+    auto isPart = [&](int i) { return items_[static_cast<std::size_t>(i)].kind == SceneItem::Kind::DocumentObject && isFfdTarget(items_[static_cast<std::size_t>(i)]); };
+    if (selected >= 0 && selected < itemCount() && isPart(selected)) return selected;
+    int found = -1;
+    for (int i = 0; i < itemCount(); ++i)
+        if (isPart(i)) {
+            if (found >= 0) throw Error("the document has several parts: select the one to export");
+            found = i;
+        }
+    if (found < 0) throw Error("the document has no part or trimmed surface to export (File > Import reads STEP and IGES files)");
+    return found;
+}
+
+Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattice* lattice, double strength) const
+{
+    const SceneItem& it = item(i);
+    if (!isCadExtension(lowerExtension(path)))
+        throw Error(path + ": a part is written as STEP (.step .stp) or IGES (.iges .igs); File > Save writes the document");
+#ifdef FREEFORM_HAVE_CAD
+    // The document layer's part of the object (a trimmed surface: a part of one face).
+    TypedDocument doc;
+    doc.source = "export";
+    doc.directory = documentDirectory();
+    const TypedObject& object = doc.object(doc.add(it.name, document_.objects[static_cast<std::size_t>(i)].data));
+    std::optional<Part> part = objectPart(object);
+    if (!part) throw Error("\"" + it.name + "\" is a " + it.type + ", not a part or trimmed_surface");
+    PartExport out;
+    out.name = it.name;
+    // A part over Open CASCADE's degree (an exact composition rose past it) goes through the rest
+    // lattice of its box, an affine map (control points mapped, to rounding), whose degree cap
+    // approximates the faces and edges above 25 with a certified error, as "export deformed" does.
+    std::optional<Lattice> rest;
+    if (!lattice && partDegree(*part) > cadMaxDegree()) {
+        Eigen::AlignedBox3d box;
+        for (const PartFace& f : part->faces) box.extend(f.surface.bounds());
+        Eigen::Matrix<double, 3, 2> corners;
+        corners << box.min(), box.max();
+        rest = Lattice::fit(corners, {1, 1, 1}, 0.05);
+        lattice = &*rest;
+    }
+    if (lattice) {
+        PartDeformOptions options;
+        options.strength = strength;
+        options.maxDegree = cadMaxDegree();
+        DeformedPart deformed = deformPart(*part, RationalLattice(*lattice), options);
+        out.deformed = true;
+        out.deform = std::move(deformed.report);
+        part = std::move(deformed.part);
+    }
+    out.faces = static_cast<int>(part->faces.size());
+    out.valid = writeCadFile(*part, path).valid;
+    return out;
+#else
+    (void)lattice, (void)strength;
+    throw Error("\"" + it.name + "\": this editor was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF): it writes no STEP or IGES file");
+#endif
 }
 
 Scene Scene::recover(const std::string& autosavePath, const std::string& originalPath, double aspect)

@@ -15,10 +15,15 @@
 #include <freeform/io/mesh_io.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "freeform/io/geometry_data.h"
+#ifdef FREEFORM_HAVE_CAD
+#include "freeform/cad/cad_file.h"
+#endif
 #include "interaction/picking.h"
 #include "support/process.h"
 #include "support/tool_bench.h"
@@ -264,5 +269,139 @@ TEST_CASE("Tools: direct manipulation drags a point of the mesh and the lattice 
     b.scene.undo();
     CHECK(b.scene.text() == fitted);
 }
+
+#ifdef FREEFORM_HAVE_CAD
+TEST_CASE("Tools: a STEP part imported, a lattice fitted (L) previews on its mesh; apply composes it exactly; export writes STEP",
+          "[tools][ffd][cad]")
+{
+    const std::string step = "/usr/share/opencascade/data/step/screw.step";
+    Bench b{Scene()};
+    b.scene.display.tolerance = 0.05; // mm: a screw of 10 faces in about 2,000 triangles
+    const int part = b.scene.importFile(step);
+    REQUIRE(b.scene.item(part).is(ObjectKind::Part));
+    CHECK(b.scene.item(part).name == "screw");
+    CHECK(std::get<PartData>(b.scene.object(part).data).faces.size() == 10);
+    CHECK(partSummary(std::get<PartData>(b.scene.object(part).data)) == "10 faces, 22 edges, 14 vertices, 1 shell, 1 solid, units mm");
+    CHECK(b.scene.history().undoLabel() == "import screw.step");
+    const std::string imported = b.scene.text();
+    b.update();
+    REQUIRE(b.scene.item(part).geometry.surface);
+    REQUIRE(b.scene.item(part).geometry.error.empty());
+    const PolygonMesh rest = *b.scene.item(part).geometry.surface;
+
+    // L on the part: a lattice around it, bound to it.
+    b.selection.selectItem(part);
+    b.tools.lattice().degree[0] = b.tools.lattice().degree[1] = b.tools.lattice().degree[2] = 3; // the default
+    REQUIRE(b.tools.onKey(b.context, GLFW_KEY_L, 0));
+    const int li = findItem(b.scene, "screw_lattice");
+    REQUIRE(li >= 0);
+    CHECK(b.scene.item(li).settings.ffd.mesh == "screw");
+    const Lattice restLattice = latticeOf(b.scene, li);
+    const double size = restLattice.axes().norm();
+    b.scene.setControlPoint(li, restLattice.index(1, 1, 2), restLattice.restPoint(1, 1, 2) + Eigen::Vector3d(0.2, -0.1, 0.15) * size);
+    b.update();
+    const Lattice moved = latticeOf(b.scene, li);
+    REQUIRE_FALSE(moved.isRest());
+
+    // The preview: the part's mesh through the lattice, vertex by vertex (float, as the GPU draws).
+    const int pi = findItem(b.scene, "screw");
+    const PolygonMesh& shown = *b.scene.item(pi).geometry.surface;
+    REQUIRE(shown.positions.cols() == rest.positions.cols());
+    double previewGap = 0;
+    for (Eigen::Index v = 0; v < rest.positions.cols(); v += 7)
+        previewGap = std::max(previewGap, (Eigen::Vector3d(shown.positions.col(v)) - moved.deform(Eigen::Vector3d(rest.positions.col(v))).point).norm());
+    CHECK(previewGap < 1e-5 * size);
+    CHECK(previewGap > 0); // not the rest mesh: it moved (the check above cannot pass by accident)
+    CHECK((shown.positions - rest.positions).norm() > 1e-3 * size);
+
+    // Face points before, at the centre of each face's parameter box.
+    const auto& faces = std::get<PartData>(b.scene.object(pi).data).faces;
+    std::vector<std::array<double, 3>> at;
+    std::vector<Eigen::Vector3d> before;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& d = faces[f].surface.domain;
+        at.push_back({double(f), 0.5 * (d[0] + d[1]), 0.5 * (d[2] + d[3])});
+        before.push_back(b.eval("screw", {at.back()[0], at.back()[1], at.back()[2]}).head<3>());
+    }
+
+    // Apply exactly: every face is the lattice applied to the original face (1e-9 of the size:
+    // the composition in double), the lattice back at rest, one undo step.
+    const std::string movedText = b.scene.text();
+    const std::size_t steps = b.scene.history().size();
+    REQUIRE(b.tools.lattice().applyLatticeToObjects(b.context, li));
+    CHECK(b.scene.history().size() == steps + 1);
+    CHECK(latticeOf(b.scene, li).isRest());
+    CHECK_THAT(b.tools.message(), Catch::Contains("the lattice is back at rest around screw"));
+    for (std::size_t f = 0; f < at.size(); ++f) {
+        const Eigen::Vector3d after = b.eval("screw", {at[f][0], at[f][1], at[f][2]}).head<3>();
+        INFO("face " << f);
+        CHECK((after - moved.deform(before[f]).point).norm() < 1e-9 * size);
+    }
+    // The preview is now the exact part's own mesh: the lattice at rest moves nothing.
+    b.update();
+    const int pj = findItem(b.scene, "screw");
+    REQUIRE(b.scene.item(pj).geometry.surface);
+    CHECK(b.scene.item(pj).geometry.error.empty());
+    // File > Export part of the exact image (edges of degree 27 under a cubic lattice): those over
+    // 25 are approximated at 25 with a certified error; read back, every face centre lies within
+    // that error (and 1e-9 of the size) of the exact image.
+    const std::string plain = kTmp + "/screw_exact.iges";
+    std::filesystem::remove(plain);
+    const Scene::PartExport e = b.scene.exportPart(b.scene.partItem(-1), plain);
+    CHECK(e.faces == 10);
+    CHECK(e.valid);
+    CHECK(e.deform.approximatedFaces.size() + static_cast<std::size_t>(e.deform.approximatedEdges) > 0);
+    CHECK(e.deform.maxDegree == 25);
+    CHECK(e.deform.maxApproximationError < 1e-6 * size);
+    const Part exported = readCadFile(plain);
+    REQUIRE(exported.faces.size() == 10);
+    for (std::size_t f = 0; f < at.size(); ++f) {
+        INFO("face " << f);
+        CHECK((exported.faces[f].surface.point(at[f][1], at[f][2]) - moved.deform(before[f]).point).norm() <
+              e.deform.maxApproximationError + 1e-9 * size);
+    }
+    REQUIRE(b.scene.undo());
+    CHECK(b.scene.text() == movedText);
+
+    // Export deformed (the moved lattice again): the exact composition written as STEP, which
+    // Open CASCADE reads back as 10 faces whose points are the lattice's image of the originals.
+    const std::string out = kTmp + "/screw_ffd.step";
+    std::filesystem::remove(out);
+    REQUIRE(b.tools.lattice().exportDeformed(b.context, li, out));
+    CHECK_THAT(b.tools.message(), Catch::Contains("of 10 faces exact") && Catch::Contains("a valid shape"));
+    const Part written = readCadFile(out);
+    REQUIRE(written.faces.size() == 10);
+    for (std::size_t f = 0; f < at.size(); ++f) {
+        INFO("face " << f);
+        CHECK((written.faces[f].surface.point(at[f][1], at[f][2]) - moved.deform(before[f]).point).norm() < 1e-9 * size);
+    }
+    // A mesh extension for a part: refused, nothing written.
+    CHECK_FALSE(b.tools.lattice().exportDeformed(b.context, li, kTmp + "/screw_ffd.obj"));
+    CHECK_THAT(b.tools.message(), Catch::Contains("a part is written as STEP"));
+    CHECK_FALSE(std::filesystem::exists(kTmp + "/screw_ffd.obj"));
+
+    // Undo back to the import gives the file's text.
+    while (b.scene.history().canUndo() && b.scene.text() != imported) b.scene.undo();
+    CHECK(b.scene.text() == imported);
+}
+
+TEST_CASE("Scene: a STEP file opens as a document of one part; bad files change nothing", "[cad]")
+{
+    Scene scene = Scene::load("/usr/share/opencascade/data/step/screw.step");
+    REQUIRE(scene.itemCount() == 1);
+    CHECK(scene.item(0).is(ObjectKind::Part));
+    CHECK(scene.path().empty()); // Save asks for a .json path
+    CHECK(scene.display.tolerance > 0.01); // 1/1000 of the part's size (mm), not the default 0.001
+    const std::string text = scene.text();
+    const std::string bad = kTmp + "/broken.step";
+    std::ofstream(bad) << "ISO-10303-21;\nHEADER;\nnot a step file\n";
+    CHECK_THROWS_AS(scene.importFile(bad), Error);
+    CHECK(scene.text() == text);
+    CHECK(scene.itemCount() == 1);
+    CHECK(scene.partItem(-1) == 0);
+    CHECK_THROWS_WITH(scene.exportPart(0, kTmp + "/x.json"), Catch::Contains("a part is written as STEP"));
+    CHECK_FALSE(std::filesystem::exists(kTmp + "/x.json"));
+}
+#endif
 
 } // namespace test_lattice_tool

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -40,7 +41,7 @@ bool LatticeTool::onKey(ToolContext& c, KeyAction action)
     switch (action) {
     case KeyAction::FitLattice: {
         const int item = c.selection.item;
-        if (item < 0 || item >= c.scene.itemCount() || c.scene.item(item).kind != SceneItem::Kind::ImportedMesh) return false;
+        if (item < 0 || item >= c.scene.itemCount() || !isFfdTarget(c.scene.item(item))) return false;
         return fitLattice(c, item), true;
     }
     case KeyAction::DirectManipulation:
@@ -124,8 +125,8 @@ void LatticeTool::reset()
 
 bool LatticeTool::fitLattice(ToolContext& c, int meshItem)
 {
-    if (meshItem < 0 || meshItem >= c.scene.itemCount() || c.scene.item(meshItem).kind != SceneItem::Kind::ImportedMesh) {
-        status() = "select an imported mesh to fit a lattice to";
+    if (meshItem < 0 || meshItem >= c.scene.itemCount() || !isFfdTarget(c.scene.item(meshItem))) {
+        status() = "select an imported mesh or a part to fit a lattice to";
         return false;
     }
     c.scene.updateGeometry();
@@ -182,7 +183,24 @@ bool LatticeTool::exportDeformed(ToolContext& c, int latticeItem, const std::str
         requireLattice(c.scene, latticeItem);
         const SceneItem& item = c.scene.item(latticeItem);
         const int m = c.scene.indexOf(item.deforms);
-        if (m < 0 || c.scene.item(m).kind != SceneItem::Kind::ImportedMesh) throw Error("the lattice is bound to no imported mesh");
+        if (m < 0 || !isFfdTarget(c.scene.item(m))) throw Error("the lattice is bound to no imported mesh or part");
+        if (c.scene.item(m).kind == SceneItem::Kind::DocumentObject) {
+            // A part: composed exactly, written as STEP or IGES (faces over degree 25 approximated,
+            // with the certified error reported: docs/cad.md, "In the editor").
+            const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+            const Scene::PartExport e = c.scene.exportPart(m, path, &lattice, item.settings.ffd.strength);
+            status() = "wrote " + path + ": " + std::to_string(e.deform.exactFaces) + " of " + std::to_string(e.faces) + " faces exact";
+            const std::size_t faces = e.deform.approximatedFaces.size();
+            const int edges = e.deform.approximatedEdges;
+            if (faces + static_cast<std::size_t>(edges) > 0) {
+                char error[32];
+                std::snprintf(error, sizeof error, "%.2g", e.deform.maxApproximationError);
+                status() += ", " + std::to_string(faces) + " faces and " + std::to_string(edges) +
+                            " edges approximated at degree 25 (certified error <= " + error + ")";
+            }
+            status() += e.valid ? ", a valid shape" : ", Open CASCADE's check finds the shape invalid";
+            return true;
+        }
         // The lattice in the file's own axes (a Y-up file is written back Y-up: docs/format.md, meshes[].up).
         const Lattice lattice = latticeFromData(latticeToFile(std::get<LatticeData>(c.scene.object(latticeItem).data), c.scene.item(m).up));
         const DeformReport report = exportDeformedMesh(meshFilePath(c.scene, m), lattice, item.settings.ffd.strength, path);
@@ -220,6 +238,15 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
             next.data = objects[k].data();
             c.scene.replaceObject(static_cast<int>(k), next, "apply lattice");
         }
+        // A part the lattice previews (its link): the exact image is in the document now, so the
+        // lattice goes back to rest in the same step, else the preview would deform it twice.
+        const int target = c.scene.indexOf(c.scene.item(latticeItem).deforms);
+        const bool baked = target >= 0 && c.scene.item(target).kind == SceneItem::Kind::DocumentObject && !report.objects.empty();
+        if (baked) {
+            DocumentObject rest = c.scene.object(latticeItem);
+            std::get<LatticeData>(rest.data).points = lattice.restPoints();
+            c.scene.replaceObject(latticeItem, rest, "apply lattice");
+        }
         c.scene.endMerge();
         std::string why;
         int skipped = 0;
@@ -235,6 +262,7 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
             status() += ", " + std::to_string(outside) +
                         " of them outside the box (the lattice polynomial continued there, docs/ffd.md)";
         if (skipped) status() += ", left " + std::to_string(skipped) + " (" + why + ")";
+        if (baked) status() += "; the lattice is back at rest around " + c.scene.item(target).name;
         return !report.objects.empty();
     } catch (const std::exception& e) {
         c.scene.endMerge();

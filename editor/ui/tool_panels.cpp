@@ -9,6 +9,7 @@
 #include <imgui_internal.h> // TableGetHeaderRowHeight: the header row as TableHeadersRow makes it
 
 #include <algorithm>
+#include <cstring>
 #include <cstdio>
 
 #include "freeform/core/error.h"
@@ -314,8 +315,7 @@ void PatchTool::drawPanel(ToolContext& c)
 void LatticeTool::drawPanel(ToolContext& c)
 {
     const int item = c.selection.item;
-    if (item >= 0 && item < c.scene.itemCount() && c.scene.item(item).kind == SceneItem::Kind::ImportedMesh)
-        return drawMeshPanel(c, item);
+    if (item >= 0 && item < c.scene.itemCount() && isFfdTarget(c.scene.item(item))) return drawMeshPanel(c, item);
     if (!selectedIs(c, ObjectKind::Lattice)) return;
     ImGui::TextUnformatted("Free-form deformation");
     ObjectSettings settings = c.scene.item(item).settings;
@@ -323,16 +323,26 @@ void LatticeTool::drawPanel(ToolContext& c)
     std::vector<std::string> meshes{"(none)"};
     std::vector<std::string> tips{"Deform no mesh: the lattice alone (the link is dropped; undo restores it)"};
     int current = 0;
+    bool part = false; // the lattice deforms a part's tessellation (a preview of the exact composition)
     for (int i = 0; i < c.scene.itemCount(); ++i)
-        if (c.scene.item(i).kind == SceneItem::Kind::ImportedMesh) {
-            if (c.scene.item(i).id == c.scene.item(item).deforms) current = static_cast<int>(meshes.size());
-            meshes.push_back(c.scene.item(i).name);
-            tips.push_back("Deform the imported mesh " + c.scene.item(i).name + ", read from " + c.scene.item(i).meshPath);
+        if (isFfdTarget(c.scene.item(i))) {
+            const SceneItem& target = c.scene.item(i);
+            if (target.id == c.scene.item(item).deforms) {
+                current = static_cast<int>(meshes.size());
+                part = target.kind == SceneItem::Kind::DocumentObject;
+            }
+            meshes.push_back(target.name);
+            tips.push_back(target.kind == SceneItem::Kind::ImportedMesh
+                               ? "Deform the imported mesh " + target.name + ", read from " + target.meshPath
+                               : "Preview the deformation of the " + target.type + " " + target.name +
+                                     " on its tessellation ('apply exactly' composes it, 'export deformed' writes STEP or IGES)");
         }
+    // A part's export is STEP or IGES: the mesh default becomes a part's.
+    if (part && std::strcmp(exportPath, "deformed.obj") == 0) std::strcpy(exportPath, "deformed.step");
     noteDropdown("mesh");
     const bool meshOpen = ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str());
     recordWidget("mesh");
-    tooltip("The imported mesh this lattice deforms");
+    tooltip("The imported mesh or part this lattice deforms as you drag its points");
     if (meshOpen) {
         for (std::size_t k = 0; k < meshes.size(); ++k) {
             const bool chosen = ImGui::Selectable(meshes[k].c_str(), static_cast<int>(k) == current);
@@ -453,15 +463,19 @@ void LatticeTool::drawPanel(ToolContext& c)
         ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - button - ImGui::GetStyle().ItemSpacing.x));
         ImGui::InputText("##export", exportPath, sizeof exportPath);
         recordWidget("export path");
-        tooltip("Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
+        tooltip(part ? "Path of the deformed part to write (.step .stp .iges .igs), relative to the working directory"
+                     : "Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
         ImGui::SameLine();
         const bool exportClicked = ImGui::Button("export deformed");
         recordWidget("export deformed");
         if (exportClicked) exportDeformed(c, item, exportPath);
-        tooltip("Write the deformed mesh (computed in double, as freeform ffd does) to the path on the left");
+        tooltip(part ? "Write the part composed exactly with the lattice (faces over degree 25 approximated, the error reported),\n"
+                       "as freeform ffd PART.step does, to the path on the left"
+                     : "Write the deformed mesh (computed in double, as freeform ffd does) to the path on the left");
     }
     if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, item);
-    tooltip("Deform every other object of the document exactly, by composition (Shift+A; freeform ffd DOC's rule)");
+    tooltip("Deform every other object of the document exactly, by composition: curves, patches, parts (Shift+A;\n"
+            "freeform ffd DOC's rule). A part this lattice previews takes the exact image and the lattice goes back to rest");
     // The colour map's range last, so that switching the map on moves no row above it.
     if (c.scene.ffdLink(item) && c.scene.display.analysis == SurfaceAnalysis::ScalarMap) {
         ImGui::TextUnformatted("det J colour range");
@@ -483,7 +497,7 @@ void LatticeTool::drawMeshPanel(ToolContext& c, int meshItem)
     if (ImGui::SliderFloat("margin", &m, 0.0f, 0.5f, "%.3f")) margin = m;
     tooltip("Each side of the mesh's bounding box is pushed out by this fraction of its largest extent");
     if (ImGui::Button("fit lattice")) fitLattice(c, meshItem);
-    tooltip("Add a lattice around this mesh, bound to it, and select it (L)");
+    tooltip("Add a lattice around this mesh or part, bound to it, and select it (L)");
 }
 
 // ------------------------------------------------------------------ rational and NURBS objects
@@ -512,6 +526,7 @@ void NurbsTool::drawPanel(ToolContext& c)
         drawTessellationSettings(c);
         ImGui::Separator();
     }
+    if (kind->kind == ObjectKind::Part) return; // its faces are deformed by a lattice, not edited point by point
     ImGui::TextUnformatted("Weights (Alt + drag a point: scale)");
     const std::vector<double> weights = weightsOf(c.scene, item);
     if (c.selection.points.empty()) {

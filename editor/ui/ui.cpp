@@ -193,18 +193,26 @@ std::string recentTooltip(const std::string& path, bool exists, const char* acti
 
 void askPath(UiState& s, UiActions& actions, UiState::PathDialog which, const std::string& initial)
 {
-    const char* titles[] = {"", "Open", "Save as", "Import mesh or .bpt", "Export OBJ"};
-    const bool save = which == UiState::PathDialog::SaveAs || which == UiState::PathDialog::Export;
+    const char* titles[] = {"", "Open", "Save as", "Import mesh, .bpt or part", "Export OBJ", "Export part as STEP or IGES"};
+    const bool save = which == UiState::PathDialog::SaveAs || which == UiState::PathDialog::Export || which == UiState::PathDialog::ExportPart;
     if (const std::optional<std::string> chosen = actions.chooseFile(save, titles[static_cast<int>(which)], initial)) {
-        if (chosen->empty()) return; // cancelled
-        if (which == UiState::PathDialog::Open) actions.open(*chosen);
-        else if (which == UiState::PathDialog::SaveAs) actions.saveAs(*chosen);
-        else if (which == UiState::PathDialog::Import) actions.importFile(*chosen);
-        else actions.exportMesh(*chosen);
+        if (!chosen->empty()) usePath(actions, which, *chosen); // empty: cancelled
         return;
     }
     s.pathDialog = which;
     std::snprintf(s.pathBuffer, sizeof s.pathBuffer, "%s", initial.c_str());
+}
+
+void usePath(UiActions& actions, UiState::PathDialog which, const std::string& path)
+{
+    switch (which) {
+    case UiState::PathDialog::Open: actions.open(path); break;
+    case UiState::PathDialog::SaveAs: actions.saveAs(path); break;
+    case UiState::PathDialog::Import: actions.importFile(path); break;
+    case UiState::PathDialog::Export: actions.exportMesh(path); break;
+    case UiState::PathDialog::ExportPart: actions.exportPart(path); break;
+    case UiState::PathDialog::None: break;
+    }
 }
 
 void tooltip(UiState& state, const char* text)

@@ -26,6 +26,7 @@ public:
     virtual bool saveAs(const std::string& path) = 0;
     virtual void importFile(const std::string& path) = 0;
     virtual void exportMesh(const std::string& path) = 0;
+    virtual void exportPart(const std::string& path) = 0; // the selected (or only) part, as STEP or IGES
     virtual void quit() = 0;                              // asks first
     virtual void fit(bool selectionOnly) = 0;
     virtual void setView(const std::string& name) = 0;
@@ -62,7 +63,7 @@ struct UiState {
     // Autosave recovery: offered in a modal when `recovery` is not empty (its description).
     std::string recovery;
     // Path dialog: which action it serves and the text being edited.
-    enum class PathDialog { None, Open, SaveAs, Import, Export } pathDialog = PathDialog::None;
+    enum class PathDialog { None, Open, SaveAs, Import, Export, ExportPart } pathDialog = PathDialog::None;
     char pathBuffer[1024] = {};
     // True from the dialog's first frame until its path field is active: that activation selects
     // the whole prefilled path (ImGui keeps a field's edit state between activations, and after a
@@ -156,6 +157,8 @@ bool scalarRangeControls(DisplaySettings& display);
 /// Asks for a path for `which` (Open, Save as, Import, Export): the desktop's file chooser when
 /// there is one (the action is then carried out at once), else the typed-path dialog.
 void askPath(UiState& state, UiActions& actions, UiState::PathDialog which, const std::string& initial);
+/// What a path dialog does with the path it was given (open, save as, import, export).
+void usePath(UiActions& actions, UiState::PathDialog which, const std::string& path);
 
 /// Builds every panel for this frame (between ImGui::NewFrame and ImGui::Render). Returns true
 /// when the user resolved a pending action with "Discard" or after a successful "Save": the

@@ -33,12 +33,12 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
     // A menu's title has its tooltip while the menu is closed (open, the menu itself shows).
     const bool fileMenu = ImGui::BeginMenu("File");
     recordWidget("menu File");
-    if (!fileMenu) tooltip(s, "New, Open, Save, Import a mesh or .bpt, Export the tessellation, Quit");
+    if (!fileMenu) tooltip(s, "New, Open, Save, Import a mesh, .bpt or part, Export the tessellation or a part, Quit");
     if (fileMenu) {
         if (ImGui::MenuItem("New", "Ctrl+N")) actions.newDocument();
         tooltip(s, "An empty document (asks first when there are unsaved changes)");
         if (ImGui::MenuItem("Open...", "Ctrl+O")) askPath(s, actions, UiState::PathDialog::Open, scene.path());
-        tooltip(s, "Open a freeform document (.json), a .bpt patch file or a mesh");
+        tooltip(s, "Open a freeform document (.json), a .bpt patch file, a mesh, or a STEP or IGES part");
         const bool recentMenu = ImGui::BeginMenu("Open recent", !actions.recentFiles().empty());
         if (recentMenu) {
             // Most recent first; a file that is gone is shown greyed and cannot be chosen.
@@ -66,10 +66,22 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
             askPath(s, actions, UiState::PathDialog::SaveAs, scene.path().empty() ? "scene.json" : scene.path());
         tooltip(s, "Write the document under a new path");
         ImGui::Separator();
-        if (ImGui::MenuItem("Import mesh or .bpt...", "Ctrl+I")) askPath(s, actions, UiState::PathDialog::Import, "");
-        tooltip(s, "Add a mesh (.obj .ply .stl .off .gltf .glb) or the patches of a .bpt file to the document");
+        if (ImGui::MenuItem("Import mesh, .bpt or part...", "Ctrl+I")) askPath(s, actions, UiState::PathDialog::Import, "");
+        tooltip(s, "Add a mesh (.obj .ply .stl .off .gltf .glb), the patches of a .bpt file, or the part of a STEP or IGES\n"
+                   "file (.step .stp .iges .igs: one part object, its faces trimmed NURBS) to the document");
         if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) askPath(s, actions, UiState::PathDialog::Export, "scene.obj");
         tooltip(s, "Write every visible surface and mesh, merged, as one OBJ");
+        int part = -1;
+        for (int i = 0; i < scene.itemCount() && part < 0; ++i)
+            if (scene.item(i).is(ObjectKind::Part) || scene.item(i).is(ObjectKind::TrimmedSurface)) part = i;
+        if (s.selection.item >= 0 && s.selection.item < scene.itemCount() && scene.item(s.selection.item).kind == SceneItem::Kind::DocumentObject &&
+            isFfdTarget(scene.item(s.selection.item)))
+            part = s.selection.item;
+        if (ImGui::MenuItem("Export part as STEP or IGES...", nullptr, false, part >= 0))
+            askPath(s, actions, UiState::PathDialog::ExportPart, scene.item(part).name + ".step");
+        tooltip(s, part >= 0 ? "Write the selected part (or the document's only one) as STEP or IGES, by the path's extension\n"
+                               "(docs/cad.md: faces as B-spline surfaces; every degree must be at most 25)"
+                             : "Write a part as STEP or IGES (the document has no part: import a STEP or IGES file first)");
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         tooltip(s, "Close the editor (asks first when there are unsaved changes)");
@@ -180,7 +192,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
 void pathDialog(Scene& scene, UiState& s, UiActions& actions)
 {
     if (s.pathDialog == UiState::PathDialog::None) return;
-    const char* titles[] = {"", "Open", "Save as", "Import", "Export OBJ"};
+    const char* titles[] = {"", "Open", "Save as", "Import", "Export OBJ", "Export part"};
     const char* title = titles[static_cast<int>(s.pathDialog)];
     if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
     if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -229,10 +241,7 @@ void pathDialog(Scene& scene, UiState& s, UiActions& actions)
             const UiState::PathDialog which = s.pathDialog;
             s.pathDialog = UiState::PathDialog::None;
             ImGui::CloseCurrentPopup();
-            if (which == UiState::PathDialog::Open) actions.open(path);
-            else if (which == UiState::PathDialog::SaveAs) actions.saveAs(path);
-            else if (which == UiState::PathDialog::Import) actions.importFile(path);
-            else actions.exportMesh(path);
+            usePath(actions, which, path);
         } else if (cancel) {
             s.pathDialog = UiState::PathDialog::None;
             ImGui::CloseCurrentPopup();

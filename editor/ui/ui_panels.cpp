@@ -123,9 +123,56 @@ Eigen::Ref<const Eigen::MatrixXd> tablePoints(const Scene& scene, int index)
         if (!cage->mesh.empty()) return scene.item(index).geometry.netPoints;
         return cage->vertices;
     }
-    static const Eigen::MatrixXd none(3, 0); // a part: its faces are not edited point by point
+    static const Eigen::MatrixXd none(3, 0); // no points held
     const PointColumns* held = dataPoints(object.data);
     return held ? Eigen::Ref<const Eigen::MatrixXd>(*held) : Eigen::Ref<const Eigen::MatrixXd>(none);
+}
+
+/// A part: its counts and one row per face, its surface kind, degrees and trim loops (docs/cad.md, "In the editor"). Its faces are not edited point by point: a lattice
+/// deforms them (L fits one).
+void partTable(const Scene& scene, int index, UiState& s)
+{
+    const ObjectData& data = scene.object(index).data;
+    std::vector<const TrimmedSurfaceData*> faces;
+    std::vector<std::string> kinds;
+    if (const auto* part = std::get_if<PartData>(&data)) {
+        ImGui::TextWrapped("%s", partSummary(*part).c_str());
+        for (const PartFaceData& f : part->faces) {
+            faces.push_back(&f.surface);
+            kinds.push_back(f.kind.empty() ? "nurbs" : f.kind);
+        }
+    }
+    ImGui::TextWrapped("L fits a lattice; File > Export part writes STEP or IGES");
+    const std::string header = "faces (" + std::to_string(faces.size()) + ")";
+    const bool open = ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    recordWidget(header.c_str());
+    tooltip(s, "Each face: the surface kind the file gave it, the degrees (u x v) of its exact NURBS form, its trim loops (click to fold)");
+    if (!open) return;
+    const ImGuiTableFlags flags = ImGuiTableFlags_BordersOuter | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY;
+    if (!ImGui::BeginTable("faces", 4, flags, ImVec2(0, std::min(220.0f, ImGui::GetTextLineHeightWithSpacing() * float(faces.size() + 2)))))
+        return;
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupColumn("#", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("surface");
+    ImGui::TableSetupColumn("degree");
+    ImGui::TableSetupColumn("loops");
+    ImGui::TableHeadersRow();
+    ImGuiListClipper clipper;
+    clipper.Begin(static_cast<int>(faces.size()));
+    while (clipper.Step())
+        for (int f = clipper.DisplayStart; f < clipper.DisplayEnd; ++f) {
+            const TrimmedSurfaceData& face = *faces[static_cast<std::size_t>(f)];
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::Text("%d", f);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(kinds[static_cast<std::size_t>(f)].c_str());
+            ImGui::TableNextColumn();
+            ImGui::Text("%d x %d", face.surface.degree[0], face.surface.degree[1]);
+            ImGui::TableNextColumn();
+            ImGui::Text("%zu", face.loops.size());
+        }
+    ImGui::EndTable();
 }
 
 /// Editable control points of a document object: a table of one row per point, its number and
@@ -382,9 +429,13 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
                 ImGui::PopStyleColor();
             }
             if (item.kind == SceneItem::Kind::DocumentObject) {
-                selectedPoints(scene, selected, s);
-                editOptions(scene, s);
-                controlPointTable(scene, selected, s);
+                if (item.is(ObjectKind::Part)) {
+                    partTable(scene, selected, s);
+                } else {
+                    selectedPoints(scene, selected, s);
+                    editOptions(scene, s);
+                    controlPointTable(scene, selected, s);
+                }
             } else {
                 ImGui::TextWrapped("file: %s", item.meshPath.c_str());
                 int up = item.up == UpAxis::Y ? 1 : 0;
