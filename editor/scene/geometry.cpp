@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <type_traits>
 
 #include "freeform/document/object_data.h"
@@ -56,6 +57,21 @@ std::string partSummary(const PartData& part)
 bool isFfdTarget(const SceneItem& item)
 {
     return item.kind == SceneItem::Kind::ImportedMesh || item.is(ObjectKind::Part) || item.is(ObjectKind::TrimmedSurface);
+}
+
+std::vector<std::pair<int, int>> faceOutline(const PolygonMesh& mesh)
+{
+    // Each face has vertices of its own (splitFaces), so its trims are the edges of one triangle.
+    std::map<std::pair<int, int>, int> uses;
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (int k = 0, n = mesh.faceSize(f); k < n; ++k) {
+            const int a = mesh.face(f)[k], b = mesh.face(f)[(k + 1) % n];
+            ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    std::vector<std::pair<int, int>> outline;
+    for (const auto& [edge, count] : uses)
+        if (count == 1) outline.push_back(edge);
+    return outline;
 }
 
 namespace {
@@ -175,6 +191,8 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
             }
         }
         if (auto mesh = tessellateObject(object, options)) g.surface = withNormals(std::move(*mesh));
+        if (g.surface && (std::holds_alternative<PartData>(data) || std::holds_alternative<TrimmedSurfaceData>(data)))
+            g.outline = faceOutline(*g.surface);
     } catch (const Error& e) {
         g.netEdges.clear();
         g.surface.reset();

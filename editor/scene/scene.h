@@ -65,6 +65,9 @@ struct ItemGeometry {
     Eigen::Matrix<double, 3, Eigen::Dynamic> curve;  // polyline points (3 x P), may be empty
     bool curveClosed = false;
     std::vector<std::pair<int, int>> netEdges;       // control net / polygon edges into netPoints
+    /// A part's face boundaries (its edges and trims), as vertex pairs of `surface`: drawn as lines
+    /// on the shading, following the surface's vertices (a lattice preview moves them too).
+    std::vector<std::pair<int, int>> outline;
     Eigen::Matrix<double, 3, Eigen::Dynamic> netPoints; // control points (3 x N; 2D padded with z = 0)
     Eigen::AlignedBox3d bounds;
     /// The surface's positions and normals in float as drawn, when the pass that wrote the surface
@@ -361,6 +364,9 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
 ItemGeometry buildMeshGeometry(const std::string& path, UpAxis up = UpAxis::Z);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.
 PolygonMesh withNormals(PolygonMesh mesh);
+/// The edges of a mesh used by one polygon only: for a part tessellated face by face
+/// (splitFaces), the boundaries of its faces.
+std::vector<std::pair<int, int>> faceOutline(const PolygonMesh& mesh);
 /// A part's counts in words, as the status line and Properties show them: "10 faces, 22 edges,
 /// 14 vertices, 1 shell, 1 solid, units mm".
 std::string partSummary(const PartData& part);

@@ -12,6 +12,7 @@ namespace {
 
 const Vec3f kCurveColor(0.95f, 0.8f, 0.25f);
 const Vec3f kNetColor(0.62f, 0.64f, 0.68f);
+const Vec3f kOutlineColor(0.12f, 0.12f, 0.14f); // a part's edges on its shading
 const Vec3f kPointColor(0.95f, 0.55f, 0.2f);
 const Vec3f kSelectedNet(1.0f, 1.0f, 1.0f);
 const Vec3f kSelectedPoint(1.0f, 0.9f, 0.3f);
@@ -128,6 +129,8 @@ void SceneDrawer::upload(const SceneItem& item, Gpu& gpu, bool selected, double 
         }
         LineBuilder curve;
         for (Eigen::Index i = 0; i + 1 < g.curve.cols(); ++i) curve.add(g.curve.col(i), g.curve.col(i + 1), kCurveColor);
+        if (g.surface)
+            for (const auto& [a, b] : g.outline) curve.add(g.surface->positions.col(a), g.surface->positions.col(b), kOutlineColor);
         gpu.curve = renderer_.uploadLines(gpu.curve, curve.data());
     }
     if (geometryChanged || gpu.selected != selected) {

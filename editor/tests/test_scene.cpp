@@ -8,6 +8,7 @@
 #include <freeform/core/transform.h>
 
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 
 #include "scene/camera.h"
@@ -160,6 +161,16 @@ TEST_CASE("a part opens shaded face by face, its points not editable, and saves 
     }
     CHECK(top > 0);
     CHECK(bottom > 0);
+    // The outline drawn on the shading (faceOutline): every face's boundary, so each edge of the
+    // part twice (once per face): 2 (12 box edges, 4 x 40 + 4 x 30 + 4 x 10 = 320, and two circles
+    // of radius 6, 24 pi), the circles as chords within the tolerance. The hole's seam is not in
+    // it: both of its sides on the cylinder take the seam edge's samples, so the face's mesh closes
+    // across it (a seam drawn would be a line the part does not have).
+    double outline = 0;
+    for (const auto& [a, b] : g.outline) outline += (m.positions.col(a) - m.positions.col(b)).norm();
+    const double expected = 2 * (320 + 24 * std::numbers::pi);
+    INFO("outline " << outline << " of " << expected << " (" << g.outline.size() << " segments)");
+    CHECK(std::abs(outline - expected) < 1e-3 * expected);
     CHECK(scene.controlPointCount(0) == 0);
     CHECK_THROWS_WITH(scene.setControlPoint(0, 0, Eigen::Vector3d::Zero()), Catch::Contains("no control points to edit"));
     const std::string out = kTmp + "/plate_saved.json";
