@@ -226,7 +226,11 @@ std::string App::statusHint()
         hint = "Select (" + selected.name + ", " + selected.type + "): click a point to select it, drag to move it";
         if (selected.is(ObjectKind::BezierSpline)) hint += "; 1-4 set the joint's mode (free, aligned, mirrored, C2)";
         else if (selected.is(ObjectKind::Lattice)) hint += "; D drags the deformed mesh directly";
-        else if (selected.is(ObjectKind::Part)) hint = "Select (" + selected.name + ", part): L fits a lattice to it; File > Export part writes STEP or IGES";
+        else if (selected.is(ObjectKind::Part)) {
+            const std::string face = faceSummary(std::get<PartData>(scene_.object(ui_.selection.item).data), ui_.selection.face);
+            hint = "Select (" + selected.name + ", part): " + (face.empty() ? "click a face to see it" : face) +
+                   "; L fits a lattice to it; File > Export part writes STEP or IGES";
+        }
         else if (NurbsTool::handles(selected.info())) hint += "; Alt+drag a point: its weight; K: insert a knot at t; T: de Boor construction";
         hint += "; Escape deselects";
     } else {

@@ -314,6 +314,15 @@ void Interaction::click(Scene& scene, Selection& selection, const ViewTransform&
     if (const auto i = pickItem(scene, view, x, y)) {
         if (*i != selection.item) selection.selectItem(*i);
         else if (!(mods & GLFW_MOD_SHIFT)) selection.points.clear();
+        // A part: the face under the pointer (its triangles' vertices know their face).
+        const ItemGeometry& g = scene.item(*i).geometry;
+        selection.face = -1;
+        if (g.surface && g.vertexFace.size() == static_cast<std::size_t>(g.surface->vertexCount())) {
+            Eigen::Vector3d origin, direction;
+            view.ray(x, y, origin, direction);
+            if (const auto hit = rayMeshHit(origin, direction, *g.surface))
+                selection.face = g.vertexFace[static_cast<std::size_t>(g.surface->face(hit->face)[0])];
+        }
         return;
     }
     if (mods & GLFW_MOD_SHIFT) return;

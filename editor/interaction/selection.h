@@ -14,11 +14,15 @@ struct Selection {
     std::vector<int> points;       // selected control points of `item`, sorted, unique
     int hoverItem = -1;            // under the pointer this frame (-1: none)
     int hoverPoint = -1;           // control point of hoverItem under the pointer (-1: none)
+    int face = -1;                 // a part's face picked in the view or the face table (-1: none)
 
     bool has(int k) const { return std::binary_search(points.begin(), points.end(), k); }
     void selectItem(int i)
     {
-        if (i != item) points.clear();
+        if (i != item) {
+            points.clear();
+            face = -1;
+        }
         item = i;
     }
     void setPoints(std::vector<int> ks)
@@ -33,7 +37,12 @@ struct Selection {
         if (it != points.end() && *it == k) points.erase(it);
         else points.insert(it, k);
     }
-    void clear() { item = -1; points.clear(); }
+    void clear()
+    {
+        item = -1;
+        face = -1;
+        points.clear();
+    }
 };
 
 } // namespace freeform::editor

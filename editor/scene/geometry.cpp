@@ -54,6 +54,16 @@ std::string partSummary(const PartData& part)
            count(part.solids.size(), "solid", "solids") + ", units " + part.units;
 }
 
+std::string faceSummary(const PartData& part, int face)
+{
+    if (face < 0 || static_cast<std::size_t>(face) >= part.faces.size()) return {};
+    const PartFaceData& f = part.faces[static_cast<std::size_t>(face)];
+    const std::size_t loops = f.surface.loops.size();
+    return "face " + std::to_string(face) + ": " + (f.kind.empty() ? std::string("nurbs") : f.kind) + ", degree " +
+           std::to_string(f.surface.surface.degree[0]) + " x " + std::to_string(f.surface.surface.degree[1]) + ", " +
+           std::to_string(loops) + (loops == 1 ? " trim loop" : " trim loops");
+}
+
 bool isFfdTarget(const SceneItem& item)
 {
     return item.kind == SceneItem::Kind::ImportedMesh || item.is(ObjectKind::Part) || item.is(ObjectKind::TrimmedSurface);
@@ -190,9 +200,16 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
                 options.toleranceOf = [view](const Eigen::AlignedBox3d& box) { return view.tolerance(box); };
             }
         }
-        if (auto mesh = tessellateObject(object, options)) g.surface = withNormals(std::move(*mesh));
-        if (g.surface && (std::holds_alternative<PartData>(data) || std::holds_alternative<TrimmedSurfaceData>(data)))
+        TessellationReport report;
+        if (auto mesh = tessellateObject(object, options, &report)) g.surface = withNormals(std::move(*mesh));
+        if (g.surface && (std::holds_alternative<PartData>(data) || std::holds_alternative<TrimmedSurfaceData>(data))) {
             g.outline = faceOutline(*g.surface);
+            if (report.triangleFace.size() == static_cast<std::size_t>(g.surface->faceCount())) {
+                g.vertexFace.assign(static_cast<std::size_t>(g.surface->vertexCount()), -1);
+                for (int t = 0; t < g.surface->faceCount(); ++t)
+                    for (int k = 0; k < 3; ++k) g.vertexFace[static_cast<std::size_t>(g.surface->face(t)[k])] = report.triangleFace[static_cast<std::size_t>(t)];
+            }
+        }
     } catch (const Error& e) {
         g.netEdges.clear();
         g.surface.reset();

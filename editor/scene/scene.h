@@ -68,6 +68,9 @@ struct ItemGeometry {
     /// A part's face boundaries (its edges and trims), as vertex pairs of `surface`: drawn as lines
     /// on the shading, following the surface's vertices (a lattice preview moves them too).
     std::vector<std::pair<int, int>> outline;
+    /// A part: the face (index into its faces) of each vertex of `surface`, whose faces have
+    /// vertices of their own; empty for other items.
+    std::vector<int> vertexFace;
     Eigen::Matrix<double, 3, Eigen::Dynamic> netPoints; // control points (3 x N; 2D padded with z = 0)
     Eigen::AlignedBox3d bounds;
     /// The surface's positions and normals in float as drawn, when the pass that wrote the surface
@@ -370,6 +373,8 @@ std::vector<std::pair<int, int>> faceOutline(const PolygonMesh& mesh);
 /// A part's counts in words, as the status line and Properties show them: "10 faces, 22 edges,
 /// 14 vertices, 1 shell, 1 solid, units mm".
 std::string partSummary(const PartData& part);
+/// One face of a part in words: "face 6: cone, degree 2 x 1, 1 trim loop" (empty when out of range).
+std::string faceSummary(const PartData& part, int face);
 /// Whether a lattice can deform item i live (a link, scene/derived.h): an imported mesh, or a
 /// part or trimmed surface object, whose tessellation follows the drag (applied exactly on request).
 bool isFfdTarget(const SceneItem& item);

@@ -533,3 +533,56 @@ TEST_CASE("parseReplay reads tooltip_audit (the tooltip test's hook) and rejects
 }
 
 } // namespace test_interaction
+
+namespace test_interaction {
+
+TEST_CASE("Interaction: a click on a part picks the face under the pointer (top, side, then none)", "[interaction][cad]")
+{
+    // data/parts/plate.json: which face is the top (every control point at z = 10) and which the
+    // side x = min or max facing the camera is read from the part's data, not from the picking.
+    Scene scene = Scene::load(std::string(FREEFORM_SOURCE_DIR) + "/data/parts/plate.json");
+    scene.camera.setView("iso");
+    scene.camera.fit(scene.bounds(), double(kW) / kH);
+    scene.updateGeometry();
+    REQUIRE(scene.item(0).geometry.vertexFace.size() == static_cast<std::size_t>(scene.item(0).geometry.surface->vertexCount()));
+    const PartData& part = std::get<PartData>(scene.object(0).data);
+    Eigen::AlignedBox3d box; // of the control points: the planes' own coordinates, exactly
+    for (const auto& f : part.faces)
+        for (Eigen::Index k = 0; k < f.surface.surface.points.cols(); ++k) box.extend(Eigen::Vector3d(f.surface.surface.points.col(k)));
+    auto faceWhere = [&](int axis, double value) {
+        int found = -1;
+        for (std::size_t f = 0; f < part.faces.size(); ++f) {
+            const auto& p = part.faces[f].surface.surface.points;
+            if ((p.row(axis).array() == value).all()) found = static_cast<int>(f);
+        }
+        return found;
+    };
+    const ViewTransform view = ViewTransform::of(scene, kW, kH);
+    const bool minSide = view.viewDirection.x() > 0; // looking towards +x: the side x = min faces the eye
+    const double sideX = minSide ? box.min().x() : box.max().x();
+    const int top = faceWhere(2, box.max().z()), side = faceWhere(0, sideX);
+    REQUIRE(view.viewDirection.z() < 0); // the top faces the eye
+    REQUIRE(top >= 0);
+    REQUIRE(side >= 0);
+    REQUIRE(top != side);
+    EditSettings settings;
+    Interaction interaction{settings};
+    Selection selection;
+    auto clickAt = [&](const Eigen::Vector3d& p) {
+        const auto px = view.toPixel(p);
+        REQUIRE(px);
+        interaction.click(scene, selection, view, 0, px->x(), px->y());
+    };
+    const Eigen::Vector3d d = box.diagonal();
+    clickAt(box.min() + Eigen::Vector3d(0.1 * d.x(), 0.1 * d.y(), d.z())); // on the top, away from the hole
+    CHECK(selection.item == 0);
+    CHECK(selection.face == top);
+    CHECK(faceSummary(part, top).rfind("face " + std::to_string(top) + ": plane, degree 1 x 1, ", 0) == 0);
+    clickAt(Eigen::Vector3d(sideX, box.center().y(), box.center().z())); // the middle of that side
+    CHECK(selection.face == side);
+    interaction.click(scene, selection, view, 0, 2, 2); // the corner of the view: nothing
+    CHECK(selection.item == -1);
+    CHECK(selection.face == -1);
+}
+
+} // namespace test_interaction

@@ -1,5 +1,7 @@
 #include "tools/tools.h"
 
+#include "tools/tool_util.h"
+
 namespace freeform::editor {
 
 Tools::Tools() : all_{&curve_, &spline_, &patch_, &nurbs_, &lattice_, &cage_} {}
@@ -30,6 +32,15 @@ void Tools::update(ToolContext& c, Overlay& o)
     nurbs_.update(c, o);
     lattice_.update(c, o);
     cage_.update(c, o);
+    // A part's picked face (Selection::face): its boundary over the scene, in orange.
+    const int i = c.selection.item;
+    if (i >= 0 && i < c.scene.itemCount() && c.selection.face >= 0) {
+        const ItemGeometry& g = c.scene.item(i).geometry;
+        if (g.surface && g.vertexFace.size() == static_cast<std::size_t>(g.surface->vertexCount()))
+            for (const auto& [a, b] : g.outline)
+                if (g.vertexFace[static_cast<std::size_t>(a)] == c.selection.face)
+                    o.addLine(f3(g.surface->positions.col(a)), f3(g.surface->positions.col(b)), Vec3f(1.0f, 0.55f, 0.1f), true);
+    }
 }
 
 void Tools::reset()

@@ -164,7 +164,11 @@ void partTable(const Scene& scene, int index, UiState& s)
             const TrimmedSurfaceData& face = *faces[static_cast<std::size_t>(f)];
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
-            ImGui::Text("%d", f);
+            // A row click picks the face (outlined in the view), as a click on it in the view does.
+            const std::string number = std::to_string(f);
+            if (ImGui::Selectable(number.c_str(), s.selection.face == f, ImGuiSelectableFlags_SpanAllColumns))
+                s.selection.face = s.selection.face == f ? -1 : f;
+            tooltip(s, "Pick this face: its boundary is outlined in the view, the status line describes it (click again: none)");
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(kinds[static_cast<std::size_t>(f)].c_str());
             ImGui::TableNextColumn();

@@ -137,6 +137,7 @@ std::optional<PolygonMesh> tessellatePartObject(const TypedObject& object, const
         report->errorBound = mesh.report.errorBound;
         report->patchBound = mesh.report.faceBound;
         report->worstRatio = o.tolerance > 0 ? mesh.report.errorBound / o.tolerance : 0;
+        report->triangleFace = mesh.triangleFace; // splitByFace keeps the triangles' order
     }
     return std::move(mesh.mesh);
 }

@@ -90,6 +90,8 @@ struct TessellationReport {
     /// to its own tolerance (patchTolerance[p], or tolerance): at most 1 unless maxSegments binds.
     std::vector<double> patchBound;
     double worstRatio = 0;
+    /// A part or trimmed surface (the document layer's tessellateObject): the face of each triangle.
+    std::vector<int> triangleFace;
     long long leaves = 0;                     // Local: sub-rectangles (leaves of the trees)
     /// With options.sampleDeviation: the largest distances found at 12 points per triangle, from
     /// the triangle point at (u, v) to f(u, v) (parametric) and to its foot point on the patch
