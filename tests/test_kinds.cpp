@@ -190,6 +190,18 @@ TEST_CASE("deformDocument moves exactly the 3D objects whose kind says Deform", 
     }
 }
 
+TEST_CASE("the kinds whose row says Part are those objectPart makes a part of", "[kinds]")
+{
+    const TypedDocument doc = everyKind();
+    std::set<ObjectKind> parts;
+    for (const TypedObject& o : doc.objects()) {
+        INFO(o.name() << " (" << o.type() << ")");
+        CHECK(o.info().supports(KindOperation::Part) == objectPart(o).has_value());
+        if (objectPart(o)) parts.insert(o.info().kind);
+    }
+    CHECK(parts == std::set<ObjectKind>{ObjectKind::TrimmedSurface, ObjectKind::Part});
+}
+
 TEST_CASE("toData is the inverse of buildGeometry for every kind", "[kinds]")
 {
     const TypedDocument doc = everyKind();

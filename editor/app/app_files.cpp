@@ -149,12 +149,7 @@ void App::exportPart(const std::string& path)
     try {
         const Scene::PartExport e = scene_.exportPart(scene_.partItem(ui_.selection.item), path);
         ui_.notice = "wrote the part \"" + e.name + "\" to " + path + " (" + std::to_string(e.faces) + " faces";
-        if (e.deform.approximatedFaces.size() + static_cast<std::size_t>(e.deform.approximatedEdges) > 0) {
-            char error[32];
-            std::snprintf(error, sizeof error, "%.2g", e.deform.maxApproximationError);
-            ui_.notice += ", " + std::to_string(e.deform.approximatedFaces.size()) + " faces and " + std::to_string(e.deform.approximatedEdges) +
-                          " edges over degree 25 approximated at 25, certified error <= " + error;
-        }
+        ui_.notice += Scene::approximationText(e.deform);
         ui_.notice += e.valid ? ", a valid shape)" : ", Open CASCADE's check finds the shape invalid)";
     } catch (const Error& e) {
         ui_.error = e.what();

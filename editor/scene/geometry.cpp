@@ -66,7 +66,8 @@ std::string faceSummary(const PartData& part, int face)
 
 bool isFfdTarget(const SceneItem& item)
 {
-    return item.kind == SceneItem::Kind::ImportedMesh || item.is(ObjectKind::Part) || item.is(ObjectKind::TrimmedSurface);
+    const KindInfo* info = item.info();
+    return item.kind == SceneItem::Kind::ImportedMesh || (info && info->supports(KindOperation::Part));
 }
 
 std::vector<std::pair<int, int>> faceOutline(const PolygonMesh& mesh)
@@ -202,7 +203,7 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
         }
         TessellationReport report;
         if (auto mesh = tessellateObject(object, options, &report)) g.surface = withNormals(std::move(*mesh));
-        if (g.surface && (std::holds_alternative<PartData>(data) || std::holds_alternative<TrimmedSurfaceData>(data))) {
+        if (g.surface && kindInfo(data).supports(KindOperation::Part)) {
             g.outline = faceOutline(*g.surface);
             if (report.triangleFace.size() == static_cast<std::size_t>(g.surface->faceCount())) {
                 g.vertexFace.assign(static_cast<std::size_t>(g.surface->vertexCount()), -1);

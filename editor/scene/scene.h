@@ -182,8 +182,13 @@ public:
         PartDeformReport deform;   // exact faces, approximated ones and their certified error
         bool valid = false;        // Open CASCADE's BRepCheck on the written shape
     };
+    /// ", N faces and E edges approximated at degree 25 (certified error <= X)" for the status
+    /// line, or "" when every face and edge was written exactly.
+    static std::string approximationText(const PartDeformReport& report);
     /// The part to export: item `selected` when it is a part or trimmed surface, else the
-    /// document's only one (Error saying why when there is none, or several).
+    /// document's only one; -1 when there is none, or several and none selected.
+    int findPartItem(int selected) const;
+    /// findPartItem, with an Error saying why when there is no such item.
     int partItem(int selected) const;
     /// Writes object i (a part or trimmed surface) as STEP or IGES by the path's extension,
     /// deformed exactly by `lattice` (times strength) when one is given, faces over Open CASCADE's

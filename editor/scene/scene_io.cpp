@@ -78,19 +78,6 @@ double partTolerance(const PartData& part)
     return box.isEmpty() ? 0.0 : 1e-3 * box.diagonal().norm();
 }
 
-#ifdef FREEFORM_HAVE_CAD
-/// The largest degree of a part's faces and edges.
-int partDegree(const Part& part)
-{
-    int degree = 0;
-    for (const PartFace& f : part.faces)
-        degree = std::max({degree, f.surface.surface().nurbs.degreeU(), f.surface.surface().nurbs.degreeV()});
-    for (const PartEdge& e : part.edges)
-        if (e.curve) degree = std::max(degree, e.curve->nurbs.degree());
-    return degree;
-}
-#endif
-
 /// Six times the signed volume enclosed by a triangle mesh (positive when its triangles face out).
 double signedVolume6(const PolygonMesh& mesh)
 {
@@ -386,18 +373,42 @@ void Scene::exportMesh(const std::string& path)
     writePolygonMesh(mesh, path);
 }
 
-int Scene::partItem(int selected) const
+int Scene::findPartItem(int selected) const
 {
     auto isPart = [&](int i) { return items_[static_cast<std::size_t>(i)].kind == SceneItem::Kind::DocumentObject && isFfdTarget(items_[static_cast<std::size_t>(i)]); };
     if (selected >= 0 && selected < itemCount() && isPart(selected)) return selected;
     int found = -1;
     for (int i = 0; i < itemCount(); ++i)
         if (isPart(i)) {
-            if (found >= 0) throw Error("the document has several parts: select the one to export");
+            if (found >= 0) return -1;
             found = i;
         }
-    if (found < 0) throw Error("the document has no part or trimmed surface to export (File > Import reads STEP and IGES files)");
     return found;
+}
+
+int Scene::partItem(int selected) const
+{
+    const int found = findPartItem(selected);
+    if (found >= 0) return found;
+    for (int i = 0; i < itemCount(); ++i)
+        if (items_[static_cast<std::size_t>(i)].kind == SceneItem::Kind::DocumentObject && isFfdTarget(items_[static_cast<std::size_t>(i)]))
+            throw Error("the document has several parts: select the one to export");
+    throw Error("the document has no part or trimmed surface to export (File > Import reads STEP and IGES files)");
+}
+
+std::string Scene::approximationText(const PartDeformReport& report)
+{
+    const std::size_t faces = report.approximatedFaces.size();
+    if (faces + static_cast<std::size_t>(report.approximatedEdges) == 0) return {};
+#ifdef FREEFORM_HAVE_CAD
+    const int cap = cadMaxDegree();
+#else
+    const int cap = report.maxDegree; // (no writer caps a degree in this build)
+#endif
+    char error[32];
+    std::snprintf(error, sizeof error, "%.2g", report.maxApproximationError);
+    return ", " + std::to_string(faces) + " faces and " + std::to_string(report.approximatedEdges) + " edges approximated at degree " +
+           std::to_string(cap) + " (certified error <= " + error + ")";
 }
 
 Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattice* lattice, double strength) const
@@ -419,9 +430,8 @@ Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattic
     // lattice of its box, an affine map (control points mapped, to rounding), whose degree cap
     // approximates the faces and edges above 25 with a certified error, as "export deformed" does.
     std::optional<Lattice> rest;
-    if (!lattice && partDegree(*part) > cadMaxDegree()) {
-        Eigen::AlignedBox3d box;
-        for (const PartFace& f : part->faces) box.extend(f.surface.bounds());
+    if (!lattice && part->maxDegree() > cadMaxDegree()) {
+        const Eigen::AlignedBox3d box = part->bounds();
         Eigen::Matrix<double, 3, 2> corners;
         corners << box.min(), box.max();
         rest = Lattice::fit(corners, {1, 1, 1}, 0.05);

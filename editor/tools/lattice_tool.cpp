@@ -189,15 +189,8 @@ bool LatticeTool::exportDeformed(ToolContext& c, int latticeItem, const std::str
             // with the certified error reported: docs/cad.md, "In the editor").
             const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
             const Scene::PartExport e = c.scene.exportPart(m, path, &lattice, item.settings.ffd.strength);
-            status() = "wrote " + path + ": " + std::to_string(e.deform.exactFaces) + " of " + std::to_string(e.faces) + " faces exact";
-            const std::size_t faces = e.deform.approximatedFaces.size();
-            const int edges = e.deform.approximatedEdges;
-            if (faces + static_cast<std::size_t>(edges) > 0) {
-                char error[32];
-                std::snprintf(error, sizeof error, "%.2g", e.deform.maxApproximationError);
-                status() += ", " + std::to_string(faces) + " faces and " + std::to_string(edges) +
-                            " edges approximated at degree 25 (certified error <= " + error + ")";
-            }
+            status() = "wrote " + path + ": " + std::to_string(e.deform.exactFaces) + " of " + std::to_string(e.faces) + " faces exact" +
+                       Scene::approximationText(e.deform);
             status() += e.valid ? ", a valid shape" : ", Open CASCADE's check finds the shape invalid";
             return true;
         }

@@ -61,6 +61,15 @@ Box<double, 3> Part::bounds() const
     return box;
 }
 
+int Part::maxDegree() const
+{
+    int degree = 0;
+    for (const PartFace& f : faces) degree = std::max({degree, f.surface.surface().nurbs.degreeU(), f.surface.surface().nurbs.degreeV()});
+    for (const PartEdge& e : edges)
+        if (e.curve) degree = std::max(degree, e.curve->nurbs.degree());
+    return degree;
+}
+
 double Part::area(double relative) const
 {
     double sum = 0;

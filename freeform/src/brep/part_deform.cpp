@@ -369,8 +369,6 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
         if (faceOutside[f]) ++report.outsideFaces;
         if (report.faceErrors[f] == 0 && !faceOutside[f]) ++report.exactFaces;
         largest = std::max(largest, report.faceErrors[f]);
-        const NurbsSurface<double, 3>& n = result.faces.back().surface.surface().nurbs;
-        report.maxDegree = std::max({report.maxDegree, n.degreeU(), n.degreeV()});
     }
     // An edge's tolerance grows by L, and by its own approximation error and its faces'.
     std::vector<double> edgeSlack = edgeErrors;
@@ -387,7 +385,6 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
         edge.tolerance = L * edge.tolerance + edgeSlack[i];
         if (edgeErrors[i] > 0) ++report.approximatedEdges;
         largest = std::max(largest, edgeErrors[i]);
-        if (edge.curve) report.maxDegree = std::max(report.maxDegree, edge.curve->nurbs.degree());
         report.maxTolerance = std::max(report.maxTolerance, edge.tolerance);
         result.edges.push_back(std::move(edge));
     }
@@ -398,6 +395,7 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
         if (!p.allFinite()) throw Error("deformPart: a vertex moves to a point that is not finite");
         result.vertices.push_back({p, L * v.tolerance + largest});
     }
+    report.maxDegree = result.maxDegree();
     report.maxGap = checkPart(result).maxGap;
     return out;
 }

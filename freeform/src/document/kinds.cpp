@@ -44,8 +44,8 @@ std::array<KindInfo, objectKindCount> makeTable()
             surface | bits({Op::ToNurbs})),
         row(K::NurbsCurve, "NURBS curve", N::Curve, P::T, 0, true, true, true, curve | bits({Op::Continuity, Op::FromNurbs})),
         row(K::NurbsSurface, "NURBS surface", N::Surface, P::UV, 3, true, true, true, surface | bits({Op::FromNurbs})),
-        row(K::TrimmedSurface, "trimmed NURBS surface", N::Surface, P::UV, 3, true, true, true, surface),
-        row(K::Part, "CAD part", N::Part, P::FaceUV, 3, true, true, true, surface),
+        row(K::TrimmedSurface, "trimmed NURBS surface", N::Surface, P::UV, 3, true, true, true, surface | bits({Op::Part})),
+        row(K::Part, "CAD part", N::Part, P::FaceUV, 3, true, true, true, surface | bits({Op::Part})),
     }};
 }
 

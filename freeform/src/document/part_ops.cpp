@@ -165,9 +165,7 @@ std::optional<Part> objectPart(const TypedObject& object)
 
 const TypedObject& documentPart(const TypedDocument& doc, const std::optional<std::string>& name)
 {
-    auto isPart = [](const TypedObject& o) {
-        return std::holds_alternative<Part>(o.geometry()) || std::holds_alternative<TrimmedSurface>(o.geometry());
-    };
+    auto isPart = [](const TypedObject& o) { return o.info().supports(KindOperation::Part); };
     if (name) {
         const TypedObject& o = doc.object(*name);
         if (!isPart(o)) throw Error(doc.what(o) + ": is a " + o.type() + ", not a part or trimmed_surface");

@@ -61,6 +61,8 @@ struct Part {
     Box<double, 3> bounds() const;
     /// The sum of the faces' areas (TrimmedSurface::area).
     double area(double relative = 1e-10) const;
+    /// The largest degree of a face's surface (either direction) or an edge's 3D curve; 0 for none.
+    int maxDegree() const;
 };
 
 /// A trimmed surface as a part of one face (no shell): each of its trim curves becomes an edge of

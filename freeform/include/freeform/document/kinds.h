@@ -41,6 +41,8 @@ enum class KindOperation : unsigned {
     ToNurbs = 1u << 6,       ///< toNurbsData()
     FromNurbs = 1u << 7,     ///< fromNurbsData()
     DeformsOthers = 1u << 8, ///< it is the lattice that deforms the others (freeform ffd --lattice)
+    Part = 1u << 9,          ///< objectPart(): a part, or a trimmed surface as a part of one face
+                             ///< (STEP and IGES out, faces to pick, the part report)
 };
 
 struct KindInfo {
