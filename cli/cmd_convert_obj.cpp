@@ -1,6 +1,6 @@
 // freeform convert between a document and OBJ free-form geometry (cstype [rat] bezier|bspline), by extension:
-//   DOC.json -o OUT.obj   Bézier curves, open Bézier splines, Bézier surfaces, their rational forms
-//                         and NURBS curves and surfaces to OBJ
+//   DOC.json -o OUT.obj   Bézier curves, open Bézier splines, Bézier surfaces, their rational forms,
+//                         NURBS curves and surfaces and trimmed surfaces (curv2, trim, hole) to OBJ
 //   IN.obj   -o OUT.json  the OBJ's free-form elements to a document
 
 #include <filesystem>

@@ -113,14 +113,14 @@ TEST_CASE("OBJ free-form errors name the line", "[obj][errors]")
     CHECK(err(v4 + "cstype bezier\ndeg 1 1\nsurf 0 1 0 1 1 2 3\nend\n").find("line 7: 3 control points do not fit degree (1, 1)") !=
           std::string::npos);
     CHECK(err(v4 + "cstype bezier\ndeg 3\ncurv 0 1 1 2 3 4\ntrim 0 1 1\nend\n") ==
-          "x.obj: line 8: trimming and special curves (trim) are not supported");
+          "x.obj: line 8: trim outside a surf element");
     CHECK(err(v4 + "cstype bezier\ndeg 1\ncurv 0 2 1 2 3\nparm u 0 1\nend\n") ==
           "x.obj: line 9: parm u has 2 values, 2 segments need 3");
     CHECK(err(v4 + "cstype bezier\ndeg 1\ncurv 0 2 1 2 3\nparm u 0 1 1\n").find("line 8: parm values must increase") !=
           std::string::npos);
     CHECK(err("v 0 0 zz\n") == "x.obj: line 1: \"zz\" is not a finite number");
     CHECK(err("frobnicate 1\n") == "x.obj: line 1: unknown statement \"frobnicate\"");
-    CHECK(err("end\n") == "x.obj: line 1: end without a curv or surf element");
+    CHECK(err("end\n") == "x.obj: line 1: end without a curv, curv2 or surf element");
     CHECK(err(v4 + "cstype bezier\ndeg 0\n") == "x.obj: line 6: degree 0 is outside 1..67");
 }
 

@@ -273,9 +273,9 @@ TEST_CASE("OBJ rational and B-spline errors name the line", "[obj][nurbs][errors
     CHECK(err(v4 + "cstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 0 1 1\nend\n") ==
           "x.obj: line 7: a bspline surf needs \"parm u\" and \"parm v\" (its knot vectors)");
     CHECK(err(v4 + "cstype rat bspline\ndeg 1\ncurv 0 1 1 3\nparm u 0 0 1 1\nhole 0 1 1\nend\n") ==
-          "x.obj: line 9: trimming and special curves (hole) are not supported");
+          "x.obj: line 9: hole outside a surf element");
     CHECK(err(v4 + "cstype rat bspline\ndeg 1\ncurv 0 1 1 3\nscrv 0 1 1\nend\n") ==
-          "x.obj: line 8: trimming and special curves (scrv) are not supported");
+          "x.obj: line 8: special curves and points (scrv) are not supported");
     CHECK(err(v4 + "cstype rat bezier\ndeg 1 1\nsurf 0 1 0 1 1 3 4 3 4 3 4 3 4\nend\n").find("x.obj: line 7: 9 control points") == 0);
     CHECK(err(v4 + "cstype bspline\ndeg 1\nbmat u 1 0 0 1\n") ==
           "x.obj: line 7: \"bmat\" is not supported (Bézier and B-spline curves and surfaces only)");

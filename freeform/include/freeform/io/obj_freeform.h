@@ -16,14 +16,21 @@
 // `cstype bspline` (no weights) or `cstype rat bspline`, `parm u` (and `parm v`) the whole knot
 // vector, `curv` / `surf` over the whole domain [knot p, knot count] (a sub-range is an Error), the
 // surface grid u fastest with its size from the knot counts (rows = |parm u| - p - 1).
+// A trimmed_surface is its trim curves as `curv2` elements (2D B-splines on `vp u v [w]` lines),
+// then its surface as a `cstype [rat] bspline` surf over its domain (a part of the knot domain) with
+// `trim u0 u1 k ...` (the outer loop: curv2 number k from u0 to u1; u0 > u1 runs it backwards) and
+// a `hole ...` per inner loop. Reading, a surf with trim or hole statements (Bézier or B-spline), or
+// a B-spline surf over a part of its domain, is a trimmed_surface; holes without a trim are inside
+// the surf range; a curv2 no surface trims with is a 2D nurbs_curve of its own. Parameter maps (a
+// CAD face's angles) have no OBJ form: writing one is an Error naming the field.
 // Numbers are written in the shortest form that reads back to the same double, so
 // document -> OBJ -> document keeps every coordinate exactly.
 //
-// The reader is strict: other types (cardinal, taylor, bmat), trimming (trim/hole/scrv/sp),
-// piecewise Bézier surfaces, non-positive weights, invalid knot vectors, a point count that does not
-// fit the degree, a bad `parm` list, an index out of range, an element without `end`, or a statement
-// it does not know are Errors naming the file and line.
-// Polygonal statements (f, l, p, vt, vn, vp, s, usemtl, mtllib) are skipped.
+// The reader is strict: other types (cardinal, taylor, bmat), special curves and points (scrv, sp),
+// a second trim loop, non-positive weights, invalid knot vectors, a point count that does not fit
+// the degree, a bad `parm` list, an index out of range, a trim range outside its curve, an element
+// without `end`, or a statement it does not know are Errors naming the file and line.
+// Polygonal statements (f, l, p, vt, vn, s, usemtl, mtllib) are skipped.
 
 #include <string>
 
@@ -39,7 +46,8 @@ Document parseObjFreeform(const std::string& text, const std::string& source = "
 Document readObjFreeform(const std::string& path);
 
 /// The bezier_curve, bezier_spline (open), bezier_surface, rational_bezier_curve,
-/// rational_bezier_surface, nurbs_curve and nurbs_surface objects of the document as OBJ text;
+/// rational_bezier_surface, nurbs_curve, nurbs_surface and trimmed_surface objects of the document
+/// as OBJ text;
 /// objectName non-empty: only that object. Error naming the object for any other type (a closed
 /// spline, a de Boor form, a lattice: convert them to Bézier form first).
 std::string formatObjFreeform(const Document& document, const std::string& objectName = "");
