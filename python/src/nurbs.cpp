@@ -221,14 +221,16 @@ freeform::NurbsCurve<double, D> keepPolynomial(const freeform::NurbsCurve<double
 // ---------------------------------------------------------------- document bridge
 
 #ifdef FREEFORM_HAVE_CAD
-py::object partObject(const freeform::Part& part);               // part.cpp
-std::optional<freeform::ObjectData> partData(py::handle h);      // part.cpp
+py::object partObject(const freeform::Part& part);                          // part.cpp
+py::object trimmedSurfaceObject(const freeform::TrimmedSurface& surface);   // part.cpp
+std::optional<freeform::ObjectData> partData(py::handle h);                 // part.cpp
 #endif
 
 py::object geometryObject(const freeform::TypedDocument& doc, const freeform::TypedObject& object)
 {
 #ifdef FREEFORM_HAVE_CAD
     if (const auto* part = std::get_if<freeform::Part>(&object.geometry())) return partObject(*part);
+    if (const auto* t = std::get_if<freeform::TrimmedSurface>(&object.geometry())) return trimmedSurfaceObject(*t);
 #endif
     py::object o = fromGeometry(object.geometry());
     if (o.is_none())
@@ -254,7 +256,7 @@ freeform::ObjectData objectData(py::handle h)
     if (auto part = partData(h)) return std::move(*part);
 #endif
     throw py::type_error("expected a freeform geometry object (BezierCurve, Spline, Patch, Lattice, RationalBezierCurve, "
-                         "NurbsCurve, RationalBezierSurface, NurbsSurface, Part), got " +
+                         "NurbsCurve, RationalBezierSurface, NurbsSurface, Part, TrimmedSurface), got " +
                          std::string(py::str(py::type::handle_of(h).attr("__name__"))));
 }
 

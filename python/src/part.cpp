@@ -2,6 +2,7 @@
 // faces' surfaces and the edges' curves come out as the existing NurbsSurface and NurbsCurve (in
 // their NURBS parameters); points(), normals() and classify() take the file's parameters.
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -9,6 +10,7 @@
 #include "freeform/brep/part_deform.h"
 #include "freeform/brep/part_mesh.h"
 #include "freeform/cad/cad_file.h"
+#include "freeform/core/format.h"
 #include "freeform/document/model.h"
 #include "freeform/document/operations.h"
 #include "freeform/document/object_data.h"
@@ -28,6 +30,11 @@ struct PyFace {
     int index;
     const freeform::PartFace& face() const { return part->faces[static_cast<std::size_t>(index)]; }
 };
+/// A trimmed_surface object: the surface itself (document data without edges) and the part of one
+/// face it is (singleFacePart) for what a Face, tessellate and deform read.
+struct PyTrimmed : PyFace {
+    std::shared_ptr<const freeform::TrimmedSurface> surface;
+};
 struct PyEdge {
     std::shared_ptr<const Part> part;
     int index;
@@ -46,6 +53,17 @@ std::vector<Eigen::Vector2d> uvRows(py::handle h)
     return out;
 }
 
+/// ((u0, u1), (v0, v1)) as a box (checked u0 < u1, v0 < v1).
+freeform::Box<double, 2> domainBox(py::handle h)
+{
+    const py::sequence d = py::reinterpret_borrow<py::sequence>(h);
+    if (d.size() != 2) throw freeform::Error("domain: expected ((u0, u1), (v0, v1))");
+    const auto u = numberList(d[0], "domain[0]"), v = numberList(d[1], "domain[1]");
+    if (u.size() != 2 || v.size() != 2 || !(u[0] < u[1]) || !(v[0] < v[1]))
+        throw freeform::Error("domain: expected ((u0, u1), (v0, v1)) with u0 < u1 and v0 < v1");
+    return freeform::Box<double, 2>(Eigen::Vector2d(u[0], v[0]), Eigen::Vector2d(u[1], v[1]));
+}
+
 py::list indexLists(const std::vector<std::vector<int>>& lists)
 {
     py::list out;
@@ -60,12 +78,108 @@ Part documentPart(const std::string& path)
     return *freeform::objectPart(freeform::documentPart(doc));
 }
 
+PyTrimmed trimmedObject(freeform::TrimmedSurface surface)
+{
+    auto s = std::make_shared<const freeform::TrimmedSurface>(std::move(surface));
+    return PyTrimmed{{std::make_shared<const Part>(freeform::singleFacePart(*s)), 0}, s};
+}
+
+/// A part's certified mesh as (V, F) or (V, F, report) (Part.tessellate, TrimmedSurface.tessellate).
+py::tuple meshTuple(const Part& part, double tolerance, long long maxTriangles, bool withReport)
+{
+    freeform::PartMeshOptions o;
+    o.tolerance = tolerance;
+    o.maxTriangles = maxTriangles;
+    const freeform::PartMesh m = freeform::tessellatePart(part, o);
+    py::array_t<double> V({static_cast<py::ssize_t>(m.mesh.vertexCount()), py::ssize_t{3}});
+    std::copy(m.mesh.positions.data(), m.mesh.positions.data() + m.mesh.positions.size(), V.mutable_data());
+    py::array_t<int> F({static_cast<py::ssize_t>(m.mesh.faceCount()), py::ssize_t{3}});
+    std::copy(m.mesh.faceVertices.begin(), m.mesh.faceVertices.end(), F.mutable_data());
+    if (!withReport) return py::make_tuple(V, F);
+    const freeform::PartMeshReport& r = m.report;
+    py::dict d;
+    d["faces"] = r.faces;
+    d["triangles"] = m.mesh.faceCount();
+    d["vertices"] = m.mesh.vertexCount();
+    d["watertight"] = r.watertight;
+    d["error_bound"] = r.errorBound;
+    d["certified"] = r.certified;
+    d["closed_shells"] = r.closedShells;
+    d["open_mesh_edges"] = r.openMeshEdges;
+    d["max_vertex_gap"] = r.maxVertexGap;
+    d["max_trim_deviation"] = r.maxTrimDeviation;
+    d["face_bounds"] = r.faceBound;
+    py::array_t<int> faceOf(static_cast<py::ssize_t>(m.triangleFace.size()));
+    std::copy(m.triangleFace.begin(), m.triangleFace.end(), faceOf.mutable_data());
+    d["triangle_faces"] = faceOf;
+    return py::make_tuple(V, F, d);
+}
+
+/// A part through a lattice (Part.deform, TrimmedSurface.deform): the deformed part and the report.
+std::pair<Part, py::dict> deformed(const Part& part, PyLattice& lattice, double strength, int maxDegree, double tolerance)
+{
+    freeform::PartDeformOptions o;
+    o.strength = strength;
+    o.maxDegree = maxDegree;
+    o.tolerance = tolerance;
+    const freeform::Lattice l = lattice.snapshot();
+    freeform::DeformedPart d;
+    {
+        py::gil_scoped_release release;
+        d = freeform::deformPart(part, freeform::RationalLattice(l), o);
+    }
+    const freeform::PartDeformReport& r = d.report;
+    py::dict report;
+    report["faces"] = r.faces;
+    report["exact_faces"] = r.exactFaces;
+    report["approximated_faces"] = r.approximatedFaces;
+    report["face_errors"] = r.faceErrors;
+    report["max_approximation_error"] = r.maxApproximationError;
+    report["max_degree"] = r.maxDegree;
+    report["max_gap"] = r.maxGap;
+    report["outside_faces"] = r.outsideFaces;
+    report["approximated_edges"] = r.approximatedEdges;
+    report["affine"] = r.affine;
+    report["lipschitz"] = r.lipschitz;
+    report["max_tolerance"] = r.maxTolerance;
+    return {std::move(d.part), std::move(report)};
+}
+
+/// A trim curve of TrimmedSurface(...): a 2D NurbsCurve (its whole domain, forward) or a tuple
+/// (curve, first, last[, reversed]).
+freeform::TrimCurve trimCurve(py::handle h, const std::string& where)
+{
+    py::handle curve = h;
+    std::optional<std::array<double, 2>> range;
+    bool reversed = false;
+    if (py::isinstance<py::tuple>(h) || py::isinstance<py::list>(h)) {
+        const py::sequence t = py::reinterpret_borrow<py::sequence>(h);
+        if (t.size() != 3 && t.size() != 4)
+            throw freeform::Error(where + ": expected a NurbsCurve or (curve, first, last[, reversed]), got " + std::to_string(t.size()) + " items");
+        curve = t[0];
+        range = std::array<double, 2>{t[1].cast<double>(), t[2].cast<double>()};
+        if (t.size() == 4) reversed = t[3].cast<bool>();
+    }
+    if (!py::isinstance<PyNurbsCurve>(curve)) throw freeform::Error(where + ": expected a 2D NurbsCurve");
+    const auto* c2 = std::get_if<freeform::NurbsCurve<double, 2>>(&curve.cast<const PyNurbsCurve&>().c);
+    if (!c2) throw freeform::Error(where + ": a trim curve lies in the surface's parameters: expected a 2D NurbsCurve, got a 3D one");
+    const freeform::TrimCurve t{{*c2, {}, range ? (*range)[0] : c2->domainStart(), range ? (*range)[1] : c2->domainEnd()}, reversed, -1};
+    if (!(t.curve.first < t.curve.last) || t.curve.first < c2->domainStart() || t.curve.last > c2->domainEnd())
+        throw freeform::Error(where + ": the range [" + freeform::formatNumber(t.curve.first) + ", " + freeform::formatNumber(t.curve.last) +
+                              "] is not an increasing part of the curve's domain [" + freeform::formatNumber(c2->domainStart()) + ", " +
+                              freeform::formatNumber(c2->domainEnd()) + "]");
+    return t;
+}
+
 } // namespace
 
 py::object partObject(const Part& part) { return py::cast(PyPart{std::make_shared<const Part>(part)}); }
 
+py::object trimmedSurfaceObject(const freeform::TrimmedSurface& surface) { return py::cast(trimmedObject(surface)); }
+
 std::optional<freeform::ObjectData> partData(py::handle h)
 {
+    if (py::isinstance<PyTrimmed>(h)) return freeform::ObjectData(freeform::toData(*h.cast<const PyTrimmed&>().surface));
     if (!py::isinstance<PyPart>(h)) return std::nullopt;
     return freeform::ObjectData(freeform::toData(*h.cast<const PyPart&>().part));
 }
@@ -127,33 +241,8 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
         .def_property_readonly("area", [](const PyPart& p) { return p.part->area(); }, "The sum of the faces' areas.")
         .def(
             "tessellate",
-            [](const PyPart& p, double tolerance, long long maxTriangles, bool withReport) -> py::tuple {
-                freeform::PartMeshOptions o;
-                o.tolerance = tolerance;
-                o.maxTriangles = maxTriangles;
-                const freeform::PartMesh m = freeform::tessellatePart(*p.part, o);
-                py::array_t<double> V({static_cast<py::ssize_t>(m.mesh.vertexCount()), py::ssize_t{3}});
-                std::copy(m.mesh.positions.data(), m.mesh.positions.data() + m.mesh.positions.size(), V.mutable_data());
-                py::array_t<int> F({static_cast<py::ssize_t>(m.mesh.faceCount()), py::ssize_t{3}});
-                std::copy(m.mesh.faceVertices.begin(), m.mesh.faceVertices.end(), F.mutable_data());
-                if (!withReport) return py::make_tuple(V, F);
-                const freeform::PartMeshReport& r = m.report;
-                py::dict d;
-                d["faces"] = r.faces;
-                d["triangles"] = m.mesh.faceCount();
-                d["vertices"] = m.mesh.vertexCount();
-                d["watertight"] = r.watertight;
-                d["error_bound"] = r.errorBound;
-                d["certified"] = r.certified;
-                d["closed_shells"] = r.closedShells;
-                d["open_mesh_edges"] = r.openMeshEdges;
-                d["max_vertex_gap"] = r.maxVertexGap;
-                d["max_trim_deviation"] = r.maxTrimDeviation;
-                d["face_bounds"] = r.faceBound;
-                py::array_t<int> faceOf(static_cast<py::ssize_t>(m.triangleFace.size()));
-                std::copy(m.triangleFace.begin(), m.triangleFace.end(), faceOf.mutable_data());
-                d["triangle_faces"] = faceOf;
-                return py::make_tuple(V, F, d);
+            [](const PyPart& p, double tolerance, long long maxTriangles, bool withReport) {
+                return meshTuple(*p.part, tolerance, maxTriangles, withReport);
             },
             py::arg("tolerance"), py::arg("max_triangles") = 10'000'000LL, py::arg("report") = false,
             "The certified watertight mesh (docs/cad.md, 'Tessellation'): (V (N, 3) float64, F (T, 3) int32), "
@@ -177,31 +266,8 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
         .def(
             "deform",
             [](const PyPart& p, PyLattice& lattice, double strength, int maxDegree, double tolerance) {
-                freeform::PartDeformOptions o;
-                o.strength = strength;
-                o.maxDegree = maxDegree;
-                o.tolerance = tolerance;
-                const freeform::Lattice l = lattice.snapshot();
-                freeform::DeformedPart d;
-                {
-                    py::gil_scoped_release release;
-                    d = freeform::deformPart(*p.part, freeform::RationalLattice(l), o);
-                }
-                const freeform::PartDeformReport& r = d.report;
-                py::dict report;
-                report["faces"] = r.faces;
-                report["exact_faces"] = r.exactFaces;
-                report["approximated_faces"] = r.approximatedFaces;
-                report["face_errors"] = r.faceErrors;
-                report["max_approximation_error"] = r.maxApproximationError;
-                report["max_degree"] = r.maxDegree;
-                report["max_gap"] = r.maxGap;
-                report["outside_faces"] = r.outsideFaces;
-                report["approximated_edges"] = r.approximatedEdges;
-                report["affine"] = r.affine;
-                report["lipschitz"] = r.lipschitz;
-                report["max_tolerance"] = r.maxTolerance;
-                return py::make_tuple(PyPart{std::make_shared<const Part>(std::move(d.part))}, report);
+                auto [part, report] = deformed(*p.part, lattice, strength, maxDegree, tolerance);
+                return py::make_tuple(PyPart{std::make_shared<const Part>(std::move(part))}, report);
             },
             py::arg("lattice"), py::arg("strength") = 1.0, py::arg("max_degree") = 0, py::arg("tolerance") = 0.0,
             "The part through the lattice, exactly (docs/cad.md, Deformation): (Part, report). Every face's surface "
@@ -340,6 +406,71 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
                 return out;
             },
             py::arg("uv"), "Per parameter point: 1 inside the trims, -1 outside, 0 within twice the flatness of a trim.");
+
+    py::class_<PyTrimmed, PyFace>(m, "TrimmedSurface", R"doc(
+A NURBS surface trimmed by loops of 2D NURBS curves in its parameters (a document's
+trimmed_surface; docs/cad.md): what a Face is, standing alone. The first loop is the outer
+boundary, the others holes; no loops: the whole domain. Face's properties and methods apply
+(points, normals, classify, area, boundary, ...); tessellate and deform work as a Part's of one face.)doc")
+        .def(py::init([](const PyNurbsSurface& surface, py::handle domain, py::handle loops) {
+                 const auto& n = surface.s;
+                 const freeform::Box<double, 2> knotBox(Eigen::Vector2d(n.knotsU().front(), n.knotsV().front()),
+                                                        Eigen::Vector2d(n.knotsU().back(), n.knotsV().back()));
+                 const freeform::Box<double, 2> d = domain.is_none() ? knotBox : domainBox(domain);
+                 if (!knotBox.contains(d)) throw freeform::Error("domain: the box must lie in the surface's knot domain");
+                 std::vector<freeform::TrimLoop> trimLoops;
+                 if (!loops.is_none())
+                     for (std::size_t l = 0; l < py::len(loops); ++l) {
+                         const py::sequence loop = py::reinterpret_borrow<py::sequence>(loops[py::int_(l)]);
+                         freeform::TrimLoop tl;
+                         for (std::size_t k = 0; k < loop.size(); ++k)
+                             tl.curves.push_back(trimCurve(loop[k], "loops[" + std::to_string(l) + "][" + std::to_string(k) + "]"));
+                         if (tl.curves.empty()) throw freeform::Error("loops[" + std::to_string(l) + "]: a loop needs a curve");
+                         trimLoops.push_back(std::move(tl));
+                     }
+                 return trimmedObject(freeform::TrimmedSurface(freeform::MappedSurface{n, {}, {}}, d, std::move(trimLoops)));
+             }),
+             py::arg("surface"), py::arg("domain") = py::none(), py::arg("loops") = py::none(),
+             "surface: a NurbsSurface; domain ((u0, u1), (v0, v1)) (None: the surface's knot domain); loops: a list "
+             "of loops, each a list of trim curves, each a 2D NurbsCurve (its whole domain) or (curve, first, last[, "
+             "reversed]) (None: no trims).")
+        .def_property_readonly("trims",
+                               [](const PyTrimmed& t) {
+                                   py::list out;
+                                   for (const auto& loop : t.surface->loops()) {
+                                       py::list l;
+                                       for (const auto& c : loop.curves)
+                                           l.append(py::make_tuple(PyNurbsCurve{c.curve.nurbs}, c.curve.first, c.curve.last, c.reversed));
+                                       out.append(l);
+                                   }
+                                   return out;
+                               },
+                               "Per loop (the outer one first), its trim curves as (NurbsCurve 2D, first, last, reversed).")
+        .def("part", [](const PyTrimmed& t) { return PyPart{t.part}; },
+             "The Part of one face it is: one edge per trim, no shell (save() writes it as STEP or IGES).")
+        .def(
+            "tessellate",
+            [](const PyTrimmed& t, double tolerance, long long maxTriangles, bool withReport) {
+                return meshTuple(*t.part, tolerance, maxTriangles, withReport);
+            },
+            py::arg("tolerance"), py::arg("max_triangles") = 10'000'000LL, py::arg("report") = false,
+            "The certified mesh of the trimmed domain, as Part.tessellate: (V, F) or (V, F, report).")
+        .def(
+            "deform",
+            [](const PyTrimmed& t, PyLattice& lattice, double strength, int maxDegree, double tolerance) {
+                auto [part, report] = deformed(*t.part, lattice, strength, maxDegree, tolerance);
+                // The face's new surface with the same domain and trims (the part's edges dropped).
+                const freeform::TrimmedSurface& f = part.faces.front().surface;
+                return py::make_tuple(trimmedObject(freeform::TrimmedSurface(f.surface(), f.domain(), t.surface->loops(), t.surface->flatness())),
+                                      report);
+            },
+            py::arg("lattice"), py::arg("strength") = 1.0, py::arg("max_degree") = 0, py::arg("tolerance") = 0.0,
+            "The surface through the lattice, exactly (as Part.deform, trims kept): (TrimmedSurface, report).")
+        .def("__repr__", [](const PyTrimmed& t) {
+            const auto& n = t.surface->surface().nurbs;
+            return "<freeform.TrimmedSurface: degree (" + std::to_string(n.degreeU()) + ", " + std::to_string(n.degreeV()) + "), " +
+                   std::to_string(t.surface->loops().size()) + " loops>";
+        });
 
     py::class_<PyEdge>(m, "Edge", "An edge of a Part: a 3D curve in the file's parameter, shared by its faces.")
         .def_property_readonly("index", [](const PyEdge& e) { return e.index; })

@@ -29,6 +29,10 @@ def stub_names():
                     members.add(item.name)
                 elif isinstance(item, ast.AnnAssign):
                     members.add(item.target.id)
+            # A subclass (TrimmedSurface(Face)) has its bases' members too.
+            for base in node.bases:
+                if isinstance(base, ast.Name) and base.id in classes:
+                    members |= classes[base.id]
             classes[node.name] = members
     return classes
 
