@@ -446,7 +446,7 @@ boundary, the others holes; no loops: the whole domain. Face's properties and me
                                    return out;
                                },
                                "Per loop (the outer one first), its trim curves as (NurbsCurve 2D, first, last, reversed).")
-        .def("part", [](const PyTrimmed& t) { return PyPart{t.part}; },
+        .def("as_part", [](const PyTrimmed& t) { return PyPart{t.part}; },
              "The Part of one face it is: one edge per trim, no shell (save() writes it as STEP or IGES).")
         .def(
             "tessellate",
