@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <BRepBndLib.hxx>
+#include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <BRep_Tool.hxx>
@@ -367,9 +368,11 @@ TEST_CASE("an OBJ trimmed surface (curv2, trim, hole) through JSON to STEP: Open
         REQUIRE(r.status == 0);
         if (args.find(".step") != std::string::npos) CHECK(Json::parse(r.out)["valid"] == true);
     }
+    // Read back by Open CASCADE: one face with its two wires, valid (BRepCheck on the shape it read).
     const TopoDS_Shape shape = freeform::test::occtRead(step);
     CHECK(freeform::test::occtCount(shape, TopAbs_FACE) == 1);
     CHECK(freeform::test::occtCount(shape, TopAbs_WIRE) == 2);
+    CHECK(BRepCheck_Analyzer(shape).IsValid());
     GProp_GProps props;
     const double eps = BRepGProp::SurfaceProperties(shape, props, 1e-10);
     const double area = 6 * (0.16 * M_PI - 0.04);

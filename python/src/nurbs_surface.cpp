@@ -560,4 +560,10 @@ per control point (index as Lattice.control_points; None: all 1, the polynomial 
         "then W^(l+m+n)).");
 }
 
+std::optional<freeform::RationalLattice> rationalLatticeArg(py::handle h)
+{
+    if (!py::isinstance<PyRationalLattice>(h)) return std::nullopt;
+    return h.cast<const PyRationalLattice&>().lattice;
+}
+
 } // namespace ffpy

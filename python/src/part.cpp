@@ -18,6 +18,10 @@
 #include "nurbs.h"
 
 namespace ffpy {
+
+/// The lattice of a RationalLattice argument, or nullopt for anything else (nurbs_surface.cpp).
+std::optional<freeform::RationalLattice> rationalLatticeArg(py::handle h);
+
 namespace {
 
 using freeform::Part;
@@ -115,18 +119,22 @@ py::tuple meshTuple(const Part& part, double tolerance, long long maxTriangles, 
     return py::make_tuple(V, F, d);
 }
 
-/// A part through a lattice (Part.deform, TrimmedSurface.deform): the deformed part and the report.
-std::pair<Part, py::dict> deformed(const Part& part, PyLattice& lattice, double strength, int maxDegree, double tolerance)
+/// A part through a Lattice or RationalLattice (Part.deform, TrimmedSurface.deform): the deformed
+/// part and the report.
+std::pair<Part, py::dict> deformed(const Part& part, py::handle lattice, double strength, int maxDegree, double tolerance)
 {
     freeform::PartDeformOptions o;
     o.strength = strength;
     o.maxDegree = maxDegree;
     o.tolerance = tolerance;
-    const freeform::Lattice l = lattice.snapshot();
+    std::optional<freeform::RationalLattice> rational = rationalLatticeArg(lattice);
+    if (!rational && py::isinstance<PyLattice>(lattice)) rational.emplace(lattice.cast<PyLattice&>().snapshot());
+    if (!rational)
+        throw py::type_error("lattice: expected a Lattice or RationalLattice, got " + std::string(py::str(py::type::handle_of(lattice).attr("__name__"))));
     freeform::DeformedPart d;
     {
         py::gil_scoped_release release;
-        d = freeform::deformPart(part, freeform::RationalLattice(l), o);
+        d = freeform::deformPart(part, *rational, o);
     }
     const freeform::PartDeformReport& r = d.report;
     py::dict report;
@@ -265,12 +273,13 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
             "gaps_over_tolerance.")
         .def(
             "deform",
-            [](const PyPart& p, PyLattice& lattice, double strength, int maxDegree, double tolerance) {
+            [](const PyPart& p, py::handle lattice, double strength, int maxDegree, double tolerance) {
                 auto [part, report] = deformed(*p.part, lattice, strength, maxDegree, tolerance);
                 return py::make_tuple(PyPart{std::make_shared<const Part>(std::move(part))}, report);
             },
             py::arg("lattice"), py::arg("strength") = 1.0, py::arg("max_degree") = 0, py::arg("tolerance") = 0.0,
-            "The part through the lattice, exactly (docs/cad.md, Deformation): (Part, report). Every face's surface "
+            "The part through the lattice (a Lattice, or a RationalLattice: docs/nurbs.md 'Rational FFD'), exactly "
+            "(docs/cad.md, Deformation): (Part, report); strength is this argument's. Every face's surface "
             "and edge's curve composed with the lattice, trims kept, vertices mapped. max_degree > 0 (25 for save()) "
             "reduces faces and edges above it within tolerance (<= 0: 1e-6 of the part's size), certified. The "
             "report: faces, exact_faces, approximated_faces (indices), face_errors, max_approximation_error, "
@@ -457,7 +466,7 @@ boundary, the others holes; no loops: the whole domain. Face's properties and me
             "The certified mesh of the trimmed domain, as Part.tessellate: (V, F) or (V, F, report).")
         .def(
             "deform",
-            [](const PyTrimmed& t, PyLattice& lattice, double strength, int maxDegree, double tolerance) {
+            [](const PyTrimmed& t, py::handle lattice, double strength, int maxDegree, double tolerance) {
                 auto [part, report] = deformed(*t.part, lattice, strength, maxDegree, tolerance);
                 // The face's new surface with the same domain and trims (the part's edges dropped).
                 const freeform::TrimmedSurface& f = part.faces.front().surface;

@@ -332,3 +332,38 @@ def test_a_trimmed_surface_goes_through_a_document_and_a_lattice():
         ff.TrimmedSurface(t.surface, None, [[ff.NurbsCurve.circle(center=[0, 0, 0], radius=1)]])
     with pytest.raises(ff.Error, match="knot domain"):
         ff.TrimmedSurface(t.surface, ((0, 2), (0, 1)))
+
+
+def test_a_part_deforms_through_a_rational_lattice_as_the_lattice_moves_its_points():
+    # Part.deform and TrimmedSurface.deform take a RationalLattice as the library and the CLI do:
+    # unit weights give the polynomial lattice's part bit for bit; a weight of 3 on the moved point
+    # gives faces equal to RationalLattice.deform of the original face points (an independent,
+    # point-wise computation) to 1e-12 of the part's size.
+    part = ff.Part.load(str(SCREW))
+    lo, hi = part.bounds
+    lat = ff.Lattice.fit(np.array([lo, hi]), degree=(2, 2, 2))
+    P = lat.control_points.copy()
+    P[lat.index(1, 1, 1)] += 0.1 * (hi - lo)
+    lat.control_points = P
+    weights = np.ones(lat.point_count)
+    exact, polynomial = part.deform(lat)
+    unit, _ = part.deform(ff.RationalLattice(lat, weights))
+    weights[lat.index(1, 1, 1)] = 3.0
+    rl = ff.RationalLattice(lat, weights)
+    bent, report = part.deform(rl)
+    # Composed degrees (docs/cad.md): d (l+m+n) through the polynomial lattice, d (1+l+m+n) through
+    # the rational one, d the part's largest degree.
+    d = max([max(f.surface.degree) for f in part.faces] + [e.curve.degree for e in part.edges if e.curve is not None])
+    assert (polynomial["max_degree"], report["max_degree"]) == (6 * d, 7 * d)
+    assert report["exact_faces"] == 10
+    size = float(np.linalg.norm(hi - lo))
+    moved = 0.0
+    for f, g, h in zip(part.faces, unit.faces, bent.faces):
+        (u0, u1), (v0, v1) = f.domain
+        uv = np.array([[u0 + (u1 - u0) * s, v0 + (v1 - v0) * (1 - s)] for s in np.linspace(0.1, 0.9, 5)])
+        assert np.array_equal(g.points(uv), exact.faces[f.index].points(uv))
+        assert np.max(np.abs(h.points(uv) - rl.deform(f.points(uv)))) <= 1e-12 * size
+        moved = max(moved, float(np.max(np.abs(h.points(uv) - g.points(uv)))))
+    assert moved > 1e-3 * size   # the weight changed the image
+    with pytest.raises(TypeError, match="expected a Lattice or RationalLattice"):
+        part.deform("lattice")
