@@ -270,6 +270,35 @@ TEST_CASE("Tools: direct manipulation drags a point of the mesh and the lattice 
     CHECK(b.scene.text() == fitted);
 }
 
+TEST_CASE("Scene: the part to export is the selected one, else the document's only one; the approximation text", "[tools][cad]")
+{
+    // A document of a part (plate.json), a trimmed surface (trimmed_square.json) and a curve.
+    const std::string dir = std::string(FREEFORM_SOURCE_DIR) + "/data/parts/";
+    Document doc = readDocument(dir + "plate.json");
+    doc.objects.push_back(readDocument(dir + "trimmed_square.json").objects.at(0));
+    doc.objects.push_back({"c", BezierCurveData{PointColumns::Identity(3, 2)}, ""});
+    const std::string path = kTmp + "/two_parts.json";
+    writeDocument(doc, path);
+    Scene scene = Scene::load(path);
+    REQUIRE(scene.itemCount() == 3);
+    CHECK(scene.findPartItem(0) == 0);
+    CHECK(scene.findPartItem(1) == 1);
+    CHECK(scene.findPartItem(2) == -1); // the curve is selected: two parts to choose from
+    CHECK(scene.findPartItem(-1) == -1);
+    CHECK_THROWS_WITH(scene.partItem(-1), "the document has several parts: select the one to export");
+    scene.remove(0);
+    CHECK(scene.findPartItem(-1) == 0); // the trimmed square, now the only one
+    CHECK(scene.partItem(1) == 0);
+
+    PartDeformReport r;
+    CHECK(Scene::approximationText(r).empty());
+    r.approximatedFaces = {1, 4};
+    r.approximatedEdges = 3;
+    r.maxApproximationError = 2.5e-7;
+    r.maxDegree = 25;
+    CHECK(Scene::approximationText(r) == ", 2 faces and 3 edges approximated at degree 25 (certified error <= 2.5e-07)");
+}
+
 #ifdef FREEFORM_HAVE_CAD
 TEST_CASE("Tools: a STEP part imported, a lattice fitted (L) previews on its mesh; apply composes it exactly; export writes STEP",
           "[tools][ffd][cad]")
