@@ -90,19 +90,16 @@ Json pointJson(const double* p, int dim);
 
 
 /// `freeform eval` picks one evaluator by the object's row of the kind table (document/kinds.h:
-/// its parameters, whether it is rational). Each, given the object, the text of --at and the
-/// derivative order K, parses --at (usage errors, the domain message with the text as given), then
-/// prints the document layer's evaluate() (document/operations.h).
+/// its parameters). Each, given the object, the text of --at and the derivative order K, parses
+/// --at (usage errors), then prints the document layer's evaluate() (document/operations.h), which
+/// checks the domain.
 using Evaluator = Json (*)(const TypedDocument& doc, const TypedObject& object, const std::string& at, int order);
 /// The evaluator for a kind; nullptr when eval does not support it.
 Evaluator evaluatorFor(const KindInfo& kind); // cli/commands.cpp
 
-Json evalCurve(const TypedDocument&, const TypedObject&, const std::string& at, int order);       // eval_curve.cpp
+Json evalObject(const TypedDocument&, const TypedObject&, const std::string& at, int order);      // eval_object.cpp: T, U,V, a part's FACE,U,V
 Json evalLattice(const TypedDocument&, const TypedObject&, const std::string& at, int order);     // eval_lattice.cpp
 Json evalSubdivision(const TypedDocument&, const TypedObject&, const std::string& at, int order); // eval_subdivision.cpp
-Json evalSurface(const TypedDocument&, const TypedObject&, const std::string& at, int order);     // eval_surface.cpp
-Json evalRational(const TypedDocument&, const TypedObject&, const std::string& at, int order);    // eval_rational.cpp
-Json evalPart(const TypedDocument&, const TypedObject&, const std::string& at, int order);        // eval_part.cpp
 
 /// `freeform interpolate --degree P` (interpolate_nurbs.cpp): writes the nurbs_curve "interpolant".
 Json interpolateNurbsCommand(const PointColumns& points, const std::vector<double>& params, Parametrization param,

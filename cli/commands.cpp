@@ -47,13 +47,11 @@ void refusePartFile(const std::string& path)
 Evaluator evaluatorFor(const KindInfo& kind)
 {
     if (!kind.supports(KindOperation::Evaluate)) return nullptr;
-    if (kind.kind == ObjectKind::TrimmedSurface || kind.nature == KindNature::Part) return evalPart;
-    if (kind.rational) return evalRational;
     switch (kind.parameters) {
-    case KindParameters::T: return evalCurve;
-    case KindParameters::UV: return evalSurface;
+    case KindParameters::T:
+    case KindParameters::UV: return evalObject;
     case KindParameters::STU: return evalLattice;
-    case KindParameters::FaceUV: return evalSubdivision;
+    case KindParameters::FaceUV: return kind.nature == KindNature::Part ? evalObject : evalSubdivision;
     }
     return nullptr;
 }
