@@ -63,6 +63,31 @@ TEST_CASE("lattice coordinates follow the docs/math.md formulas and invert the f
     }
 }
 
+TEST_CASE("the outside rule: where each policy evaluates a point, which axes follow it, whether it moves", "[unit]")
+{
+    using freeform::outsideRule;
+    // Inside the box every policy evaluates the point itself and every axis follows it.
+    for (OutsidePolicy p : {OutsidePolicy::Keep, OutsidePolicy::Clamp, OutsidePolicy::Extrapolate}) {
+        const auto r = outsideRule({0.2, 0.3, 1.0}, p);
+        CHECK(r.at == Eigen::Vector3d(0.2, 0.3, 1.0));
+        CHECK(r.mask == 0x0fu);
+        CHECK_FALSE(r.outside);
+    }
+    // (-0.5, 0.5, 1.5) leaves the box along s and u: only t follows it under keep and clamp.
+    const Eigen::Vector3d stu(-0.5, 0.5, 1.5);
+    const auto keep = outsideRule(stu, OutsidePolicy::Keep), clamp = outsideRule(stu, OutsidePolicy::Clamp),
+               extrapolate = outsideRule(stu, OutsidePolicy::Extrapolate);
+    CHECK((keep.outside && clamp.outside && extrapolate.outside));
+    CHECK(keep.mask == 0x02u); // t only, and it does not move
+    CHECK_FALSE(keep.moves());
+    CHECK(clamp.mask == 0x0au); // t, and it moves
+    CHECK((clamp.moves() && !clamp.follows(0) && clamp.follows(1) && !clamp.follows(2)));
+    CHECK(clamp.at == Eigen::Vector3d(0, 0.5, 1));
+    CHECK(keep.at == clamp.at);
+    CHECK(extrapolate.mask == 0x0fu);
+    CHECK(extrapolate.at == stu);
+}
+
 TEST_CASE("rest control points are X0 + (i/l) S + (j/m) T + (k/n) U", "[unit]")
 {
     const Lattice lat = Lattice::identity({2, 1, 4}, Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(2, 4, 8).asDiagonal());

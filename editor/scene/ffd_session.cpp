@@ -301,11 +301,9 @@ FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
         if (out) ++next;
         Eigen::Vector3d q = binding_.parameters(v); // inside: the binding's own float coordinates
         if (out && policy != OutsidePolicy::Extrapolate) {
-            unsigned char m = policy == OutsidePolicy::Keep ? 0 : 0x08;
-            for (int x = 0; x < 3; ++x)
-                if (q[x] >= 0 && q[x] <= 1) m = static_cast<unsigned char>(m | (1u << x));
-            masks_[v] = m;
-            q = q.cwiseMax(0.0).cwiseMin(1.0);
+            const OutsideRule rule = outsideRule(q, policy); // the mask's bits are the rule's
+            masks_[v] = static_cast<unsigned char>(rule.mask);
+            q = rule.at;
         }
         float* b = coords_.data() + (v / W) * kCoordFields * W + v % W;
         for (int x = 0; x < 3; ++x) {

@@ -47,14 +47,9 @@ struct WeightEvaluator {
 
     bool coordinates(const Eigen::Vector3d& p, Eigen::Vector3d& stu) const
     {
-        stu = lat.toLattice(p);
-        if (Lattice::insideBox(stu)) return true;
-        switch (lat.outside()) {
-        case freeform::OutsidePolicy::Keep: return false;
-        case freeform::OutsidePolicy::Clamp: stu = stu.cwiseMax(0.0).cwiseMin(1.0); return true;
-        case freeform::OutsidePolicy::Extrapolate: return true;
-        }
-        return true;
+        const freeform::OutsideRule rule = freeform::outsideRule(lat.toLattice(p), lat.outside());
+        stu = rule.at;
+        return rule.moves();
     }
 
     /// w * B_ijk(stu(p)) of every control point into out[0..K) (zero when p does not move).

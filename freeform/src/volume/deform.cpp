@@ -440,11 +440,9 @@ DirectManipulation directManipulation(const Lattice& lattice, const Eigen::Matri
         const Eigen::Vector3d x = points.col(p);
         const auto jet = lattice.deform(x, strength);
         rhs.row(p) = (targets.col(p) - jet.point).transpose();
-        Eigen::Vector3d stu = lattice.toLattice(x);
-        const bool outside = !Lattice::insideBox(stu);
-        if (outside && lattice.outside() == OutsidePolicy::Keep) continue;
-        if (outside && lattice.outside() == OutsidePolicy::Clamp) stu = stu.cwiseMax(0.0).cwiseMin(1.0);
-        b.row(p) = strength * lattice.basisWeights(stu).transpose();
+        const OutsideRule rule = outsideRule(lattice.toLattice(x), lattice.outside());
+        if (!rule.moves()) continue;
+        b.row(p) = strength * lattice.basisWeights(rule.at).transpose();
     }
     const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(b);
     const Eigen::MatrixXd change = cod.solve(rhs); // N x 3, the minimal-norm least-squares solution

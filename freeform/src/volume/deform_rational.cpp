@@ -34,17 +34,9 @@ RationalLattice::RationalLattice(Lattice lattice)
 Lattice::PointJet RationalLattice::deform(const Eigen::Vector3d& p, double strength) const
 {
     if (unit_) return lattice_.deform(p, strength);
-    const Eigen::Vector3d stu = lattice_.toLattice(p);
-    const bool outside = !Lattice::insideBox(stu);
-    if (outside && lattice_.outside() == OutsidePolicy::Keep) return {p, Eigen::Matrix3d::Identity(), true};
-    Eigen::Vector3d q = stu;
-    bool active[3] = {true, true, true};
-    if (outside && lattice_.outside() == OutsidePolicy::Clamp) {
-        for (int a = 0; a < 3; ++a) {
-            if (stu[a] < 0 || stu[a] > 1) active[a] = false;
-            q[a] = std::clamp(stu[a], 0.0, 1.0);
-        }
-    }
+    const OutsideRule rule = outsideRule(lattice_.toLattice(p), lattice_.outside());
+    if (!rule.moves()) return {p, Eigen::Matrix3d::Identity(), true};
+    const Eigen::Vector3d& q = rule.at;
     const auto& deg = lattice_.degrees();
     double b[3][kMaxDegree + 1], db[3][kMaxDegree + 1], scratch[kMaxDegree + 1];
     for (int a = 0; a < 3; ++a) {
@@ -72,11 +64,11 @@ Lattice::PointJet RationalLattice::deform(const Eigen::Vector3d& p, double stren
     const Eigen::Vector3d f = n / d;
     Eigen::Matrix3d jac = Eigen::Matrix3d::Identity();
     for (int a = 0; a < 3; ++a)
-        if (active[a]) jac += strength * ((nd[a] - dd[a] * f) / d) * lattice_.dual().row(a);
+        if (rule.follows(a)) jac += strength * ((nd[a] - dd[a] * f) / d) * lattice_.dual().row(a);
     Eigen::Vector3d moved = p;
     for (int a = 0; a < 3; ++a)
         if (strength * f[a] != 0) moved[a] += strength * f[a];
-    return {moved, jac, outside};
+    return {moved, jac, rule.outside};
 }
 
 namespace {

@@ -495,13 +495,12 @@ void FfdBinding<Scalar>::bind(const Lattice& lattice, const In* positions, std::
                 const std::size_t v = std::min(blk * W + std::size_t(w), count - 1);
                 const Eigen::Vector3d p{double(positions[3 * v]), double(positions[3 * v + 1]), double(positions[3 * v + 2])};
                 if (!p.allFinite()) throw Error("ffd: vertex " + std::to_string(v) + " is not finite");
-                Eigen::Vector3d stu = lattice.toLattice(p);
-                const bool out = !Lattice::insideBox(stu);
-                if (out && blk * W + std::size_t(w) < count) outside.push_back(static_cast<int>(v));
-                if (out && policy != OutsidePolicy::Extrapolate) stu = stu.cwiseMax(0.0).cwiseMin(1.0);
+                // Keep's outside points are evaluated clamped too, then put back (below).
+                const OutsideRule rule = outsideRule(lattice.toLattice(p), policy);
+                if (rule.outside && blk * W + std::size_t(w) < count) outside.push_back(static_cast<int>(v));
                 for (int x = 0; x < 3; ++x) {
                     b[x * W + w] = static_cast<Scalar>(positions[3 * v + std::size_t(x)]);
-                    b[(3 + x) * W + w] = static_cast<Scalar>(stu[x]);
+                    b[(3 + x) * W + w] = static_cast<Scalar>(rule.at[x]);
                 }
             }
         }
@@ -594,12 +593,11 @@ void FfdBinding<Scalar>::deform(const Lattice& lattice, const FfdOutputs<Scalar>
                 if (policy == OutsidePolicy::Keep) {
                     for (int x = 0; x < 3; ++x) out.positions[3 * v + std::size_t(x)] = b[x * W];
                 } else {
-                    const Eigen::Vector3d raw = Eigen::Map<const Eigen::Vector3d>(raw_.data() + 3 * o);
-                    const Eigen::Vector3d q = raw.cwiseMax(0.0).cwiseMin(1.0);
+                    const OutsideRule rule = outsideRule(Eigen::Map<const Eigen::Vector3d>(raw_.data() + 3 * o), policy);
                     Eigen::Vector3d dv, dd[3];
-                    detail::displacementJet(lattice, q, dv, dd);
+                    detail::displacementJet(lattice, rule.at, dv, dd);
                     for (int a = 0; a < 3; ++a)
-                        if (raw[a] >= 0 && raw[a] <= 1) j += w * dd[a] * lattice.dual().row(a);
+                        if (rule.follows(a)) j += w * dd[a] * lattice.dual().row(a);
                 }
                 if (determinants) determinants[v] = static_cast<Scalar>(j.determinant());
                 if (out.jacobians)

@@ -171,28 +171,32 @@ BezierVolume<double>::Jet Lattice::map(const Eigen::Vector3d& stu, double streng
     return jet;
 }
 
+OutsideRule outsideRule(const Eigen::Vector3d& stu, OutsidePolicy policy)
+{
+    OutsideRule r{stu, 0x0fu, !Lattice::insideBox(stu)};
+    if (!r.outside || policy == OutsidePolicy::Extrapolate) return r;
+    r.mask = policy == OutsidePolicy::Keep ? 0u : 0x08u;
+    for (int a = 0; a < 3; ++a) {
+        if (stu[a] >= 0 && stu[a] <= 1) r.mask |= 1u << a;
+        r.at[a] = std::clamp(stu[a], 0.0, 1.0);
+    }
+    return r;
+}
+
 Lattice::PointJet Lattice::deform(const Eigen::Vector3d& p, double strength) const
 {
-    const Eigen::Vector3d stu = toLattice(p);
-    const bool outside = !insideBox(stu);
-    if (outside && outside_ == OutsidePolicy::Keep) return {p, Eigen::Matrix3d::Identity(), true};
-    Eigen::Vector3d q = stu;
-    bool active[3] = {true, true, true};
-    if (outside && outside_ == OutsidePolicy::Clamp) {
-        for (int a = 0; a < 3; ++a) {
-            if (stu[a] < 0 || stu[a] > 1) active[a] = false;
-            q[a] = std::clamp(stu[a], 0.0, 1.0);
-        }
-    }
+    const OutsideRule rule = outsideRule(toLattice(p), outside_);
+    if (!rule.moves()) return {p, Eigen::Matrix3d::Identity(), true};
+    const Eigen::Vector3d& q = rule.at;
     const auto jet = displacementVolume().derivatives(q[0], q[1], q[2]);
     const Eigen::Vector3d dstu[3] = {jet.ds, jet.dt, jet.du};
     Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
     for (int a = 0; a < 3; ++a)
-        if (active[a]) j += strength * dstu[a] * dual_.row(a);
+        if (rule.follows(a)) j += strength * dstu[a] * dual_.row(a);
     Eigen::Vector3d moved = p;
     for (int a = 0; a < 3; ++a)
         if (strength * jet.point[a] != 0) moved[a] += strength * jet.point[a]; // keeps -0.0 where nothing moves
-    return {moved, j, outside};
+    return {moved, j, rule.outside};
 }
 
 Eigen::VectorXd Lattice::basisWeights(const Eigen::Vector3d& stu) const

@@ -32,6 +32,22 @@ namespace freeform {
 ///   Extrapolate - the polynomial continued outside.
 enum class OutsidePolicy { Keep, Clamp, Extrapolate };
 
+/// The outside policy, stated once for every deformation path (the lattice's and the rational
+/// lattice's point maps, the FFD binding and its kernels, direct manipulation, the editor's drag,
+/// Python's weights): where a point at lattice coordinates stu is evaluated, and what of the
+/// lattice follows it.
+struct OutsideRule {
+    Eigen::Vector3d at;   ///< where the lattice is evaluated: stu, clamped into [0, 1]^3 outside the
+                          ///< box under keep and clamp
+    unsigned mask = 0x0f; ///< bits 0-2: the axes along which the displacement follows the point (all
+                          ///< but those it is clamped on); bit 3: the point moves (not outside under keep)
+    bool outside = false; ///< stu lies outside [0, 1]^3
+
+    bool moves() const { return (mask & 0x08u) != 0; }
+    bool follows(int axis) const { return ((mask >> axis) & 1u) != 0; }
+};
+OutsideRule outsideRule(const Eigen::Vector3d& stu, OutsidePolicy policy);
+
 /// "keep" | "clamp" | "extrapolate"; Error naming `what` otherwise.
 OutsidePolicy parseOutsidePolicy(const std::string& text, const std::string& what);
 std::string toString(OutsidePolicy policy);
