@@ -186,8 +186,9 @@ public:
     /// line, or "" when every face and edge was written exactly.
     static std::string approximationText(const PartDeformReport& report);
     /// The part to export: item `selected` when it is a part or trimmed surface, else the
-    /// document's only one; -1 when there is none, or several and none selected.
-    int findPartItem(int selected) const;
+    /// document's only one; -1 when there is none, or several and none selected (then `why`, when
+    /// given, says which, for a person).
+    int findPartItem(int selected, std::string* why = nullptr) const;
     /// findPartItem, with an Error saying why when there is no such item.
     int partItem(int selected) const;
     /// Writes object i (a part or trimmed surface) as STEP or IGES by the path's extension,

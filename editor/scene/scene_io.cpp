@@ -373,27 +373,29 @@ void Scene::exportMesh(const std::string& path)
     writePolygonMesh(mesh, path);
 }
 
-int Scene::findPartItem(int selected) const
+int Scene::findPartItem(int selected, std::string* why) const
 {
     auto isPart = [&](int i) { return items_[static_cast<std::size_t>(i)].kind == SceneItem::Kind::DocumentObject && isFfdTarget(items_[static_cast<std::size_t>(i)]); };
     if (selected >= 0 && selected < itemCount() && isPart(selected)) return selected;
     int found = -1;
     for (int i = 0; i < itemCount(); ++i)
         if (isPart(i)) {
-            if (found >= 0) return -1;
+            if (found >= 0) {
+                if (why) *why = "the document has several parts: select the one to export";
+                return -1;
+            }
             found = i;
         }
+    if (found < 0 && why) *why = "the document has no part or trimmed surface to export (File > Import reads STEP and IGES files)";
     return found;
 }
 
 int Scene::partItem(int selected) const
 {
-    const int found = findPartItem(selected);
-    if (found >= 0) return found;
-    for (int i = 0; i < itemCount(); ++i)
-        if (items_[static_cast<std::size_t>(i)].kind == SceneItem::Kind::DocumentObject && isFfdTarget(items_[static_cast<std::size_t>(i)]))
-            throw Error("the document has several parts: select the one to export");
-    throw Error("the document has no part or trimmed surface to export (File > Import reads STEP and IGES files)");
+    std::string why;
+    const int found = findPartItem(selected, &why);
+    if (found < 0) throw Error(why);
+    return found;
 }
 
 std::string Scene::approximationText(const PartDeformReport& report)

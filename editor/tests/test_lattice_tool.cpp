@@ -284,8 +284,10 @@ TEST_CASE("Scene: the part to export is the selected one, else the document's on
     CHECK(scene.findPartItem(0) == 0);
     CHECK(scene.findPartItem(1) == 1);
     CHECK(scene.findPartItem(2) == -1); // the curve is selected: two parts to choose from
-    CHECK(scene.findPartItem(-1) == -1);
-    CHECK_THROWS_WITH(scene.partItem(-1), "the document has several parts: select the one to export");
+    std::string why;
+    CHECK(scene.findPartItem(-1, &why) == -1);
+    CHECK(why == "the document has several parts: select the one to export");
+    CHECK_THROWS_WITH(scene.partItem(-1), why);
     scene.remove(0);
     CHECK(scene.findPartItem(-1) == 0); // the trimmed square, now the only one
     CHECK(scene.partItem(1) == 0);

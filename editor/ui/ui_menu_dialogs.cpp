@@ -71,13 +71,14 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
                    "file (.step .stp .iges .igs: one part object, its faces trimmed NURBS) to the document");
         if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) askPath(s, actions, UiState::PathDialog::Export, "scene.obj");
         tooltip(s, "Write every visible surface and mesh, merged, as one OBJ");
-        const int part = scene.findPartItem(s.selection.item);
+        std::string why;
+        const int part = scene.findPartItem(s.selection.item, &why);
         if (ImGui::MenuItem("Export part as STEP or IGES...", nullptr, false, part >= 0))
             askPath(s, actions, UiState::PathDialog::ExportPart, scene.item(part).name + ".step");
-        tooltip(s, part >= 0 ? "Write the selected part (or the document's only one) as STEP or IGES, by the path's extension\n"
-                               "(docs/cad.md: faces as B-spline surfaces; every degree must be at most 25)"
-                             : "Write a part as STEP or IGES (the document has no part: import a STEP or IGES file first;\n"
-                               "or several: select the one to write)");
+        const std::string partTip = part >= 0 ? std::string("Write the selected part (or the document's only one) as STEP or IGES, by the path's "
+                                                             "extension\n(docs/cad.md: faces as B-spline surfaces; every degree must be at most 25)")
+                                              : "Write a part as STEP or IGES: " + why;
+        tooltip(s, partTip.c_str());
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) actions.quit();
         tooltip(s, "Close the editor (asks first when there are unsaved changes)");
