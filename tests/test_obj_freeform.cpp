@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "freeform/io/obj_freeform.h"
+#include "support/obj_errors.h"
 #include "freeform/surface/bezier_surface.h"
 #include "support/random.h"
 
@@ -91,14 +92,7 @@ TEST_CASE("2D curves are written with z = 0 and read back as 3D", "[obj]")
 TEST_CASE("OBJ free-form errors name the line", "[obj][errors]")
 {
     const std::string v4 = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\n";
-    auto err = [](const std::string& text) {
-        try {
-            parseObjFreeform(text, "x.obj");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    auto err = [](const std::string& text) { return test::objError(text); };
     // (Issue 13 made rat bezier and [rat] bspline supported: the other types are still refused.)
     CHECK(err(v4 + "cstype cardinal\n") ==
           "x.obj: line 5: curve type \"cardinal\" is not supported (bezier, rat bezier, bspline, rat bspline)");

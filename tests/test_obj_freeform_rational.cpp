@@ -9,6 +9,7 @@
 
 #include "freeform/curve/nurbs_curve.h"
 #include "freeform/io/obj_freeform.h"
+#include "support/obj_errors.h"
 #include "freeform/surface/nurbs_surface.h"
 #include "support/random.h"
 
@@ -28,15 +29,7 @@ const std::string kCircle = "# unit circle\n"
                             "parm u 0 0 0 1 1 2 2 3 3 4 4 4\n"
                             "end\n";
 
-std::string err(const std::string& text)
-{
-    try {
-        parseObjFreeform(text, "x.obj");
-    } catch (const Error& e) {
-        return std::string(e.what());
-    }
-    return std::string("no error");
-}
+std::string err(const std::string& text) { return test::objError(text); }
 
 } // namespace
 

@@ -13,6 +13,7 @@
 #include "freeform/brep/trimmed_surface.h"
 #include "freeform/document/model.h"
 #include "freeform/io/obj_freeform.h"
+#include "support/obj_errors.h"
 
 namespace test_obj_trim {
 
@@ -36,15 +37,7 @@ const std::string kPlate = "o plate\n"
                            "hole 4 0 -1\n"
                            "end\n";
 
-std::string err(const std::string& text)
-{
-    try {
-        parseObjFreeform(text, "x.obj");
-    } catch (const Error& e) {
-        return std::string(e.what());
-    }
-    return std::string("no error");
-}
+std::string err(const std::string& text) { return test::objError(text); }
 
 const TrimmedSurface& trimmed(TypedDocument& doc, const ObjectData& data)
 {
