@@ -35,7 +35,6 @@ public:
     /// The overlay of the selected cage (when showCage): creases, corners, the picked edge.
     void update(ToolContext& context, Overlay& overlay) override;
     void reset() override;
-    void drawPanel(ToolContext& context) override;
 
     // ---- operations on item indices (true on success; else the status line says why)
     bool setScheme(ToolContext& context, int item, const std::string& scheme);
@@ -60,6 +59,8 @@ public:
     static std::optional<SubdivisionCage> cageOf(const Scene& scene, int item);
     /// The sharpness of edge v0-v1 in a cage (the last entry for it wins, as OpenSubdiv's tags), 0 when none.
     static double edgeSharpness(const SubdivisionCage& cage, int v0, int v1);
+    /// Whether item is a subdivision surface (the panel's section is shown for it).
+    bool isCage(const Scene& scene, int item) const;
 
     // ---- settings the panel and the tests change
     double sharpness = kInfiniteSharpness; // what S and Alt+S set
@@ -67,7 +68,6 @@ public:
     bool showCage = true;                  // the crease overlay of the selected cage
 
 private:
-    bool isCage(const Scene& scene, int item) const;
     /// Sets the cage's scheme or boundary (`field`, called `name` in the undo label and the status
     /// line) to value: one undo step, nothing when it is already value.
     bool setText(ToolContext& context, int item, std::string SubdivisionSurfaceData::*field, const std::string& value,

@@ -18,8 +18,6 @@ public:
     bool onPointer(ToolContext& context, const PointerEvent& event) override;
     void update(ToolContext& context, Overlay& overlay) override;
     void reset() override;
-    void drawToolbar(ToolContext& context) override;
-    void drawPanel(ToolContext& context) override;
 
     // ---- operations (true on success; else the status line says why)
     /// Ends the creation: the clicked points become a curve (or a C2 spline).

@@ -21,9 +21,6 @@ public:
     bool onPointer(ToolContext& context, const PointerEvent& event) override;
     void update(ToolContext& context, Overlay& overlay) override;
     void reset() override;
-    void drawPanel(ToolContext& context) override;
-    /// The section for a selected imported mesh (fit a lattice).
-    void drawMeshPanel(ToolContext& context, int meshItem);
 
     // ---- operations on item indices (true on success; else the status line says why)
     bool fitLattice(ToolContext& context, int meshItem);

@@ -31,8 +31,6 @@ public:
     bool onPointer(ToolContext& context, const PointerEvent& event) override;
     void update(ToolContext& context, Overlay& overlay) override;
     void reset() override;
-    void drawToolbar(ToolContext& context) override;
-    void drawPanel(ToolContext& context) override;
 
     /// Whether the type is one of the four rational/NURBS document types.
     static bool handles(const KindInfo* kind);
@@ -59,7 +57,17 @@ public:
     /// One creation click at world point p (in the view plane); creates the object at the last.
     bool creationClick(ToolContext& context, const Eigen::Vector3d& p, const Eigen::Vector3d& normal);
     bool creating() const { return creating_; }
+    /// Creating an arc (else a full circle), while creating().
+    bool arc() const { return arc_; }
     void cancelCreating();
+    /// The panel's weight field follows the selection: when point k of item is newly the last
+    /// selected one, typedWeight becomes its weight (else the typed value stays).
+    void followTypedWeight(int item, int k, double weight)
+    {
+        if (item == typedItem_ && k == typedPoint_) return;
+        typedWeight = weight;
+        typedItem_ = item, typedPoint_ = k;
+    }
 
     // ---- settings the panel and the tests change
     double t = 0.5;            // the slider: fraction of the domain (knot insertion, de Boor at t)

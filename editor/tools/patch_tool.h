@@ -20,8 +20,6 @@ public:
     void reset() override;
     /// Keeps the edge continuity table (once computed) up to date with every change of the scene.
     void update(ToolContext& context, Overlay& overlay) override;
-    void drawToolbar(ToolContext& context) override;
-    void drawPanel(ToolContext& context) override;
 
     /// A patch of degrees `degree` in the view plane through the scene's centre, selected.
     bool createPatch(ToolContext& context);

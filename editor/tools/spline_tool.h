@@ -23,7 +23,6 @@ public:
     /// coordinate), then draws the de Boor points of an all-C2 spline.
     void update(ToolContext& context, Overlay& overlay) override;
     void reset() override;
-    void drawPanel(ToolContext& context) override;
 
     /// Sets the mode of the joint of the selected point (or of `joint` >= 0) and applies it at once.
     bool setJointMode(ToolContext& context, JointMode mode, int joint = -1);

@@ -2,8 +2,9 @@
 // The interface of one editing tool (curves, spline joints, patches, lattices, subdivision cages): like a polyscope
 // structure, a tool owns its state, handles the keys of its keymap context (interaction/keymap.h)
 // and the pointer events it wants, fills the overlay with its construction geometry each frame, and
-// draws its own panel section. Tools (tools/tools.h) holds one of each and dispatches to them in a
-// fixed order. No ImGui in tools/: each drawPanel is defined in ui/tool_panels.cpp.
+// exposes the state and operations its panel uses. Tools (tools/tools.h) holds one of each and
+// dispatches to them in a fixed order. No ImGui in tools/: the panels are functions of ui/
+// (ui/tool_panels.h), so tools/ compiles and links without ImGui or ui/.
 //
 // Every change to the document goes through Scene's mutating methods, so undo and redo cover the
 // tools without their knowing; an operation that fails leaves the document as it was and says why
@@ -58,13 +59,7 @@ public:
     virtual void update(ToolContext&, Overlay&) {}
     /// The scene was replaced (new, open, recovery): drops state tied to it.
     virtual void reset() = 0;
-    /// Its always-visible buttons at the top of the tool panel (creation), ui/tool_panels.cpp.
-    virtual void drawToolbar(ToolContext&) {}
-    /// Its section of the tool panel for the selected item, when that item is of its kind
-    /// (ui/tool_panels.cpp).
-    virtual void drawPanel(ToolContext& context) = 0;
-
-protected:
+    /// The status line shared by the tool set (the panels write a failed edit's error there).
     std::string& status() { return status_; }
 
 private:

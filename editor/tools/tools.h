@@ -1,14 +1,14 @@
 #pragma once
 // The editing tools as one set, the application's entry point (app/) and the panels' (ui/): one
-// object per tool (tools/tool.h), each owning its state and its panel; the set dispatches keys
+// object per tool (tools/tool.h), each owning its state (its panel is ui/'s); the set dispatches keys
 // (through the keymap, interaction/keymap.h), pointer events and the per-frame update to them in a
 // fixed order and holds the status line they share. The interaction layer (selection, picking,
 // dragging, gizmo) is generic over control points; the tools add what is specific to an object
 // type. The deformed mesh of a lattice is not a tool's: the scene derives it (scene/derived.h).
 //
-// Where a new tool goes: a class deriving from Tool in tools/<name>_tool.{h,cpp}, its drawPanel in
-// ui/tool_panels.cpp, its keys as a KeyContext with entries in interaction/keymap.cpp, and one
-// line in Tools' constructor.
+// Where a new tool goes: a class deriving from Tool in tools/<name>_tool.{h,cpp}, its panel as
+// drawPanel(<Tool>&, ToolContext&) in ui/tool_panels.{h,cpp} (called from drawToolPanels), its keys
+// as a KeyContext with entries in interaction/keymap.cpp, and one line in Tools' constructor.
 
 #include <memory>
 #include <string>
@@ -43,8 +43,6 @@ public:
     void update(ToolContext& context, Overlay& overlay);
     /// The scene was replaced (new, open, recovery): every tool starts afresh.
     void reset();
-    /// Every tool's panel section, then the status line (ui/tool_panels.cpp).
-    void drawPanels(ToolContext& context);
 
     CurveTool& curve() { return curve_; }
     SplineTool& spline() { return spline_; }

@@ -1,7 +1,7 @@
-// The tools' panels: each tool's drawToolbar / drawPanel (tools/*_tool.h), and Tools::drawPanels,
-// which lays them out in the Properties window: the creation buttons of every tool, then the
+// The tools' panels: each tool's drawToolbar / drawPanel (declared in ui/tool_panels.h), and
+// drawToolPanels, which lays them out in the Properties window: the creation buttons of every tool, then the
 // section of the tool whose kind the selected item is, then the status line. A new tool's panel
-// goes here, as <Tool>::drawPanel.
+// goes here, as drawPanel(<Tool>&, ToolContext&).
 
 #include "ui/tool_panels.h"
 
@@ -62,58 +62,58 @@ bool selectedIs(const ToolContext& c, ObjectKind kind)
 
 // ------------------------------------------------------------------ curves
 
-void CurveTool::drawToolbar(ToolContext& c)
+void drawToolbar(CurveTool& tool, ToolContext& c)
 {
-    if (ImGui::Button(creating_ && !creatingSpline_ ? "finish curve (Enter)" : "create curve (C)")) {
-        if (creating_) createFromClicks(c);
-        else startCreating(false);
+    if (ImGui::Button(tool.creating() && !tool.creatingSpline() ? "finish curve (Enter)" : "create curve (C)")) {
+        if (tool.creating()) tool.createFromClicks(c);
+        else tool.startCreating(false);
     }
-    tooltip(creating_ && !creatingSpline_ ? "Make a bezier_curve of the clicked points (at least 2); Backspace removes the last, Escape cancels"
+    tooltip(tool.creating() && !tool.creatingSpline() ? "Make a bezier_curve of the clicked points (at least 2); Backspace removes the last, Escape cancels"
                                           : "Click in the view to add control points of a Bezier curve (degree = clicks - 1); Enter finishes");
-    const char* splineLabel = creating_ && creatingSpline_ ? "finish spline (Enter)" : "create C2 spline (Shift+C)";
+    const char* splineLabel = tool.creating() && tool.creatingSpline() ? "finish spline (Enter)" : "create C2 spline (Shift+C)";
     sameLineIfFits(splineLabel);
     if (ImGui::Button(splineLabel)) {
-        if (creating_) createFromClicks(c);
-        else startCreating(true);
+        if (tool.creating()) tool.createFromClicks(c);
+        else tool.startCreating(true);
     }
-    tooltip(creating_ && creatingSpline_ ? "Make a cubic bezier_spline through the clicked points, every inner joint C2"
+    tooltip(tool.creating() && tool.creatingSpline() ? "Make a cubic bezier_spline through the clicked points, every inner joint C2"
                                          : "Click the points a cubic spline should pass through (the C2 interpolant); Enter finishes");
 }
 
-void CurveTool::drawPanel(ToolContext& c)
+void drawPanel(CurveTool& tool, ToolContext& c)
 {
     const KindInfo* kind = selectedKind(c);
     if (!kind || !kind->isCurve() || kind->rational) return;
     ImGui::TextUnformatted("Curve tools");
-    float tf = static_cast<float>(t);
-    if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
+    float tf = static_cast<float>(tool.t);
+    if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) tool.t = tf;
     tooltip("The parameter for split, insert and the de Casteljau construction (splines: a fraction of the whole range)");
-    ImGui::Checkbox("de Casteljau at t (T)", &construction);
+    ImGui::Checkbox("de Casteljau at t (T)", &tool.construction);
     tooltip("Show every intermediate polygon of the de Casteljau triangle at t and the point f(t)");
-    ImGui::Checkbox("curvature comb (V)", &comb);
+    ImGui::Checkbox("curvature comb (V)", &tool.comb);
     tooltip("Teeth along the normal, of length proportional to the curvature, their tips joined");
-    if (comb) {
-        float scale = static_cast<float>(combScale);
-        if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) combScale = scale;
+    if (tool.comb) {
+        float scale = static_cast<float>(tool.combScale);
+        if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) tool.combScale = scale;
         tooltip("Length of the comb's teeth per unit of curvature");
     }
     if (kind->kind != ObjectKind::DeBoorSpline) {
-        if (ImGui::Button("elevate degree (E)")) elevateSelected(c);
+        if (ImGui::Button("elevate degree (E)")) tool.elevateSelected(c);
         tooltip("The same curve one degree higher (a spline: every segment; refused while a joint is C2)");
         sameLineIfFits("split at t (K)");
-        if (ImGui::Button("split at t (K)")) splitSelected(c);
+        if (ImGui::Button("split at t (K)")) tool.splitSelected(c);
         tooltip("Cut the curve or open spline at t into two objects");
     }
-    if (ImGui::Button("insert point (I)")) insertAtSelected(c);
+    if (ImGui::Button("insert point (I)")) tool.insertAtSelected(c);
     tooltip("Curve: a new point after the selected one (the degree rises). Spline: a joint in the segment (the shape stays)");
     sameLineIfFits("delete point (Del)");
-    if (ImGui::Button("delete point (Del)")) deleteSelected(c);
+    if (ImGui::Button("delete point (Del)")) tool.deleteSelected(c);
     tooltip("Curve: remove the selected point (the degree drops). Spline: remove the selected point's joint");
 }
 
 // ------------------------------------------------------------------ spline joints
 
-void SplineTool::drawPanel(ToolContext& c)
+void drawPanel(SplineTool& tool, ToolContext& c)
 {
     if (!selectedIs(c, ObjectKind::BezierSpline)) return;
     const int item = c.selection.item;
@@ -144,7 +144,7 @@ void SplineTool::drawPanel(ToolContext& c)
     if (ImGui::BeginCombo("all joints", common >= 0 ? names[common] : common == -1 ? "mixed" : "-")) {
         for (int m = 0; m < 4; ++m)
         {
-            if (ImGui::Selectable(names[m], m == common)) setAllJointModes(c, static_cast<JointMode>(m));
+            if (ImGui::Selectable(names[m], m == common)) tool.setAllJointModes(c, static_cast<JointMode>(m));
             tooltip(allTips[m]);
         }
         ImGui::EndCombo();
@@ -187,7 +187,7 @@ void SplineTool::drawPanel(ToolContext& c)
             int mode = static_cast<int>(modes[static_cast<std::size_t>(r.joint)]);
             ImGui::PushID(r.joint);
             ImGui::SetNextItemWidth(90);
-            if (comboWithTips("##mode", mode, modeChoices)) setJointMode(c, static_cast<JointMode>(mode), r.joint);
+            if (comboWithTips("##mode", mode, modeChoices)) tool.setJointMode(c, static_cast<JointMode>(mode), r.joint);
             fitWidth(names[mode], ImGui::CalcTextSize(names[mode]).x + 2 * ImGui::GetStyle().FramePadding.x + ImGui::GetFrameHeight(),
                      ImGui::GetItemRectSize().x);
             fitItem(names[mode]);
@@ -220,15 +220,15 @@ void SplineTool::drawPanel(ToolContext& c)
 
 // ------------------------------------------------------------------ patches
 
-void PatchTool::drawToolbar(ToolContext& c)
+void drawToolbar(PatchTool& tool, ToolContext& c)
 {
-    if (ImGui::Button("create patch (P)")) createPatch(c);
+    if (ImGui::Button("create patch (P)")) tool.createPatch(c);
     tooltip("Add a flat bezier_surface of degrees m x n in the view plane, centred in the scene");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(80);
-    ImGui::InputInt2("m, n", degree);
+    ImGui::InputInt2("m, n", tool.degree);
     tooltip("The degrees (1 to 20) of the patch that \"create patch\" adds");
-    for (int& d : degree) d = std::clamp(d, 1, 20);
+    for (int& d : tool.degree) d = std::clamp(d, 1, 20);
 }
 
 namespace {
@@ -263,19 +263,19 @@ void drawTessellationSettings(ToolContext& c)
 
 } // namespace
 
-void PatchTool::drawPanel(ToolContext& c)
+void drawPanel(PatchTool& tool, ToolContext& c)
 {
     const KindInfo* kind = selectedKind(c);
     if (!kind || !kind->isSurface() || kind->rational || kind->parameters != KindParameters::UV) return;
     drawTessellationSettings(c);
     ImGui::Separator();
-    if (ImGui::Button("edge continuity of all patches")) computeEdgeContinuity(c);
+    if (ImGui::Button("edge continuity of all patches")) tool.computeEdgeContinuity(c);
     tooltip("List every edge two bezier_surface objects share, with its level (C1, G1, C0), angle and gap");
-    if (!edges_.empty()) {
+    if (!tool.edges().empty()) {
         int g1 = 0, c1 = 0;
-        for (const EdgeContinuity& e : edges_) g1 += e.g1, c1 += e.c1;
-        ImGui::Text("%zu %s: %d C1, %d G1, %zu C0", edges_.size(), edges_.size() == 1 ? "edge" : "edges", c1, g1,
-                    edges_.size() - static_cast<std::size_t>(g1));
+        for (const EdgeContinuity& e : tool.edges()) g1 += e.g1, c1 += e.c1;
+        ImGui::Text("%zu %s: %d C1, %d G1, %zu C0", tool.edges().size(), tool.edges().size() == 1 ? "edge" : "edges", c1, g1,
+                    tool.edges().size() - static_cast<std::size_t>(g1));
         tooltip("C1: the cross-boundary derivatives agree; G1: the tangent planes agree; C0: only the positions\n"
                 "(the table follows every change of the patches)");
         static const char* sides[] = {"u0", "u1", "v0", "v1"};
@@ -292,11 +292,11 @@ void PatchTool::drawPanel(ToolContext& c)
                                                "The largest angle between the two tangent planes along the edge, degrees",
                                                "The largest distance between the two sides' points along the edge, world units"};
             headersRow(tips);
-            for (const EdgeContinuity& e : edges_) {
+            for (const EdgeContinuity& e : tool.edges()) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                ImGui::Text("%s.%s | %s.%s", edgePatchNames_[static_cast<std::size_t>(e.a.patch)].c_str(),
-                            sides[static_cast<int>(e.a.side)], edgePatchNames_[static_cast<std::size_t>(e.b.patch)].c_str(),
+                ImGui::Text("%s.%s | %s.%s", tool.edgePatchNames()[static_cast<std::size_t>(e.a.patch)].c_str(),
+                            sides[static_cast<int>(e.a.side)], tool.edgePatchNames()[static_cast<std::size_t>(e.b.patch)].c_str(),
                             sides[static_cast<int>(e.b.side)]);
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(e.c1 ? "C1" : e.g1 ? "G1" : "C0");
@@ -312,10 +312,10 @@ void PatchTool::drawPanel(ToolContext& c)
 
 // ------------------------------------------------------------------ lattices
 
-void LatticeTool::drawPanel(ToolContext& c)
+void drawPanel(LatticeTool& tool, ToolContext& c)
 {
     const int item = c.selection.item;
-    if (item >= 0 && item < c.scene.itemCount() && isFfdTarget(c.scene.item(item))) return drawMeshPanel(c, item);
+    if (item >= 0 && item < c.scene.itemCount() && isFfdTarget(c.scene.item(item))) return drawMeshPanel(tool, c, item);
     if (!selectedIs(c, ObjectKind::Lattice)) return;
     ImGui::TextUnformatted("Free-form deformation");
     ObjectSettings settings = c.scene.item(item).settings;
@@ -338,7 +338,7 @@ void LatticeTool::drawPanel(ToolContext& c)
                                      " on its tessellation ('apply exactly' composes it, 'export deformed' writes STEP or IGES)");
         }
     // A part's export is STEP or IGES: the mesh default becomes a part's.
-    if (part && std::strcmp(exportPath, "deformed.obj") == 0) std::strcpy(exportPath, "deformed.step");
+    if (part && std::strcmp(tool.exportPath, "deformed.obj") == 0) std::strcpy(tool.exportPath, "deformed.step");
     noteDropdown("mesh");
     const bool meshOpen = ImGui::BeginCombo("mesh", meshes[static_cast<std::size_t>(current)].c_str());
     recordWidget("mesh");
@@ -394,13 +394,13 @@ void LatticeTool::drawPanel(ToolContext& c)
         try {
             c.scene.replaceObject(item, o, "outside policy");
         } catch (const Error& e) {
-            status() = e.what();
+            tool.status() = e.what();
         }
     }
-    if (ImGui::Button("reset lattice")) resetLattice(c, item);
+    if (ImGui::Button("reset lattice")) tool.resetLattice(c, item);
     tooltip("Put every lattice point back at its rest place (one undo step)");
     sameLineIfFits("XX direct manipulation (D)");
-    ImGui::Checkbox("direct manipulation (D)", &direct);
+    ImGui::Checkbox("direct manipulation (D)", &tool.direct);
     tooltip("Press on the deformed mesh and drag: the lattice changes least so that the grabbed point follows the pointer");
     if (const FfdLink* link = c.scene.ffdLink(item)) {
         // The text is formatted once: drawn, and recorded as drawn with its numbers (--state,
@@ -439,7 +439,7 @@ void LatticeTool::drawPanel(ToolContext& c)
             recordWidget("fold-over");
         }
         recordLatticeReadout(readout);
-        if (ImGui::Button("certify (det J > 0 on the box?)")) certifyLattice(c, item);
+        if (ImGui::Button("certify (det J > 0 on the box?)")) tool.certifyLattice(c, item);
         tooltip("Bernstein bound on det J over the whole box: certified injective, folds, or undecided");
         if (link->certificate) {
             const Certificate& cert = *link->certificate;
@@ -461,19 +461,19 @@ void LatticeTool::drawPanel(ToolContext& c)
         // The field takes what the button leaves, so that the button is never cut off.
         const float button = ImGui::CalcTextSize("export deformed").x + 2 * ImGui::GetStyle().FramePadding.x;
         ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - button - ImGui::GetStyle().ItemSpacing.x));
-        ImGui::InputText("##export", exportPath, sizeof exportPath);
+        ImGui::InputText("##export", tool.exportPath, sizeof tool.exportPath);
         recordWidget("export path");
         tooltip(part ? "Path of the deformed part to write (.step .stp .iges .igs), relative to the working directory"
                      : "Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
         ImGui::SameLine();
         const bool exportClicked = ImGui::Button("export deformed");
         recordWidget("export deformed");
-        if (exportClicked) exportDeformed(c, item, exportPath);
+        if (exportClicked) tool.exportDeformed(c, item, tool.exportPath);
         tooltip(part ? "Write the part composed exactly with the lattice (faces over degree 25 approximated, the error reported),\n"
                        "as freeform ffd PART.step does, to the path on the left"
                      : "Write the deformed mesh (computed in double, as freeform ffd does) to the path on the left");
     }
-    if (ImGui::Button("apply exactly to curves and patches")) applyLatticeToObjects(c, item);
+    if (ImGui::Button("apply exactly to curves and patches")) tool.applyLatticeToObjects(c, item);
     tooltip("Deform every other object of the document exactly, by composition: curves, patches, parts (Shift+A;\n"
             "freeform ffd DOC's rule). A part this lattice previews takes the exact image and the lattice goes back to rest");
     // The colour map's range last, so that switching the map on moves no row above it.
@@ -487,40 +487,40 @@ void LatticeTool::drawPanel(ToolContext& c)
     }
 }
 
-void LatticeTool::drawMeshPanel(ToolContext& c, int meshItem)
+void drawMeshPanel(LatticeTool& tool, ToolContext& c, int meshItem)
 {
     ImGui::TextUnformatted("Fit a lattice (L)");
-    ImGui::InputInt3("degrees", degree);
+    ImGui::InputInt3("degrees", tool.degree);
     tooltip("The lattice's degrees per axis (1 to 12)");
-    for (int& d : degree) d = std::clamp(d, 1, 12);
-    float m = static_cast<float>(margin);
-    if (ImGui::SliderFloat("margin", &m, 0.0f, 0.5f, "%.3f")) margin = m;
+    for (int& d : tool.degree) d = std::clamp(d, 1, 12);
+    float m = static_cast<float>(tool.margin);
+    if (ImGui::SliderFloat("margin", &m, 0.0f, 0.5f, "%.3f")) tool.margin = m;
     tooltip("Each side of the mesh's bounding box is pushed out by this fraction of its largest extent");
-    if (ImGui::Button("fit lattice")) fitLattice(c, meshItem);
+    if (ImGui::Button("fit lattice")) tool.fitLattice(c, meshItem);
     tooltip("Add a lattice around this mesh or part, bound to it, and select it (L)");
 }
 
 // ------------------------------------------------------------------ rational and NURBS objects
 
-void NurbsTool::drawToolbar(ToolContext&)
+void drawToolbar(NurbsTool& tool, ToolContext&)
 {
-    if (ImGui::Button(creating_ && !arc_ ? "cancel circle (Esc)" : "circle (Shift+O)")) {
-        if (creating_) cancelCreating();
-        else startCreating(false);
+    if (ImGui::Button(tool.creating() && !tool.arc() ? "cancel circle (Esc)" : "circle (Shift+O)")) {
+        if (tool.creating()) tool.cancelCreating();
+        else tool.startCreating(false);
     }
     tooltip("Exact circle (a closed rational nurbs_curve): click the centre, then a point of the circle");
     ImGui::SameLine();
-    if (ImGui::Button(creating_ && arc_ ? "cancel arc (Esc)" : "arc (Shift+U)")) {
-        if (creating_) cancelCreating();
-        else startCreating(true);
+    if (ImGui::Button(tool.creating() && tool.arc() ? "cancel arc (Esc)" : "arc (Shift+U)")) {
+        if (tool.creating()) tool.cancelCreating();
+        else tool.startCreating(true);
     }
     tooltip("Exact arc: click the centre, the start, then the end (counter-clockwise); up to 90 degrees a rational_bezier_curve, beyond a nurbs_curve");
 }
 
-void NurbsTool::drawPanel(ToolContext& c)
+void drawPanel(NurbsTool& tool, ToolContext& c)
 {
     const KindInfo* kind = selectedKind(c);
-    if (!handles(kind)) return;
+    if (!tool.handles(kind)) return;
     const int item = c.selection.item;
     if (kind->isSurface()) {
         drawTessellationSettings(c);
@@ -528,62 +528,58 @@ void NurbsTool::drawPanel(ToolContext& c)
     }
     if (kind->kind == ObjectKind::Part) return; // its faces are deformed by a lattice, not edited point by point
     ImGui::TextUnformatted("Weights (Alt + drag a point: scale)");
-    const std::vector<double> weights = weightsOf(c.scene, item);
+    const std::vector<double> weights = tool.weightsOf(c.scene, item);
     if (c.selection.points.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
         ImGui::TextWrapped("select control points to type their weight");
         ImGui::PopStyleColor();
     } else {
         const int k = c.selection.points.back();
-        if (k >= 0 && k < static_cast<int>(weights.size()) && (item != typedItem_ || k != typedPoint_)) {
-            // A newly selected point: the field starts at its weight.
-            typedWeight = weights[static_cast<std::size_t>(k)];
-            typedItem_ = item, typedPoint_ = k;
-        }
+        if (k >= 0 && k < static_cast<int>(weights.size())) tool.followTypedWeight(item, k, weights[static_cast<std::size_t>(k)]);
         if (k >= 0 && k < static_cast<int>(weights.size())) {
             ImGui::TextWrapped("point %d: weight %.6g%s", k, weights[static_cast<std::size_t>(k)],
                                c.selection.points.size() > 1 ? " (last selected)" : "");
         }
         ImGui::SetNextItemWidth(120);
-        ImGui::InputDouble("##weight", &typedWeight, 0, 0, "%.6g");
+        ImGui::InputDouble("##weight", &tool.typedWeight, 0, 0, "%.6g");
         tooltip("The weight to give the selected control points (> 0); Alt + drag a point scales it instead");
         const char* setLabel = c.selection.points.size() > 1 ? "set the selected points' weight" : "set weight";
         sameLineIfFits(setLabel);
         if (ImGui::Button(setLabel))
-            setWeights(c, item, c.selection.points, typedWeight);
+            tool.setWeights(c, item, c.selection.points, tool.typedWeight);
         tooltip("Set the selected points' weight to the typed value (one undo step)");
     }
     const bool curve = kind->isCurve();
-    if (curve) ImGui::Checkbox("de Boor construction at t (T)", &construction);
+    if (curve) ImGui::Checkbox("de Boor construction at t (T)", &tool.construction);
     if (curve) tooltip("Show the de Boor construction (homogeneous, projected) at the slider's parameter t");
     if (!kind->knots) return;
     ImGui::Separator();
     ImGui::TextUnformatted("Knots");
-    ImGui::Checkbox("show knots", &showKnots);
+    ImGui::Checkbox("show knots", &tool.showKnots);
     tooltip("Curves: a dot at each distinct knot, one tick per unit of multiplicity (red: C0 or less). Surfaces: isoparametric lines at the knots");
     if (kind->isSurface()) {
-        ImGui::RadioButton("in u", &direction, 0);
+        ImGui::RadioButton("in u", &tool.direction, 0);
         tooltip("Insert knots in the u direction (every column of the net)");
         ImGui::SameLine();
-        ImGui::RadioButton("in v", &direction, 1);
+        ImGui::RadioButton("in v", &tool.direction, 1);
         tooltip("Insert knots in the v direction (every row of the net)");
     }
-    float tf = static_cast<float>(t);
-    if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) t = tf;
+    float tf = static_cast<float>(tool.t);
+    if (ImGui::SliderFloat("t", &tf, 0.0f, 1.0f, "%.4f")) tool.t = tf;
     tooltip("A parameter along the domain, 0 = its start, 1 = its end (the de Boor construction and knot insertion use it)");
-    double u = sliderParameter(c);
+    double u = tool.sliderParameter(c);
     ImGui::SetNextItemWidth(120);
     if (ImGui::InputDouble("u (knot value)", &u, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
         // The typed parameter sets the slider: t = (u - a) / (b - a) on the domain [a, b].
-        const double saved = t;
-        t = 0;
-        const double a = sliderParameter(c);
-        t = 1;
-        const double b = sliderParameter(c);
-        t = b > a ? std::clamp((u - a) / (b - a), 0.0, 1.0) : saved;
+        const double saved = tool.t;
+        tool.t = 0;
+        const double a = tool.sliderParameter(c);
+        tool.t = 1;
+        const double b = tool.sliderParameter(c);
+        tool.t = b > a ? std::clamp((u - a) / (b - a), 0.0, 1.0) : saved;
     }
     tooltip("The parameter u in the knot range itself; Enter moves the slider there");
-    if (ImGui::Button("insert knot at u (K)")) insertKnot(c, sliderParameter(c), direction);
+    if (ImGui::Button("insert knot at u (K)")) tool.insertKnot(c, tool.sliderParameter(c), tool.direction);
     tooltip("Boehm knot insertion at u: one more control point (row, column), the shape unchanged (one undo step)");
     // The knot vector(s), each distinct value with its multiplicity.
     const ObjectData& data = c.scene.object(item).data;
@@ -610,21 +606,24 @@ void NurbsTool::drawPanel(ToolContext& c)
 
 // ------------------------------------------------------------------ the set
 
-void Tools::drawPanels(ToolContext& c)
+void drawToolPanels(ToolContext& c, Tools& tools)
 {
     ImGui::Separator();
-    for (Tool* tool : all_) tool->drawToolbar(c);
+    drawToolbar(tools.curve(), c);
+    drawToolbar(tools.patch(), c);
+    drawToolbar(tools.nurbs(), c);
     const int item = c.selection.item;
     if (item >= 0 && item < c.scene.itemCount()) {
         ImGui::Separator();
-        for (Tool* tool : all_) tool->drawPanel(c);
+        // In the tools' dispatch order (Tools::all): at most one section is for the selected kind.
+        drawPanel(tools.curve(), c);
+        drawPanel(tools.spline(), c);
+        drawPanel(tools.patch(), c);
+        drawPanel(tools.lattice(), c);
+        drawPanel(tools.nurbs(), c);
+        drawPanel(tools.cage(), c);
     }
-    if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
-}
-
-void drawToolPanels(ToolContext& c, Tools& tools)
-{
-    tools.drawPanels(c);
+    if (!tools.message().empty()) ImGui::TextWrapped("%s", tools.message().c_str());
 }
 
 } // namespace freeform::editor
