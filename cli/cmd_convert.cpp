@@ -1,5 +1,6 @@
 // freeform convert: between representations of the same geometry.
-//   - spline forms inside a document (--to bezier_spline|deboor_spline), see cmd_convert_spline.cpp
+//   - one object of a document in another form (--to KIND: spline forms, NURBS, Bézier pieces), see
+//     cmd_convert_kind.cpp
 //   - documents and OBJ free-form geometry (cstype bezier), by the file extensions, see
 //     cmd_convert_obj.cpp
 
@@ -30,7 +31,7 @@ Json convert(const ConvertOptions& o)
         refusePartFile(partIn ? o.positional[0] : o.output);
 #endif
     }
-    if (given(o.toGiven)) return convertSpline(o);
+    if (given(o.toGiven)) return convertKind(o);
     if (given(o.endGiven)) throw UsageError("option --end: goes with --to deboor_spline only");
     return convertObjFreeform(o);
 }
@@ -40,7 +41,7 @@ Json convert(const ConvertOptions& o)
 Action defineConvert(CLI::App& app)
 {
     auto o = std::make_shared<ConvertOptions>();
-    // --to and --end are checked by convertSpline: docs/cli.md and the tests pin their messages.
+    // --to and --end are checked by convertKind: docs/cli.md and the tests pin their messages.
     app.footer("Five forms:\n"
                "  freeform convert DOC.json --object NAME --to bezier_spline|deboor_spline\n"
                "                   [--end open|clamped|closed] -o OUT.json\n"

@@ -1,5 +1,5 @@
 #pragma once
-// The options of `freeform convert`, shared by its two halves: cmd_convert_spline.cpp (--to) and
+// The options of `freeform convert`, shared by its two halves: cmd_convert_kind.cpp (--to) and
 // cmd_convert_obj.cpp (documents to and from OBJ free-form).
 
 #include "command.h"
@@ -14,10 +14,7 @@ struct ConvertOptions {
     const CLI::Option* endGiven = nullptr;
 };
 
-Json convertSpline(const ConvertOptions& o);      // cmd_convert_spline.cpp
+Json convertKind(const ConvertOptions& o);        // cmd_convert_kind.cpp: --to
 Json convertObjFreeform(const ConvertOptions& o); // cmd_convert_obj.cpp
-/// --to nurbs_curve|nurbs_surface, or any --to from a nurbs object (convert_rational.cpp).
-bool isRationalConversion(const ConvertOptions& o);
-Json convertRational(const ConvertOptions& o);
 
 } // namespace freeform::cli

@@ -3,7 +3,8 @@
 // at t = 1/2 is (1/sqrt 2, 1/sqrt 2) by hand; a quadratic B-spline at a simple knot is the midpoint
 // of its two middle points, Cox-de Boor by hand), continuity (C1 and not C2 at a simple knot of a
 // quadratic), tessellate (every vertex of a quarter cylinder at radius 1), the control net (counts),
-// convert (to NURBS and back, every number kept) and deformDocument under an affine lattice
+// convert (to NURBS and back, every number kept; convertObject's routes, a B-spline's Bezier joint by
+// hand) and deformDocument under an affine lattice
 // p -> 2 p + (1, 0, 0) (the images of the circles are circles of radius 2 around (1, 0, z); the
 // surfaces are skipped with the documented reason, docs/ffd.md).
 
@@ -150,6 +151,47 @@ TEST_CASE("rational and NURBS objects: to NURBS and back keeps every number", "[
     CHECK(patch.points == std::get<RationalBezierSurfaceData>(doc.object("cyl").data()).points);
     CHECK(patch.weights == std::get<RationalBezierSurfaceData>(doc.object("cyl").data()).weights);
     CHECK_THROWS_WITH(toNurbsData(doc, doc.object("narc")), Catch::Contains("narc"));
+}
+
+TEST_CASE("convertObject: one call takes the kind table's route for every kind", "[document][nurbs]")
+{
+    TypedDocument doc = load();
+    const ObjectId bs = doc.object("bs").id();
+    // The two-span quadratic B-spline as its Bezier pieces: knot 1 inserted once more (Boehm,
+    // alpha = (1 - 0) / (2 - 0)) gives the joint (P1 + P2) / 2 = (1.5, 0, 0.25) by hand.
+    convertObject(doc, bs, "bezier_spline");
+    const auto& s = std::get<BezierSplineData>(doc.object(bs).data());
+    CHECK(s.degree == 2);
+    CHECK(s.intervals.empty()); // two spans of length 1: the format's default intervals
+    CHECK(AnyCurve::of(doc.object(bs))->domainEnd() == 2);
+    REQUIRE(s.points.cols() == 5);
+    CHECK(s.points.col(1) == V3(1, 1, 0));
+    CHECK(s.points.col(2) == V3(1.5, 0, 0.25));
+    CHECK(s.points.col(3) == V3(2, -1, 0.5));
+    CHECK(doc.object(bs).name() == "bs");
+    // And back: the joint's knot twice, the five points as they are.
+    convertObject(doc, bs, "nurbs_curve");
+    const auto& n = std::get<NurbsCurveData>(doc.object(bs).data());
+    CHECK(n.knots == std::vector<double>{0, 0, 0, 1, 1, 2, 2, 2});
+    CHECK(n.points.col(2) == V3(1.5, 0, 0.25));
+
+    // The rational arc asked for as a nurbs_surface: the mismatch names the kind it converts to,
+    // and the document is as it was.
+    const std::string before = formatDocument(doc.toDocument());
+    bool mismatch = false;
+    try {
+        convertObject(doc, doc.object("arc3").id(), "nurbs_surface");
+    } catch (const ConversionMismatch& e) {
+        mismatch = true;
+        CHECK(e.converted == "nurbs_curve");
+        CHECK_THAT(e.what(), Catch::Contains("arc3") && Catch::Contains("not a nurbs_surface"));
+    }
+    CHECK(mismatch);
+    // No route (a lattice as a patch), and an end condition on the NURBS route.
+    CHECK_THROWS_WITH(convertObject(doc, doc.object("L").id(), "bezier_surface"), Catch::Contains("does not convert"));
+    CHECK_THROWS_WITH(convertObject(doc, doc.object("narc").id(), "rational_bezier_curve", EndCondition::Open),
+                      Catch::Contains("end condition"));
+    CHECK(formatDocument(doc.toDocument()) == before);
 }
 
 TEST_CASE("rational and NURBS objects: deformDocument under an affine lattice", "[document][nurbs][ffd]")

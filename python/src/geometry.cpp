@@ -538,24 +538,15 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
             "convert",
             [](freeform::TypedDocument& d, const std::string& name, const std::string& to, std::optional<std::string> end) {
                 const auto& o = d.object(name);
-                const freeform::ObjectId id = o.id();
                 const freeform::KindInfo* target = freeform::findKind(to);
-                if (target && target->supports(freeform::KindOperation::ConvertSpline)) {
-                    std::optional<freeform::EndCondition> e;
-                    if (end) e = freeform::parseEndCondition(*end, "end");
-                    freeform::convertSpline(d, id, to, e);
-                    return to;
-                }
-                if (end) throw freeform::Error("end: goes with to='deboor_spline' only");
+                const bool spline = target && target->supports(freeform::KindOperation::ConvertSpline);
+                if (!spline && end) throw freeform::Error("end: goes with to='deboor_spline' only");
                 // An object of the requested kind already: nothing to convert, the object is kept
                 // as it is (bit for bit), as converting a bezier_spline to bezier_spline does.
-                if (o.type() == to) return to;
-                const bool toNurbs = target && target->knots;
-                freeform::ObjectData data = toNurbs ? freeform::toNurbsData(d, o) : freeform::fromNurbsData(d, o);
-                const std::string got = freeform::objectType(data);
-                if (got != to)
-                    throw freeform::Error(d.what(o) + ": a " + o.type() + " converts to a " + got + ", not a " + to);
-                d.replace(id, std::move(data));
+                if (!spline && o.type() == to) return to;
+                std::optional<freeform::EndCondition> e;
+                if (end) e = freeform::parseEndCondition(*end, "end");
+                freeform::convertObject(d, o.id(), to, e); // the route is the kind table's
                 return to;
             },
             py::arg("name"), py::arg("to"), py::arg("end") = py::none(),

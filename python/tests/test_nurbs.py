@@ -741,3 +741,22 @@ def test_convert_to_the_kind_an_object_has_is_a_no_op():
 
 def test_remove_knot_documents_that_it_can_raise():
     assert "freeform.Error" in ff.NurbsCurve.remove_knot.__doc__ and "weight" in ff.NurbsCurve.remove_knot.__doc__
+
+
+def test_convert_a_polynomial_nurbs_curve_to_its_bezier_spline():
+    # Document.convert takes the kind table's route (the document layer's convertObject), as
+    # `freeform convert --to bezier_spline` does: a two-span quadratic B-spline becomes its Bezier
+    # pieces. Knot 1 inserted once more (Boehm, alpha = (1 - 0) / (2 - 0)) puts the joint at
+    # (P1 + P2) / 2 by hand.
+    doc = ff.Document()
+    pts = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [2.0, -1.0, 0.5], [3.0, 0.0, 1.0]]
+    doc.add("bs", ff.NurbsCurve(2, [0, 0, 0, 1, 2, 2, 2], pts))
+    assert doc.convert("bs", "bezier_spline") == "bezier_spline"
+    assert doc.type("bs") == "bezier_spline"
+    spline = doc.curve("bs")
+    assert spline.degree == 2 and list(spline.intervals) == [1.0, 1.0]
+    np.testing.assert_array_equal(spline.control_points[2], [1.5, 0.0, 0.25])
+    np.testing.assert_array_equal(spline.control_points[3], pts[2])
+    doc.add("bs2", ff.NurbsCurve(2, [0, 0, 0, 1, 2, 2, 2], pts))
+    with pytest.raises(ff.Error, match="end condition"):
+        doc.convert("bs2", "deboor_spline", end="open")

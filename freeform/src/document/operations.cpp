@@ -267,6 +267,22 @@ DeBoorSplineData toDeBoorSplineData(const TypedDocument& doc, const TypedObject&
     return out;
 }
 
+void convertObject(TypedDocument& doc, ObjectId id, const std::string& to, std::optional<EndCondition> end)
+{
+    const TypedObject& object = doc.object(id);
+    const KindInfo* target = findKind(to);
+    if ((target && target->knots) || object.info().supports(KindOperation::FromNurbs)) {
+        if (end) throw Error(doc.what(object) + ": an end condition goes with a bezier_spline converted to deboor_spline only");
+        ObjectData data = target && target->knots ? toNurbsData(doc, object) : fromNurbsData(doc, object);
+        const std::string got = objectType(data);
+        if (got != to) throw ConversionMismatch(doc.what(object) + ": a " + object.type() + " converts to a " + got + ", not a " + to, got);
+        doc.replace(id, std::move(data));
+        return;
+    }
+    if (target && target->supports(KindOperation::ConvertSpline)) return convertSpline(doc, id, to, end);
+    throw Error(doc.what(object) + ": a " + object.type() + " does not convert to \"" + to + "\"");
+}
+
 void convertSpline(TypedDocument& doc, ObjectId id, const std::string& to, std::optional<EndCondition> end)
 {
     const TypedObject& object = doc.object(id);

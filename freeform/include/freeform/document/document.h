@@ -14,7 +14,7 @@
 //   evaluate(doc, o, parameters, K)       cli/eval_*.cpp, Python's Document.evaluate
 //   continuity(doc, o, tolerances)        cli/cmd_continuity.cpp
 //   surfacePatches / documentPatches      cli/cmd_tessellate.cpp, then tessellate()
-//   convertSpline(doc, id, to, end)       cli/cmd_convert_spline.cpp, the editor's spline tools
+//   convertObject(doc, id, to, end)       cli/cmd_convert_kind.cpp, Python's Document.convert
 //   deformDocument(doc, lattice, options) cli/cmd_ffd.cpp (DOC), the editor's lattice tool
 //   controlNet(o), objectPolyline(o, tol), tessellateObject(o, options)
 //                                         the editor's scene geometry (editor/scene/geometry.cpp)

@@ -11,8 +11,10 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "freeform/core/error.h"
 #include "freeform/curve/continuity.h"
 #include "freeform/document/model.h"
 #include "freeform/mesh/polygon_mesh.h"
@@ -154,6 +156,22 @@ ObjectData toNurbsData(const TypedDocument& doc, const TypedObject& object);
 /// rational_bezier_surface. Error when one object of the format cannot hold the pieces (several
 /// rational pieces or patches).
 ObjectData fromNurbsData(const TypedDocument& doc, const TypedObject& object);
+
+/// convertObject's Error when the object converts, but to another kind than asked (a rational
+/// curve of several pieces asked for as a rational_bezier_curve, a curve asked for as a
+/// nurbs_surface): `converted` is the kind it does convert to, so a front end can suggest it.
+class ConversionMismatch : public Error {
+public:
+    ConversionMismatch(const std::string& message, std::string converted) : Error(message), converted(std::move(converted)) {}
+    std::string converted;
+};
+
+/// Replaces the object by its form `to`, keeping id, name and editor settings (`freeform convert
+/// --to`, Python's Document.convert). The route is the kind table's: to a kind with knots
+/// (toNurbsData), from a kind that has Bézier pieces (fromNurbsData), between the two spline forms
+/// (convertSpline; `end` for deboor_spline, else Error). Error naming the object when there is no
+/// route, ConversionMismatch when the route gives another kind; nothing is changed then.
+void convertObject(TypedDocument& doc, ObjectId id, const std::string& to, std::optional<EndCondition> end = std::nullopt);
 
 // ---------------------------------------------------------------- deformDocument (freeform ffd DOC)
 
