@@ -22,6 +22,7 @@
 
 #include "freeform/mesh/polygon_mesh.h"
 #include "freeform/volume/deform.h"
+#include "freeform/volume/drag_pass.h"
 #include "freeform/volume/lattice.h"
 
 namespace freeform::editor {
@@ -103,7 +104,8 @@ private:
     /// Waits for a background evaluation and drops its result (its base stays).
     void settle();
 
-    static constexpr int kLanes = 16, kCoordFields = 6, kBaseFields = 13;
+    // The drag pass's layouts (volume/drag_pass.h).
+    static constexpr int kLanes = kDragLanes, kCoordFields = kDragCoordFields, kBaseFields = kDragBaseFields;
     struct Drag {
         Eigen::Matrix3Xd points;   // the lattice's control points at the base (basePoints_)
         double strength = 0;

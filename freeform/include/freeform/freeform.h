@@ -37,6 +37,7 @@
 #include "freeform/volume/bezier_volume.h"
 #include "freeform/volume/deform.h"
 #include "freeform/volume/deform_rational.h"
+#include "freeform/volume/drag_pass.h"
 #include "freeform/volume/lattice.h"
 #include "freeform/mesh/halfedge.h"
 #include "freeform/mesh/normals.h"

@@ -23,14 +23,7 @@
 #include "freeform/core/bernstein.h"
 #include "freeform/core/parallel.h"
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(FREEFORM_NO_CPU_DISPATCH)
-#define FREEFORM_FFD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define FREEFORM_FFD_CLONES
-#endif
-
-// The lane vectors below never cross a call boundary (everything is inlined into the clones).
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "cpu_dispatch.h" // FREEFORM_CPU_CLONES
 
 namespace freeform {
 
@@ -65,7 +58,7 @@ template <typename Scalar>
 using Lanes = typename LanesOf<Scalar>::type;
 
 template <typename V>
-inline __attribute__((always_inline)) void loadLanes(V& v, const void* p)
+FREEFORM_CPU_INLINE void loadLanes(V& v, const void* p)
 {
     std::memcpy(&v, p, sizeof(V));
 }
@@ -73,7 +66,7 @@ inline __attribute__((always_inline)) void loadLanes(V& v, const void* p)
 /// Bernstein values b[0..deg] (and derivatives db) of degree deg at s, lane-wise, by the
 /// recursion B_i^r = (1-s) B_i^(r-1) + s B_(i-1)^(r-1); db_i = deg (B_(i-1)^(deg-1) - B_i^(deg-1)).
 template <typename Scalar, typename V, bool Jac>
-inline __attribute__((always_inline)) void laneBasis(int deg, const Scalar* lanes, V* b, V* db)
+FREEFORM_CPU_INLINE void laneBasis(int deg, const Scalar* lanes, V* b, V* db)
 {
     V s;
     loadLanes(s, lanes);
@@ -96,7 +89,7 @@ inline __attribute__((always_inline)) void laneBasis(int deg, const Scalar* lane
 }
 
 template <typename Scalar, int L, int M, int N, bool Jac>
-inline __attribute__((always_inline)) void ffdBlocks(const FfdKernelArgs<Scalar>& a, std::size_t firstBlock,
+FREEFORM_CPU_INLINE void ffdBlocks(const FfdKernelArgs<Scalar>& a, std::size_t firstBlock,
                                                      std::size_t lastBlock)
 {
     using V = Lanes<Scalar>;
@@ -215,7 +208,7 @@ inline __attribute__((always_inline)) void ffdBlocks(const FfdKernelArgs<Scalar>
 namespace {
 
 #define FREEFORM_FFD_KERNEL(Scalar, L, M, N, Jac, name)                                                     \
-    FREEFORM_FFD_CLONES void name(const FfdKernelArgs<Scalar>& a, std::size_t first, std::size_t last)       \
+    FREEFORM_CPU_CLONES void name(const FfdKernelArgs<Scalar>& a, std::size_t first, std::size_t last)       \
     {                                                                                                        \
         ffdBlocks<Scalar, L, M, N, Jac>(a, first, last);                                                     \
     }
@@ -295,7 +288,7 @@ struct BindFrame {
 /// product of 3 sums them), lane by lane so that the divisions vectorise. Vertices outside the box
 /// are appended to `outside` in order; returns the first vertex that is not finite, or count.
 template <typename Scalar, typename In>
-inline __attribute__((always_inline)) std::size_t bindBlocks(const BindFrame& f, const In* positions, std::size_t count,
+FREEFORM_CPU_INLINE std::size_t bindBlocks(const BindFrame& f, const In* positions, std::size_t count,
                                                               Scalar* data, std::size_t firstBlock, std::size_t lastBlock,
                                                               std::vector<int>& outside)
 {
@@ -370,7 +363,7 @@ inline __attribute__((always_inline)) std::size_t bindBlocks(const BindFrame& f,
 #define FREEFORM_NO_CONTRACT_BODY
 #endif
 #define FREEFORM_BIND_KERNEL(Scalar, In, name)                                                                        \
-    FREEFORM_FFD_CLONES FREEFORM_NO_CONTRACT std::size_t name(const BindFrame& f, const In* positions,                  \
+    FREEFORM_CPU_CLONES FREEFORM_NO_CONTRACT std::size_t name(const BindFrame& f, const In* positions,                  \
                                                               std::size_t count, Scalar* data, std::size_t first,       \
                                                               std::size_t last, std::vector<int>& outside)              \
     {                                                                                                                  \
