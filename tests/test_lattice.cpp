@@ -233,3 +233,56 @@ TEST_CASE("degree elevation of a deformed lattice leaves the deformation unchang
 }
 
 } // namespace test_lattice
+
+namespace test_lattice {
+
+TEST_CASE("sensitivities: d p' / d P_q = strength * B_q, against moving each point", "[lattice][ffd]")
+{
+    Eigen::Matrix3d axes;
+    axes << 2.0, 0.7, -0.3, 0.1, 1.5, 0.4, 0.2, -0.6, 0.9;
+    for (const OutsidePolicy policy : {OutsidePolicy::Keep, OutsidePolicy::Clamp, OutsidePolicy::Extrapolate}) {
+        CAPTURE(static_cast<int>(policy));
+        Lattice lattice = Lattice::identity({2, 3, 1}, Eigen::Vector3d(0.5, -1, 0.25), axes, policy);
+        lattice.setControlPoint(1, 2, 0, lattice.controlPoint(1, 2, 0) + Eigen::Vector3d(0.2, -0.1, 0.3));
+        const int K = lattice.pointCount();
+        const double strength = 0.7;
+        // Inside, on a face, and outside along one and two axes.
+        const std::vector<Eigen::Vector3d> stus = {{0.3, 0.6, 0.45}, {1.0, 0.2, 0.7}, {1.2, 0.5, 0.5}, {-0.3, 0.4, 1.5}};
+        Points block(3, Lattice::kSensitivityLanes);
+        for (std::size_t n = 0; n < stus.size(); ++n) block.col(static_cast<Eigen::Index>(n)) = lattice.toWorld(stus[n]);
+        std::vector<double> fromBlock(static_cast<std::size_t>(K * Lattice::kSensitivityLanes), -1.0);
+        lattice.sensitivityBlock(block.data(), stus.size(), strength, fromBlock.data());
+        for (std::size_t n = 0; n < stus.size(); ++n) {
+            CAPTURE(n);
+            const Eigen::Vector3d p = lattice.toWorld(stus[n]);
+            std::vector<double> s(static_cast<std::size_t>(K));
+            lattice.sensitivities(p, strength, s.data());
+            double sum = 0;
+            for (int q = 0; q < K; ++q) {
+                sum += s[static_cast<std::size_t>(q)];
+                // The block gives the same bits.
+                CHECK(fromBlock[static_cast<std::size_t>(q * Lattice::kSensitivityLanes) + n] == s[static_cast<std::size_t>(q)]);
+            }
+            const bool moves = policy != OutsidePolicy::Keep || Lattice::insideBox(stus[n]);
+            // Partition of unity: the factors sum to the strength (0 when p stays put).
+            CHECK(sum == Approx(moves ? strength : 0.0).margin(1e-15));
+            // FFD is linear in the points: moving P_q by e moves p' by s_q e, exactly up to rounding.
+            const Eigen::Vector3d e(0.5, -0.25, 0.125);
+            const Eigen::Vector3d before = lattice.deform(p, strength).point;
+            for (int q = 0; q < K; ++q) {
+                Lattice moved = lattice;
+                Points points = moved.controlPoints();
+                points.col(q) += e;
+                moved.setControlPoints(points);
+                const Eigen::Vector3d change = moved.deform(p, strength).point - before;
+                CHECK((change - s[static_cast<std::size_t>(q)] * e).norm() <= 1e-14);
+            }
+        }
+        // Lanes past count are zero.
+        for (int q = 0; q < K; ++q)
+            for (int lane = static_cast<int>(stus.size()); lane < Lattice::kSensitivityLanes; ++lane)
+                CHECK(fromBlock[static_cast<std::size_t>(q * Lattice::kSensitivityLanes + lane)] == 0.0);
+    }
+}
+
+} // namespace test_lattice

@@ -23,92 +23,20 @@ using freeform::Lattice;
 
 // ---------------------------------------------------------------- basis weights
 
-/// Bernstein values B_0^d(x) .. B_d^d(x) (the triangle of de Casteljau's recurrence).
-inline void bernstein(int d, double x, double* b)
-{
-    b[0] = 1;
-    const double y = 1 - x;
-    for (int r = 1; r <= d; ++r) {
-        double saved = 0;
-        for (int i = 0; i < r; ++i) {
-            const double t = b[i];
-            b[i] = saved + y * t;
-            saved = x * t;
-        }
-        b[r] = saved;
-    }
-}
-
-/// Per-point weights of the control points after the outside policy: the lattice coordinates of p
-/// (clamped to the box under clamp, as they are under extrapolate); false when p is outside under
-/// keep (p does not move: no control point acts on it).
+/// The sensitivities of points, from the library (Lattice::sensitivities and sensitivityBlock:
+/// the outside policy and the Bernstein values are the library's).
 struct WeightEvaluator {
-    explicit WeightEvaluator(const Lattice& lat) : lat(lat), d(lat.degrees()) {}
-
-    bool coordinates(const Eigen::Vector3d& p, Eigen::Vector3d& stu) const
-    {
-        const freeform::OutsideRule rule = freeform::outsideRule(lat.toLattice(p), lat.outside());
-        stu = rule.at;
-        return rule.moves();
-    }
+    explicit WeightEvaluator(const Lattice& lat) : lat(lat) {}
 
     /// w * B_ijk(stu(p)) of every control point into out[0..K) (zero when p does not move).
-    void weights(const Eigen::Vector3d& p, double w, double* out) const
-    {
-        const int K = lat.pointCount();
-        Eigen::Vector3d stu;
-        if (!coordinates(p, stu)) {
-            std::fill(out, out + K, 0.0);
-            return;
-        }
-        double bs[freeform::kMaxDegree + 1], bt[freeform::kMaxDegree + 1], bu[freeform::kMaxDegree + 1];
-        bernstein(d[0], stu[0], bs);
-        bernstein(d[1], stu[1], bt);
-        bernstein(d[2], stu[2], bu);
-        int q = 0;
-        for (int i = 0; i <= d[0]; ++i)
-            for (int j = 0; j <= d[1]; ++j) {
-                const double a = w * bs[i] * bt[j];
-                for (int k = 0; k <= d[2]; ++k) out[q++] = a * bu[k];
-            }
-    }
+    void weights(const Eigen::Vector3d& p, double w, double* out) const { lat.sensitivities(p, w, out); }
 
-    static constexpr int kLanes = 8; ///< points per block of the matrix-free products
+    static constexpr int kLanes = Lattice::kSensitivityLanes; ///< points per block of the matrix-free products
 
-    /// The weights of up to kLanes points p[0..count) lane by lane: out[q * kLanes + lane]
-    /// (zero for lanes past count and for points that do not move), strength included. The loops
-    /// over lanes have a fixed length, so the compiler vectorises them.
-    void blockWeights(const double* p, std::size_t count, double w, double* out) const
-    {
-        constexpr int L = kLanes;
-        constexpr int M = freeform::kMaxDegree + 1;
-        alignas(64) double bs[M][L], bt[M][L], bu[M][L];
-        double tmp[M];
-        for (int lane = 0; lane < L; ++lane) {
-            Eigen::Vector3d stu = Eigen::Vector3d::Zero();
-            double scale = 0;
-            if (static_cast<std::size_t>(lane) < count &&
-                coordinates(Eigen::Vector3d(p[3 * lane], p[3 * lane + 1], p[3 * lane + 2]), stu))
-                scale = w;
-            bernstein(d[0], stu[0], tmp);
-            for (int i = 0; i <= d[0]; ++i) bs[i][lane] = scale * tmp[i];
-            bernstein(d[1], stu[1], tmp);
-            for (int i = 0; i <= d[1]; ++i) bt[i][lane] = tmp[i];
-            bernstein(d[2], stu[2], tmp);
-            for (int i = 0; i <= d[2]; ++i) bu[i][lane] = tmp[i];
-        }
-        int q = 0;
-        for (int i = 0; i <= d[0]; ++i)
-            for (int j = 0; j <= d[1]; ++j) {
-                alignas(64) double a[L];
-                for (int lane = 0; lane < L; ++lane) a[lane] = bs[i][lane] * bt[j][lane];
-                for (int k = 0; k <= d[2]; ++k, ++q)
-                    for (int lane = 0; lane < L; ++lane) out[q * L + lane] = a[lane] * bu[k][lane];
-            }
-    }
+    /// The weights of up to kLanes points p[0..count) lane by lane: out[q * kLanes + lane].
+    void blockWeights(const double* p, std::size_t count, double w, double* out) const { lat.sensitivityBlock(p, count, w, out); }
 
     const Lattice& lat;
-    std::array<int, 3> d;
 };
 
 } // namespace

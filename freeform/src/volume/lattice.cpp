@@ -212,6 +212,75 @@ Eigen::VectorXd Lattice::basisWeights(const Eigen::Vector3d& stu) const
     return w;
 }
 
+namespace {
+
+/// Bernstein values B_0^d(x) .. B_d^d(x) by de Casteljau's triangle (convex combinations).
+inline void bernsteinTriangle(int d, double x, double* b)
+{
+    b[0] = 1;
+    const double y = 1 - x;
+    for (int r = 1; r <= d; ++r) {
+        double saved = 0;
+        for (int i = 0; i < r; ++i) {
+            const double t = b[i];
+            b[i] = saved + y * t;
+            saved = x * t;
+        }
+        b[r] = saved;
+    }
+}
+
+} // namespace
+
+void Lattice::sensitivities(const Eigen::Vector3d& p, double strength, double* out) const
+{
+    const OutsideRule rule = outsideRule(toLattice(p), outside_);
+    if (!rule.moves()) {
+        std::fill(out, out + points_.cols(), 0.0);
+        return;
+    }
+    double bs[kMaxDegree + 1], bt[kMaxDegree + 1], bu[kMaxDegree + 1];
+    bernsteinTriangle(degree_[0], rule.at[0], bs);
+    bernsteinTriangle(degree_[1], rule.at[1], bt);
+    bernsteinTriangle(degree_[2], rule.at[2], bu);
+    int q = 0;
+    for (int i = 0; i <= degree_[0]; ++i)
+        for (int j = 0; j <= degree_[1]; ++j) {
+            const double a = strength * bs[i] * bt[j];
+            for (int k = 0; k <= degree_[2]; ++k) out[q++] = a * bu[k];
+        }
+}
+
+void Lattice::sensitivityBlock(const double* p, std::size_t count, double strength, double* out) const
+{
+    constexpr int L = kSensitivityLanes;
+    constexpr int M = kMaxDegree + 1;
+    alignas(64) double bs[M][L], bt[M][L], bu[M][L];
+    double tmp[M];
+    for (int lane = 0; lane < L; ++lane) {
+        Eigen::Vector3d stu = Eigen::Vector3d::Zero();
+        double scale = 0;
+        if (static_cast<std::size_t>(lane) < count) {
+            const OutsideRule rule = outsideRule(toLattice(Eigen::Vector3d(p[3 * lane], p[3 * lane + 1], p[3 * lane + 2])), outside_);
+            if (rule.moves()) stu = rule.at, scale = strength;
+        }
+        bernsteinTriangle(degree_[0], stu[0], tmp);
+        for (int i = 0; i <= degree_[0]; ++i) bs[i][lane] = scale * tmp[i];
+        bernsteinTriangle(degree_[1], stu[1], tmp);
+        for (int i = 0; i <= degree_[1]; ++i) bt[i][lane] = tmp[i];
+        bernsteinTriangle(degree_[2], stu[2], tmp);
+        for (int i = 0; i <= degree_[2]; ++i) bu[i][lane] = tmp[i];
+    }
+    int q = 0;
+    for (int i = 0; i <= degree_[0]; ++i)
+        for (int j = 0; j <= degree_[1]; ++j) {
+            alignas(64) double a[L];
+            for (int lane = 0; lane < L; ++lane) a[lane] = bs[i][lane] * bt[j][lane];
+            for (int k = 0; k <= degree_[2]; ++k, ++q)
+                for (int lane = 0; lane < L; ++lane) out[q * L + lane] = a[lane] * bu[k][lane];
+        }
+}
+
 Lattice Lattice::elevated(int dl, int dm, int dn) const
 {
     const BezierVolume<double> d = displacementVolume().elevated(dl, dm, dn);

@@ -130,6 +130,21 @@ public:
     /// Basis weights B_i^l(s) B_j^m(t) B_k^n(u) of every control point at lattice coordinates.
     Eigen::VectorXd basisWeights(const Eigen::Vector3d& stu) const;
 
+    /// The sensitivities of the deformed point to the control points (docs/python.md,
+    /// "Sensitivities"): FFD is linear in them, so d p' / d P_q = strength * B_q(at) times the
+    /// identity, with `at` and whether p moves from outsideRule (the lattice coordinates, clamped
+    /// into the box under keep and clamp). Writes the pointCount() factors strength * B_q,
+    /// q = index(i, j, k), to out; zeros when p does not move (outside under keep). The Bernstein
+    /// values come from de Casteljau's triangle (convex combinations).
+    void sensitivities(const Eigen::Vector3d& p, double strength, double* out) const;
+    /// Points per block of sensitivityBlock.
+    static constexpr int kSensitivityLanes = 8;
+    /// sensitivities() of count <= kSensitivityLanes points (x y z interleaved) lane by lane:
+    /// out[q * kSensitivityLanes + lane], zeros for lanes past count. Loops of fixed length, which
+    /// the compiler vectorises (Python's matrix-free products W x and W^T y); each value equals
+    /// sensitivities()'s bit for bit.
+    void sensitivityBlock(const double* points, std::size_t count, double strength, double* out) const;
+
     /// The same deformation with the degrees raised by (dl, dm, dn): the displacements are
     /// degree-elevated, so every point moves exactly as before (up to rounding).
     Lattice elevated(int dl, int dm, int dn) const;
