@@ -69,7 +69,7 @@ bool PatchTool::computeEdges(ToolContext& c, bool report)
     try {
         edges_ = edgeContinuity(complex);
         if (report)
-            status() = std::to_string(edges_.size()) + " shared edges between " + std::to_string(complex.patches.size()) + " patches";
+            status() = std::to_string(edges_.size()) + (edges_.size() == 1 ? " shared edge" : " shared edges") + " between " + std::to_string(complex.patches.size()) + " patches";
         return true;
     } catch (const Error& e) {
         edges_.clear();
