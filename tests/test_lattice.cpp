@@ -86,6 +86,10 @@ TEST_CASE("the outside rule: where each policy evaluates a point, which axes fol
     CHECK(keep.at == clamp.at);
     CHECK(extrapolate.mask == 0x0fu);
     CHECK(extrapolate.at == stu);
+    // clampsOutside, which the vectorised kernels read, says what the rule does with the point.
+    CHECK(freeform::clampsOutside(OutsidePolicy::Keep) == (keep.at != stu));
+    CHECK(freeform::clampsOutside(OutsidePolicy::Clamp) == (clamp.at != stu));
+    CHECK(freeform::clampsOutside(OutsidePolicy::Extrapolate) == (extrapolate.at != stu));
 }
 
 TEST_CASE("rest control points are X0 + (i/l) S + (j/m) T + (k/n) U", "[unit]")

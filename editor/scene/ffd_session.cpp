@@ -20,7 +20,7 @@ FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
     const std::size_t count = static_cast<std::size_t>(rest_.positions.cols());
     const std::vector<int>& outside = binding_.outsideVertices();
     const OutsidePolicy policy = lattice.outside();
-    const bool masked = !outside.empty() && policy != OutsidePolicy::Extrapolate;
+    const bool masked = !outside.empty() && clampsOutside(policy);
     const bool normals = rest_.normals.cols() == rest_.positions.cols();
     coords_.assign(((count + W - 1) / W) * kCoordFields * W, 0.5f);
     if (masked) masks_.assign(count, 0x0f);
@@ -29,7 +29,7 @@ FfdSession::FfdSession(const Lattice& lattice, PolygonMesh rest)
         const bool out = next != outside.end() && *next == static_cast<int>(v);
         if (out) ++next;
         Eigen::Vector3d q = binding_.parameters(v); // inside: the binding's own float coordinates
-        if (out && policy != OutsidePolicy::Extrapolate) {
+        if (out && masked) {
             const OutsideRule rule = outsideRule(q, policy); // the mask's bits are the rule's
             masks_[v] = static_cast<unsigned char>(rule.mask);
             q = rule.at;

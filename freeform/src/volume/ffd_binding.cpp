@@ -411,7 +411,7 @@ FREEFORM_NO_CONTRACT std::optional<BindFrame> bindFrame(const Lattice& lattice, 
         f.den[a] = den[a];
         for (int c = 0; c < 3; ++c) f.num[a][c] = num(a, c);
     }
-    f.clamp = lattice.outside() != OutsidePolicy::Extrapolate;
+    f.clamp = clampsOutside(lattice.outside()); // outsideRule's clamp, lane by lane in bindBlocks
     for (const Eigen::Vector3d& probe : probes) {
         const Eigen::Vector3d q = probe - lattice.origin();
         const Eigen::Vector3d expected = lattice.toLattice(probe);

@@ -174,7 +174,7 @@ BezierVolume<double>::Jet Lattice::map(const Eigen::Vector3d& stu, double streng
 OutsideRule outsideRule(const Eigen::Vector3d& stu, OutsidePolicy policy)
 {
     OutsideRule r{stu, 0x0fu, !Lattice::insideBox(stu)};
-    if (!r.outside || policy == OutsidePolicy::Extrapolate) return r;
+    if (!r.outside || !clampsOutside(policy)) return r;
     r.mask = policy == OutsidePolicy::Keep ? 0u : 0x08u;
     for (int a = 0; a < 3; ++a) {
         if (stu[a] >= 0 && stu[a] <= 1) r.mask |= 1u << a;

@@ -47,6 +47,10 @@ struct OutsideRule {
     bool follows(int axis) const { return ((mask >> axis) & 1u) != 0; }
 };
 OutsideRule outsideRule(const Eigen::Vector3d& stu, OutsidePolicy policy);
+/// Whether outsideRule evaluates a point outside the box at clamped coordinates (keep and clamp;
+/// extrapolate evaluates it where it is): the one fact of the rule that the vectorised kernels,
+/// which clamp lane by lane (FfdBinding's bind, the editor's drag masks), take from here.
+inline bool clampsOutside(OutsidePolicy policy) { return policy != OutsidePolicy::Extrapolate; }
 
 /// "keep" | "clamp" | "extrapolate"; Error naming `what` otherwise.
 OutsidePolicy parseOutsidePolicy(const std::string& text, const std::string& what);
