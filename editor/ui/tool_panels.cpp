@@ -1,7 +1,7 @@
 // The tools' panels: each tool's drawToolbar / drawPanel (declared in ui/tool_panels.h), and
-// drawToolPanels, which lays them out in the Properties window: the creation buttons of every tool, then the
-// section of the tool whose kind the selected item is, then the status line. A new tool's panel
-// goes here, as drawPanel(<Tool>&, ToolContext&).
+// drawToolPanels, which lays them out in the Properties window: the creation buttons of every
+// tool, then the section of the tool whose kind the selected item is, then the status line. A new
+// tool's panel goes here, as drawPanel(<Tool>&, ToolContext&).
 
 #include "ui/tool_panels.h"
 
@@ -615,12 +615,13 @@ void drawToolPanels(ToolContext& c, Tools& tools)
     const int item = c.selection.item;
     if (item >= 0 && item < c.scene.itemCount()) {
         ImGui::Separator();
-        // In the tools' dispatch order (Tools::all): at most one section is for the selected kind.
+        // In the tools' dispatch order (Tools::all). A part gets two sections: the NURBS tool's
+        // tessellation settings, then the lattice tool's "fit a lattice".
         drawPanel(tools.curve(), c);
         drawPanel(tools.spline(), c);
         drawPanel(tools.patch(), c);
-        drawPanel(tools.lattice(), c);
         drawPanel(tools.nurbs(), c);
+        drawPanel(tools.lattice(), c);
         drawPanel(tools.cage(), c);
     }
     if (!tools.message().empty()) ImGui::TextWrapped("%s", tools.message().c_str());
