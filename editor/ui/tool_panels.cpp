@@ -615,8 +615,8 @@ void drawToolPanels(ToolContext& c, Tools& tools)
     const int item = c.selection.item;
     if (item >= 0 && item < c.scene.itemCount()) {
         ImGui::Separator();
-        // In the tools' dispatch order (Tools::all). A part gets two sections: the NURBS tool's
-        // tessellation settings, then the lattice tool's "fit a lattice".
+        // In the tools' dispatch order (Tools::all). A trimmed surface gets two sections: the
+        // NURBS tool's tessellation settings, then the lattice tool's "fit a lattice".
         drawPanel(tools.curve(), c);
         drawPanel(tools.spline(), c);
         drawPanel(tools.patch(), c);
