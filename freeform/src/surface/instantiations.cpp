@@ -6,7 +6,9 @@
 #include "freeform/surface/bezier_surface.h"
 
 namespace freeform {
-template class BezierSurface<float, 3>;
 template class BezierSurface<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+template class BezierSurface<float, 3>;
 template class BezierSurface<long double, 3>;
+#endif
 } // namespace freeform

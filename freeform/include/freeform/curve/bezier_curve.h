@@ -424,11 +424,13 @@ typename BezierCurve<Scalar, Dim>::Reduction BezierCurve<Scalar, Dim>::reduced()
 }
 
 // Instantiated once in the library (src/curve/instantiations.cpp); user code links them.
-extern template class BezierCurve<float, 2>;
-extern template class BezierCurve<float, 3>;
 extern template class BezierCurve<double, 2>;
 extern template class BezierCurve<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class BezierCurve<float, 2>;
+extern template class BezierCurve<float, 3>;
 extern template class BezierCurve<long double, 2>;
 extern template class BezierCurve<long double, 3>;
+#endif
 
 } // namespace freeform

@@ -248,8 +248,10 @@ private:
     int degree_;
 };
 
-extern template class KnotVector<float>;
 extern template class KnotVector<double>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class KnotVector<float>;
 extern template class KnotVector<long double>;
+#endif
 
 } // namespace freeform

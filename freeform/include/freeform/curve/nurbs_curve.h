@@ -718,11 +718,13 @@ typename NurbsCurve<Scalar, Dim>::Approximation NurbsCurve<Scalar, Dim>::reduced
     return {std::move(c), error};
 }
 
-extern template class NurbsCurve<float, 2>;
-extern template class NurbsCurve<float, 3>;
 extern template class NurbsCurve<double, 2>;
 extern template class NurbsCurve<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class NurbsCurve<float, 2>;
+extern template class NurbsCurve<float, 3>;
 extern template class NurbsCurve<long double, 2>;
 extern template class NurbsCurve<long double, 3>;
+#endif
 
 } // namespace freeform

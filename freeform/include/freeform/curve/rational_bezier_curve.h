@@ -248,11 +248,13 @@ private:
     }
 };
 
-extern template class RationalBezierCurve<float, 2>;
-extern template class RationalBezierCurve<float, 3>;
 extern template class RationalBezierCurve<double, 2>;
 extern template class RationalBezierCurve<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class RationalBezierCurve<float, 2>;
+extern template class RationalBezierCurve<float, 3>;
 extern template class RationalBezierCurve<long double, 2>;
 extern template class RationalBezierCurve<long double, 3>;
+#endif
 
 } // namespace freeform

@@ -722,8 +722,10 @@ void BezierSurface<Scalar, Dim>::evaluateGrid(const std::vector<Scalar>& us, con
 }
 
 // Instantiated once in the library (src/surface/instantiations.cpp); user code links them.
-extern template class BezierSurface<float, 3>;
 extern template class BezierSurface<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class BezierSurface<float, 3>;
 extern template class BezierSurface<long double, 3>;
+#endif
 
 } // namespace freeform

@@ -499,8 +499,10 @@ private:
     bool rational_ = false;
 };
 
-extern template class NurbsSurface<float, 3>;
 extern template class NurbsSurface<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class NurbsSurface<float, 3>;
 extern template class NurbsSurface<long double, 3>;
+#endif
 
 } // namespace freeform

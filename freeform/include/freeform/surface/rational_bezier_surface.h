@@ -149,8 +149,10 @@ private:
     Homogeneous hom_;
 };
 
-extern template class RationalBezierSurface<float, 3>;
 extern template class RationalBezierSurface<double, 3>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class RationalBezierSurface<float, 3>;
 extern template class RationalBezierSurface<long double, 3>;
+#endif
 
 } // namespace freeform

@@ -239,8 +239,10 @@ private:
 };
 
 // Instantiated once in the library (src/volume/instantiations.cpp); user code links them.
-extern template class BezierVolume<float>;
 extern template class BezierVolume<double>;
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+extern template class BezierVolume<float>;
 extern template class BezierVolume<long double>;
+#endif
 
 } // namespace freeform
