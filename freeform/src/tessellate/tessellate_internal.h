@@ -74,18 +74,9 @@ template <int N = 0>
         db[0] = 0;
         return;
     }
-    double low[kMaxDegree + 1]; // degree n - 1
-    low[0] = 1;
+    double low[kMaxDegree + 1]; // degree n - 1 (core/bernstein.h), then its last level by hand
+    bernsteinTriangle<(N > 1 ? N - 1 : 0)>(n - 1, t, low);
     const double s = 1 - t;
-    for (int k = 1; k < n; ++k) {
-        double carry = 0;
-        for (int i = 0; i < k; ++i) {
-            const double x = low[i];
-            low[i] = carry + s * x;
-            carry = t * x;
-        }
-        low[k] = carry;
-    }
     for (int i = 0; i <= n; ++i) {
         const double a = i > 0 ? low[i - 1] : 0, c = i < n ? low[i] : 0;
         b[i] = t * a + s * c;

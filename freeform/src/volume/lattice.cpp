@@ -212,26 +212,6 @@ Eigen::VectorXd Lattice::basisWeights(const Eigen::Vector3d& stu) const
     return w;
 }
 
-namespace {
-
-/// Bernstein values B_0^d(x) .. B_d^d(x) by de Casteljau's triangle (convex combinations).
-inline void bernsteinTriangle(int d, double x, double* b)
-{
-    b[0] = 1;
-    const double y = 1 - x;
-    for (int r = 1; r <= d; ++r) {
-        double saved = 0;
-        for (int i = 0; i < r; ++i) {
-            const double t = b[i];
-            b[i] = saved + y * t;
-            saved = x * t;
-        }
-        b[r] = saved;
-    }
-}
-
-} // namespace
-
 void Lattice::sensitivities(const Eigen::Vector3d& p, double strength, double* out) const
 {
     const OutsideRule rule = outsideRule(toLattice(p), outside_);

@@ -109,4 +109,26 @@ void bernsteinDerivativeAll(int n, int k, Scalar t, Scalar* out, Scalar* scratch
     }
 }
 
+/// All n+1 values B_0^n(t) .. B_n^n(t) into b[0..n] by de Casteljau's triangle: level r from level
+/// r - 1 by b_i <- t b_(i-1) + (1-t) b_i, convex combinations only, so no value loses digits to
+/// cancellation. The evaluation kernels' one basis (the lattice's sensitivities, the patch
+/// tessellation's rows and their derivatives), so that they give the same bits. N > 0 fixes the
+/// degree at compile time (the loops unrolled); always inlined, so a caller's b stays in registers.
+template <int N = 0>
+[[gnu::always_inline]] inline void bernsteinTriangle(int n, double t, double* b)
+{
+    if constexpr (N > 0) n = N;
+    b[0] = 1;
+    const double s = 1 - t;
+    for (int r = 1; r <= n; ++r) {
+        double carry = 0;
+        for (int i = 0; i < r; ++i) {
+            const double x = b[i];
+            b[i] = carry + s * x;
+            carry = t * x;
+        }
+        b[r] = carry;
+    }
+}
+
 } // namespace freeform
