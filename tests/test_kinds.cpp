@@ -266,4 +266,55 @@ TEST_CASE("a cage file with holes has no inline form: deformDocument and inlineC
                       Catch::Contains("\"cage\"") && Catch::Contains("holes"));
 }
 
+TEST_CASE("objectDetails words each kind's degrees and form as written by hand", "[kinds]")
+{
+    BezierCurveData curve;
+    curve.points = PointColumns::Zero(2, 4);
+    CHECK(objectDetails(curve) == "degree 3, 2D");
+    BezierSplineData spline;
+    spline.degree = 2;
+    spline.closed = true;
+    spline.points = PointColumns::Zero(3, 4);
+    CHECK(objectDetails(spline) == "degree 2, closed");
+    DeBoorSplineData deboor;
+    deboor.end = "clamped";
+    CHECK(objectDetails(deboor) == "degree 3, end clamped");
+    LatticeData lattice;
+    lattice.degree = {1, 2, 3};
+    CHECK(objectDetails(lattice) == "degree 1 x 2 x 3");
+    NurbsCurveData nurbs;
+    nurbs.degree = 2;
+    nurbs.knots = {0, 0, 0, 1, 1, 1};
+    nurbs.points = PointColumns::Zero(3, 3);
+    CHECK(objectDetails(nurbs) == "degree 2, 6 knots, 3D");
+    NurbsSurfaceData surface;
+    surface.degree = {2, 1};
+    surface.rows = 3;
+    surface.cols = 2;
+    CHECK(objectDetails(surface) == "degree 2 x 1, 3 x 2 points");
+    TrimmedSurfaceData trimmed;
+    trimmed.surface = surface;
+    trimmed.loops.resize(2);
+    CHECK(objectDetails(trimmed) == "degree 2 x 1, 2 trim loops");
+    PartData part;
+    part.faces.resize(1);
+    part.edges.resize(4);
+    part.vertices.resize(4);
+    part.shells.push_back({0});
+    part.units = "inch";
+    CHECK(objectDetails(part) == "1 face, 4 edges, 4 vertices, 1 shell, 0 solids, units inch");
+    CHECK(objectDetails(SubdivisionSurfaceData{}).empty());
+    // Every kind has words (the subdivision surface aside): a new kind without them fails here.
+    const auto empty = []<std::size_t... I>(std::size_t k, std::index_sequence<I...>) {
+        ObjectData out;
+        ((k == I ? (out = std::variant_alternative_t<I, ObjectData>{}, 0) : 0), ...);
+        return out;
+    };
+    for (const KindInfo& k : objectKinds()) {
+        const ObjectData d = empty(static_cast<std::size_t>(k.kind), std::make_index_sequence<std::variant_size_v<ObjectData>>{});
+        REQUIRE(objectKind(d) == k.kind);
+        if (k.kind != ObjectKind::SubdivisionSurface) CHECK_FALSE(objectDetails(d).empty());
+    }
+}
+
 } // namespace test_kinds

@@ -72,7 +72,7 @@ void Scene::updateDerived()
         const auto& data = std::get<LatticeData>(document_.objects[static_cast<std::size_t>(li)].data);
         const double strength = latticeItem.settings.ffd.strength;
         try {
-            const Lattice lattice = latticeFromData(data);
+            const Lattice& lattice = this->lattice(li); // the typed document's (Error: the lattice is invalid)
             const bool rebind = !link.session || link.meshId != mesh.id || link.meshKey != mesh.key ||
                                 link.meshTopology != mesh.topology || !link.session->matches(lattice);
             if (rebind) {

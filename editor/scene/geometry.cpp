@@ -46,14 +46,6 @@ PolygonMesh withNormals(PolygonMesh mesh)
     return mesh;
 }
 
-std::string partSummary(const PartData& part)
-{
-    auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
-    return count(part.faces.size(), "face", "faces") + ", " + count(part.edges.size(), "edge", "edges") + ", " +
-           count(part.vertices.size(), "vertex", "vertices") + ", " + count(part.shells.size(), "shell", "shells") + ", " +
-           count(part.solids.size(), "solid", "solids") + ", units " + part.units;
-}
-
 std::string faceSummary(const PartData& part, int face)
 {
     if (face < 0 || static_cast<std::size_t>(face) >= part.faces.size()) return {};
@@ -137,20 +129,30 @@ bool withinTwice(const std::vector<double>& built, const std::vector<double>& wa
     return true;
 }
 
-ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
-                           const std::string& documentDirectory, const PixelScale& view)
+ItemGeometry invalidGeometry(const ObjectData& data, const std::string& error, const std::string& documentDirectory)
+{
+    ItemGeometry g;
+    g.curve.resize(3, 0);
+    g.error = error;
+    g.netPoints = storedPoints(data, documentDirectory);
+    finishBounds(g);
+    return g;
+}
+
+ItemGeometry buildGeometry(const Scene& scene, int i, double tolerance, const PixelScale& view)
+{
+    if (const TypedObject* object = scene.typed(i)) return buildGeometry(*object, scene.item(i).settings, tolerance, view);
+    return invalidGeometry(scene.object(i).data, scene.item(i).invalid, scene.documentDirectory());
+}
+
+ItemGeometry buildGeometry(const TypedObject& object, const ObjectSettings& settings, double tolerance, const PixelScale& view)
 {
     // Every object -> geometry mapping is the document layer's (document/operations.h): the control
     // net, the polyline of a curve or spline, the tessellation of a surface or subdivision surface.
     ItemGeometry g;
-    const std::string prefix = "item: object \"geometry\": "; // the layer's prefix, not shown
+    const ControlNet net = controlNet(object);
+    g.netPoints = net.points;
     try {
-        TypedDocument doc;
-        doc.source = "item";
-        doc.directory = documentDirectory;
-        const TypedObject& object = doc.object(doc.add("geometry", data));
-        const ControlNet net = controlNet(object);
-        g.netPoints = net.points;
         g.netEdges = net.edges;
         const Tessellation& t = settings.tessellation;
         const double tol = t.tolerance > 0 ? t.tolerance : tolerance;
@@ -203,7 +205,7 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
         }
         TessellationReport report;
         if (auto mesh = tessellateObject(object, options, &report)) g.surface = withNormals(std::move(*mesh));
-        if (g.surface && kindInfo(data).supports(KindOperation::Part)) {
+        if (g.surface && object.info().supports(KindOperation::Part)) {
             g.outline = faceOutline(*g.surface);
             if (report.triangleFace.size() == static_cast<std::size_t>(g.surface->faceCount())) {
                 g.vertexFace.assign(static_cast<std::size_t>(g.surface->vertexCount()), -1);
@@ -212,14 +214,13 @@ ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& setting
             }
         }
     } catch (const Error& e) {
+        // A valid object the tessellation refuses (over a limit): its net without edges, the message.
         g.netEdges.clear();
         g.surface.reset();
         g.patchBoxes.clear();
         g.patchTolerance.clear();
         g.curve.resize(3, 0);
-        const std::string message = e.what();
-        g.error = message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
-        g.netPoints = storedPoints(data, documentDirectory);
+        g.error = e.what();
     }
     finishBounds(g);
     return g;

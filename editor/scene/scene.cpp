@@ -46,12 +46,7 @@ long nextId()
 
 } // namespace scene_detail
 
-namespace {
-
-
-} // namespace
-
-Scene::Scene() = default;
+Scene::Scene() { model_.source = "scene"; }
 
 void Scene::rebuildItems()
 {
@@ -66,6 +61,7 @@ void Scene::rebuildItems()
         items.push_back(std::move(item));
     }
     items_ = std::move(items);
+    retypeAll();
 }
 
 void Scene::addMeshItem(const std::string& name, const std::string& path)
@@ -101,6 +97,59 @@ std::string Scene::resolve(const std::string& meshPath) const
     return (fs::path(path_).parent_path() / p).string();
 }
 
+// ------------------------------------------------------------------------------- the typed document
+
+void Scene::retype(std::size_t i)
+{
+    SceneItem& it = items_[i];
+    if (it.kind != SceneItem::Kind::DocumentObject) return;
+    const ObjectData& data = document_.objects[i].data;
+    try {
+        if (it.object != 0 && model_.find(it.object)) {
+            model_.replace(it.object, data); // Error: nothing changed, the old geometry goes below
+            model_.rename(it.object, it.name);
+        } else {
+            it.object = model_.add(it.name, data);
+        }
+        it.invalid.clear();
+    } catch (const Error& e) {
+        if (it.object != 0 && model_.find(it.object)) model_.remove(it.object);
+        it.object = 0;
+        // The document layer's message without its "scene: object "name": " (the item names it).
+        const std::string prefix = model_.source + ": object \"" + it.name + "\": ", message = e.what();
+        it.invalid = message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+    }
+}
+
+void Scene::retypeAll()
+{
+    model_ = TypedDocument();
+    model_.source = "scene";
+    model_.directory = documentDirectory();
+    for (SceneItem& it : items_) it.object = 0;
+    for (std::size_t i = 0; i < items_.size(); ++i) retype(i);
+}
+
+const TypedObject* Scene::typed(int i) const
+{
+    const SceneItem& it = item(i);
+    return it.object != 0 ? model_.find(it.object) : nullptr;
+}
+
+const TypedObject& Scene::typedObject(int i) const
+{
+    if (const TypedObject* o = typed(i)) return *o;
+    object(i); // Error for a mesh
+    throw Error("\"" + item(i).name + "\": " + item(i).invalid);
+}
+
+const Lattice& Scene::lattice(int i) const
+{
+    const TypedObject& o = typedObject(i);
+    if (const auto* l = std::get_if<Lattice>(&o.geometry())) return *l;
+    throw Error("\"" + item(i).name + "\" is a " + item(i).type + ", not a lattice");
+}
+
 const DocumentObject& Scene::object(int i) const
 {
     if (item(i).kind != SceneItem::Kind::DocumentObject) throw Error("\"" + item(i).name + "\" is a mesh, not a document object");
@@ -133,6 +182,7 @@ void Scene::amendObject(int i, const DocumentObject& object)
 void Scene::setObjectData(int i, ObjectData data)
 {
     document_.objects[static_cast<std::size_t>(i)].data = std::move(data);
+    retype(static_cast<std::size_t>(i));
     SceneItem& it = items_[static_cast<std::size_t>(i)];
     it.geometryDirty = true;
     it.key = scene_detail::nextKey();
@@ -232,6 +282,7 @@ int Scene::addObject(DocumentObject object, const std::string& label)
     item.key = scene_detail::nextKey();
     item.id = scene_detail::nextId();
     items_.insert(items_.begin() + at, std::move(item));
+    retype(static_cast<std::size_t>(at));
     modified_ = true;
     return static_cast<int>(at);
 }
@@ -249,8 +300,10 @@ void Scene::setScalars(int i, std::vector<float> scalars)
 void Scene::remove(int i)
 {
     record("delete " + item(i).name);
-    if (item(i).kind == SceneItem::Kind::DocumentObject)
+    if (item(i).kind == SceneItem::Kind::DocumentObject) {
+        if (item(i).object != 0) model_.remove(item(i).object);
         document_.objects.erase(document_.objects.begin() + i);
+    }
     items_.erase(items_.begin() + i);
     modified_ = true;
 }
@@ -278,9 +331,14 @@ void Scene::restore(SceneState state)
     for (std::size_t i = 0; i < items_.size(); ++i) byKey[items_[i].key] = i;
     std::vector<SceneItem> items;
     items.reserve(state.items.size());
+    std::vector<bool> kept; // the item's content is one the scene holds: its typed object too
+    std::set<ObjectId> typedKept;
     for (SceneState::Item& r : state.items) {
         SceneItem it;
-        if (const auto found = byKey.find(r.key); found != byKey.end()) it = std::move(items_[found->second]); // same content: keep its geometry
+        const auto found = byKey.find(r.key);
+        if (found != byKey.end()) it = std::move(items_[found->second]); // same content: keep its geometry
+        kept.push_back(found != byKey.end());
+        if (kept.back() && it.object != 0) typedKept.insert(it.object);
         it.kind = r.kind;
         it.name = std::move(r.name);
         it.type = std::move(r.type);
@@ -294,6 +352,20 @@ void Scene::restore(SceneState state)
     }
     items_ = std::move(items);
     document_.objects = std::move(state.objects);
+    // The typed objects of the items whose content came back as it was stay; the rest are built
+    // again from the restored data, and those of items that are gone are dropped.
+    std::vector<ObjectId> gone;
+    for (const TypedObject& o : model_.objects())
+        if (!typedKept.count(o.id())) gone.push_back(o.id());
+    for (const ObjectId id : gone) model_.remove(id);
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+        if (kept[i]) {
+            if (items_[i].object != 0 && model_.object(items_[i].object).name() != items_[i].name) model_.rename(items_[i].object, items_[i].name);
+            continue;
+        }
+        items_[i].object = 0;
+        retype(i);
+    }
     modified_ = true;
     ++changes_;
 }
@@ -330,7 +402,8 @@ void Scene::buildItem(std::size_t i)
     SceneItem& item = items_[i];
     if (item.kind == SceneItem::Kind::DocumentObject) {
         item.builtTolerance = tessellationTolerance();
-        item.geometry = buildGeometry(document_.objects[i].data, item.settings, item.builtTolerance, documentDirectory(), pixelScale_);
+        if (model_.directory != documentDirectory()) retypeAll(); // relative cage paths start elsewhere now
+        item.geometry = buildGeometry(*this, static_cast<int>(i), item.builtTolerance, pixelScale_);
     } else {
         try {
             item.geometry = buildMeshGeometry(resolve(item.meshPath), item.up);
@@ -491,12 +564,17 @@ void Scene::submitStale()
 {
     const double t = tessellationTolerance();
     if (background_.generation != 0 && background_.tolerance == t) return; // on its way
+    if (model_.directory != documentDirectory()) retypeAll(); // relative cage paths start elsewhere now
     TessellationJob job;
     job.tolerance = t;
     job.view = pixelScale_;
     for (std::size_t i = 0; i < items_.size(); ++i)
-        if (stale(items_[i]))
-            job.items.push_back({items_[i].id, items_[i].key, document_.objects[i].data, items_[i].settings});
+        if (stale(items_[i])) {
+            TessellationJob::Item item{items_[i].id, items_[i].key, std::nullopt, {}, items_[i].invalid, items_[i].settings};
+            if (const TypedObject* o = typed(static_cast<int>(i))) item.object = *o;
+            else item.data = document_.objects[i].data;
+            job.items.push_back(std::move(item));
+        }
     if (job.items.empty() && background_.generation == 0) return;
     // A job for another tolerance is superseded (an empty job only cancels it).
     job.generation = ++background_.lastGeneration;

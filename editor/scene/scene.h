@@ -1,12 +1,16 @@
 #pragma once
-// The scene: a freeform Document (the truth, saved as it is) plus, per object, the settings and the
-// derived geometry the renderer draws. Imported meshes are scene items too; the document records
+// The scene: a freeform Document (the truth, saved as it is), its typed form (the document layer's
+// TypedDocument: every object's geometry built once per change of its data, item k tied to its
+// object id) plus, per object, the settings and the derived geometry the renderer draws. Imported meshes are scene items too; the document records
 // them by file path in its "editor" member, so saving never loses them.
 //
 // Invariants: items_ holds one item per document object, in document order, followed by the
 // imported meshes; every change to the document goes through replaceObject / setControlPoint(s) /
 // setSettings / addObject / importFile / remove, the one path that marks an item dirty, the scene
-// modified, and records an undo step (SceneState before the change) in the scene's History.
+// modified, records an undo step (SceneState before the change) in the scene's History, and keeps
+// the typed document in step: a valid object is in model() under item(i).object, an object the
+// document layer refuses is held as its data plus item(i).invalid (no geometry), so that it is
+// still shown (its stored points) and can be mended.
 // undo()/redo() restore the objects and items exactly (text() equal byte for byte, the camera and
 // display aside, which are not undo steps) and rebuild only items whose content key changed.
 // Derived geometry is rebuilt lazily by updateGeometry() for dirty items only. Loading is all or
@@ -23,6 +27,7 @@
 #include <vector>
 
 #include "freeform/document/kinds.h"
+#include "freeform/document/model.h"
 #include "freeform/brep/part_deform.h"
 #include "freeform/io/document.h"
 #include "freeform/io/up_axis.h"
@@ -99,6 +104,9 @@ struct SceneItem {
                                           // (object, tessellation settings, mesh file) changes
     long id = 0;                          // stable id: given when the item is made, kept through
                                           // renames, undo/redo and reordering, never reused
+    ObjectId object = 0;                  // the object's id in Scene::model(); 0: an imported mesh,
+                                          // or an object the document layer refuses (invalid)
+    std::string invalid;                  // why the object is refused (its data is kept), or empty
     long deforms = 0;                     // lattice: the id of the mesh it deforms (from
                                           // settings.ffd.mesh, the document's form), 0: none
     double builtTolerance = 0;            // the world tolerance `geometry` was built for
@@ -201,6 +209,15 @@ public:
     PolygonMesh mergedMesh();
 
     const Document& document() const { return document_; }
+    /// The typed document: the geometry of every valid document object, built once per change of
+    /// its data (its order is not the items' order: find an item's object by item(i).object).
+    const TypedDocument& model() const { return model_; }
+    /// The typed object behind item i; nullptr for an imported mesh or an invalid object.
+    const TypedObject* typed(int i) const;
+    /// The typed object behind item i; Error for an imported mesh, or why the object is invalid.
+    const TypedObject& typedObject(int i) const;
+    /// The lattice of item i; Error when item i is no lattice or is invalid.
+    const Lattice& lattice(int i) const;
     const std::string& path() const { return path_; }
     /// The folder of path() (empty for an untitled document): relative cage paths start there.
     std::string documentDirectory() const;
@@ -348,11 +365,16 @@ private:
     void record(const std::string& label);
     void restore(SceneState state);
     void setObjectData(int i, ObjectData data);
+    /// Builds item i's typed object from its document data (model_ and the item's object/invalid).
+    void retype(std::size_t i);
+    /// Builds every object's typed form again (a new document, or a new folder for cage paths).
+    void retypeAll();
     void addMeshItem(const std::string& name, const std::string& path);
     std::string uniqueName(const std::string& base, const std::vector<SceneItem>& pending = {}) const;
     std::string resolve(const std::string& meshPath) const;
 
     Document document_;
+    TypedDocument model_;
     std::vector<SceneItem> items_;
     std::string path_;
     std::string cageDirectory_;   // where relative cage paths of the objects in memory (and in the
@@ -363,12 +385,17 @@ private:
     std::map<long, FfdLink> ffdLinks_; // derived: by lattice id
 };
 
-/// Builds the geometry of a document object (tolerance: adaptive sampling in world units).
-/// documentDirectory resolves a subdivision_surface's relative mesh path. With `view` on, a
-/// bezier/deboor surface in adaptive mode without a tolerance of its own is tessellated per patch
-/// to view.tolerance(control-point box of the patch) (geometry.patchBoxes / patchTolerance).
-ItemGeometry buildGeometry(const ObjectData& data, const ObjectSettings& settings, double tolerance,
-                           const std::string& documentDirectory = {}, const PixelScale& view = {});
+/// Builds the geometry of a typed document object (tolerance: adaptive sampling in world units).
+/// With `view` on, a bezier/deboor surface in adaptive mode without a tolerance of its own is
+/// tessellated per patch to view.tolerance(control-point box of the patch) (geometry.patchBoxes /
+/// patchTolerance). An Error of the tessellation is the geometry's error (the net is kept).
+ItemGeometry buildGeometry(const TypedObject& object, const ObjectSettings& settings, double tolerance, const PixelScale& view = {});
+/// The geometry of an object the document layer refuses: its stored points (so it can be seen and
+/// mended) and the error. documentDirectory resolves a subdivision_surface's relative mesh path.
+ItemGeometry invalidGeometry(const ObjectData& data, const std::string& error, const std::string& documentDirectory = {});
+/// The geometry of scene item i as Scene::updateGeometry builds it (a typed object's, or an
+/// invalid one's), at `tolerance`.
+ItemGeometry buildGeometry(const Scene& scene, int i, double tolerance, const PixelScale& view = {});
 /// Reads a mesh file and makes sure it has triangles and per-vertex normals.
 ItemGeometry buildMeshGeometry(const std::string& path, UpAxis up = UpAxis::Z);
 /// Triangulates polygons (fans) and fills in area-weighted vertex normals where the mesh has none.
@@ -376,9 +403,6 @@ PolygonMesh withNormals(PolygonMesh mesh);
 /// The edges of a mesh used by one polygon only: for a part tessellated face by face
 /// (splitFaces), the boundaries of its faces.
 std::vector<std::pair<int, int>> faceOutline(const PolygonMesh& mesh);
-/// A part's counts in words, as the status line and Properties show them: "10 faces, 22 edges,
-/// 14 vertices, 1 shell, 1 solid, units mm".
-std::string partSummary(const PartData& part);
 /// One face of a part in words: "face 6: cone, degree 2 x 1, 1 trim loop" (empty when out of range).
 std::string faceSummary(const PartData& part, int face);
 /// Whether a lattice can deform item i live (a link, scene/derived.h): an imported mesh, or a

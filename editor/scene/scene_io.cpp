@@ -293,6 +293,7 @@ int Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
         const auto documentItems = static_cast<std::ptrdiff_t>(document_.objects.size());
         document_ = std::move(next);
         items_.insert(items_.begin() + documentItems, added.begin(), added.end());
+        for (std::size_t k = 0; k < added.size(); ++k) retype(static_cast<std::size_t>(documentItems) + k);
     } else if (isMeshFile(ext)) {
         const UpAxis up = upAxis.value_or(formatUpAxis(path).value_or(UpAxis::Z));
         ItemGeometry g = buildMeshGeometry(path, up); // reads it now: Error leaves the scene as it was
@@ -363,7 +364,7 @@ void Scene::exportMesh(const std::string& path)
         if (!item.settings.visible) continue;
         const ItemGeometry* g = &item.geometry;
         if (followsViewTolerance(item) && (item.builtTolerance != display.tolerance || !item.geometry.patchTolerance.empty())) {
-            world.push_back(buildGeometry(document_.objects[i].data, item.settings, display.tolerance, documentDirectory()));
+            world.push_back(buildGeometry(*this, static_cast<int>(i), display.tolerance));
             g = &world.back();
         }
         if (g->surface) meshes.push_back(&*g->surface);
@@ -420,11 +421,7 @@ Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattic
         throw Error(path + ": a part is written as STEP (.step .stp) or IGES (.iges .igs); File > Save writes the document");
 #ifdef FREEFORM_HAVE_CAD
     // The document layer's part of the object (a trimmed surface: a part of one face).
-    TypedDocument doc;
-    doc.source = "export";
-    doc.directory = documentDirectory();
-    const TypedObject& object = doc.object(doc.add(it.name, document_.objects[static_cast<std::size_t>(i)].data));
-    std::optional<Part> part = objectPart(object);
+    std::optional<Part> part = objectPart(typedObject(i));
     if (!part) throw Error("\"" + it.name + "\" is a " + it.type + ", not a part or trimmed_surface");
     PartExport out;
     out.name = it.name;

@@ -73,7 +73,8 @@ void TessellationWorker::run(std::stop_token stop)
             if (superseded || stop.stop_requested()) break;
             ItemGeometry g;
             try {
-                g = buildGeometry(item.data, item.settings, job.tolerance, job.directory, job.view);
+                g = item.object ? buildGeometry(*item.object, item.settings, job.tolerance, job.view)
+                                : invalidGeometry(item.data, item.invalid, job.directory);
             } catch (const std::exception& e) { // buildGeometry reports Error in g.error itself
                 g = ItemGeometry{};
                 g.error = e.what();

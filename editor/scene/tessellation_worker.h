@@ -11,8 +11,9 @@
 // A new job supersedes the one queued or running: the running one stops before its next item and
 // its result is dropped, never published. At most one result waits to be taken (the latest job's).
 //
-// Thread safety: a job owns copies of everything it reads (object data, settings, the document's
-// folder for relative cage paths); buildGeometry reads nothing shared. The library's tessellation
+// Thread safety: a job owns copies of everything it reads (the typed object, or an invalid
+// object's data and error, settings, the document's folder for relative cage paths); buildGeometry
+// reads nothing shared (a subdivision surface's copy shares its immutable topology). The library's tessellation
 // is reentrant on const geometry: it has no mutable statics (OpenSubdiv's error text is
 // thread_local and its callback is installed once under std::call_once). The queue, the result
 // and the hold below are guarded by one mutex.
@@ -33,7 +34,9 @@ struct TessellationJob {
     struct Item {
         long id = 0;          // SceneItem::id
         long key = 0;         // SceneItem::key when copied
-        ObjectData data;      // a copy of the document object's data
+        std::optional<TypedObject> object; // a copy of the item's typed object (Scene::typed)
+        ObjectData data;      // else: a copy of the invalid object's data,
+        std::string invalid;  // and why it is invalid (SceneItem::invalid)
         ObjectSettings settings;
     };
     long generation = 0;      // > 0, increasing with every job a scene submits

@@ -52,7 +52,15 @@ bool sameMesh(const PolygonMesh& a, const PolygonMesh& b)
 /// the scene's pixelScale() for the meshes drawn, off for the world tolerance of exports).
 ItemGeometry synchronous(const Scene& scene, int i, double t, const PixelScale& view = {})
 {
-    return buildGeometry(scene.object(i).data, scene.item(i).settings, t, scene.documentDirectory(), view);
+    return buildGeometry(scene, i, t, view);
+}
+
+/// The same for an object's data that the scene no longer holds (the document layer builds it).
+ItemGeometry fromData(const ObjectData& data, const ObjectSettings& settings, double t, const std::string& directory, const PixelScale& view)
+{
+    TypedDocument doc;
+    doc.directory = directory;
+    return buildGeometry(doc.object(doc.add("old", data)), settings, t, view);
 }
 
 long triangles(const Scene& scene)
@@ -158,7 +166,7 @@ TEST_CASE("background: an edit or a removal made while the job runs is not overw
     // The edited patch shows the edit, at the view's tolerance; the stale result (the old patch at
     // the same tolerance) differs from it, so showing it would have failed this check.
     const ItemGeometry edited = synchronous(scene, 5, view, scene.pixelScale());
-    const ItemGeometry stale = buildGeometry(old.data, scene.item(5).settings, view, scene.documentDirectory(), scene.pixelScale());
+    const ItemGeometry stale = fromData(old.data, scene.item(5).settings, view, scene.documentDirectory(), scene.pixelScale());
     REQUIRE(edited.surface);
     REQUIRE(stale.surface);
     REQUIRE_FALSE(sameMesh(*edited.surface, *stale.surface));

@@ -8,8 +8,10 @@
 
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 
+#include "freeform/document/operations.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 #include "support/process.h"
@@ -36,7 +38,112 @@ std::string writeDocument(const std::string& name)
     return path;
 }
 
+/// The object's data as the format writes it (to compare two ObjectData).
+std::string dataText(const std::string& name, const ObjectData& data)
+{
+    Document d;
+    d.objects.push_back(DocumentObject{name, data, ""});
+    return formatDocument(d);
+}
+
+/// The scene's typed document against one built afresh from the scene's data, object by object:
+/// a valid object is in it under its item's id, with the item's name, the same data and the same
+/// control net; an object the document layer refuses has no id and the layer's message; nothing
+/// else is in it.
+void checkModel(const Scene& scene)
+{
+    std::size_t valid = 0;
+    for (int i = 0; i < scene.itemCount(); ++i) {
+        const SceneItem& it = scene.item(i);
+        if (it.kind != SceneItem::Kind::DocumentObject) continue;
+        INFO("item " << i << " " << it.name);
+        TypedDocument fresh;
+        fresh.directory = scene.documentDirectory();
+        std::optional<ObjectId> id;
+        std::string error;
+        try {
+            id = fresh.add(it.name, scene.object(i).data);
+        } catch (const Error& e) {
+            error = e.what();
+        }
+        const TypedObject* typed = scene.typed(i);
+        if (!id) {
+            CHECK(typed == nullptr);
+            CHECK(it.object == 0);
+            REQUIRE_FALSE(it.invalid.empty());
+            CHECK(error.find(it.invalid) != std::string::npos);
+            CHECK_THROWS_WITH(scene.typedObject(i), Catch::Contains(it.invalid));
+            continue;
+        }
+        ++valid;
+        REQUIRE(typed != nullptr);
+        CHECK(it.invalid.empty());
+        CHECK(typed->id() == it.object);
+        CHECK(typed->name() == it.name);
+        CHECK(dataText(it.name, typed->data()) == dataText(it.name, scene.object(i).data));
+        CHECK(controlNet(*typed).points == controlNet(fresh.object(*id)).points);
+    }
+    CHECK(scene.model().objects().size() == valid);
+}
+
 } // namespace
+
+TEST_CASE("History: the scene's typed document follows every edit, undo, redo, addition and removal; a refused object is held as data and mended", "[history][model]")
+{
+    Scene scene = Scene::load(writeDocument("history_model.json"));
+    checkModel(scene);
+    CHECK(&scene.lattice(2) == &std::get<Lattice>(scene.typed(2)->geometry()));
+    CHECK_THROWS_WITH(scene.lattice(0), Catch::Contains("\"c\" is a bezier_curve, not a lattice"));
+    scene.setControlPoint(1, 2, Eigen::Vector3d(2, 0.5, 0.25));
+    scene.setControlPoint(2, 7, Eigen::Vector3d(1.5, 1, 1));
+    checkModel(scene);
+    CHECK(scene.lattice(2).controlPoints().col(7) == Eigen::Vector3d(1.5, 1, 1));
+
+    // A cage whose second face uses a vertex twice: the reader takes it, the document layer does not.
+    SubdivisionSurfaceData cage;
+    cage.vertices = PointColumns(3, 4);
+    cage.vertices << 0, 1, 1, 0, 0, 0, 1, 1, 0, 0, 0, 0;
+    cage.faces = {{0, 1, 2}, {0, 2, 2}};
+    const int bad = scene.addObject(DocumentObject{"cage", cage, ""});
+    CHECK(bad == 3);
+    checkModel(scene);
+    CHECK(scene.typed(bad) == nullptr);
+    CHECK(scene.item(bad).invalid.find("uses vertex 2 twice") != std::string::npos);
+    scene.updateGeometry();
+    CHECK(scene.item(bad).geometry.error == scene.item(bad).invalid);
+    CHECK(scene.item(bad).geometry.netPoints.cols() == 4); // shown as stored, so it can be mended
+
+    // Mended: the second face made a proper triangle.
+    DocumentObject mended = scene.object(bad);
+    std::get<SubdivisionSurfaceData>(mended.data).faces[1] = {0, 2, 3};
+    scene.replaceObject(bad, mended, "mend");
+    checkModel(scene);
+    REQUIRE(scene.typed(bad) != nullptr);
+    scene.updateGeometry();
+    CHECK(scene.item(bad).geometry.error.empty());
+    CHECK(scene.item(bad).geometry.surface);
+
+    REQUIRE(scene.undo()); // the broken cage again
+    checkModel(scene);
+    CHECK(scene.typed(bad) == nullptr);
+    REQUIRE(scene.redo());
+    checkModel(scene);
+    CHECK(scene.typed(bad) != nullptr);
+
+    scene.remove(1);
+    checkModel(scene);
+    CHECK(scene.model().objects().size() == 3);
+    REQUIRE(scene.undo()); // the spline back in its place, between c and box
+    checkModel(scene);
+    CHECK(scene.item(1).name == "s");
+    while (scene.undo()) checkModel(scene);
+    CHECK(scene.itemCount() == 3);
+    CHECK(scene.lattice(2).isRest());
+    while (scene.redo()) checkModel(scene); // the last step redone is the removal of s
+    CHECK(scene.itemCount() == 3);
+    CHECK(scene.indexOf("s") == -1);
+    CHECK(scene.typed(scene.indexOf("cage")) != nullptr);
+}
 
 TEST_CASE("History: undo hands back the state before, redo the state after, a new step clears redo", "[history]")
 {

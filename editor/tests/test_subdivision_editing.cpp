@@ -318,6 +318,14 @@ TEST_CASE("Subdivision: bad cages load without a surface and with an error namin
     Scene scene = Scene::load(doc); // does not throw: the errors belong to the items
     REQUIRE(scene.itemCount() == 5);
     scene.updateGeometry();
+    // Held as data plus the document layer's message, outside the typed document; the good ones in it.
+    for (int i = 0; i < 3; ++i) {
+        CHECK(scene.typed(i) == nullptr);
+        CHECK(scene.item(i).geometry.error == scene.item(i).invalid);
+    }
+    CHECK(scene.typed(3) != nullptr);
+    CHECK(scene.typed(4) != nullptr);
+    CHECK(scene.model().objects().size() == 2);
 
     const ItemGeometry& fin = scene.item(0).geometry;
     CHECK_FALSE(fin.surface);

@@ -112,7 +112,7 @@ TEST_CASE("subdivision to the view: one box per cage face, fewer triangles than 
 
     // Fewer triangles than the one view tolerance everywhere (the synchronous path without a
     // PixelScale is the rule before).
-    const ItemGeometry perView = buildGeometry(scene.object(0).data, scene.item(0).settings, old, scene.documentDirectory());
+    const ItemGeometry perView = buildGeometry(scene, 0, old);
     REQUIRE(perView.surface);
     INFO("per region " << g.surface->faceCount() << " triangles, one tolerance per view " << perView.surface->faceCount());
     CHECK(perView.patchBoxes.empty());
@@ -152,7 +152,7 @@ TEST_CASE("subdivision to the view: one box per cage face, fewer triangles than 
     REQUIRE(after.patchTolerance.size() == built.size());
     for (std::size_t f = 0; f < built.size(); ++f) CHECK(after.patchTolerance[f] < built[f]);
     const ItemGeometry expected =
-        buildGeometry(scene.object(0).data, scene.item(0).settings, scene.tessellationTolerance(), scene.documentDirectory(), scene.pixelScale());
+        buildGeometry(scene, 0, scene.tessellationTolerance(), scene.pixelScale());
     REQUIRE(expected.surface);
     CHECK(expected.surface->faceCount() == after.surface->faceCount());
     CHECK(expected.surface->positions == after.surface->positions);

@@ -47,6 +47,9 @@ std::optional<SubdivisionCage> CageTool::cageOf(const Scene& scene, int item)
     if (item < 0 || item >= scene.itemCount() || scene.item(item).kind != SceneItem::Kind::DocumentObject) return std::nullopt;
     const auto* d = std::get_if<SubdivisionSurfaceData>(&scene.object(item).data);
     if (!d) return std::nullopt;
+    if (const TypedObject* o = scene.typed(item)) return std::get<SubdivisionObject>(o->geometry()).cage();
+    // An object the document layer refuses (a crease off the cage's edges, ...): its cage as
+    // stored, so that it can be mended.
     try {
         return cageFromData(*d, scene.documentDirectory(), "\"" + scene.item(item).name + "\"");
     } catch (const Error&) {
@@ -72,15 +75,10 @@ bool CageTool::replaceCage(ToolContext& c, int item, const SubdivisionSurfaceDat
 {
     // The document layer builds the surface (validateCage: creases on edges, Loop on triangles,
     // ...), so a refused edit never reaches the document.
-    TypedDocument check;
-    check.source = "cage";
-    check.directory = c.scene.documentDirectory();
-    const std::string prefix = "cage: object \"" + c.scene.item(item).name + "\": ";
     try {
-        check.add(c.scene.item(item).name, data);
+        (void)freeform::buildGeometry(data, c.scene.documentDirectory(), "\"" + c.scene.item(item).name + "\""); // validation only
     } catch (const Error& e) {
-        const std::string message = e.what();
-        status() = message.rfind(prefix, 0) == 0 ? "\"" + c.scene.item(item).name + "\": " + message.substr(prefix.size()) : message;
+        status() = e.what();
         return false;
     }
     DocumentObject next = c.scene.object(item);

@@ -177,48 +177,41 @@ void CurveTool::update(ToolContext& c, Overlay& o)
     const DocumentObject* object = selectedObject(c, item);
     if (!object || !(construction || comb)) return;
     const double size = sceneSize(c.scene);
-    try {
-        if (const auto* d = std::get_if<BezierCurveData>(&object->data)) {
-            const Points3 p = toPoints3(d->points);
-            if (construction) drawConstruction(o, p, t);
-            if (comb) drawComb(o, curveJets(BezierCurve<double, 3>(p), 200), size, combScale);
-        } else if (const auto* d = std::get_if<BezierSplineData>(&object->data)) {
-            splineOverlays(o, *d, size);
-        } else if (const auto* d = std::get_if<DeBoorSplineData>(&object->data)) {
-            const auto spline = BezierSpline<double, 3>::fromDeBoor(toPoints3(d->points), parseEndCondition(d->end, "end"), d->intervals);
-            if (construction) {
-                const auto where = spline.locate(t * spline.domainEnd());
-                drawConstruction(o, spline.segmentPoints(where.segment), where.t);
-            }
-        }
-    } catch (const Error& e) {
-        status() = e.what();
+    // The curve as the scene's typed document holds it (none for an object the document layer
+    // refuses: its message is in Properties); 2D curves lifted to z = 0.
+    const TypedObject* typed = c.scene.typed(item);
+    const std::optional<AnyCurve> curve = typed ? AnyCurve::of(*typed) : std::nullopt;
+    if (!curve) return;
+    const BezierSpline<double, 3> spline = curve->spline3();
+    if (std::holds_alternative<BezierCurveData>(object->data)) {
+        if (construction) drawConstruction(o, spline.segmentPoints(0), t);
+        if (comb) drawComb(o, curveJets(spline.segment(0), 200), size, combScale);
+    } else if (std::holds_alternative<BezierSplineData>(object->data)) {
+        splineOverlays(o, spline, size);
+    } else if (std::holds_alternative<DeBoorSplineData>(object->data) && construction) {
+        const auto where = spline.locate(t * spline.domainEnd());
+        drawConstruction(o, spline.segmentPoints(where.segment), where.t);
     }
 }
 
-void CurveTool::splineOverlays(Overlay& o, const BezierSplineData& d, double size) const
+void CurveTool::splineOverlays(Overlay& o, const BezierSpline<double, 3>& spline, double size) const
 {
-    try {
-        const BezierSpline<double, 3> spline = toSpline(d);
-        if (construction) {
-            const auto where = spline.locate(t * spline.domainEnd());
-            drawConstruction(o, spline.segmentPoints(where.segment), where.t);
-        }
-        if (comb) {
-            std::vector<Eigen::Matrix3d> jets;
-            for (int i = 0; i < spline.segmentCount(); ++i) {
-                const auto segment = curveJets(spline.segment(i), 60);
-                const double h = spline.intervals()[static_cast<std::size_t>(i)];
-                for (Eigen::Matrix3d j : segment) {
-                    j.col(1) /= h; // derivatives with respect to the global parameter
-                    j.col(2) /= h * h;
-                    jets.push_back(j);
-                }
+    if (construction) {
+        const auto where = spline.locate(t * spline.domainEnd());
+        drawConstruction(o, spline.segmentPoints(where.segment), where.t);
+    }
+    if (comb) {
+        std::vector<Eigen::Matrix3d> jets;
+        for (int i = 0; i < spline.segmentCount(); ++i) {
+            const auto segment = curveJets(spline.segment(i), 60);
+            const double h = spline.intervals()[static_cast<std::size_t>(i)];
+            for (Eigen::Matrix3d j : segment) {
+                j.col(1) /= h; // derivatives with respect to the global parameter
+                j.col(2) /= h * h;
+                jets.push_back(j);
             }
-            drawComb(o, jets, size, combScale);
         }
-    } catch (const Error&) {
-        // A spline the library rejects draws no construction and no comb (no message).
+        drawComb(o, jets, size, combScale);
     }
 }
 

@@ -41,7 +41,7 @@ public:
 
 private:
     bool onCreateKey(ToolContext& context, KeyAction action);
-    void splineOverlays(Overlay& overlay, const BezierSplineData& spline, double size) const;
+    void splineOverlays(Overlay& overlay, const BezierSpline<double, 3>& spline, double size) const;
 
     bool creating_ = false;         // "create" mode: clicks add points ...
     bool creatingSpline_ = false;   // ... of a C2 cubic spline through them (else a curve)

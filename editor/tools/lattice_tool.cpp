@@ -72,10 +72,9 @@ bool LatticeTool::onPointer(ToolContext& c, const PointerEvent& e)
         const int li = scene.indexOf(dragLattice_);
         if (!hit || li < 0) return true;
         try {
-            DocumentObject next = dragObject_;
-            const Lattice start = latticeFromData(std::get<LatticeData>(dragObject_.data));
+            DocumentObject next = scene.object(li);
             directTarget_ = *hit;
-            const DirectManipulation dm = directManipulation(start, directRest_, directTarget_, scene.item(li).settings.ffd.strength);
+            const DirectManipulation dm = directManipulation(*dragStart_, directRest_, directTarget_, scene.item(li).settings.ffd.strength);
             next.data = latticeToData(dm.lattice);
             scene.replaceObject(li, next, "direct manipulation");
         } catch (const Error& err) {
@@ -94,7 +93,7 @@ bool LatticeTool::onPointer(ToolContext& c, const PointerEvent& e)
         if (!hit || hit->distance >= nearest) continue;
         nearest = hit->distance;
         dragLattice_ = latticeId;
-        dragObject_ = scene.object(li);
+        dragStart_ = scene.lattice(li);
         directRest_ = pointAt(link.session->rest(), link.session->rest().positions, *hit);
         dragPlanePoint_ = pointAt(shown, shown.positions, *hit);
         directTarget_ = dragPlanePoint_;
@@ -166,9 +165,7 @@ bool LatticeTool::resetLattice(ToolContext& c, int latticeItem)
     try {
         requireLattice(c.scene, latticeItem);
         DocumentObject o = c.scene.object(latticeItem);
-        const Lattice lattice = latticeFromData(std::get<LatticeData>(o.data));
-        auto& d = std::get<LatticeData>(o.data);
-        d.points = lattice.restPoints();
+        std::get<LatticeData>(o.data).points = c.scene.lattice(latticeItem).restPoints();
         c.scene.replaceObject(latticeItem, o, "reset lattice");
         return true;
     } catch (const std::exception& e) {
@@ -187,15 +184,14 @@ bool LatticeTool::exportDeformed(ToolContext& c, int latticeItem, const std::str
         if (c.scene.item(m).kind == SceneItem::Kind::DocumentObject) {
             // A part: composed exactly, written as STEP or IGES (faces over degree 25 approximated,
             // with the certified error reported: docs/cad.md, "In the editor").
-            const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
-            const Scene::PartExport e = c.scene.exportPart(m, path, &lattice, item.settings.ffd.strength);
+            const Scene::PartExport e = c.scene.exportPart(m, path, &c.scene.lattice(latticeItem), item.settings.ffd.strength);
             status() = "wrote " + path + ": " + std::to_string(e.deform.exactFaces) + " of " + std::to_string(e.faces) + " faces exact" +
                        Scene::approximationText(e.deform);
             status() += e.valid ? ", a valid shape" : ", Open CASCADE's check finds the shape invalid";
             return true;
         }
         // The lattice in the file's own axes (a Y-up file is written back Y-up: docs/format.md, meshes[].up).
-        const Lattice lattice = latticeFromData(latticeToFile(std::get<LatticeData>(c.scene.object(latticeItem).data), c.scene.item(m).up));
+        const Lattice lattice = latticeToFile(c.scene.lattice(latticeItem), c.scene.item(m).up);
         const DeformReport report = exportDeformedMesh(meshFilePath(c.scene, m), lattice, item.settings.ffd.strength, path);
         status() = "wrote " + path + " (" + std::to_string(report.vertices) + " positions)";
         return true;
@@ -209,7 +205,7 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
 {
     try {
         requireLattice(c.scene, latticeItem);
-        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
+        const Lattice lattice = c.scene.lattice(latticeItem); // a copy: the scene changes below
         // The document layer's one rule for every object type (docs/ffd.md, "Documents"), the same
         // deformDocument `freeform ffd DOC` runs, with the same options: an object whose control
         // points leave the box is composed all the same (the lattice polynomial continued) and
@@ -218,18 +214,20 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
         // vertices is dragged.
         DeformDocumentOptions options;
         options.strength = c.scene.item(latticeItem).settings.ffd.strength;
-        TypedDocument doc(c.scene.document(), c.scene.documentDirectory());
+        // On a copy of the scene's typed document (its geometry copied, not built again): the scene
+        // takes the results through replaceObject, one undo step. Objects the document layer
+        // refuses are not in it, so they stay as they are.
+        TypedDocument doc = c.scene.model();
         const DeformDocumentReport report = deformDocument(doc, lattice, options);
-        // Document object k is scene item k (scene.h), and deformDocument keeps every object's place.
         c.scene.beginMerge();
-        const auto& objects = doc.objects();
-        for (std::size_t k = 0; k < objects.size(); ++k) {
-            const bool moved = std::any_of(report.objects.begin(), report.objects.end(),
-                                           [&](const DeformedObject& d) { return d.id == objects[k].id(); });
-            if (!moved) continue;
-            DocumentObject next = c.scene.object(static_cast<int>(k));
-            next.data = objects[k].data();
-            c.scene.replaceObject(static_cast<int>(k), next, "apply lattice");
+        for (const DeformedObject& d : report.objects) {
+            int k = -1;
+            for (int i = 0; i < c.scene.itemCount() && k < 0; ++i)
+                if (c.scene.item(i).object == d.id) k = i;
+            if (k < 0) continue;
+            DocumentObject next = c.scene.object(k);
+            next.data = doc.object(d.id).data();
+            c.scene.replaceObject(k, next, "apply lattice");
         }
         // A part the lattice previews (its link): the exact image is in the document now, so the
         // lattice goes back to rest in the same step, else the preview would deform it twice.
@@ -248,6 +246,11 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
             ++skipped;
             why = s.name + ": " + s.reason;
         }
+        for (int i = 0; i < c.scene.itemCount(); ++i)
+            if (!c.scene.item(i).invalid.empty()) {
+                ++skipped;
+                why = c.scene.item(i).name + ": " + c.scene.item(i).invalid;
+            }
         const auto outside = std::count_if(report.objects.begin(), report.objects.end(),
                                            [](const DeformedObject& d) { return !d.inside; });
         status() = "deformed " + std::to_string(report.objects.size()) + " object(s) exactly";
@@ -268,8 +271,7 @@ bool LatticeTool::certifyLattice(ToolContext& c, int latticeItem)
 {
     try {
         requireLattice(c.scene, latticeItem);
-        const Lattice lattice = latticeFromData(std::get<LatticeData>(c.scene.object(latticeItem).data));
-        const Certificate cert = certify(lattice, c.scene.item(latticeItem).settings.ffd.strength);
+        const Certificate cert = certify(c.scene.lattice(latticeItem), c.scene.item(latticeItem).settings.ffd.strength);
         c.scene.setCertificate(latticeItem, cert);
         status() = "certificate: " + toString(cert.verdict);
         return true;

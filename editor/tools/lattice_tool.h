@@ -5,6 +5,7 @@
 // lattice exactly to the document's curves, patches and subdivision cages, certifies det J > 0,
 // and direct manipulation (key D: drag a point of a deformed mesh, the lattice follows).
 
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -43,7 +44,7 @@ public:
 private:
     long dragLattice_ = 0;      // the lattice item's id during a direct drag, else 0
     Eigen::Vector3d dragPlanePoint_ = Eigen::Vector3d::Zero(), dragPlaneNormal_ = Eigen::Vector3d::UnitZ();
-    DocumentObject dragObject_; // the lattice at the start of the drag
+    std::optional<Lattice> dragStart_; // the lattice at the start of the drag
     Eigen::Vector3d directRest_ = Eigen::Vector3d::Zero(), directTarget_ = Eigen::Vector3d::Zero();
     int fitted_ = -1;           // the item fitLattice added, until takeFitted
 };

@@ -33,18 +33,6 @@ std::string shortNumber(double v)
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// The geometry of one object through the document layer (its validation and its messages).
-struct Typed {
-    TypedDocument doc;
-    const TypedObject* object = nullptr;
-    explicit Typed(const ObjectData& data, const std::string& name)
-    {
-        doc.source = "\"" + name + "\"";
-        object = &doc.object(doc.add(name, data));
-    }
-    const Geometry& geometry() const { return object->geometry(); }
-};
-
 std::vector<double>* weightsField(ObjectData& data, Eigen::Index& count)
 {
     if (auto* d = std::get_if<RationalBezierCurveData>(&data)) return count = d->points.cols(), &d->weights;
@@ -54,35 +42,21 @@ std::vector<double>* weightsField(ObjectData& data, Eigen::Index& count)
     return nullptr;
 }
 
-/// A rational curve of the two curve types as a 3D NURBS (2D with z = 0; a rational Bézier curve
-/// on clamped knots over [0, 1]).
-std::optional<NurbsCurve<double, 3>> curve3(const ObjectData& data)
+/// A rational curve object's geometry (the scene's typed object) as a 3D NURBS: a 2D one with
+/// z = 0, a rational Bézier curve on clamped knots over [0, 1].
+std::optional<NurbsCurve<double, 3>> curve3(const Geometry& g)
 {
-    PointColumns points;
-    std::vector<double> knots, weights;
-    int degree = 0;
-    if (const auto* d = std::get_if<NurbsCurveData>(&data)) {
-        points = d->points, knots = d->knots, weights = d->weights, degree = d->degree;
-    } else if (const auto* r = std::get_if<RationalBezierCurveData>(&data)) {
-        points = r->points, weights = r->weights, degree = static_cast<int>(r->points.cols()) - 1;
-        knots.assign(static_cast<std::size_t>(degree + 1), 0.0);
-        knots.resize(static_cast<std::size_t>(2 * degree + 2), 1.0);
-    } else {
-        return std::nullopt;
-    }
-    const Points3 p = toPoints3(points);
-    Eigen::VectorXd w = Eigen::VectorXd::Ones(p.cols());
-    if (!weights.empty()) w = Eigen::Map<const Eigen::VectorXd>(weights.data(), static_cast<Eigen::Index>(weights.size()));
-    return NurbsCurve<double, 3>(degree, knots, PointMatrix<double, 3>(p), w);
-}
-
-std::optional<NurbsSurface<double, 3>> surface3(const ObjectData& data)
-{
-    const auto* d = std::get_if<NurbsSurfaceData>(&data);
-    if (!d) return std::nullopt;
-    Eigen::VectorXd w = Eigen::VectorXd::Ones(d->points.cols());
-    if (!d->weights.empty()) w = Eigen::Map<const Eigen::VectorXd>(d->weights.data(), static_cast<Eigen::Index>(d->weights.size()));
-    return NurbsSurface<double, 3>(d->degree[0], d->degree[1], d->knots[0], d->knots[1], PointMatrix<double, 3>(d->points), w);
+    const auto lift = [](const NurbsCurve<double, 2>& c) {
+        Eigen::Matrix<double, 4, Eigen::Dynamic> h = Eigen::Matrix<double, 4, Eigen::Dynamic>::Zero(4, c.homogeneousPoints().cols());
+        h.topRows<2>() = c.homogeneousPoints().topRows<2>();
+        h.row(3) = c.homogeneousPoints().row(2);
+        return NurbsCurve<double, 3>(c.knotVector(), std::move(h));
+    };
+    if (const auto* c = std::get_if<NurbsCurve<double, 3>>(&g)) return *c;
+    if (const auto* c = std::get_if<NurbsCurve<double, 2>>(&g)) return lift(*c);
+    if (const auto* r = std::get_if<RationalBezierCurve<double, 3>>(&g)) return NurbsCurve<double, 3>::fromRationalBezier(*r);
+    if (const auto* r = std::get_if<RationalBezierCurve<double, 2>>(&g)) return lift(NurbsCurve<double, 2>::fromRationalBezier(*r));
+    return std::nullopt;
 }
 
 /// The levels of the de Boor construction at u (The NURBS Book A3.1 on the homogeneous points):
@@ -404,9 +378,8 @@ bool NurbsTool::insertKnot(ToolContext& c, double u, int dir)
     try {
         if (!object) throw Error("insert knot: select a NURBS curve or surface first");
         DocumentObject next = *object;
-        // The geometry as the document layer builds it (its validation and messages).
-        const Typed typed(object->data, object->name);
-        const Geometry& g = typed.geometry();
+        // The geometry as the document layer built it (Error: why the object is invalid).
+        const Geometry& g = c.scene.typedObject(item).geometry();
         const bool weighted = std::visit(
             [](const auto& d) {
                 if constexpr (std::is_same_v<std::decay_t<decltype(d)>, NurbsCurveData> ||
@@ -481,7 +454,10 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
     if (!object || !handles(c.scene.item(item).info())) return;
     try {
         const double size = sceneSize(c.scene);
-        if (const auto curve = curve3(object->data)) {
+        const TypedObject* typed = c.scene.typed(item);
+        if (!typed) return; // an invalid object: its message is in the status line and Properties
+        const auto* nurbsSurface = std::get_if<NurbsSurface<double, 3>>(&typed->geometry());
+        if (const auto curve = curve3(typed->geometry())) {
             if (showKnots && std::holds_alternative<NurbsCurveData>(object->data)) {
                 // A dot at every distinct knot of the domain, and one tick across the curve per unit
                 // of its multiplicity (spaced along the curve).
@@ -505,7 +481,7 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
                 }
             }
             if (construction) drawConstructionLevels(o, deBoorLevels(*curve, curve->domainStart() + t * (curve->domainEnd() - curve->domainStart())));
-        } else if (const auto surface = surface3(object->data); surface && showKnots) {
+        } else if (const auto* surface = nurbsSurface; surface && showKnots) {
             // Isoparametric lines at the knots (the domain's edges included), 64 samples each,
             // lifted towards the eye by 0.4 % of the scene so that the depth test keeps them in
             // front of their own surface (and behind the rest).

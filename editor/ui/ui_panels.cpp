@@ -374,18 +374,10 @@ void properties(Scene& scene, UiState& s, UiActions& actions)
             bool changed = ImGui::Checkbox("visible", &settings.visible);
             tooltip(s, "Show or hide this object");
             if (item.kind == SceneItem::Kind::DocumentObject) {
-                std::visit(
-                    [](const auto& d) {
-                        using T = std::decay_t<decltype(d)>;
-                        if constexpr (std::is_same_v<T, BezierCurveData>) ImGui::Text("degree %d, %dD", int(d.points.cols()) - 1, int(d.points.rows()));
-                        else if constexpr (std::is_same_v<T, BezierSplineData>) ImGui::Text("degree %d, %s", d.degree, d.closed ? "closed" : "open");
-                        else if constexpr (std::is_same_v<T, DeBoorSplineData>) ImGui::Text("degree %d, end %s", d.degree, d.end.c_str());
-                        else if constexpr (std::is_same_v<T, BezierSurfaceData> || std::is_same_v<T, DeBoorSurfaceData>) ImGui::Text("degree %d x %d", d.degree[0], d.degree[1]);
-                        else if constexpr (std::is_same_v<T, LatticeData>) ImGui::Text("degree %d x %d x %d", d.degree[0], d.degree[1], d.degree[2]);
-                        else if constexpr (std::is_same_v<T, SubdivisionSurfaceData>) {} // scheme, boundary, creases: the cage tool's panel
-                        else ImGui::Text("%s", objectType(ObjectData(d)).c_str()); // rational and NURBS types
-                    },
-                    scene.object(selected).data);
+                // The kind table's words for the data (document/kinds.h).
+                const std::string details = item.is(ObjectKind::Part) ? std::string() : objectDetails(scene.object(selected).data); // a part: its table below
+                if (!details.empty())
+                    ImGui::TextUnformatted(details.c_str());
             }
             if (item.geometry.surface) {
                 ImGui::Text("%d vertices, %d triangles", item.geometry.surface->vertexCount(), item.geometry.surface->faceCount());

@@ -4,6 +4,11 @@
 
 #include "freeform/document/kinds.h"
 
+#include <string>
+#include <variant>
+
+#include "overloaded.h"
+
 namespace freeform {
 namespace {
 
@@ -63,6 +68,47 @@ const KindInfo* findKind(std::string_view name)
 {
     const std::optional<ObjectKind> kind = kindNamed(name);
     return kind ? &kindInfo(*kind) : nullptr;
+}
+
+std::string partSummary(const PartData& part)
+{
+    auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+    return count(part.faces.size(), "face", "faces") + ", " + count(part.edges.size(), "edge", "edges") + ", " +
+           count(part.vertices.size(), "vertex", "vertices") + ", " + count(part.shells.size(), "shell", "shells") + ", " +
+           count(part.solids.size(), "solid", "solids") + ", units " + part.units;
+}
+
+std::string objectDetails(const ObjectData& data)
+{
+    const auto degree = [](auto... d) {
+        std::string out = "degree";
+        const char* sep = " ";
+        ((out += sep + std::to_string(d), sep = " x "), ...);
+        return out;
+    };
+    const auto dim = [](const PointColumns& p) { return std::to_string(p.rows()) + "D"; };
+    return std::visit(
+        detail::Overloaded{
+            [&](const BezierCurveData& d) { return degree(d.points.cols() - 1) + ", " + dim(d.points); },
+            [&](const BezierSplineData& d) { return degree(d.degree) + (d.closed ? ", closed" : ", open"); },
+            [&](const DeBoorSplineData& d) { return degree(d.degree) + ", end " + d.end; },
+            [&](const BezierSurfaceData& d) { return degree(d.degree[0], d.degree[1]); },
+            [&](const DeBoorSurfaceData& d) { return degree(d.degree[0], d.degree[1]); },
+            [&](const LatticeData& d) { return degree(d.degree[0], d.degree[1], d.degree[2]); },
+            [&](const SubdivisionSurfaceData&) { return std::string(); },
+            [&](const RationalBezierCurveData& d) { return degree(d.points.cols() - 1) + ", " + dim(d.points); },
+            [&](const RationalBezierSurfaceData& d) { return degree(d.degree[0], d.degree[1]); },
+            [&](const NurbsCurveData& d) { return degree(d.degree) + ", " + std::to_string(d.knots.size()) + " knots, " + dim(d.points); },
+            [&](const NurbsSurfaceData& d) {
+                return degree(d.degree[0], d.degree[1]) + ", " + std::to_string(d.rows) + " x " + std::to_string(d.cols) + " points";
+            },
+            [&](const TrimmedSurfaceData& d) {
+                const std::size_t loops = d.loops.size();
+                return degree(d.surface.degree[0], d.surface.degree[1]) + ", " + std::to_string(loops) + (loops == 1 ? " trim loop" : " trim loops");
+            },
+            [&](const PartData& d) { return partSummary(d); },
+        },
+        data);
 }
 
 } // namespace freeform

@@ -56,4 +56,11 @@ LatticeData latticeToFile(const LatticeData& lattice, UpAxis up)
     return out;
 }
 
+Lattice latticeToFile(const Lattice& lattice, UpAxis up)
+{
+    if (up == UpAxis::Z) return lattice;
+    const Eigen::Matrix3d back = upAxisToWorld(up).transpose();
+    return Lattice(lattice.degrees(), back * lattice.origin(), back * lattice.axes(), back * lattice.controlPoints(), lattice.outside());
+}
+
 } // namespace freeform

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "freeform/io/document.h"
@@ -69,5 +70,12 @@ const KindInfo& kindInfo(ObjectKind kind);
 inline const KindInfo& kindInfo(const ObjectData& data) { return kindInfo(objectKind(data)); }
 /// The kind called name ("nurbs_curve"); nullptr for any other text.
 const KindInfo* findKind(std::string_view name);
+
+/// An object's data in words for people (the editor's Properties): its degrees and form, e.g.
+/// "degree 3, 2D", "degree 3, closed", "degree 2 x 3", "degree 3, 8 knots, 2D"; a part's counts
+/// (partSummary); empty for a subdivision surface (its cage is described by its own panel).
+std::string objectDetails(const ObjectData& data);
+/// A part's counts in words: "10 faces, 22 edges, 14 vertices, 1 shell, 1 solid, units mm".
+std::string partSummary(const PartData& part);
 
 } // namespace freeform

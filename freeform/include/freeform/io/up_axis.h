@@ -13,6 +13,7 @@
 
 #include "freeform/io/document.h"
 #include "freeform/mesh/polygon_mesh.h"
+#include "freeform/volume/lattice.h"
 
 namespace freeform {
 
@@ -38,5 +39,7 @@ void meshToWorld(PolygonMesh& mesh, UpAxis up);
 /// rotating them into the world, deforming there and rotating back (the lattice map commutes with
 /// rotations of its frame), so a deformed file keeps its convention.
 LatticeData latticeToFile(const LatticeData& lattice, UpAxis up);
+/// The same for a built lattice (its degrees and outside policy kept).
+Lattice latticeToFile(const Lattice& lattice, UpAxis up);
 
 } // namespace freeform
