@@ -49,9 +49,11 @@ DynamicMatrix<Scalar> linearSolve(const DynamicMatrix<Scalar>& a, const DynamicM
     prefix DynamicMatrix<S> leastSquaresSolve<S, Eigen::Dynamic>(const DynamicMatrix<S>&, const DynamicMatrix<S>&); \
     prefix DynamicMatrix<S> linearSolve<S>(const DynamicMatrix<S>&, const DynamicMatrix<S>&);
 
-FREEFORM_LEAST_SQUARES_FIXED(extern template, float)
 FREEFORM_LEAST_SQUARES_FIXED(extern template, double)
+#ifndef FREEFORM_DOUBLE_ONLY_INSTANTIATIONS // float and long double (docs/development.md)
+FREEFORM_LEAST_SQUARES_FIXED(extern template, float)
 FREEFORM_LEAST_SQUARES_FIXED(extern template, long double)
+#endif
 FREEFORM_LEAST_SQUARES_DYNAMIC(extern template, double)
 
 } // namespace freeform::detail
