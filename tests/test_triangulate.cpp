@@ -1,6 +1,6 @@
 // Polygon triangulation: fans for convex polygons, ear clipping for non-convex ones (checked by an
 // independent area sum and inside tests), polygons placed in tilted and slightly bent planes, and
-// whole meshes.
+// whole meshes; the convex rings of the certified tessellations' leaves (mesh/convex_ring.h).
 
 #include <catch2/catch.hpp>
 
@@ -13,6 +13,9 @@
 #include <random>
 
 #include "support/meshes.h"
+
+// The certified tessellations' leaf triangulation (private to the library; header only).
+#include "../freeform/src/mesh/convex_ring.h"
 
 namespace test_triangulate {
 
@@ -206,6 +209,125 @@ TEST_CASE("triangulating a mesh keeps vertices, attributes and topology", "[tria
     const PolygonMesh lt = triangulate(l);
     CHECK(lt.faceCount() == 4);
     CHECK(meshReport(lt).boundaryEdges == 6);
+}
+
+// ---- The leaves' convex rings (freeform/src/mesh/convex_ring.h) --------------------------------
+
+namespace {
+
+using Ring = std::vector<std::array<long long, 2>>;
+using Tri = std::array<int, 3>;
+
+/// Twice the signed area of ring points a, b, c (integers: exact).
+long long orient(const Ring& r, int a, int b, int c)
+{
+    const auto& p = r[static_cast<std::size_t>(a)];
+    const auto& q = r[static_cast<std::size_t>(b)];
+    const auto& s = r[static_cast<std::size_t>(c)];
+    return (q[0] - p[0]) * (s[1] - p[1]) - (q[1] - p[1]) * (s[0] - p[0]);
+}
+
+template <class Order>
+std::vector<Tri> clip(const Ring& r, const Order& order, bool* ok = nullptr)
+{
+    std::vector<int> ring(r.size());
+    for (std::size_t i = 0; i < r.size(); ++i) ring[i] = static_cast<int>(i);
+    std::vector<Tri> out;
+    const bool done = detail::clipConvexRing(
+        ring, [&](int a, int b, int c) { return orient(r, a, b, c); }, [&](int a, int b, int c) { out.push_back({a, b, c}); },
+        order);
+    if (ok) *ok = done;
+    return out;
+}
+
+/// Checks what every triangulation of a convex ring must be: n - 2 triangles of positive area that
+/// tile it (twice-areas summing to the ring's, by the shoelace formula), none with a ring point on
+/// one of its edges or inside it but its own corners (so the mesh is conforming).
+void checkTiling(const Ring& r, const std::vector<Tri>& tris)
+{
+    REQUIRE(tris.size() == r.size() - 2);
+    long long shoelace = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const auto& p = r[i];
+        const auto& q = r[(i + 1) % r.size()];
+        shoelace += p[0] * q[1] - p[1] * q[0];
+    }
+    long long sum = 0;
+    for (const Tri& t : tris) {
+        const long long a = orient(r, t[0], t[1], t[2]);
+        CHECK(a > 0);
+        sum += a;
+        for (int o = 0; o < static_cast<int>(r.size()); ++o) {
+            if (o == t[0] || o == t[1] || o == t[2]) continue;
+            const bool inClosed = orient(r, t[0], t[1], o) >= 0 && orient(r, t[1], t[2], o) >= 0 && orient(r, t[2], t[0], o) >= 0;
+            INFO("triangle " << t[0] << " " << t[1] << " " << t[2] << ", point " << o);
+            CHECK_FALSE(inClosed);
+        }
+    }
+    CHECK(sum == shoelace);
+}
+
+// A 2 x 2 square with a point inside each side, counter-clockwise from (0, 0).
+const Ring kSquare = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+
+} // namespace
+
+TEST_CASE("convex ring: the next ear in turn, as the subdivision surfaces' leaves are cut", "[triangulate][ring]")
+{
+    // By hand: the first ear from index 0 is 0 (neighbours 7 and 1); after each cut the search
+    // starts at the cut's place, whose point is now the next one, so the ring is fanned from 7
+    // until (5, 6, 7) is the last triangle.
+    bool ok = false;
+    const std::vector<Tri> tris = clip(kSquare, detail::FirstEarInTurn{}, &ok);
+    CHECK(ok);
+    CHECK(tris == std::vector<Tri>{{7, 0, 1}, {7, 1, 2}, {7, 2, 3}, {7, 3, 4}, {7, 4, 5}, {5, 6, 7}});
+    checkTiling(kSquare, tris);
+}
+
+TEST_CASE("convex ring: the ear whose new edge costs least, as the patches' leaves are cut", "[triangulate][ring]")
+{
+    SECTION("the cost is the squared distance of the ring points lifted onto the paraboloid z = x^2 + y^2")
+    {
+        const auto cost = [](int a, int c) {
+            const auto d2 = [](const std::array<long long, 2>& p) { return double(p[0] * p[0] + p[1] * p[1]); };
+            const auto& p = kSquare[static_cast<std::size_t>(a)];
+            const auto& q = kSquare[static_cast<std::size_t>(c)];
+            const double dx = double(p[0] - q[0]), dy = double(p[1] - q[1]), dz = d2(p) - d2(q);
+            return dx * dx + dy * dy + dz * dz;
+        };
+        // By hand (heights 0, 1, 4, 5, 8, 5, 4, 1 round the ring): the corners 1, 3, 5, 7 lie inside
+        // sides; the ears at 0 (new edge 7-1) and 4 (3-5) cost 2, those at 2 and 6 cost 18. Of equal
+        // costs the first in the ring goes: (7, 0, 1). Then (3, 4, 5) at cost 2; then 2-5 and 3-6
+        // cost 6: (2, 3, 5); then 2-6 costs 8: (2, 5, 6); then the four ears of 1, 2, 6, 7 all cost 14
+        // and the first goes, (7, 1, 2), leaving (2, 6, 7).
+        const std::vector<Tri> tris = clip(kSquare, cost);
+        CHECK(tris == std::vector<Tri>{{7, 0, 1}, {3, 4, 5}, {2, 3, 5}, {2, 5, 6}, {7, 1, 2}, {2, 6, 7}});
+        checkTiling(kSquare, tris);
+    }
+    SECTION("an ear that would leave the rest on one line is never cut, however cheap")
+    {
+        // (0, 0), (1, 0), (2, 0), (2, 1): cutting corner 3 would leave 0, 1, 2 on a line. Its new
+        // edge 2-0 is made the cheapest (0), then the ear at 2 (edge 1-3, cost 1), then the one at 0
+        // (edge 3-1, cost 2): the ear at 2 is cut, (1, 2, 3), leaving (0, 1, 3).
+        const Ring r = {{0, 0}, {1, 0}, {2, 0}, {2, 1}};
+        const auto cost = [](int a, int c) { return (a == 2 && c == 0) ? 0.0 : (a == 1 && c == 3) ? 1.0 : 2.0; };
+        const std::vector<Tri> tris = clip(r, cost);
+        CHECK(tris == std::vector<Tri>{{1, 2, 3}, {0, 1, 3}});
+        checkTiling(r, tris);
+        // In turn: corner 0 (neighbours 3 and 1) is the first ear, (3, 0, 1), leaving (1, 2, 3).
+        const std::vector<Tri> turn = clip(r, detail::FirstEarInTurn{});
+        CHECK(turn == std::vector<Tri>{{3, 0, 1}, {1, 2, 3}});
+        checkTiling(r, turn);
+    }
+    SECTION("a ring without an area is refused")
+    {
+        const Ring flat = {{0, 0}, {1, 0}, {2, 0}, {3, 0}};
+        bool ok = true;
+        CHECK(clip(flat, detail::FirstEarInTurn{}, &ok).empty());
+        CHECK_FALSE(ok);
+        CHECK(clip(flat, [](int, int) { return 1.0; }, &ok).empty());
+        CHECK_FALSE(ok);
+    }
 }
 
 } // namespace test_triangulate

@@ -22,6 +22,7 @@
 
 #include "freeform/core/error.h"
 #include "freeform/subdivision/subdivision_surface.h"
+#include "../mesh/convex_ring.h"
 #include "osd_errors.h"
 
 namespace freeform {
@@ -332,44 +333,11 @@ inline long double cross2(const UV& a, const UV& b, const UV& c)
            static_cast<long double>(b[1] - a[1]) * static_cast<long double>(c[0] - a[0]);
 }
 
-/// Ear clipping of a convex counter-clockwise polygon with collinear points in (u, v): every ear has
-/// positive area and no other polygon point in it (closed), so no vertex ends inside another
-/// triangle's edge; appends triangles of polygon indices.
-inline void clipEars(const std::vector<UV>& poly, std::vector<std::array<int, 3>>& out)
-{
-    std::vector<int> ring(poly.size());
-    for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = static_cast<int>(i);
-    auto P = [&](int i) -> const UV& { return poly[static_cast<std::size_t>(i)]; };
-    std::size_t start = 0;
-    while (ring.size() > 3) {
-        bool clipped = false;
-        for (std::size_t s = 0; s < ring.size() && !clipped; ++s) {
-            const std::size_t i = (start + s) % ring.size();
-            const int a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], c = ring[(i + 1) % ring.size()];
-            if (!(cross2(P(a), P(b), P(c)) > 0)) continue;
-            bool empty = true;
-            for (int o : ring)
-                if (o != a && o != b && o != c && cross2(P(a), P(b), P(o)) >= 0 && cross2(P(b), P(c), P(o)) >= 0 &&
-                    cross2(P(c), P(a), P(o)) >= 0) {
-                    empty = false;
-                    break;
-                }
-            if (!empty) continue;
-            out.push_back({a, b, c});
-            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-            start = i % ring.size();
-            clipped = true;
-        }
-        if (!clipped) throw Error("subdivision tessellation: a leaf polygon could not be triangulated (internal)");
-    }
-    if (ring.size() == 3 && cross2(P(ring[0]), P(ring[1]), P(ring[2])) > 0) out.push_back({ring[0], ring[1], ring[2]});
-    else throw Error("subdivision tessellation: a leaf polygon could not be triangulated (internal)");
-}
-
 /// The polygon buffers of triangulateLeaf, kept across leaves.
 struct LeafPolygon {
     std::vector<UV> poly, side;
     std::vector<std::array<int, 3>> tris;
+    std::vector<int> ring;
 };
 
 /// Appends the triangles of a leaf with the given corners (counter-clockwise in (u, v)) to
@@ -387,7 +355,14 @@ void triangulateLeaf(const std::array<UV, N>& corners, SidePoints&& sidePoints, 
         buf.poly.insert(buf.poly.end(), buf.side.begin(), buf.side.end());
     }
     buf.tris.clear();
-    clipEars(buf.poly, buf.tris);
+    // The next ear from where the last was cut (mesh/convex_ring.h).
+    buf.ring.resize(buf.poly.size());
+    for (std::size_t i = 0; i < buf.ring.size(); ++i) buf.ring[i] = static_cast<int>(i);
+    const auto P = [&](int i) -> const UV& { return buf.poly[static_cast<std::size_t>(i)]; };
+    if (!detail::clipConvexRing(
+            buf.ring, [&](int a, int b, int c) { return cross2(P(a), P(b), P(c)); },
+            [&](int a, int b, int c) { buf.tris.push_back({a, b, c}); }, detail::FirstEarInTurn{}))
+        throw Error("subdivision tessellation: a leaf polygon could not be triangulated (internal)");
     for (const auto& t : buf.tris)
         for (int k : t) triangles.push_back(vertexOf(buf.poly[static_cast<std::size_t>(k)]));
 }

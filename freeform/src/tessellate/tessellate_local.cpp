@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "../mesh/convex_ring.h"
 #include "tessellate_internal.h"
 
 namespace freeform::tessellate_detail {
@@ -203,38 +204,6 @@ std::int64_t cross2(std::uint64_t p, std::uint64_t q, std::uint64_t r)
     const auto u = [](std::uint64_t k) { return static_cast<std::int64_t>(k >> 32); };
     const auto v = [](std::uint64_t k) { return static_cast<std::int64_t>(k & 0xffffffffu); };
     return (u(q) - u(p)) * (v(r) - v(p)) - (v(q) - v(p)) * (u(r) - u(p));
-}
-
-/// Triangulates a convex ring (counter-clockwise in (u, v), indices into keys, points on a straight
-/// side allowed) without a new vertex: n - 2 triangles, each time the ear whose new edge is shortest
-/// in space, never an ear of three points of one side, nor one that leaves the rest on one line.
-template <class Emit>
-void clipEars(const std::vector<int>& ring, const std::vector<std::uint64_t>& keys, const std::vector<Eigen::Vector3d>& pos,
-              const Emit& emit)
-{
-    thread_local std::vector<int> poly;
-    poly.assign(ring.begin(), ring.end());
-    while (poly.size() > 3) {
-        const int size = static_cast<int>(poly.size());
-        int best = -1;
-        double bestLength = std::numeric_limits<double>::infinity();
-        for (int k = 0; k < size; ++k) {
-            const int p = poly[(k + size - 1) % size], c = poly[k], q = poly[(k + 1) % size];
-            if (cross2(keys[p], keys[c], keys[q]) <= 0) continue; // a point inside a side
-            const double length = (pos[p] - pos[q]).squaredNorm();
-            if (length >= bestLength) continue;
-            bool flat = true; // the rest, from q round to p, on the line pq?
-            for (int r = (k + 2) % size; r != k && flat; r = (r + 1) % size)
-                if (cross2(keys[p], keys[q], keys[poly[r]]) != 0) flat = false;
-            if (flat) continue;
-            best = k;
-            bestLength = length;
-        }
-        if (best < 0) break; // cannot happen for a convex ring with a positive area
-        emit(poly[(best + size - 1) % size], poly[best], poly[(best + 1) % size]);
-        poly.erase(poly.begin() + best);
-    }
-    if (poly.size() == 3 && cross2(keys[poly[0]], keys[poly[1]], keys[poly[2]]) > 0) emit(poly[0], poly[1], poly[2]);
 }
 
 /// c.evaluate(t) (BezierCurve::deCasteljau: w_i = (1 - t) w_i + t w_(i+1), level by level) without
@@ -548,7 +517,11 @@ PolygonMesh tessellateLocal(const PatchComplex& complex, const TessellationOptio
                 const int o = corner[from];
                 for (int k = 1; k + 1 < n; ++k) emit(ring[o], ring[(o + k) % n], ring[(o + k + 1) % n]);
             } else {
-                clipEars(ring, keys, keyPos, [&](int a, int b, int c) { emit(a, b, c); });
+                // The ear whose new edge is shortest in space (mesh/convex_ring.h).
+                detail::clipConvexRing(
+                    ring, [&](int a, int b, int c) { return cross2(keys[a], keys[b], keys[c]); },
+                    [&](int a, int b, int c) { emit(a, b, c); },
+                    [&](int a, int c) { return (keyPos[a] - keyPos[c]).squaredNorm(); });
             }
         }
     }
