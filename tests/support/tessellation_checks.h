@@ -172,11 +172,10 @@ inline double meshToSurface(const Patch& patch, const PolygonMesh& mesh)
     return worst;
 }
 
-/// Largest distance from f(u, v) on an irregular n x n grid (and the sides) to the mesh (up to
-/// radius; cell: the bucket size, about the triangles' size).
-inline double surfaceToMesh(const Patch& patch, const PolygonMesh& mesh, int n, double radius, double cell = 0.02)
+/// Largest distance from f(u, v) on an irregular n x n grid (and the sides) to the mesh of the grid
+/// tri (up to radius).
+inline double surfaceToMesh(const Patch& patch, const TriangleGrid& tri, int n, double radius)
 {
-    const TriangleGrid tri(mesh, cell);
     double worst = 0;
     for (int i = 0; i <= n; ++i)
         for (int j = 0; j <= n; ++j) {
@@ -185,6 +184,13 @@ inline double surfaceToMesh(const Patch& patch, const PolygonMesh& mesh, int n, 
             worst = std::max(worst, tri.distance(patch.evaluate(u, v), radius));
         }
     return worst;
+}
+
+/// The same with the mesh's grid built here (cell: the bucket size, about the triangles' size). For
+/// several patches of one mesh, build the grid once and pass it.
+inline double surfaceToMesh(const Patch& patch, const PolygonMesh& mesh, int n, double radius, double cell = 0.02)
+{
+    return surfaceToMesh(patch, TriangleGrid(mesh, cell), n, radius);
 }
 
 } // namespace freeform::test
