@@ -402,7 +402,6 @@ void Scene::buildItem(std::size_t i)
     SceneItem& item = items_[i];
     if (item.kind == SceneItem::Kind::DocumentObject) {
         item.builtTolerance = tessellationTolerance();
-        if (model_.directory != documentDirectory()) retypeAll(); // relative cage paths start elsewhere now
         item.geometry = buildGeometry(*this, static_cast<int>(i), item.builtTolerance, pixelScale_);
     } else {
         try {
@@ -420,6 +419,9 @@ void Scene::buildItem(std::size_t i)
 
 void Scene::updateGeometry()
 {
+    // Relative cage paths start elsewhere once the document has another folder (Save As): every
+    // typed object is built again before an item is built, here or in the background.
+    if (model_.directory != documentDirectory()) retypeAll();
     for (std::size_t i = 0; i < items_.size(); ++i)
         if (items_[i].geometryDirty) buildItem(i);
     if (backgroundOn_) {
@@ -564,7 +566,6 @@ void Scene::submitStale()
 {
     const double t = tessellationTolerance();
     if (background_.generation != 0 && background_.tolerance == t) return; // on its way
-    if (model_.directory != documentDirectory()) retypeAll(); // relative cage paths start elsewhere now
     TessellationJob job;
     job.tolerance = t;
     job.view = pixelScale_;
@@ -613,6 +614,14 @@ int Scene::indexOf(long id) const
     if (id == 0) return -1;
     for (std::size_t i = 0; i < items_.size(); ++i)
         if (items_[i].id == id) return static_cast<int>(i);
+    return -1;
+}
+
+int Scene::itemOfObject(ObjectId object) const
+{
+    if (object == 0) return -1;
+    for (std::size_t i = 0; i < items_.size(); ++i)
+        if (items_[i].object == object) return static_cast<int>(i);
     return -1;
 }
 

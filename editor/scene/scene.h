@@ -233,6 +233,8 @@ public:
     int indexOf(long id) const;
     /// The index of the item named `name`, or -1.
     int indexOf(const std::string& name) const;
+    /// The index of the item whose object in model() is `object`, or -1 (0 and refused objects: -1).
+    int itemOfObject(ObjectId object) const;
 
     /// Replaces the document object behind item i (same name) after validating it through the
     /// document reader; Error (nothing changes) when the new object is invalid. `label` names the

@@ -79,11 +79,13 @@ void checkModel(const Scene& scene)
         REQUIRE(typed != nullptr);
         CHECK(it.invalid.empty());
         CHECK(typed->id() == it.object);
+        CHECK(scene.itemOfObject(it.object) == i); // the way back from an object to its item
         CHECK(typed->name() == it.name);
         CHECK(dataText(it.name, typed->data()) == dataText(it.name, scene.object(i).data));
         CHECK(controlNet(*typed).points == controlNet(fresh.object(*id)).points);
     }
     CHECK(scene.model().objects().size() == valid);
+    CHECK(scene.itemOfObject(0) == -1);
 }
 
 } // namespace

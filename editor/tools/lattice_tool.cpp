@@ -221,9 +221,7 @@ bool LatticeTool::applyLatticeToObjects(ToolContext& c, int latticeItem)
         const DeformDocumentReport report = deformDocument(doc, lattice, options);
         c.scene.beginMerge();
         for (const DeformedObject& d : report.objects) {
-            int k = -1;
-            for (int i = 0; i < c.scene.itemCount() && k < 0; ++i)
-                if (c.scene.item(i).object == d.id) k = i;
+            const int k = c.scene.itemOfObject(d.id);
             if (k < 0) continue;
             DocumentObject next = c.scene.object(k);
             next.data = doc.object(d.id).data();
