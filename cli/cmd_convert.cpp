@@ -22,7 +22,7 @@ Json convert(const ConvertOptions& o)
         if (partIn && given(o.objectGiven))
             throw UsageError("option --object: picks the part of a document (freeform convert DOC.json --object NAME -o OUT.step)");
         if (partIn && !isPartFile(o.output) && lowerExtension(o.output) != ".json")
-            throw UsageError("option -o: a part is written as STEP, IGES (.step .stp .iges .igs) or a document (.json)");
+            throw UsageError("option -o: a part is written as STEP, IGES, BRep (.step .stp .iges .igs .brep) or a document (.json)");
         if (!partIn && lowerExtension(o.positional[0]) != ".json")
             throw UsageError("option -o: STEP and IGES are written from a part: a STEP or IGES file or a document (.json)");
 #ifdef FREEFORM_HAVE_CAD

@@ -95,7 +95,7 @@ Json ffdPart(const FfdOptions& o, const DocumentObject& object, const Lattice& l
 {
     const std::string& input = o.positional[0];
     if (!isPartFile(o.output) && lowerExtension(o.output) != ".json")
-        throw UsageError("option -o: a part is written as STEP, IGES (.step .stp .iges .igs) or a document (.json)");
+        throw UsageError("option -o: a part is written as STEP, IGES, BRep (.step .stp .iges .igs .brep) or a document (.json)");
     if (given(o.normalsGiven)) throw UsageError("option --normals: applies to meshes only, not to a part");
     if (given(o.toleranceGiven) && !(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
 #ifdef FREEFORM_HAVE_CAD
@@ -216,7 +216,7 @@ Action defineFfd(CLI::App& app)
                "Exit status: 0 ok, 1 bad input (mesh, document, lattice, a degree above 67), 2 bad\n"
                "usage. On error no output file is written.");
     addPositionals(app, "MESH", o->positional,
-                   "the mesh (.obj .ply .stl .off .gltf .glb), document (.json) or part (.step .stp .iges .igs) "
+                   "the mesh (.obj .ply .stl .off .gltf .glb), document (.json) or part (.step .stp .iges .igs .brep) "
                    "to deform");
     app.add_option("--lattice", o->lattice, "a document with the lattice object")->type_name("FILE")->required();
     o->objectGiven = app.add_option("--object", o->object, "which lattice, when the document has several")->type_name("NAME");

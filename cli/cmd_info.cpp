@@ -109,7 +109,7 @@ Action defineInfo(CLI::App& app)
                "is a closed orientable manifold (then it is the sum of (2 - chi) / 2 over the\n"
                "components); otherwise it is null and \"genus_note\" says why. docs/meshes.md explains\n"
                "every field.\n"
-               "A STEP (.step .stp) or IGES (.iges .igs) part gives instead\n"
+               "A STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) part gives instead\n"
                "  {\"faces\": F, \"edges\": E, \"vertices\": V, \"shells\": S, \"solids\": N,\n"
                "   \"closed\": true|false, \"units\": \"mm\", \"bounds\": {\"min\": [...], \"max\": [...]}, ...}\n"
                "(docs/cad.md).\n"

@@ -86,7 +86,7 @@ Action defineLattice(CLI::App& app)
                "\n"
                "Prints {\"output\", \"object\", \"vertices\", \"degree\", \"origin\", \"axes\"}.\n"
                "Exit status: 0 ok, 1 bad input (mesh file), 2 bad usage.");
-    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb) or part (.step .stp .iges .igs)")
+    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb) or part (.step .stp .iges .igs .brep)")
         ->type_name("MESH")
         ->required();
     app.add_option("--degree", o->degree, "degrees in s, t, u (3,3,3: 4 x 4 x 4 control points)")

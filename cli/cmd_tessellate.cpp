@@ -169,7 +169,7 @@ Action defineTessellate(CLI::App& app)
                "bound over the patches, MP and MG the largest deviations found at 12 points per triangle\n"
                "(triangle point to the surface point with the same (u, v); to its foot point).\n"
                "\n"
-               "A STEP (.step .stp) or IGES (.iges .igs) part, with --tolerance E and -o OUT.obj|.ply|.stl,\n"
+               "A STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) part, with --tolerance E and -o OUT.obj|.ply|.stl,\n"
                "gives its certified watertight mesh (docs/cad.md): every edge sampled once for both of its\n"
                "faces, every triangle within B <= E of its face. Output: {\"output\", \"faces\", \"triangles\",\n"
                "\"vertices\", \"watertight\", \"error_bound\": B, \"certified\", \"closed_shells\",\n"

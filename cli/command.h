@@ -108,8 +108,8 @@ Json interpolateNurbsCommand(const PointColumns& points, const std::vector<doubl
 
 /// The file's extension in lower case, with its dot (".json"), or empty; commands.cpp.
 std::string lowerExtension(const std::string& path);
-/// A STEP or IGES file, by its extension (as freeform/cad/cad_file.h's isCadFile, which a build
-/// without Open CASCADE lacks); command.cpp.
+/// A part file (STEP, IGES, BRep), by its extension: io/part_file.h's isPartFileName, which a build
+/// without Open CASCADE has too; commands.cpp.
 bool isPartFile(const std::string& path);
 /// The error for a part file in a build without Open CASCADE.
 [[noreturn]] void refusePartFile(const std::string& path);

@@ -7,6 +7,8 @@
 #include <cctype>
 #include <filesystem>
 
+#include "freeform/io/part_file.h"
+
 namespace freeform::cli {
 
 const std::vector<Command>& commands()
@@ -33,11 +35,7 @@ std::string lowerExtension(const std::string& path)
     return ext;
 }
 
-bool isPartFile(const std::string& path)
-{
-    const std::string ext = lowerExtension(path);
-    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
-}
+bool isPartFile(const std::string& path) { return isPartFileName(path); }
 
 void refusePartFile(const std::string& path)
 {

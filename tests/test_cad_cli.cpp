@@ -13,6 +13,7 @@
 #include <GProp_GProps.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Surface.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -36,6 +37,19 @@ namespace test_cad_cli {
 
 using Json = nlohmann::ordered_json;
 
+/// `info`'s counts, closedness and units ("mm") of a part are those of Open CASCADE's shape.
+void checkCountsAsOcct(const Json& j, const TopoDS_Shape& shape)
+{
+    using namespace freeform::test;
+    CHECK(j["faces"] == occtCount(shape, TopAbs_FACE));
+    CHECK(j["edges"] == occtCount(shape, TopAbs_EDGE));
+    CHECK(j["vertices"] == occtCount(shape, TopAbs_VERTEX));
+    CHECK(j["shells"] == occtCount(shape, TopAbs_SHELL));
+    CHECK(j["solids"] == occtCount(shape, TopAbs_SOLID));
+    CHECK(j["closed"] == occtClosed(shape));
+    CHECK(j["units"] == "mm");
+}
+
 TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE reads them", "[cli][cad]")
 {
     // Under the sanitizers (support/sanitizers.h) one STEP and one IGES part: the four took 34 s there.
@@ -55,13 +69,7 @@ TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE r
               std::vector<std::string>{"faces", "edges", "vertices", "shells", "solids", "closed", "units", "bounds"});
         using namespace freeform::test;
         const TopoDS_Shape shape = occtRead(path);
-        CHECK(j["faces"] == occtCount(shape, TopAbs_FACE));
-        CHECK(j["edges"] == occtCount(shape, TopAbs_EDGE));
-        CHECK(j["vertices"] == occtCount(shape, TopAbs_VERTEX));
-        CHECK(j["shells"] == occtCount(shape, TopAbs_SHELL));
-        CHECK(j["solids"] == occtCount(shape, TopAbs_SOLID));
-        CHECK(j["closed"] == occtClosed(shape));
-        CHECK(j["units"] == "mm");
+        checkCountsAsOcct(j, shape);
         // The bounds hold every vertex Open CASCADE reads (vertices lie on the faces).
         TopTools_IndexedMapOfShape vertices;
         TopExp::MapShapes(shape, TopAbs_VERTEX, vertices);
@@ -379,6 +387,84 @@ TEST_CASE("an OBJ trimmed surface (curv2, trim, hole) through JSON to STEP: Open
     INFO("Open CASCADE " << props.Mass() << " (relative error " << eps << "), by hand " << area);
     // (BRepGProp's fixed-order rule, without the tolerance, misses by 0.08 on this rational trim.)
     CHECK(std::abs(props.Mass() - area) < 1e-9 * area);
+}
+
+TEST_CASE("BRep parts (.brep): info as Open CASCADE reads them; convert to BRep and back; a part in inches is refused",
+          "[cli][cad]")
+{
+    using namespace freeform::test;
+    const std::string dir = FREEFORM_TEST_TMP;
+    auto run = [](const std::string& args) {
+        const auto r = cliInProcess(args);
+        INFO(args << "\n" << r.err);
+        REQUIRE(r.status == 0);
+        return Json::parse(r.out);
+    };
+    // One of Open CASCADE's own sample parts: the counts as its BRepTools::Read gives them.
+    const std::string nut = "/usr/share/opencascade/data/occ/Pump_Nut.brep";
+    const Json j = run("info " + nut);
+    checkCountsAsOcct(j, occtRead(nut)); // units "mm": the format has none, Open CASCADE's default
+
+    // screw.step written as BRep: Open CASCADE reads a valid solid with the STEP file's counts, and
+    // each face's surface passes through the points of the face read from the STEP file (the format
+    // prints 17 significant digits; the writer's parameters of a cylinder are its own, so points
+    // are compared in space, by Open CASCADE's projection onto the written surface).
+    const std::string screw = "/usr/share/opencascade/data/step/screw.step";
+    const std::string out = dir + "/screw_converted.brep";
+    std::filesystem::remove(out);
+    const Json c = run("convert " + screw + " -o " + out);
+    CHECK(c["faces"] == 10);
+    CHECK(c["valid"] == true);
+    const TopoDS_Shape back = occtRead(out);
+    CHECK(BRepCheck_Analyzer(back).IsValid());
+    CHECK(occtCount(back, TopAbs_FACE) == 10);
+    CHECK(occtCount(back, TopAbs_EDGE) == 22);
+    CHECK(occtClosed(back));
+    const freeform::Part fromStep = freeform::readCadFile(screw);
+    TopTools_IndexedMapOfShape backFaces;
+    TopExp::MapShapes(back, TopAbs_FACE, backFaces);
+    REQUIRE(backFaces.Extent() == static_cast<int>(fromStep.faces.size()));
+    const double size = fromStep.bounds().diagonal().norm();
+    double worst = 0;
+    int points = 0;
+    for (std::size_t f = 0; f < fromStep.faces.size(); ++f) {
+        const auto& face = fromStep.faces[f].surface;
+        const Handle(Geom_Surface) written = BRep_Tool::Surface(TopoDS::Face(backFaces(static_cast<int>(f) + 1)));
+        for (double s : {0.2, 0.5, 0.8})
+            for (double t : {0.2, 0.5, 0.8}) {
+                const Eigen::Vector2d uv = face.domain().min() + Eigen::Vector2d(s, t).cwiseProduct(face.domain().sizes());
+                const Eigen::Vector3d p = face.point(uv.x(), uv.y());
+                GeomAPI_ProjectPointOnSurf projection(gp_Pnt(p.x(), p.y(), p.z()), written);
+                REQUIRE(projection.NbPoints() > 0);
+                worst = std::max(worst, projection.LowerDistance());
+                ++points;
+            }
+    }
+    INFO("largest distance " << worst << " of " << points << " points, part size " << size);
+    CHECK(points == 90);
+    CHECK(worst < 1e-9 * size);
+    const freeform::Part fromBrep = freeform::readCadFile(out);
+    CHECK(fromBrep.faces.size() == 10);
+    CHECK(fromBrep.units == "mm");
+    CHECK(run("info " + out)["faces"] == 10);
+
+    // A part in inches: a BRep file has no unit, so it would read back 25.4 times too small. Refused,
+    // naming the unit; nothing written.
+    const std::string json = dir + "/screw_inches.json";
+    run("convert " + screw + " -o " + json);
+    std::string text = freeform::test::slurp(json);
+    const auto at = text.find("\"units\": \"mm\"");
+    REQUIRE(at != std::string::npos);
+    text.replace(at, 13, "\"units\": \"in\"");
+    std::ofstream(json, std::ios::trunc) << text;
+    const std::string never = dir + "/screw_inches.brep";
+    std::filesystem::remove(never);
+    const auto r = cliInProcess("convert " + json + " -o " + never);
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::StartsWith("error: ") && Catch::Contains("the part is in in") && Catch::Contains("STEP or IGES"));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(std::filesystem::exists(never));
 }
 
 } // namespace test_cad_cli

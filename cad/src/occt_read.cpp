@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
 #include <IGESControl_Reader.hxx>
@@ -28,6 +29,7 @@
 #include "freeform/cad/occt_bridge.h"
 #include "freeform/core/error.h"
 #include "freeform/core/warning.h"
+#include "freeform/io/part_file.h"
 #include "occt_common.h"
 #include "occt_convert.h"
 
@@ -94,7 +96,15 @@ std::pair<TopoDS_Shape, std::string> readShape(const std::string& path, const Me
         if (reader.TransferRoots() == 0) throw Error(path + ": the IGES file holds no shape Open CASCADE can transfer" + messages.firstMessage());
         return {reader.OneShape(), unit.name};
     }
-    throw Error(path + ": not a STEP (.step .stp) or IGES (.iges .igs) file");
+    if (ext == ".brep") {
+        // Open CASCADE's own format carries no unit: its default, millimetres (docs/cad.md).
+        TopoDS_Shape shape;
+        BRep_Builder builder;
+        if (!BRepTools::Read(shape, path.c_str(), builder) || shape.IsNull())
+            throw Error(path + ": not a readable BRep file" + messages.firstMessage());
+        return {shape, "mm"};
+    }
+    throw Error(path + ": not a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file");
 }
 
 /// The edges of a wire in order along it: BRepTools_WireExplorer, or the wire's own order when
@@ -200,11 +210,7 @@ Part partFromShape(const TopoDS_Shape& shape, const std::string& units)
     return part;
 }
 
-bool isCadFile(const std::string& path)
-{
-    const std::string ext = lower(std::filesystem::path(path).extension().string());
-    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
-}
+bool isCadFile(const std::string& path) { return isPartFileName(path); }
 
 Part readCadFile(const std::string& path, std::vector<std::string>* warnings)
 {

@@ -22,6 +22,7 @@
 
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepLib.hxx>
+#include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2dAPI_Interpolate.hxx>
@@ -464,8 +465,13 @@ TopoDS_Shape shapeFromPart(const Part& part, CadWriteReport* report)
 CadWriteReport writeCadFile(const Part& part, const std::string& path)
 {
     const std::string ext = occt::lower(std::filesystem::path(path).extension().string());
-    const bool step = ext == ".step" || ext == ".stp", iges = ext == ".iges" || ext == ".igs";
-    if (!step && !iges) throw Error(path + ": not a STEP (.step .stp) or IGES (.iges .igs) file name");
+    const bool step = ext == ".step" || ext == ".stp", iges = ext == ".iges" || ext == ".igs", brep = ext == ".brep";
+    if (!step && !iges && !brep) throw Error(path + ": not a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file name");
+    // A BRep file has no unit (it is read as millimetres): a part in another unit would come back
+    // scaled, so it is refused rather than written.
+    if (brep && part.units != "mm")
+        throw Error(path + ": a BRep file has no unit and is read as millimetres; the part is in " + part.units +
+                    ": write it as STEP or IGES, which keep the unit");
     occt::MessageScope messages;
     CadWriteReport report;
     TopoDS_Shape shape;
@@ -485,7 +491,9 @@ CadWriteReport writeCadFile(const Part& part, const std::string& path)
     try {
         occt::CascadeUnit scope(unit);
         bool written = false;
-        if (step) {
+        if (brep) {
+            written = BRepTools::Write(shape, temporary.string().c_str());
+        } else if (step) {
             STEPControl_Writer writer;
             Interface_Static::SetCVal("write.step.unit", unit);
             written = writer.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone &&

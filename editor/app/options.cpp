@@ -87,7 +87,7 @@ const char* helpText()
 usage: freeform-editor [FILE] [options]
 
 FILE is a freeform document (.json), a Bezier patch file (.bpt), a mesh (.obj .ply .stl .off .gltf
-.glb) or a STEP or IGES part (.step .stp .iges .igs). Without --screenshot, --save or --frames the
+.glb) or a STEP, IGES or BRep part (.step .stp .iges .igs .brep). Without --screenshot, --save or --frames the
 editor opens a window (it needs a display).
 
 headless use:

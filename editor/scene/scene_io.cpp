@@ -17,6 +17,7 @@
 #include "freeform/io/geometry_data.h"
 #include "freeform/io/json_check.h"
 #include "freeform/io/mesh_io.h"
+#include "freeform/io/part_file.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/tessellate/tessellate.h"
 #ifdef FREEFORM_HAVE_CAD
@@ -41,12 +42,6 @@ std::string lowerExtension(const std::string& path)
 bool isMeshFile(const std::string& ext)
 {
     return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".off" || ext == ".gltf" || ext == ".glb";
-}
-
-/// STEP (.step .stp) or IGES (.iges .igs): read as one part object (docs/cad.md, "In the editor").
-bool isCadExtension(const std::string& ext)
-{
-    return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
 }
 
 /// The part of a STEP or IGES file as one document object named after the file. Open CASCADE's
@@ -117,7 +112,7 @@ Scene Scene::load(const std::string& path, double aspect)
     if (ext == ".bpt") {
         scene.document_.objects = bptObjects(path);
         scene.document_.source = path;
-    } else if (isCadExtension(ext)) {
+    } else if (isPartFileName(path)) { // STEP, IGES, BRep: one part object (docs/cad.md, "In the editor")
         // A new document holding the part; Save asks for a .json path (a part is written back as
         // STEP or IGES through File > Export part).
         scene.document_.objects.push_back(cadObject(path));
@@ -304,13 +299,13 @@ int Scene::importFile(const std::string& path, std::optional<UpAxis> upAxis)
         items_.back().geometryDirty = false;
         items_.back().revision = items_.back().topology = scene_detail::nextRevision();
         first = itemCount() - 1;
-    } else if (isCadExtension(ext)) {
+    } else if (isPartFileName(path)) {
         DocumentObject part = cadObject(path); // read first: an Error leaves the scene as it was
         const double tolerance = partTolerance(std::get<PartData>(part.data));
         first = addObject(std::move(part), std::string("import ").append(fs::path(path).filename().string()));
         display.tolerance = std::max(display.tolerance, tolerance); // (not an undo step: a display setting)
     } else {
-        throw Error(path + ": cannot import this kind of file (.bpt, a mesh: .obj .ply .stl .off .gltf .glb, or a part: .step .stp .iges .igs)");
+        throw Error(path + ": cannot import this kind of file (.bpt, a mesh: .obj .ply .stl .off .gltf .glb, or a part: " + kPartFileExtensions + ")");
     }
     modified_ = true;
     return first;
@@ -417,8 +412,8 @@ std::string Scene::approximationText(const PartDeformReport& report)
 Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattice* lattice, double strength) const
 {
     const SceneItem& it = item(i);
-    if (!isCadExtension(lowerExtension(path)))
-        throw Error(path + ": a part is written as STEP (.step .stp) or IGES (.iges .igs); File > Save writes the document");
+    if (!isPartFileName(path))
+        throw Error(path + ": a part is written as STEP (.step .stp), IGES (.iges .igs) or BRep (.brep); File > Save writes the document");
 #ifdef FREEFORM_HAVE_CAD
     // The document layer's part of the object (a trimmed surface: a part of one face).
     std::optional<Part> part = objectPart(typedObject(i));

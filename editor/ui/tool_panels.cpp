@@ -463,7 +463,7 @@ void drawPanel(LatticeTool& tool, ToolContext& c)
         ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - button - ImGui::GetStyle().ItemSpacing.x));
         ImGui::InputText("##export", tool.exportPath, sizeof tool.exportPath);
         recordWidget("export path");
-        tooltip(part ? "Path of the deformed part to write (.step .stp .iges .igs), relative to the working directory"
+        tooltip(part ? "Path of the deformed part to write (.step .stp .iges .igs .brep), relative to the working directory"
                      : "Path of the deformed mesh to write, relative to the working directory; its extension sets the format");
         ImGui::SameLine();
         const bool exportClicked = ImGui::Button("export deformed");

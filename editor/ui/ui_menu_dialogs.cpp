@@ -68,7 +68,7 @@ void mainMenu(Scene& scene, UiState& s, UiActions& actions)
         ImGui::Separator();
         if (ImGui::MenuItem("Import mesh, .bpt or part...", "Ctrl+I")) askPath(s, actions, UiState::PathDialog::Import, "");
         tooltip(s, "Add a mesh (.obj .ply .stl .off .gltf .glb), the patches of a .bpt file, or the part of a STEP or IGES\n"
-                   "file (.step .stp .iges .igs: one part object, its faces trimmed NURBS) to the document");
+                   "file (.step .stp .iges .igs .brep: one part object, its faces trimmed NURBS) to the document");
         if (ImGui::MenuItem("Export tessellation as OBJ...", "Ctrl+E")) askPath(s, actions, UiState::PathDialog::Export, "scene.obj");
         tooltip(s, "Write every visible surface and mesh, merged, as one OBJ");
         std::string why;

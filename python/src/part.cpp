@@ -1,4 +1,4 @@
-// freeform.Part, Face and Edge: STEP and IGES parts (docs/python.md "CAD parts", docs/cad.md). The
+// freeform.Part, Face and Edge: STEP, IGES and BRep parts (docs/python.md "CAD parts", docs/cad.md). The
 // faces' surfaces and the edges' curves come out as the existing NurbsSurface and NurbsCurve (in
 // their NURBS parameters); points(), normals() and classify() take the file's parameters.
 
@@ -195,7 +195,7 @@ std::optional<freeform::ObjectData> partData(py::handle h)
 void bindPart(py::module_& m)
 {
     py::class_<PyPart>(m, "Part", R"doc(
-A CAD part read from a STEP (.step .stp) or IGES (.iges .igs) file through Open CASCADE (docs/cad.md):
+A CAD part read from a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file through Open CASCADE (docs/cad.md):
 faces (trimmed NURBS surfaces in their exact forms), edges, vertices, shells and solids, in the
 file's length unit. Faces and edges are numbered as Open CASCADE numbers them, from 0.)doc")
         .def_static(
@@ -205,7 +205,7 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
                 return PyPart{std::make_shared<const Part>(document ? documentPart(path) : freeform::readCadFile(path))};
             },
             py::arg("path"),
-            "Reads a STEP or IGES file, or the part object of a document (.json; docs/format.md) (freeform.Error "
+            "Reads a STEP, IGES or BRep file (a BRep file has no unit: millimetres), or the part object of a document (.json; docs/format.md) (freeform.Error "
             "naming the file and the face or edge on bad input).")
         .def_property_readonly("faces",
                                [](const PyPart& p) {
@@ -315,7 +315,8 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
                 return d;
             },
             py::arg("path"),
-            "Writes the part as STEP (.step .stp) or IGES (.iges .igs) through Open CASCADE (docs/cad.md, Writing), or "
+            "Writes the part as STEP (.step .stp), IGES (.iges .igs) or BRep (.brep, a part in millimetres only: the "
+            "format has no unit) through Open CASCADE (docs/cad.md, Writing), or "
             "as a document of one part object named after the file (.json: every degree kept, up to 67; returns "
             "valid (every sampled gap within its edge's tolerance) and max_tolerance); "
             "returns valid (Open CASCADE's check), fitted_trims, max_trim_gap, raised_tolerances, max_tolerance. "

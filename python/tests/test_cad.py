@@ -238,6 +238,23 @@ def test_save_refuses_a_degree_over_25_and_a_bad_name_and_writes_nothing(tmp_pat
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_part_saved_as_brep_reads_back_with_its_counts_and_box(tmp_path):
+    # Open CASCADE's own format (.brep): no unit, millimetres. The written screw has the STEP file's
+    # 10 faces and 22 edges and its 14 vertices to the bit (17 digits written; the surfaces are
+    # checked against Open CASCADE's projection in tests/test_cad_cli.cpp).
+    part = ff.Part.load(str(SCREW))
+    path = tmp_path / "screw.brep"
+    report = part.save(str(path))
+    assert report["valid"]
+    back = ff.Part.load(str(path))
+    assert (len(back.faces), len(back.edges), back.units) == (10, 22, "mm")
+    assert back.vertices.shape == (14, 3)
+    assert np.array_equal(np.unique(back.vertices, axis=0), np.unique(part.vertices, axis=0))
+    # A sample part Debian ships in the format reads as well.
+    nut = ff.Part.load(str(DATA / "occ" / "Pump_Nut.brep"))
+    assert len(nut.faces) > 0 and nut.units == "mm"
+
+
 def test_a_part_in_a_document_is_the_part_of_its_step_file(tmp_path):
     # Part.save(.json) writes a document of one part object; Document.object gives it back as a
     # Part whose faces evaluate to the STEP file's face points to the bit, and Document.evaluate

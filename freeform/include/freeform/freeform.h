@@ -56,6 +56,7 @@
 #include "freeform/io/json_check.h"
 #include "freeform/io/mesh_io.h"
 #include "freeform/io/obj_freeform.h"
+#include "freeform/io/part_file.h"
 #include "freeform/io/up_axis.h"
 #include "freeform/document/document.h"
 #include "freeform/document/kinds.h"

@@ -1,5 +1,5 @@
 #pragma once
-// STEP and IGES parts through Open CASCADE's data exchange (docs/cad.md, "Reading").
+// STEP, IGES and BRep parts through Open CASCADE's data exchange (docs/cad.md, "Reading").
 //
 // The freeform_cad library is the only code that includes Open CASCADE; its interface holds only
 // freeform's own types (brep/part.h), so the CLI, the editor and Python link it without seeing
@@ -14,11 +14,12 @@
 
 namespace freeform {
 
-/// Whether the path names a STEP (.step .stp) or IGES (.iges .igs) file (by its extension, in any
-/// case).
+/// Whether the path names a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file (by its
+/// extension, in any case): io/part_file.h's isPartFileName.
 bool isCadFile(const std::string& path);
 
-/// Reads a STEP or IGES file into a part. Throws freeform::Error naming the file, and the face or
+/// Reads a STEP, IGES or BRep file into a part (a BRep file, Open CASCADE's own format, has no
+/// unit: its part is in millimetres, Open CASCADE's default). Throws freeform::Error naming the file, and the face or
 /// edge (by its index, counted from 1 as Open CASCADE's maps count them) whose geometry has no
 /// exact rational form (offset curves and surfaces, and other kinds freeform does not read).
 /// Open CASCADE's warnings are appended to `warnings` when it is given, else handed to
@@ -37,7 +38,8 @@ struct CadWriteReport {
     double maxTolerance = 0;  // the largest edge tolerance written
 };
 
-/// Writes the part as STEP (.step .stp) or IGES (.iges .igs, B-rep entities), in the part's unit:
+/// Writes the part as STEP (.step .stp), IGES (.iges .igs, B-rep entities) or BRep (.brep, Open
+/// CASCADE's own format; only a part in millimetres, since the format has no unit), in the part's unit:
 /// faces as B-spline surfaces of their NURBS, edges as B-spline curves, trims in the surfaces'
 /// parameters. Throws freeform::Error naming the file, and the face or edge whose degree is over
 /// Open CASCADE's 25; nothing is written then (the file is written beside the target and renamed).
