@@ -14,14 +14,14 @@ namespace {
 
 Json convert(const ConvertOptions& o)
 {
-    const bool partIn = !o.positional.empty() && isPartFile(o.positional[0]);
-    if (partIn || isPartFile(o.output)) {
+    const bool partIn = !o.positional.empty() && isPartFileName(o.positional[0]);
+    if (partIn || isPartFileName(o.output)) {
         expectPositional(o.positional, 1, "the part (freeform convert PART.step -o OUT.step|.iges|.json)");
         if (given(o.toGiven) || given(o.endGiven))
             throw UsageError("a part takes only -o (freeform convert PART.step -o OUT.step|.iges|.json)");
         if (partIn && given(o.objectGiven))
             throw UsageError("option --object: picks the part of a document (freeform convert DOC.json --object NAME -o OUT.step)");
-        if (partIn && !isPartFile(o.output) && lowerExtension(o.output) != ".json")
+        if (partIn && !isPartFileName(o.output) && lowerExtension(o.output) != ".json")
             throw UsageError("option -o: a part is written as STEP, IGES, BRep (.step .stp .iges .igs .brep) or a document (.json)");
         if (!partIn && lowerExtension(o.positional[0]) != ".json")
             throw UsageError("option -o: STEP and IGES are written from a part: a STEP or IGES file or a document (.json)");

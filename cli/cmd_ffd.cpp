@@ -94,7 +94,7 @@ Json ffdPart(const FfdOptions& o, const DocumentObject& object, const Lattice& l
              const std::optional<std::string>& reportPath)
 {
     const std::string& input = o.positional[0];
-    if (!isPartFile(o.output) && lowerExtension(o.output) != ".json")
+    if (!isPartFileName(o.output) && lowerExtension(o.output) != ".json")
         throw UsageError("option -o: a part is written as STEP, IGES, BRep (.step .stp .iges .igs .brep) or a document (.json)");
     if (given(o.normalsGiven)) throw UsageError("option --normals: applies to meshes only, not to a part");
     if (given(o.toleranceGiven) && !(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
@@ -119,12 +119,12 @@ Json ffd(const FfdOptions& o)
     options.threads = o.threads;
     if (options.threads < 0) throw UsageError("option --threads: must not be negative");
     const std::optional<std::string> reportPath = given(o.reportGiven) ? std::optional<std::string>(o.report) : std::nullopt;
-    if (!isPartFile(meshPath) && given(o.toleranceGiven))
+    if (!isPartFileName(meshPath) && given(o.toleranceGiven))
         throw UsageError("option --tolerance: applies to parts (STEP, IGES) only");
-    if (!isPartFile(meshPath) && endsWithJson(meshPath) != endsWithJson(output))
+    if (!isPartFileName(meshPath) && endsWithJson(meshPath) != endsWithJson(output))
         throw UsageError(endsWithJson(meshPath) ? "option -o: a document is deformed into a document (OUT.json)"
                                                 : "option -o: a mesh is deformed into a mesh file, not a document");
-    if (!isPartFile(meshPath) && endsWithJson(meshPath) && given(o.normalsGiven))
+    if (!isPartFileName(meshPath) && endsWithJson(meshPath) && given(o.normalsGiven))
         throw UsageError("option --normals: applies to meshes only, not to a document");
 
     const Document doc = readDocument(o.lattice);
@@ -132,7 +132,7 @@ Json ffd(const FfdOptions& o)
         findLattice(doc, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt,
                         "choose one with --object");
     const Lattice lattice = latticeFromData(std::get<LatticeData>(object.data));
-    if (isPartFile(meshPath)) return ffdPart(o, object, lattice, reportPath);
+    if (isPartFileName(meshPath)) return ffdPart(o, object, lattice, reportPath);
     if (endsWithJson(meshPath)) return runFfdDocument(meshPath, output, object, lattice, options, reportPath);
     MeshFile file = MeshFile::read(meshPath);
 

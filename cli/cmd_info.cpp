@@ -50,7 +50,7 @@ Json info(const InfoOptions& o)
         refusePartFile(path);
 #endif
     }
-    if (isPartFile(path)) {
+    if (isPartFileName(path)) {
 #ifdef FREEFORM_HAVE_CAD
         return partInfo(path, o.details);
 #else

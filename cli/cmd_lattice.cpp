@@ -47,7 +47,7 @@ Json lattice(const LatticeOptions& o)
     // A part's box is the box of its faces' control nets and vertices (it holds the part).
     Lattice::Points positions;
     long long vertices = 0;
-    if (isPartFile(meshPath)) {
+    if (isPartFileName(meshPath)) {
 #ifdef FREEFORM_HAVE_CAD
         positions = partBoxCorners(meshPath, vertices);
 #else

@@ -91,7 +91,7 @@ Json tessellateCommand(const TessellateOptions& o)
     expectPositional(o.positional, 1, "the input (freeform tessellate IN.json|IN.bpt|PART.step -o OUT.obj)");
     const std::string& input = o.positional[0];
     const std::string& output = o.output;
-    if (isPartFile(input)) return partCommand(o);
+    if (isPartFileName(input)) return partCommand(o);
     if (!hasExtension(output, ".obj")) throw UsageError("option -o: the output must be an .obj file");
     if (given(o.toleranceGiven) && given(o.segmentsGiven)) throw UsageError("give either --tolerance or --segments, not both");
     TessellationOptions options;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "freeform/document/model.h"
+#include "freeform/io/part_file.h" // isPartFileName: which inputs and outputs are parts
 #include "freeform/curve/continuity.h"
 #include "freeform/curve/interpolation.h"
 #include "freeform/io/document.h"
@@ -108,9 +109,6 @@ Json interpolateNurbsCommand(const PointColumns& points, const std::vector<doubl
 
 /// The file's extension in lower case, with its dot (".json"), or empty; commands.cpp.
 std::string lowerExtension(const std::string& path);
-/// A part file (STEP, IGES, BRep), by its extension: io/part_file.h's isPartFileName, which a build
-/// without Open CASCADE has too; commands.cpp.
-bool isPartFile(const std::string& path);
 /// The error for a part file in a build without Open CASCADE.
 [[noreturn]] void refusePartFile(const std::string& path);
 

@@ -7,8 +7,6 @@
 #include <cctype>
 #include <filesystem>
 
-#include "freeform/io/part_file.h"
-
 namespace freeform::cli {
 
 const std::vector<Command>& commands()
@@ -34,8 +32,6 @@ std::string lowerExtension(const std::string& path)
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
 }
-
-bool isPartFile(const std::string& path) { return isPartFileName(path); }
 
 void refusePartFile(const std::string& path)
 {

@@ -336,7 +336,6 @@ inline long double cross2(const UV& a, const UV& b, const UV& c)
 /// The polygon buffers of triangulateLeaf, kept across leaves.
 struct LeafPolygon {
     std::vector<UV> poly, side;
-    std::vector<std::array<int, 3>> tris;
     std::vector<int> ring;
 };
 
@@ -354,17 +353,17 @@ void triangulateLeaf(const std::array<UV, N>& corners, SidePoints&& sidePoints, 
         sidePoints(corners[k], corners[(k + 1) % N], buf.side);
         buf.poly.insert(buf.poly.end(), buf.side.begin(), buf.side.end());
     }
-    buf.tris.clear();
     // The next ear from where the last was cut (mesh/convex_ring.h).
     buf.ring.resize(buf.poly.size());
     for (std::size_t i = 0; i < buf.ring.size(); ++i) buf.ring[i] = static_cast<int>(i);
     const auto P = [&](int i) -> const UV& { return buf.poly[static_cast<std::size_t>(i)]; };
     if (!detail::clipConvexRing(
             buf.ring, [&](int a, int b, int c) { return cross2(P(a), P(b), P(c)); },
-            [&](int a, int b, int c) { buf.tris.push_back({a, b, c}); }, detail::FirstEarInTurn{}))
+            [&](int a, int b, int c) {
+                for (int k : {a, b, c}) triangles.push_back(vertexOf(P(k)));
+            },
+            detail::FirstEarInTurn{}))
         throw Error("subdivision tessellation: a leaf polygon could not be triangulated (internal)");
-    for (const auto& t : buf.tris)
-        for (int k : t) triangles.push_back(vertexOf(buf.poly[static_cast<std::size_t>(k)]));
 }
 
 // ---- The mesh and the report -------------------------------------------------------------------
