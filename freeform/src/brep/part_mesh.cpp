@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <tuple>
+#include <unordered_map>
 
 #include "freeform/tessellate/tessellate_rational.h"
 #include "part_mesh_internal.h"
@@ -192,6 +193,27 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
     g.gv = lines(bv, nv);
     g.snapU = 1e-7 * (g.gu.back() - g.gu.front());
     g.snapV = 1e-7 * (g.gv.back() - g.gv.front());
+    // Knots closer than twice the snapping distance (a B-spline's knot doubled to 4e-8 of its
+    // span) would leave a row of cells too thin to snap into: a trim along it zigzags between
+    // the two lines. The inner one goes; the cell across it then has corners up to `gap` from the
+    // patch's own, which moves its triangles by at most L gap and their parameters by gap: the
+    // bound grows by 2 L gap.
+    auto thin = [](std::vector<double>& l, double snap) {
+        double gap = 0;
+        std::vector<double> kept{l.front()};
+        for (std::size_t k = 1; k < l.size(); ++k) {
+            if (l[k] - kept.back() >= 2 * snap) {
+                kept.push_back(l[k]);
+                continue;
+            }
+            gap = std::max(gap, l[k] - kept.back());
+            if (k + 1 == l.size() && kept.size() > 1) kept.back() = l[k]; // the box's end stays
+        }
+        l = std::move(kept);
+        return gap;
+    };
+    const double gapU = thin(g.gu, g.snapU), gapV = thin(g.gv, g.snapV);
+    if (gapU > 0 || gapV > 0) g.bound += 2 * std::hypot(lu * gapU, lv * gapV);
     // A hole inside one cell would be a hole the cell walk cannot join to its cell: cut it. (The
     // outer loop, the one of the largest box, may lie in one cell.)
     std::vector<Box<double, 2>> boxes;
@@ -373,10 +395,101 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
         if (ts[k] - kept.back() > merge && ts.back() - ts[k] > merge) kept.push_back(ts[k]);
     kept.push_back(ts.back());
     ts = std::move(kept);
+    // A sample that a face's snap puts within the snapping distance of the next one makes a side
+    // of no real length whose direction is noise: where the trim meets a grid line at a tangent or
+    // at its apex (a slot's end on a cylinder's seam), the snapped side can run back along the line,
+    // out of the cell that holds its neighbours. Such a sample goes, for every face alike, unless a
+    // face would then lose a grid line's crossing.
+    auto tiny = [&](double ta, double tb) {
+        for (const EdgeUse& use : uses) {
+            const Eigen::Vector2d d = (use.at(ta) - use.at(tb)).cwiseAbs();
+            if (d.x() <= use.grid->snapU && d.y() <= use.grid->snapV) return true;
+        }
+        return false;
+    };
+    auto crosses = [&](double ta, double tb) {
+        return std::any_of(uses.begin(), uses.end(), [&](const EdgeUse& use) { return use.grid->crossing(use.at(ta), use.at(tb)).first >= 0; });
+    };
+    kept.assign(1, ts.front());
+    for (std::size_t k = 1; k + 1 < ts.size(); ++k)
+        if (!((tiny(kept.back(), ts[k]) || tiny(ts[k], ts[k + 1])) && !crosses(kept.back(), ts[k + 1]))) kept.push_back(ts[k]);
+    kept.push_back(ts.back());
+    ts = std::move(kept);
     worst.assign(uses.size(), 0);
     for (std::size_t u = 0; u < uses.size(); ++u)
         for (std::size_t k = 0; k + 1 < ts.size(); ++k) worst[u] = std::max(worst[u], uses[u].deviation(ts[k], ts[k + 1]));
     return ts;
+}
+
+/// Removes the pockets of no volume that two faces close between a run of one edge's samples and
+/// its chord (see meshPart): a chord between samples i and j of an edge in four triangles, where
+/// each of the edge's two faces has j - i - 1 triangles with all corners among samples i..j (it
+/// triangulates the run's polygon), goes with those triangles when every mesh edge they touch is
+/// then in none or two triangles.
+void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVertex,
+                     const std::vector<std::vector<std::size_t>>& useFace)
+{
+    // Each interior sample's edge and index (an edge's ends are the part's vertices, shared).
+    std::unordered_map<int, std::pair<std::size_t, int>> sampleOf;
+    for (std::size_t e = 0; e < sampleVertex.size(); ++e)
+        if (useFace[e].size() == 2 && useFace[e][0] != useFace[e][1])
+            for (std::size_t k = 1; k + 1 < sampleVertex[e].size(); ++k)
+                sampleOf.emplace(sampleVertex[e][k], std::make_pair(e, static_cast<int>(k)));
+    if (sampleOf.empty()) return;
+    auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+    auto sidesOf = [&](const std::array<int, 3>& t) {
+        return std::array<std::pair<int, int>, 3>{key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])};
+    };
+    std::map<std::pair<int, int>, int> uses;
+    for (const auto& t : out.triangles)
+        for (const auto& side : sidesOf(t)) ++uses[side];
+    // The index of vertex v among edge e's samples, -1 when it is none of them.
+    auto indexOn = [&](int v, std::size_t e) {
+        const std::vector<int>& ids = sampleVertex[e];
+        if (v == ids.front()) return 0;
+        if (v == ids.back()) return static_cast<int>(ids.size()) - 1;
+        const auto it = sampleOf.find(v);
+        return it != sampleOf.end() && it->second.first == e ? it->second.second : -1;
+    };
+    std::unordered_map<int, std::vector<std::size_t>> byVertex;
+    for (std::size_t t = 0; t < out.triangles.size(); ++t)
+        for (int v : out.triangles[t])
+            if (sampleOf.count(v)) byVertex[v].push_back(t);
+    std::vector<char> drop(out.triangles.size(), 0);
+    for (const auto& [side, count] : uses) {
+        if (count != 4) continue;
+        const auto a = sampleOf.find(side.first), b = sampleOf.find(side.second);
+        const auto& found = a != sampleOf.end() ? a : b;
+        if (found == sampleOf.end()) continue;
+        const std::size_t e = found->second.first;
+        int i = indexOn(side.first, e), j = indexOn(side.second, e);
+        if (i < 0 || j < 0) continue;
+        if (i > j) std::swap(i, j);
+        if (j - i < 2) continue;
+        // Each face's triangles over samples i..j (all found through the run's inner samples).
+        std::map<std::size_t, std::vector<std::size_t>> perFace;
+        std::vector<std::size_t> seen;
+        for (int k = i + 1; k < j; ++k)
+            for (std::size_t t : byVertex[sampleVertex[e][static_cast<std::size_t>(k)]]) {
+                if (drop[t] || std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
+                seen.push_back(t);
+                const auto& tri = out.triangles[t];
+                if (std::all_of(tri.begin(), tri.end(), [&](int v) { const int x = indexOn(v, e); return x >= i && x <= j; }))
+                    perFace[static_cast<std::size_t>(out.triangleFace[t])].push_back(t);
+            }
+        const std::size_t need = static_cast<std::size_t>(j - i - 1);
+        if (perFace.size() != 2 || perFace[useFace[e][0]].size() != need || perFace[useFace[e][1]].size() != need) continue;
+        std::map<std::pair<int, int>, int> own;
+        for (const auto& [f, ts] : perFace)
+            for (std::size_t t : ts)
+                for (const auto& s : sidesOf(out.triangles[t])) ++own[s];
+        if (!std::all_of(own.begin(), own.end(), [&](const auto& o) { const int left = uses.at(o.first) - o.second; return left == 0 || left == 2; }))
+            continue;
+        for (const auto& [s, c] : own) uses[s] -= c;
+        for (const auto& [f, ts] : perFace)
+            for (std::size_t t : ts) drop[t] = 1;
+    }
+    out.dropTriangles(drop);
 }
 
 } // namespace
@@ -518,15 +631,14 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
                 seen.erase(it);
             }
         }
-        std::size_t kept = 0;
-        for (std::size_t t = 0; t < out.triangles.size(); ++t)
-            if (!drop[t]) {
-                out.triangles[kept] = out.triangles[t];
-                out.triangleFace[kept++] = out.triangleFace[t];
-            }
-        out.triangles.resize(kept);
-        out.triangleFace.resize(kept);
+        out.dropTriangles(drop);
     }
+
+    // The same on more samples: where both faces of an edge cut the sliver between a run of its
+    // samples and the chord of their ends (each face's triangles having all three corners among
+    // the edge's samples), the two triangulations close a pocket of no volume and the chord has
+    // four triangles. Such a pocket goes when every mesh edge it touches is left with none or two.
+    dropEdgePockets(out, sampleVertex, useFace);
 
     // Watertightness: every mesh edge of a closed shell in exactly two of its triangles.
     std::vector<int> shellOf(part.faces.size(), -1);

@@ -103,6 +103,18 @@ struct Builder {
         positions.push_back(p);
         return static_cast<int>(positions.size()) - 1;
     }
+    /// Removes the triangles t with drop[t] set, keeping the others' order.
+    void dropTriangles(const std::vector<char>& drop)
+    {
+        std::size_t kept = 0;
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            if (!drop[t]) {
+                triangles[kept] = triangles[t];
+                triangleFace[kept++] = triangleFace[t];
+            }
+        triangles.resize(kept);
+        triangleFace.resize(kept);
+    }
 };
 
 /// Where the trims of two edges (or of one closed edge) do not quite meet in the parameter plane,
