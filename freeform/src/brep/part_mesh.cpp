@@ -132,6 +132,8 @@ AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStar
         if (s0 < domainStart - tol || s0 + (hi - lo) > domainEnd + tol)
             throw Error(faceName(f) + ": its " + dir + " range straddles the start of its periodic surface's period");
         a.centre = s0 + 0.5 * (hi - lo);
+        a.lo = s0;
+        a.hi = s0 + (hi - lo);
     }
     return a;
 }

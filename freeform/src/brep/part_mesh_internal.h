@@ -21,13 +21,20 @@ inline std::string faceName(std::size_t f) { return "face " + std::to_string(f);
 struct AxisMap {
     ParameterMap map;
     double centre = 0;
+    double lo = 0, hi = 0; // a periodic direction: the face's box, unrolled
 
     double operator()(double u) const
     {
-        double s = map(u);
-        if (map.kind == ParameterMap::Kind::Identity && map.period > 0)
-            s += std::round((centre - s) / map.period) * map.period;
-        return s;
+        if (map.kind == ParameterMap::Kind::Identity && map.period > 0) {
+            // A parameter already in the box stays: on a face one period wide, a point on the seam
+            // is half a period from the centre either way (u = 0 would round to 2 pi), and a
+            // pcurve's point an ulp past 2 pi would wrap to 0.
+            const double tol = 1e-9 * map.period;
+            if (u >= lo - tol && u <= hi + tol) return u;
+            const double s = map(u);
+            return s + std::round((centre - s) / map.period) * map.period;
+        }
+        return map(u);
     }
     /// Bounds on |ds/du| and |d2s/du2| for u in [lo, hi].
     std::pair<double, double> slopes(double lo, double hi) const
