@@ -106,8 +106,10 @@ std::array<int, 2> patchSegments(const RationalPatch& p, double target)
     const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
     auto bound = [&](int na, int nb) { return a == 0 ? cellsBound(p, na, nb) : cellsBound(p, nb, na); };
     for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
-        if (bound(na, upper[b]) > target) continue;
-        int lo = 1, hi = upper[b];
+        // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
+        const int cap = std::min(upper[b], (best[0] * best[1] - 1) / na);
+        if (bound(na, cap) > target) continue;
+        int lo = 1, hi = cap;
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
             if (bound(na, mid) <= target) hi = mid;
@@ -636,10 +638,7 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
         out.dropTriangles(drop);
     }
 
-    // The same on more samples: where both faces of an edge cut the sliver between a run of its
-    // samples and the chord of their ends (each face's triangles having all three corners among
-    // the edge's samples), the two triangulations close a pocket of no volume and the chord has
-    // four triangles. Such a pocket goes when every mesh edge it touches is left with none or two.
+    // The same on more samples: a run of an edge's samples that both faces close against its chord.
     dropEdgePockets(out, sampleVertex, useFace);
 
     // Watertightness: every mesh edge of a closed shell in exactly two of its triangles.

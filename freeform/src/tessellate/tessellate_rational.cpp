@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "freeform/core/error.h"
 
@@ -57,13 +58,21 @@ public:
             }
         const Eigen::Vector3d c = (lo + hi) / 2;
         rho_ = (hi - lo).norm() / 2;
-        // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone.
-        numerator_ = secondDifferences(m, n, [&](int i, int j) -> Eigen::Vector3d {
-            const Eigen::Vector4d q = h.controlPoint(i, j);
-            return q.head<3>() - q[3] * c;
+        // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone: each computed
+        // once (the differences read every control point up to seven times).
+        std::vector<Eigen::Vector3d> shifted(static_cast<std::size_t>((m + 1) * (n + 1)));
+        std::vector<Eigen::Matrix<double, 1, 1>> weights(shifted.size());
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) {
+                const auto q = h.controlPoints().col(h.index(i, j));
+                shifted[static_cast<std::size_t>(h.index(i, j))] = q.head<3>() - q[3] * c;
+                weights[static_cast<std::size_t>(h.index(i, j))](0) = q[3];
+            }
+        numerator_ = secondDifferences(m, n, [&](int i, int j) -> const Eigen::Vector3d& {
+            return shifted[static_cast<std::size_t>(h.index(i, j))];
         });
-        weight_ = secondDifferences(m, n, [&](int i, int j) -> Eigen::Matrix<double, 1, 1> {
-            return Eigen::Matrix<double, 1, 1>(h.controlPoint(i, j)[3]);
+        weight_ = secondDifferences(m, n, [&](int i, int j) -> const Eigen::Matrix<double, 1, 1>& {
+            return weights[static_cast<std::size_t>(h.index(i, j))];
         });
     }
     double operator()(int nu, int nv) const { return (numerator_.bound(nu, nv) + rho_ * weight_.bound(nu, nv)) / wmin_; }
@@ -177,9 +186,12 @@ std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double t
     const RationalBound bound(patch);
     std::array<int, 2> best{maxSegments, maxSegments};
     long bestCells = static_cast<long>(maxSegments) * maxSegments + 1;
-    for (int nu = 1; nu <= maxSegments; ++nu) {
-        if (bound(nu, maxSegments) > tolerance) continue;
-        int lo = 1, hi = maxSegments; // smallest nv with bound <= tolerance
+    // Only nv <= cap can beat the best so far (nu * nv < bestCells), and once nu alone reaches it
+    // no larger nu can: the same result as trying every nu against every nv up to maxSegments.
+    for (int nu = 1; nu <= maxSegments && nu < bestCells; ++nu) {
+        const int cap = static_cast<int>(std::min<long>(maxSegments, (bestCells - 1) / nu));
+        if (bound(nu, cap) > tolerance) continue;
+        int lo = 1, hi = cap; // smallest nv with bound <= tolerance
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
             if (bound(nu, mid) <= tolerance) hi = mid;

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "freeform/core/error.h"
 
@@ -31,10 +32,10 @@ inline constexpr auto kBinomialTable = [] {
 } // namespace detail
 
 /// Throws Error naming `what` when degree is negative or above kMaxDegree.
-inline void requireDegree(int degree, const std::string& what)
+inline void requireDegree(int degree, std::string_view what)
 {
     if (degree < 0 || degree > kMaxDegree) {
-        throw Error(what + ": degree " + std::to_string(degree) + " is outside 0.." +
+        throw Error(std::string(what) + ": degree " + std::to_string(degree) + " is outside 0.." +
                     std::to_string(kMaxDegree));
     }
 }

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
+#include <type_traits>
 
 #include "freeform/core/error.h"
 
@@ -28,13 +30,18 @@ template <typename Scalar, int Dim>
 using Box = Eigen::AlignedBox<Scalar, Dim>;
 
 /// Throws Error("<what>: point <i> coordinate <k> is not finite") for the first non-finite entry.
+/// `what` is a view: a caller's literal costs no string unless the check fails (curves are built
+/// and split in the inner loops of tessellation).
 template <typename Derived>
-void requireFinite(const Eigen::MatrixBase<Derived>& points, const std::string& what)
+void requireFinite(const Eigen::MatrixBase<Derived>& points, std::string_view what)
 {
+    if constexpr (std::is_floating_point_v<typename Derived::Scalar>) {
+        if (points.allFinite()) return;
+    }
     for (Eigen::Index i = 0; i < points.cols(); ++i) {
         for (Eigen::Index k = 0; k < points.rows(); ++k) {
             if (!std::isfinite(static_cast<long double>(points(k, i)))) {
-                throw Error(what + ": point " + std::to_string(i) + " coordinate " +
+                throw Error(std::string(what) + ": point " + std::to_string(i) + " coordinate " +
                             std::to_string(k) + " is not finite");
             }
         }

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -201,17 +202,17 @@ public:
     }
 
 private:
-    static Homogeneous makeHomogeneous(const Points& points, const Weights& weights, const std::string& what)
+    static Homogeneous makeHomogeneous(const Points& points, const Weights& weights, std::string_view what)
     {
-        if (points.cols() < 1) throw Error(what + ": needs at least one control point");
+        if (points.cols() < 1) throw Error(std::string(what) + ": needs at least one control point");
         if (weights.size() != points.cols())
-            throw Error(what + ": " + std::to_string(weights.size()) + " weights for " + std::to_string(points.cols()) +
+            throw Error(std::string(what) + ": " + std::to_string(weights.size()) + " weights for " + std::to_string(points.cols()) +
                         " control points");
         requireFinite(points, what);
         HPoints h(Dim + 1, points.cols());
         for (Eigen::Index i = 0; i < points.cols(); ++i) {
             if (!(weights[i] > Scalar(0)) || !std::isfinite(static_cast<long double>(weights[i])))
-                throw Error(what + ": weight " + std::to_string(i) + " is not a positive finite number");
+                throw Error(std::string(what) + ": weight " + std::to_string(i) + " is not a positive finite number");
             h.col(i).template head<Dim>() = weights[i] * points.col(i);
             h(Dim, i) = weights[i];
         }
