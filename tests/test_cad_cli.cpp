@@ -94,6 +94,8 @@ TEST_CASE("info on the sample parts: counts, closed and bounds as Open CASCADE r
         // --details integrates every face's area: 6 s for linkrods.step's B-spline faces, whose
         // areas test_cad_read does not check; its report is checked on the other three files.
         if (path.ends_with("linkrods.step")) continue;
+        // Under the sanitizers screw.step alone: hammer.iges's details take 13 s there.
+        if (freeform::test::underSanitizers && path.ends_with("hammer.iges")) continue;
         const auto d = freeform::test::cliInProcess("info --details " + path);
         REQUIRE(d.status == 0);
         const Json details = Json::parse(d.out);
