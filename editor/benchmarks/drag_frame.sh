@@ -3,14 +3,16 @@
 # at rest, phase by phase (docs/performance.md, "Editor frame time"). A real window on its own Xvfb
 # (1600x1000, the editor at 1280x800, Mesa llvmpipe), driven by xdotool as a person drives it:
 # click the mesh, L (fit a lattice of the panel's degrees, 3 x 3 x 3), then four rounds of two
-# seconds at rest and a drag of the lattice's top front corner point (below). The editor writes
+# seconds at rest and a drag of the lattice's topmost corner point (below). The editor writes
 # every frame's phases (--frame-log), and frame_log_summary.py prints their medians over the rest
 # and the drag frames.
 #
 #   editor/benchmarks/drag_frame.sh [MESH]     # default: head.stl of Debian's occt-misc
 #
-# The pixel of the corner point (566, 179) is where it lies for head.stl (64,215 vertices, 117,694
-# triangles); for another mesh, edit it. Needs build/bin/freeform-editor, Xvfb and xdotool
+# The pixel of the corner point (711, 149: the lattice's topmost corner) is where it lies for
+# head.stl (64,215 vertices, 117,694 triangles; checked 2026-12-06). For another mesh, or when the
+# summary says "no drag frames", look at a screenshot taken after L (`import -window root
+# shot.png`) and edit it. Needs build/bin/freeform-editor, Xvfb and xdotool
 # (scripts/install-deps.sh); head.stl: `apt-get install occt-misc`.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -46,18 +48,19 @@ sleep 4
 # Four rounds of two seconds at rest (the pointer over the corner point) and a drag of it over 40
 # pointer moves, out by (40, -20) px and back again: rest and drag frames interleave, so a drift
 # of the machine's speed shows in both.
-x=566 y=179
+x=711 y=149
 for round in 1 2 3 4; do
   xdotool mousemove $((X + x)) $((Y + y))
   sleep 2
-  xdotool mousedown 1
   step=1
   [ $((round % 2)) -eq 0 ] && step=-1
+  # One xdotool process for the whole drag: one per move (40 process starts in 2 s) took the
+  # two cores from the editor, and drag frames read 12-16 ms longer than frames at rest for it.
+  moves=()
   for i in $(seq 1 40); do
-    xdotool mousemove $((X + x + step * i)) $((Y + y - step * i / 2))
-    sleep 0.05
+    moves+=(mousemove $((X + x + step * i)) $((Y + y - step * i / 2)) sleep 0.05)
   done
-  xdotool mouseup 1
+  xdotool mousedown 1 "${moves[@]}" mouseup 1
   x=$((x + step * 40)) y=$((y - step * 20))
 done
 sleep 2
