@@ -60,14 +60,13 @@ public:
         rho_ = (hi - lo).norm() / 2;
         // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone: each computed
         // once (the differences read every control point up to seven times).
-        std::vector<Eigen::Vector3d> shifted(static_cast<std::size_t>((m + 1) * (n + 1)));
+        const auto& points = h.controlPoints(); // column h.index(i, j)
+        std::vector<Eigen::Vector3d> shifted(static_cast<std::size_t>(points.cols()));
         std::vector<Eigen::Matrix<double, 1, 1>> weights(shifted.size());
-        for (int i = 0; i <= m; ++i)
-            for (int j = 0; j <= n; ++j) {
-                const auto q = h.controlPoints().col(h.index(i, j));
-                shifted[static_cast<std::size_t>(h.index(i, j))] = q.head<3>() - q[3] * c;
-                weights[static_cast<std::size_t>(h.index(i, j))](0) = q[3];
-            }
+        for (Eigen::Index k = 0; k < points.cols(); ++k) {
+            shifted[static_cast<std::size_t>(k)] = points.col(k).head<3>() - points(3, k) * c;
+            weights[static_cast<std::size_t>(k)](0) = points(3, k);
+        }
         numerator_ = secondDifferences(m, n, [&](int i, int j) -> const Eigen::Vector3d& {
             return shifted[static_cast<std::size_t>(h.index(i, j))];
         });
