@@ -14,6 +14,7 @@
 #include "freeform/core/bernstein.h"
 #include "freeform/core/error.h"
 #include "freeform/core/parallel.h"
+#include "../volume/composition.h"
 
 namespace freeform {
 namespace {
@@ -29,21 +30,9 @@ bool insideBox(const Lattice& lattice, const Points& points)
 /// |A/W - B/V| <= H (1 + max|B_i/V_i|) / min W_i: H bounds the homogeneous difference (A, W) -
 /// (B, V) over the domain, the original weights are positive, and so are the reduced ones
 /// (checked by the reductions), so W >= min W_i and |B/V| <= max |B_i/V_i| (convex hulls).
-template <typename Original, typename Reduced>
-double euclideanBound(double homogeneous, const Original& original, const Reduced& reduced)
+double euclideanBound(double homogeneous, double minWeight, double radius)
 {
-    const double minWeight = original.weights().minCoeff();
-    const double radius = reduced.controlPoints().colwise().norm().maxCoeff();
     return homogeneous * (1 + radius) / minWeight;
-}
-
-/// The middle of every knot span, `times` times each.
-std::vector<double> spanMiddles(const std::vector<double>& breaks, int times)
-{
-    std::vector<double> out;
-    for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
-        for (int r = 0; r < times; ++r) out.push_back(0.5 * (breaks[k] + breaks[k + 1]));
-    return out;
 }
 
 /// The face's NURBS cut down (by knot insertion, the parameters kept) to the face's parameter box
@@ -77,7 +66,7 @@ public:
         elevate_.setZero();
         for (int i = 0; i <= n; ++i)
             for (int j = std::max(0, i - (n - m)); j <= std::min(m, i); ++j)
-                elevate_(i, j) = double(binomial(m, j)) * double(binomial(n - m, i - j)) / double(binomial(n, i));
+                elevate_(i, j) = static_cast<double>(binomialWide(m, j) * binomialWide(n - m, i - j) / binomialWide(n, i));
         if (m >= 2) qr_.compute(elevate_.middleCols(1, m - 1));
     }
 
@@ -110,67 +99,205 @@ std::vector<double> bezierKnots(const std::vector<double>& breaks, int p)
     return k;
 }
 
-/// Knots to insert so that every interior breakpoint has multiplicity p.
-std::vector<double> missingKnots(const KnotVector<double>& knots)
+using Net = Eigen::Matrix<double, 4, Eigen::Dynamic>;
+
+/// A surface in Bézier form as its patches' homogeneous nets, of any degree (a composition above
+/// kMaxDegree has no NurbsSurface): patch (a, b) over [bu[a], bu[a+1]] x [bv[b], bv[b+1]] at
+/// a * nv() + b, its coefficient (i, j) at column i (dv + 1) + j. A curve is a grid of degree
+/// (d, 0) with bv = {0, 1}.
+struct PatchGrid {
+    int du = 0, dv = 0;
+    std::vector<double> bu, bv;
+    std::vector<Net> patches;
+    int nu() const { return static_cast<int>(bu.size()) - 1; }
+    int nv() const { return static_cast<int>(bv.size()) - 1; }
+};
+
+PatchGrid gridOf(const NurbsSurface<double, 3>& s)
 {
-    std::vector<double> extra;
-    const std::vector<double> br = knots.breakpoints();
-    for (std::size_t i = 1; i + 1 < br.size(); ++i)
-        for (int r = knots.multiplicity(br[i]); r < knots.degree(); ++r) extra.push_back(br[i]);
-    return extra;
+    PatchGrid g{s.degreeU(), s.degreeV(), s.knotsU().breakpoints(), s.knotsV().breakpoints(), {}};
+    for (const auto& patch : s.bezierPatches()) g.patches.push_back(patch.homogeneous().controlPoints());
+    return g;
 }
 
-/// The homogeneous net reduced to degree m in u, piece by piece (the net in Bézier form in u).
-NurbsSurface<double, 3> reduceU(const NurbsSurface<double, 3>& s, int m, double& error)
+PatchGrid gridOf(const NurbsCurve<double, 3>& c)
 {
-    const int n = s.degreeU(), nv = s.countV();
-    const std::vector<double> br = s.knotsU().breakpoints();
-    const int pieces = static_cast<int>(br.size()) - 1;
-    const Reduction reduce(n, m);
-    const auto& h = s.homogeneousPoints();
-    Eigen::Matrix<double, 4, Eigen::Dynamic> out(4, (pieces * m + 1) * nv);
-    Eigen::MatrixXd rows(n + 1, 4);
-    for (int j = 0; j < nv; ++j)
-        for (int k = 0; k < pieces; ++k) {
-            for (int i = 0; i <= n; ++i) rows.row(i) = h.col(s.index(k * n + i, j)).transpose();
-            const Eigen::MatrixXd c = reduce(rows, error);
-            for (int i = 0; i <= m; ++i) out.col((k * m + i) * nv + j) = c.row(i).transpose();
+    PatchGrid g{c.degree(), 0, c.breakpoints(), {0.0, 1.0}, {}};
+    for (const auto& piece : c.bezierPieces()) g.patches.push_back(piece.homogeneous().controlPoints());
+    return g;
+}
+
+/// The face's surface through the lattice, patch by patch, at whatever degree that gives.
+PatchGrid composedGrid(const RationalLattice& map, const NurbsSurface<double, 3>& s, double strength)
+{
+    PatchGrid g{0, 0, s.knotsU().breakpoints(), s.knotsV().breakpoints(), {}};
+    for (const auto& patch : s.bezierPatches()) {
+        // A polynomial surface's patches: the extracted points themselves, weights exactly 1.
+        const detail::HomogeneousPatch p =
+            s.isRational()
+                ? detail::composePatch(map, patch, strength)
+                : detail::composePatch(map,
+                                       RationalBezierSurface<double, 3>(BezierSurface<double, 3>(
+                                           patch.degreeU(), patch.degreeV(), patch.homogeneous().controlPoints().topRows<3>())),
+                                       strength);
+        g.du = p.du;
+        g.dv = p.dv;
+        g.patches.push_back(p.points);
+    }
+    return g;
+}
+
+PatchGrid composedGrid(const RationalLattice& map, const NurbsCurve<double, 3>& c, double strength)
+{
+    PatchGrid g{0, 0, c.breakpoints(), {0.0, 1.0}, {}};
+    for (const auto& piece : c.bezierPieces()) {
+        g.patches.push_back(detail::composePiece(map, piece, strength));
+        g.du = static_cast<int>(g.patches.back().cols()) - 1;
+    }
+    return g;
+}
+
+bool allFinite(const PatchGrid& g)
+{
+    return std::all_of(g.patches.begin(), g.patches.end(), [](const Net& n) { return n.allFinite(); });
+}
+
+/// The grid with u and v exchanged.
+PatchGrid transposed(const PatchGrid& g)
+{
+    PatchGrid t{g.dv, g.du, g.bv, g.bu, std::vector<Net>(g.patches.size())};
+    for (int a = 0; a < g.nu(); ++a)
+        for (int b = 0; b < g.nv(); ++b) {
+            const Net& p = g.patches[static_cast<std::size_t>(a * g.nv() + b)];
+            Net& q = t.patches[static_cast<std::size_t>(b * g.nu() + a)];
+            q.resize(4, p.cols());
+            for (int i = 0; i <= g.du; ++i)
+                for (int j = 0; j <= g.dv; ++j) q.col(j * (g.du + 1) + i) = p.col(i * (g.dv + 1) + j);
         }
-    return NurbsSurface<double, 3>(KnotVector<double>(bezierKnots(br, m), m, "reduced surface"), s.knotsV(), std::move(out));
+    return t;
 }
 
-struct ReducedSurface {
-    NurbsSurface<double, 3> surface;
+/// Every patch cut in two at the middle of its u span (de Casteljau at 1/2, column by column).
+PatchGrid halvedU(const PatchGrid& g)
+{
+    PatchGrid h{g.du, g.dv, {}, g.bv, {}};
+    for (int a = 0; a < g.nu(); ++a) {
+        h.bu.push_back(g.bu[static_cast<std::size_t>(a)]);
+        h.bu.push_back(0.5 * (g.bu[static_cast<std::size_t>(a)] + g.bu[static_cast<std::size_t>(a + 1)]));
+    }
+    h.bu.push_back(g.bu.back());
+    h.patches.resize(2 * g.patches.size());
+    const int stride = g.dv + 1;
+    std::vector<Eigen::Vector4d> work(static_cast<std::size_t>(g.du + 1));
+    for (int a = 0; a < g.nu(); ++a)
+        for (int b = 0; b < g.nv(); ++b) {
+            const Net& p = g.patches[static_cast<std::size_t>(a * g.nv() + b)];
+            Net& left = h.patches[static_cast<std::size_t>(2 * a * g.nv() + b)];
+            Net& right = h.patches[static_cast<std::size_t>((2 * a + 1) * g.nv() + b)];
+            left.resize(4, p.cols());
+            right.resize(4, p.cols());
+            for (int j = 0; j < stride; ++j) {
+                for (int i = 0; i <= g.du; ++i) work[static_cast<std::size_t>(i)] = p.col(i * stride + j);
+                // Level r of de Casteljau: its first point is the left half's r-th, its last the
+                // right half's (du - r)-th.
+                for (int r = 0; r <= g.du; ++r) {
+                    left.col(r * stride + j) = work[0];
+                    right.col((g.du - r) * stride + j) = work[static_cast<std::size_t>(g.du - r)];
+                    for (int i = 0; i < g.du - r; ++i)
+                        work[static_cast<std::size_t>(i)] =
+                            0.5 * (work[static_cast<std::size_t>(i)] + work[static_cast<std::size_t>(i + 1)]);
+                }
+            }
+        }
+    return h;
+}
+
+/// Every patch reduced to degree m in u, row by row; `error` grows to the largest row distance.
+PatchGrid reducedU(const PatchGrid& g, int m, double& error)
+{
+    const Reduction reduce(g.du, m);
+    PatchGrid out{m, g.dv, g.bu, g.bv, {}};
+    const int stride = g.dv + 1;
+    Eigen::MatrixXd rows(g.du + 1, 4);
+    for (const Net& p : g.patches) {
+        Net q(4, (m + 1) * stride);
+        for (int j = 0; j < stride; ++j) {
+            for (int i = 0; i <= g.du; ++i) rows.row(i) = p.col(i * stride + j).transpose();
+            const Eigen::MatrixXd c = reduce(rows, error);
+            for (int i = 0; i <= m; ++i) q.col(i * stride + j) = c.row(i).transpose();
+        }
+        out.patches.push_back(std::move(q));
+    }
+    return out;
+}
+
+/// The grid's nets moved by `offset` (in homogeneous form: w offset added to w p).
+void translate(PatchGrid& g, const Eigen::Vector3d& offset)
+{
+    for (Net& p : g.patches) p.topRows<3>() += offset * p.row(3);
+}
+
+NurbsSurface<double, 3> surfaceOf(const PatchGrid& g)
+{
+    const int cu = g.nu() * g.du + 1, cv = g.nv() * g.dv + 1;
+    Net h(4, cu * cv);
+    // A shared boundary keeps the first patch's value (the neighbours agree there to rounding).
+    for (int a = g.nu() - 1; a >= 0; --a)
+        for (int b = g.nv() - 1; b >= 0; --b) {
+            const Net& p = g.patches[static_cast<std::size_t>(a * g.nv() + b)];
+            for (int i = 0; i <= g.du; ++i)
+                for (int j = 0; j <= g.dv; ++j) h.col((a * g.du + i) * cv + b * g.dv + j) = p.col(i * (g.dv + 1) + j);
+        }
+    return NurbsSurface<double, 3>(KnotVector<double>(bezierKnots(g.bu, g.du), g.du, "reduced surface (knots in u)"),
+                                   KnotVector<double>(bezierKnots(g.bv, g.dv), g.dv, "reduced surface (knots in v)"),
+                                   std::move(h));
+}
+
+NurbsCurve<double, 3> curveOf(const PatchGrid& g)
+{
+    Net h(4, g.nu() * g.du + 1);
+    // A joint keeps the left piece's end.
+    for (int a = g.nu() - 1; a >= 0; --a) h.middleCols(a * g.du, g.du + 1) = g.patches[static_cast<std::size_t>(a)];
+    return NurbsCurve<double, 3>(KnotVector<double>(bezierKnots(g.bu, g.du), g.du, "reduced curve"), std::move(h));
+}
+
+struct ReducedGrid {
+    PatchGrid grid;
     double error = 0;
 };
 
-/// The surface at degrees <= cap within `tolerance`: reduced about the centre of its control box
+/// The grid at degrees <= cap within `tolerance`: reduced about the centre of its control points
 /// (so the bound's max|B_i/V_i| is the net's radius, not its distance from the origin), the spans
-/// halved (full multiplicity, so the pieces are reduced separately) while the bound is too large.
-/// Nothing when that does not reach it; `best` then holds the smallest error seen.
-std::optional<ReducedSurface> reduceSurface(const NurbsSurface<double, 3>& surface, int cap, double tolerance,
-                                            int maxSplits, double& best)
+/// halved while the bound is too large. Nothing when that does not reach it; `best` then holds the
+/// smallest error seen.
+std::optional<ReducedGrid> reduceGrid(const PatchGrid& grid, int cap, double tolerance, int maxSplits, double& best)
 {
-    const Eigen::Vector3d centre = surface.controlBox().center();
-    NurbsSurface<double, 3> work(surface.knotsU(), surface.knotsV(), surface.controlPoints().colwise() - centre,
-                                 surface.weights());
-    work = work.refinedU(missingKnots(work.knotsU())).refinedV(missingKnots(work.knotsV()));
+    Eigen::AlignedBox3d box;
+    for (const Net& p : grid.patches)
+        for (Eigen::Index i = 0; i < p.cols(); ++i) box.extend(Eigen::Vector3d(p.col(i).head<3>() / p(3, i)));
+    const Eigen::Vector3d centre = box.center();
+    PatchGrid work = grid;
+    translate(work, -centre);
     best = std::numeric_limits<double>::infinity();
     for (int split = 0;; ++split) {
         // The u pass moves the surface by at most hu, the v pass the result by at most hv: the
         // bound is their sum.
         double hu = 0, hv = 0;
-        NurbsSurface<double, 3> r = work;
-        if (r.degreeU() > cap) r = reduceU(r, cap, hu);
-        if (r.degreeV() > cap) r = reduceU(r.transposed(), cap, hv).transposed();
-        double h = hu + hv;
-        for (Eigen::Index i = 0; i < r.homogeneousPoints().cols(); ++i)
-            if (!(r.homogeneousPoints()(3, i) > 0)) h = std::numeric_limits<double>::infinity();
-        const double error = std::isfinite(h) ? euclideanBound(h, work, r) : h;
-        if (error <= tolerance)
-            return ReducedSurface{NurbsSurface<double, 3>(r.knotsU(), r.knotsV(), r.controlPoints().colwise() + centre,
-                                                          r.weights()),
-                                  error};
+        PatchGrid r = work;
+        if (r.du > cap) r = reducedU(r, cap, hu);
+        if (r.dv > cap) r = transposed(reducedU(transposed(r), cap, hv));
+        double h = hu + hv, minWeight = std::numeric_limits<double>::infinity(), radius = 0;
+        for (const Net& p : work.patches) minWeight = std::min(minWeight, p.row(3).minCoeff());
+        for (const Net& p : r.patches)
+            for (Eigen::Index i = 0; i < p.cols(); ++i) {
+                if (!(p(3, i) > 0)) h = std::numeric_limits<double>::infinity();
+                else radius = std::max(radius, (p.col(i).head<3>() / p(3, i)).norm());
+            }
+        const double error = std::isfinite(h) ? euclideanBound(h, minWeight, radius) : h;
+        if (error <= tolerance) {
+            translate(r, centre);
+            return ReducedGrid{std::move(r), error};
+        }
         // Halving the spans shrinks a reduction's error by a large power of 2 where the surface is
         // smooth; when it does not even halve it, more halvings only multiply the work.
         if (split == maxSplits || !(error < 0.5 * best)) {
@@ -178,50 +305,8 @@ std::optional<ReducedSurface> reduceSurface(const NurbsSurface<double, 3>& surfa
             return std::nullopt;
         }
         best = error;
-        if (work.degreeU() > cap) work = work.refinedU(spanMiddles(work.knotsU().breakpoints(), work.degreeU()));
-        if (work.degreeV() > cap) work = work.refinedV(spanMiddles(work.knotsV().breakpoints(), work.degreeV()));
-    }
-}
-
-struct ReducedCurve {
-    NurbsCurve<double, 3> curve;
-    double error = 0;
-};
-
-std::optional<ReducedCurve> reduceCurve(const NurbsCurve<double, 3>& curve, int cap, double tolerance, int maxSplits,
-                                        double& best)
-{
-    const Eigen::Vector3d centre = curve.controlBox().center();
-    NurbsCurve<double, 3> work(curve.degree(), curve.knots(), curve.controlPoints().colwise() - centre,
-                               curve.weights());
-    work = work.refined(missingKnots(work.knotVector()));
-    best = std::numeric_limits<double>::infinity();
-    for (int split = 0;; ++split) {
-        const int n = work.degree();
-        const std::vector<double> br = work.breakpoints();
-        const int pieces = static_cast<int>(br.size()) - 1;
-        const Reduction reduce(n, cap);
-        Eigen::Matrix<double, 4, Eigen::Dynamic> out(4, pieces * cap + 1);
-        double h = 0;
-        for (int k = 0; k < pieces; ++k) {
-            const Eigen::MatrixXd c = reduce(work.homogeneousPoints().middleCols(k * n, n + 1).transpose(), h);
-            out.middleCols(k * cap, cap + 1) = c.transpose();
-        }
-        bool positive = true;
-        for (Eigen::Index i = 0; i < out.cols(); ++i) positive = positive && out(3, i) > 0;
-        std::optional<NurbsCurve<double, 3>> r;
-        if (positive) r.emplace(KnotVector<double>(bezierKnots(br, cap), cap, "reduced curve"), out);
-        const double error = r ? euclideanBound(h, work, *r) : std::numeric_limits<double>::infinity();
-        if (error <= tolerance)
-            return ReducedCurve{NurbsCurve<double, 3>(cap, r->knots(), r->controlPoints().colwise() + centre,
-                                                      r->weights()),
-                                error};
-        if (split == maxSplits || !(error < 0.5 * best)) {
-            best = std::min(best, error);
-            return std::nullopt;
-        }
-        best = error;
-        work = work.refined(spanMiddles(br, n));
+        if (work.du > cap) work = halvedU(work);
+        if (work.dv > cap) work = transposed(halvedU(transposed(work)));
     }
 }
 
@@ -258,6 +343,41 @@ std::string number(double x)
     return buffer;
 }
 
+int degreeOf(const NurbsSurface<double, 3>& s) { return std::max(s.degreeU(), s.degreeV()); }
+int degreeOf(const NurbsCurve<double, 3>& c) { return c.degree(); }
+void assemble(const PatchGrid& g, NurbsSurface<double, 3>& out) { out = surfaceOf(g); }
+void assemble(const PatchGrid& g, NurbsCurve<double, 3>& out) { out = curveOf(g); }
+
+const char* const kOverflow =
+    "the deformed control points are not finite (the lattice polynomial overflows this far outside its box)";
+
+/// What deformPart does with a face's surface or an edge's curve: through the lattice (`exact`,
+/// as a NURBS, where the result stays within kMaxDegree; above, patch by patch, composedGrid), then
+/// reduced to `cap` where it is over it. Returns the reduction's certified error (0: exact).
+template <class Nurbs, class Exact>
+double composeCapped(Nurbs& nurbs, const Exact& exact, const RationalLattice& map, double strength, int factor, int cap,
+                     double tolerance, int maxSplits)
+{
+    PatchGrid grid;
+    if (degreeOf(nurbs) * factor > kMaxDegree) {
+        grid = composedGrid(map, nurbs, strength);
+        if (!allFinite(grid)) throw Error(kOverflow);
+    } else {
+        nurbs = exact(nurbs);
+        if (!nurbs.homogeneousPoints().allFinite()) throw Error(kOverflow);
+        if (degreeOf(nurbs) <= cap) return 0;
+        grid = gridOf(nurbs);
+    }
+    double best = 0;
+    const std::optional<ReducedGrid> reduced = reduceGrid(grid, cap, tolerance, maxSplits, best);
+    if (!reduced)
+        throw Error("degree " + std::to_string(grid.du) + (grid.dv > 0 ? " x " + std::to_string(grid.dv) : std::string()) +
+                    " cannot be brought to " + std::to_string(cap) + " within " + number(tolerance) + " (best " +
+                    number(best) + " after " + std::to_string(maxSplits) + " halvings)");
+    assemble(reduced->grid, nurbs);
+    return reduced->error;
+}
+
 } // namespace
 
 DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const PartDeformOptions& options)
@@ -282,6 +402,12 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
     report.lipschitz = report.lipschitzCertified ? lipschitzBound(lattice.lattice(), w) : sampledLipschitz(map, w);
     report.faceErrors.assign(part.faces.size(), 0.0);
 
+    // A face or edge over the cap (options.maxDegree; kMaxDegree, the most the library's NURBS
+    // hold, in any case) is degree reduced. A composition that would rise above kMaxDegree is
+    // formed patch by patch at its own degree (detail::composePatch) and reduced from there.
+    const int cap = options.maxDegree > 0 ? std::min(options.maxDegree, kMaxDegree) : kMaxDegree;
+    const int factor = affine ? 1 : detail::degreeFactor(map);
+
     // Faces and edges are independent: composed in parallel, errors collected per item.
     std::vector<std::optional<MappedSurface>> surfaces(part.faces.size());
     std::vector<std::string> faceErrors(part.faces.size());
@@ -292,21 +418,10 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
             MappedSurface next = face.surface.surface();
             next.nurbs = cutToFaceBox(next, face.surface.domain());
             faceOutside[f] = !extrapolate && !insideBox(lattice.lattice(), next.nurbs.controlPoints());
-            next.nurbs = affine ? affineImage(*affine, next.nurbs) : deformSurface(map, next.nurbs, w);
-            if (!next.nurbs.homogeneousPoints().allFinite())
-                throw Error("the deformed control points are not finite (the lattice polynomial overflows this far "
-                            "outside its box)");
-            if (options.maxDegree > 0 && std::max(next.nurbs.degreeU(), next.nurbs.degreeV()) > options.maxDegree) {
-                double best = 0;
-                auto reduced = reduceSurface(next.nurbs, options.maxDegree, tolerance, options.maxSplits, best);
-                if (!reduced)
-                    throw Error("degree " + std::to_string(next.nurbs.degreeU()) + " x " +
-                                std::to_string(next.nurbs.degreeV()) + " cannot be brought to " +
-                                std::to_string(options.maxDegree) + " within " + number(tolerance) + " (best " +
-                                number(best) + " after " + std::to_string(options.maxSplits) + " halvings)");
-                next.nurbs = std::move(reduced->surface);
-                report.faceErrors[f] = reduced->error;
-            }
+            report.faceErrors[f] = composeCapped(
+                next.nurbs,
+                [&](const NurbsSurface<double, 3>& s) { return affine ? affineImage(*affine, s) : deformSurface(map, s, w); },
+                map, w, factor, cap, tolerance, options.maxSplits);
             surfaces[f] = std::move(next);
         } catch (const Error& e) {
             faceErrors[f] = "face " + std::to_string(f + 1) + ": " + e.what();
@@ -326,20 +441,10 @@ DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const 
         if (!edge.curve) return;
         try {
             MappedCurve<3> next = *edge.curve;
-            next.nurbs = affine ? affineImage(*affine, edge.curve->nurbs) : deformCurve(map, edge.curve->nurbs, w);
-            if (!next.nurbs.homogeneousPoints().allFinite())
-                throw Error("the deformed control points are not finite (the lattice polynomial overflows this far "
-                            "outside its box)");
-            if (options.maxDegree > 0 && next.nurbs.degree() > options.maxDegree) {
-                double best = 0;
-                auto reduced = reduceCurve(next.nurbs, options.maxDegree, tolerance, options.maxSplits, best);
-                if (!reduced)
-                    throw Error("degree " + std::to_string(next.nurbs.degree()) + " cannot be brought to " +
-                                std::to_string(options.maxDegree) + " within " + number(tolerance) + " (best " +
-                                number(best) + ")");
-                next.nurbs = std::move(reduced->curve);
-                edgeErrors[i] = reduced->error;
-            }
+            edgeErrors[i] = composeCapped(
+                next.nurbs,
+                [&](const NurbsCurve<double, 3>& c) { return affine ? affineImage(*affine, c) : deformCurve(map, c, w); },
+                map, w, factor, cap, tolerance, options.maxSplits);
             curves[i] = std::move(next);
         } catch (const Error& e) {
             edgeFailures[i] = "edge " + std::to_string(i + 1) + ": " + e.what();

@@ -10,6 +10,7 @@
 
 #include "freeform/core/bernstein.h"
 #include "freeform/core/polynomial.h"
+#include "composition.h"
 
 namespace freeform {
 
@@ -133,17 +134,27 @@ DeformReport deformMesh(const RationalLattice& lattice, PolygonMesh& mesh, const
 RationalBezierCurve<double, 3> deformCurve(const RationalLattice& rl, const RationalBezierCurve<double, 3>& curve,
                                            double strength)
 {
+    // A polynomial lattice has D~ = W^(l+m+n) identically (each axis's basis sums to W^L), so the
+    // quotient loses one factor W: degree d (l+m+n) instead of d (1 + l+m+n).
+    const bool polynomial = rl.isPolynomial();
+    const int degree = curve.degree() * detail::degreeFactor(rl);
+    if (degree > kMaxDegree)
+        throw Error("deformCurve: the deformed curve would have degree " + std::to_string(degree) +
+                    (polynomial ? " (d (l+m+n))" : " (d (1 + l+m+n))") + ", above " + std::to_string(kMaxDegree));
+    return RationalBezierCurve<double, 3>(BezierCurve<double, 4>(detail::composePiece(rl, curve, strength)));
+}
+
+namespace detail {
+
+Eigen::Matrix<double, 4, Eigen::Dynamic> composePiece(const RationalLattice& rl, const RationalBezierCurve<double, 3>& curve,
+                                                      double strength)
+{
     const Lattice& lattice = rl.lattice();
     const auto& deg = lattice.degrees();
     const int d = curve.degree();
     const int sum = deg[0] + deg[1] + deg[2];
-    // A polynomial lattice has D~ = W^(l+m+n) identically (each axis's basis sums to W^L), so the
-    // quotient loses one factor W: degree d (l+m+n) instead of d (1 + l+m+n).
     const bool polynomial = rl.isPolynomial();
-    const int degree = polynomial ? d * sum : d * (1 + sum);
-    if (degree > kMaxDegree)
-        throw Error("deformCurve: the deformed curve would have degree " + std::to_string(degree) +
-                    (polynomial ? " (d (l+m+n))" : " (d (1 + l+m+n))") + ", above " + std::to_string(kMaxDegree));
+    const int degree = d * degreeFactor(rl);
     if (!std::isfinite(strength)) throw Error("deformCurve: strength is not finite");
     const auto& h = curve.homogeneous().controlPoints(); // 4 x (d+1): (w b, w)
     Poly W(static_cast<std::size_t>(d + 1)), A[3];
@@ -200,7 +211,7 @@ RationalBezierCurve<double, 3> deformCurve(const RationalLattice& rl, const Rati
                 out(c, i) = static_cast<double>(a[i] + static_cast<long double>(strength) * N[c][i]);
         }
         for (int i = 0; i <= degree; ++i) out(3, i) = static_cast<double>(weight[i]);
-        return RationalBezierCurve<double, 3>(BezierCurve<double, 4>(std::move(out)));
+        return out;
     }
     // p' = (A D~ + strength W N~) / (W D~).
     const Poly weight = bernsteinPolyProduct(W, D);
@@ -209,8 +220,10 @@ RationalBezierCurve<double, 3> deformCurve(const RationalLattice& rl, const Rati
         for (int i = 0; i <= degree; ++i) out(c, i) = static_cast<double>(a[i] + static_cast<long double>(strength) * b[i]);
     }
     for (int i = 0; i <= degree; ++i) out(3, i) = static_cast<double>(weight[i]);
-    return RationalBezierCurve<double, 3>(BezierCurve<double, 4>(std::move(out)));
+    return out;
 }
+
+} // namespace detail
 
 NurbsCurve<double, 3> deformCurve(const RationalLattice& lattice, const NurbsCurve<double, 3>& curve, double strength)
 {
@@ -234,36 +247,48 @@ NurbsCurve<double, 3> deformCurve(const RationalLattice& lattice, const NurbsCur
 namespace {
 
 /// A tensor Bernstein polynomial of degrees (du, dv), coefficient (i, j) at i * (dv + 1) + j.
+template <typename Real>
 struct Poly2 {
     int du = 0, dv = 0;
-    std::vector<long double> c;
+    std::vector<Real> c;
     Poly2() = default;
-    Poly2(int u, int v, long double value = 0) : du(u), dv(v), c(static_cast<std::size_t>((u + 1) * (v + 1)), value) {}
-    long double& at(int i, int j) { return c[static_cast<std::size_t>(i * (dv + 1) + j)]; }
-    long double at(int i, int j) const { return c[static_cast<std::size_t>(i * (dv + 1) + j)]; }
+    Poly2(int u, int v, Real value = 0) : du(u), dv(v), c(static_cast<std::size_t>((u + 1) * (v + 1)), value) {}
+    Real& at(int i, int j) { return c[static_cast<std::size_t>(i * (dv + 1) + j)]; }
+    Real at(int i, int j) const { return c[static_cast<std::size_t>(i * (dv + 1) + j)]; }
 };
 
-std::vector<long double> binomialRow(int n)
+/// C(n, k), k = 0..n (above kMaxDegree: a part's face on its way to a degree reduction).
+template <typename Real>
+std::vector<Real> binomialRow(int n)
 {
-    std::vector<long double> row(static_cast<std::size_t>(n + 1));
-    for (int k = 0; k <= n; ++k) row[static_cast<std::size_t>(k)] = static_cast<long double>(binomial(n, k));
+    std::vector<Real> row(static_cast<std::size_t>(n + 1));
+    for (int k = 0; k <= n; ++k) row[static_cast<std::size_t>(k)] = static_cast<Real>(binomialWide(n, k));
     return row;
 }
 
-/// The product by the Bernstein product formula in both variables (long double):
+/// The product by the Bernstein product formula in both variables:
 ///   (pq)_(k,l) = sum C(a,i) C(b,k-i) C(c,j) C(d,l-j) / (C(a+b,k) C(c+d,l)) p_ij q_(k-i,l-j).
-Poly2 product(const Poly2& p, const Poly2& q)
+template <typename Real>
+Poly2<Real> product(const Poly2<Real>& p, const Poly2<Real>& q)
 {
-    Poly2 out(p.du + q.du, p.dv + q.dv);
-    const auto bpu = binomialRow(p.du), bqu = binomialRow(q.du), bpv = binomialRow(p.dv), bqv = binomialRow(q.dv);
-    const auto bu = binomialRow(out.du), bv = binomialRow(out.dv);
+    Poly2<Real> out(p.du + q.du, p.dv + q.dv);
+    const auto bpu = binomialRow<Real>(p.du), bqu = binomialRow<Real>(q.du), bpv = binomialRow<Real>(p.dv), bqv = binomialRow<Real>(q.dv);
+    const auto bu = binomialRow<Real>(out.du), bv = binomialRow<Real>(out.dv);
+    // q's coefficients times their binomials once, so that the inner loop is one multiply-add.
+    std::vector<Real> qs(q.c.size());
+    for (int k = 0; k <= q.du; ++k)
+        for (int l = 0; l <= q.dv; ++l)
+            qs[static_cast<std::size_t>(k * (q.dv + 1) + l)] =
+                q.at(k, l) * bqu[static_cast<std::size_t>(k)] * bqv[static_cast<std::size_t>(l)];
     for (int i = 0; i <= p.du; ++i)
         for (int j = 0; j <= p.dv; ++j) {
-            const long double a = p.at(i, j) * bpu[static_cast<std::size_t>(i)] * bpv[static_cast<std::size_t>(j)];
+            const Real a = p.at(i, j) * bpu[static_cast<std::size_t>(i)] * bpv[static_cast<std::size_t>(j)];
             if (a == 0) continue;
-            for (int k = 0; k <= q.du; ++k)
-                for (int l = 0; l <= q.dv; ++l)
-                    out.at(i + k, j + l) += a * q.at(k, l) * bqu[static_cast<std::size_t>(k)] * bqv[static_cast<std::size_t>(l)];
+            for (int k = 0; k <= q.du; ++k) {
+                Real* row = &out.at(i + k, j);
+                const Real* from = &qs[static_cast<std::size_t>(k * (q.dv + 1))];
+                for (int l = 0; l <= q.dv; ++l) row[l] += a * from[l];
+            }
         }
     for (int k = 0; k <= out.du; ++k)
         for (int l = 0; l <= out.dv; ++l)
@@ -271,16 +296,18 @@ Poly2 product(const Poly2& p, const Poly2& q)
     return out;
 }
 
-void addScaled(Poly2& acc, const Poly2& p, long double s)
+template <typename Real>
+void addScaled(Poly2<Real>& acc, const Poly2<Real>& p, Real s)
 {
-    if (acc.c.empty()) acc = Poly2(p.du, p.dv);
+    if (acc.c.empty()) acc = Poly2<Real>(p.du, p.dv);
     for (std::size_t i = 0; i < p.c.size(); ++i) acc.c[i] += s * p.c[i];
 }
 
 /// W^e (e >= 0) as a polynomial of degrees (e du, e dv); W^0 = 1.
-Poly2 power(const Poly2& w, int e)
+template <typename Real>
+Poly2<Real> power(const Poly2<Real>& w, int e)
 {
-    Poly2 out(0, 0, 1.0L);
+    Poly2<Real> out(0, 0, Real(1));
     for (int k = 0; k < e; ++k) out = product(out, w);
     return out;
 }
@@ -290,13 +317,9 @@ Poly2 power(const Poly2& w, int e)
 RationalBezierSurface<double, 3> deformSurface(const RationalLattice& rl, const RationalBezierSurface<double, 3>& surface,
                                                double strength)
 {
-    const Lattice& lattice = rl.lattice();
-    const auto& deg = lattice.degrees();
     const int m = surface.degreeU(), n = surface.degreeV();
-    const int sum = deg[0] + deg[1] + deg[2];
     const bool rational = !rl.isPolynomial();
-    const int factor = rational ? 1 + sum : sum;
-    const int degreeU = m * factor, degreeV = n * factor;
+    const int degreeU = m * detail::degreeFactor(rl), degreeV = n * detail::degreeFactor(rl);
     if (degreeU > kMaxDegree || degreeV > kMaxDegree)
         throw Error("deformSurface: the deformed patch would have degrees (" + std::to_string(degreeU) + ", " +
                     std::to_string(degreeV) + ") (" + (rational ? "(m (1 + l+m+n), n (1 + l+m+n))" : "(m (l+m+n), n (l+m+n))") +
@@ -305,65 +328,92 @@ RationalBezierSurface<double, 3> deformSurface(const RationalLattice& rl, const 
     const auto& h = surface.homogeneous().controlPoints(); // 4 x (m+1)(n+1): (w b, w)
     const bool unitWeights = (h.row(3).array() == 1.0).all();
     if (!rational && unitWeights) // the polynomial composition of volume/deform.h
-        return RationalBezierSurface<double, 3>(deformSurface(lattice, BezierSurface<double, 3>(m, n, h.topRows<3>()), strength));
+        return RationalBezierSurface<double, 3>(deformSurface(rl.lattice(), BezierSurface<double, 3>(m, n, h.topRows<3>()), strength));
+    detail::HomogeneousPatch composed = detail::composePatch(rl, surface, strength);
+    return RationalBezierSurface<double, 3>(BezierSurface<double, 4>(composed.du, composed.dv, std::move(composed.points)));
+}
 
-    Poly2 W(m, n), A[3] = {Poly2(m, n), Poly2(m, n), Poly2(m, n)};
+namespace detail {
+
+namespace {
+
+/// composePatch in Real: long double up to kMaxDegree (the exact compositions the library keeps),
+/// double above (a reduction follows, and long double is several times slower there).
+template <typename Real>
+HomogeneousPatch composeIn(const RationalLattice& rl, const RationalBezierSurface<double, 3>& surface, double strength)
+{
+    const Lattice& lattice = rl.lattice();
+    const auto& deg = lattice.degrees();
+    const int m = surface.degreeU(), n = surface.degreeV();
+    const int sum = deg[0] + deg[1] + deg[2];
+    const bool rational = !rl.isPolynomial();
+    const int degreeU = m * degreeFactor(rl), degreeV = n * degreeFactor(rl);
+    if (!std::isfinite(strength)) throw Error("deformSurface: strength is not finite");
+    const auto& h = surface.homogeneous().controlPoints(); // 4 x (m+1)(n+1): (w b, w)
+    Poly2<Real> W(m, n), A[3] = {Poly2<Real>(m, n), Poly2<Real>(m, n), Poly2<Real>(m, n)};
     for (Eigen::Index r = 0; r < h.cols(); ++r) {
         W.c[static_cast<std::size_t>(r)] = h(3, r);
         for (int c = 0; c < 3; ++c) A[c].c[static_cast<std::size_t>(r)] = h(c, r);
     }
     // Homogeneous lattice coordinates S_a = dual_a . (A - X0 W) and the composed basis
-    // C(L,i) S^i (W - S)^(L-i), of degrees (m L, n L) per axis.
-    std::vector<Poly2> basis[3];
+    // C(L,i) Real^i (W - Real)^(L-i), of degrees (m L, n L) per axis.
+    std::vector<Poly2<Real>> basis[3];
     for (int a = 0; a < 3; ++a) {
-        Poly2 S(m, n), R(m, n);
+        Poly2<Real> S(m, n), R(m, n);
         for (std::size_t r = 0; r < W.c.size(); ++r) {
-            long double x = 0;
+            Real x = 0;
             for (int c = 0; c < 3; ++c)
-                x += static_cast<long double>(lattice.dual()(a, c)) *
-                     (A[c].c[r] - static_cast<long double>(lattice.origin()[c]) * W.c[r]);
+                x += static_cast<Real>(lattice.dual()(a, c)) *
+                     (A[c].c[r] - static_cast<Real>(lattice.origin()[c]) * W.c[r]);
             S.c[r] = x;
             R.c[r] = W.c[r] - x;
         }
         const int L = deg[a];
-        std::vector<Poly2> sp{Poly2(0, 0, 1.0L)}, rp{Poly2(0, 0, 1.0L)};
+        std::vector<Poly2<Real>> sp{Poly2<Real>(0, 0, Real(1))}, rp{Poly2<Real>(0, 0, Real(1))};
         for (int k = 1; k <= L; ++k) {
             sp.push_back(product(sp.back(), S));
             rp.push_back(product(rp.back(), R));
         }
         for (int i = 0; i <= L; ++i) {
-            Poly2 b = product(sp[static_cast<std::size_t>(i)], rp[static_cast<std::size_t>(L - i)]);
-            const long double c = static_cast<long double>(binomial(L, i));
+            Poly2<Real> b = product(sp[static_cast<std::size_t>(i)], rp[static_cast<std::size_t>(L - i)]);
+            const Real c = static_cast<Real>(binomial(L, i));
             for (auto& v : b.c) v *= c;
             basis[a].push_back(std::move(b));
         }
     }
     // N~ (3 coordinates) and, for a rational lattice, D~: degrees (m L, n L). The sum over k is a
     // linear combination, the sums over i and j Bernstein products.
-    Poly2 N[3], D;
+    Poly2<Real> N[3], D;
     const auto& disp = lattice.displacements();
-    for (int i = 0; i <= deg[0]; ++i)
+    for (int i = 0; i <= deg[0]; ++i) {
+        // sum_j B_j(t) sum_k w_ijk c_ijk B_k(u), then times B_i(s): the products nest, so the
+        // largest ones (by B_i) are one per i, not one per (i, j).
+        Poly2<Real> hN[3], hD;
         for (int j = 0; j <= deg[1]; ++j) {
-            const Poly2 st = product(basis[0][static_cast<std::size_t>(i)], basis[1][static_cast<std::size_t>(j)]);
-            Poly2 gN[3], gD;
+            Poly2<Real> gN[3], gD;
             for (int k = 0; k <= deg[2]; ++k) {
                 const int idx = lattice.index(i, j, k);
-                const long double w = rl.weights()[idx];
-                const Poly2& bk = basis[2][static_cast<std::size_t>(k)];
+                const Real w = rl.weights()[idx];
+                const Poly2<Real>& bk = basis[2][static_cast<std::size_t>(k)];
                 if (rational) addScaled(gD, bk, w);
-                for (int c = 0; c < 3; ++c) addScaled(gN[c], bk, w * static_cast<long double>(disp(c, idx)));
+                for (int c = 0; c < 3; ++c) addScaled(gN[c], bk, w * static_cast<Real>(disp(c, idx)));
             }
-            if (rational) addScaled(D, product(st, gD), 1.0L);
-            for (int c = 0; c < 3; ++c) addScaled(N[c], product(st, gN[c]), 1.0L);
+            const Poly2<Real>& bj = basis[1][static_cast<std::size_t>(j)];
+            if (rational) addScaled(hD, product(bj, gD), Real(1));
+            for (int c = 0; c < 3; ++c) addScaled(hN[c], product(bj, gN[c]), Real(1));
         }
+        const Poly2<Real>& bi = basis[0][static_cast<std::size_t>(i)];
+        if (rational) addScaled(D, product(bi, hD), Real(1));
+        for (int c = 0; c < 3; ++c) addScaled(N[c], product(bi, hN[c]), Real(1));
+    }
     // Rational lattice: (A D~ + s W N~) / (W D~). Polynomial lattice: (A W^(L-1) + s N~) / W^L.
-    const Poly2 left = rational ? D : power(W, sum - 1);
-    const Poly2 weight = product(W, left);
+    const Poly2<Real> left = rational ? D : power(W, sum - 1);
+    const Poly2<Real> weight = product(W, left);
     PointMatrix<double, 4> out(4, (degreeU + 1) * (degreeV + 1));
-    const long double s = strength;
+    const Real s = strength;
     for (int c = 0; c < 3; ++c) {
-        const Poly2 a = product(A[c], left);
-        const Poly2 b = rational ? product(W, N[c]) : N[c];
+        const Poly2<Real> a = product(A[c], left);
+        const Poly2<Real> b = rational ? product(W, N[c]) : N[c];
         for (std::size_t r = 0; r < a.c.size(); ++r) out(c, static_cast<Eigen::Index>(r)) = static_cast<double>(a.c[r] + s * b.c[r]);
     }
     for (std::size_t r = 0; r < weight.c.size(); ++r) out(3, static_cast<Eigen::Index>(r)) = static_cast<double>(weight.c[r]);
@@ -371,8 +421,19 @@ RationalBezierSurface<double, 3> deformSurface(const RationalLattice& rl, const 
         if (!(out(3, r) > 0))
             throw Error("deformSurface: composed weight " + std::to_string(r) +
                         " is not positive (the patch leaves the rational lattice's box)");
-    return RationalBezierSurface<double, 3>(BezierSurface<double, 4>(degreeU, degreeV, std::move(out)));
+    return HomogeneousPatch{degreeU, degreeV, std::move(out)};
 }
+
+} // namespace
+
+HomogeneousPatch composePatch(const RationalLattice& rl, const RationalBezierSurface<double, 3>& surface, double strength)
+{
+    const int factor = degreeFactor(rl);
+    if (std::max(surface.degreeU(), surface.degreeV()) * factor <= kMaxDegree) return composeIn<long double>(rl, surface, strength);
+    return composeIn<double>(rl, surface, strength);
+}
+
+} // namespace detail
 
 NurbsSurface<double, 3> deformSurface(const RationalLattice& lattice, const NurbsSurface<double, 3>& surface, double strength)
 {

@@ -21,11 +21,12 @@
 // `maxGap` is checkPart's sampled largest gap after the deformation.
 //
 // Degree cap: the composed degree is d (l+m+n) (d (1+l+m+n) for a rational lattice), so a bicubic
-// face under a cubic lattice has degree 27. With maxDegree > 0, a face or edge above it is degree
-// reduced (NurbsSurface::reducedU/V, NurbsCurve::reduced: homogeneous least squares per Bézier
-// piece, ends kept, so neighbouring pieces still meet), its knot spans halved until the certified
-// error is within the tolerance (at most maxSplits times, and only while each halving at least
-// halves the error). The error bound per reduction is the homogeneous one H of the
+// face under a cubic lattice has degree 27. A face or edge above the cap (maxDegree when it is
+// set, and kMaxDegree = 67, the most the library's NURBS hold, in any case) is degree reduced
+// (homogeneous least squares per Bézier piece, ends kept, so neighbouring pieces still meet), its
+// knot spans halved until the certified error is within the tolerance (at most maxSplits times, and
+// only while each halving at least halves the error). A composition above kMaxDegree is formed
+// patch by patch at its own degree and reduced from there, never held as a NURBS. The error bound per reduction is the homogeneous one H of the
 // library plus the weights: |A/W - B/V| <= H (1 + max|B_i/V_i|) / min W_i (convex hulls).
 
 #include <vector>
@@ -37,7 +38,8 @@ namespace freeform {
 
 struct PartDeformOptions {
     double strength = 1;
-    /// 0: no cap. Otherwise faces and edges of higher degree are approximated at this degree.
+    /// 0: no cap but the library's kMaxDegree (67). Otherwise faces and edges of higher degree
+    /// are approximated at this degree (at most 67).
     int maxDegree = 0;
     /// The largest error an approximation may have; <= 0: 1e-6 of the part's box diagonal.
     double tolerance = 0;
@@ -68,8 +70,8 @@ struct DeformedPart {
 };
 
 /// The part through the lattice. Error naming the face or edge (counted from 1) whose composition
-/// fails (a degree over kMaxDegree, numbers that overflow far outside the box) or whose
-/// approximation stays above the tolerance after maxSplits halvings.
+/// fails (numbers that overflow far outside the box) or whose approximation stays above the
+/// tolerance after maxSplits halvings.
 DeformedPart deformPart(const Part& part, const RationalLattice& lattice, const PartDeformOptions& options = {});
 
 } // namespace freeform

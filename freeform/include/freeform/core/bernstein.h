@@ -47,6 +47,18 @@ constexpr std::uint64_t binomial(int n, int k)
     return detail::kBinomialTable[n][k];
 }
 
+/// C(n, k) as a long double for any n >= 0: exact from the table up to kMaxDegree, above by the
+/// product formula (relative error about k ulps). For what passes the cap on its way down again:
+/// a part's face composed with a lattice and then degree reduced (brep/part_deform.h).
+inline long double binomialWide(int n, int k)
+{
+    if (k < 0 || k > n) return 0;
+    if (n <= kMaxDegree) return static_cast<long double>(binomial(n, k));
+    long double r = 1;
+    for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+    return r;
+}
+
 /// t^e by repeated squaring (e >= 0); exact for e = 0, 1 and well defined for t = 0.
 template <typename Scalar>
 constexpr Scalar powInt(Scalar t, int e)

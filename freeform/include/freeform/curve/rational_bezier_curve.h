@@ -233,19 +233,10 @@ public:
         for (Eigen::Index j = 0; j <= k; ++j) {
             Point<S, D> v = h.col(j).template head<D>();
             for (Eigen::Index i = 1; i <= j; ++i)
-                v -= S(binomialLarge(static_cast<int>(j), static_cast<int>(i))) * h(D, i) * f.col(j - i);
+                v -= S(binomialWide(static_cast<int>(j), static_cast<int>(i))) * h(D, i) * f.col(j - i);
             f.col(j) = v / w;
         }
         return f;
-    }
-
-private:
-    static long double binomialLarge(int n, int k)
-    {
-        if (n <= kMaxDegree) return static_cast<long double>(binomial(n, k));
-        long double r = 1;
-        for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-        return r;
     }
 };
 
