@@ -1,7 +1,9 @@
 #pragma once
 // Internals of the part tessellation (brep/part_mesh.h), shared by part_mesh.cpp (grids, edge
-// samples, the whole part) and part_mesh_cells.cpp (one face's trim polygon cut by its grid cells).
+// samples, the whole part), part_mesh_bounds.cpp (the grids' certified bounds and their search)
+// and part_mesh_cells.cpp (one face's trim polygon cut by its grid cells).
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "freeform/brep/part.h"
+#include "freeform/tessellate/tessellate_rational.h"
 
 namespace freeform::part_mesh {
 
@@ -134,5 +137,15 @@ void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, 
 /// polygon vertex and the surface.
 double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vector<std::vector<PolyPoint>> loops,
                 Builder& out);
+
+/// Bounds on |S_u| and |S_v| of a rational patch over [0, 1]^2 (part_mesh_bounds.cpp).
+std::pair<double, double> patchSlopes(const RationalPatch& patch);
+/// A patch whose weights differ (where the cells' own bounds beat the whole net's).
+bool weighted(const RationalPatch& p);
+/// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
+/// cells' own (`local`: on a weighted patch).
+double gridBound(const RationalPatch& p, int nu, int nv, bool local);
+/// The grid with the fewest cells whose bound is at most target.
+std::array<int, 2> patchSegments(const RationalPatch& p, double target);
 
 } // namespace freeform::part_mesh

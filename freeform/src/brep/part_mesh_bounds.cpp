@@ -1,0 +1,225 @@
+// The bounds of the part tessellation's grids (brep/part_mesh.h, docs/cad.md "Tessellation"): a
+// rational patch's slopes, its cells' certified bounds (their own sub-nets; ruled patches without
+// their height), and the search for the grid with the fewest cells within a target.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <tuple>
+
+#include "freeform/core/bernstein.h" // kMaxDegree
+#include "part_mesh_internal.h"
+
+namespace freeform::part_mesh {
+namespace {
+
+/// A patch of degree 1 in v whose weights do not change along v (w_i0 = w_i1): a cylinder, a cone,
+/// a surface of linear extrusion. Its points are S(u, v) = C(u) + v D(u), with C the rational
+/// curve of row 0 and D the curve of the differences P_i1 - P_i0, both with the weights w_i.
+bool ruledInV(const RationalPatch& p)
+{
+    if (p.degreeV() != 1) return false;
+    for (int i = 0; i <= p.degreeU(); ++i)
+        if (p.weight(i, 0) != p.weight(i, 1)) return false;
+    return true;
+}
+
+/// The bound of the cell [va, vb] of a column (a patch ruled in v, cut to the cell's u range),
+/// which does not grow with the cell's height. With C_a = C + va D (the row at va), a parameter
+/// triangle with corners (u_k, v_k) in the cell and a point of it with barycentrics l_k,
+/// (u, v) = sum l_k (u_k, v_k), the mesh point T = sum l_k S(u_k, v_k) and the surface point S(u, v)
+/// differ by
+///   [sum l_k C_a(u_k) - C_a(u)] + sum l_k (v_k - va) (D(u_k) - D(u)).
+/// The first bracket is R_C - C_a(u), at most e (the row's rational curve bound, R_C the
+/// weight-scaled combination sum m_k C_a(u_k), m_k = l_k w(u_k) / sum l_k w(u_k)), plus
+/// sum (l_k - m_k) (C_a(u_k) - c), at most q rho (q = (w_max - w_min) / w_min, rho the row's
+/// control box half diagonal, c its centre). D is a convex combination of the differences
+/// P_i1 - P_i0, so D(u_k) - D(u) is at most twice their box's half diagonal (`spread`, 0 on a
+/// cylinder). The parameter point lies in the same triangle, so the pairing is the patch bound's.
+double ruledCellBound(const RationalPatch& column, double va, double vb)
+{
+    const int m = column.degreeU();
+    Eigen::Vector3d row[kMaxDegree + 1];
+    double w[kMaxDegree + 1];
+    Eigen::AlignedBox3d differences, points;
+    for (int i = 0; i <= m; ++i) {
+        const Eigen::Vector3d d = column.controlPoint(i, 1) - column.controlPoint(i, 0);
+        row[i] = column.controlPoint(i, 0) + va * d;
+        w[i] = column.weight(i, 0);
+        differences.extend(d);
+        points.extend(row[i]);
+    }
+    // e: rationalTessellationErrorBound of the row as a patch of degrees (m, 0), without building
+    // it (this runs for every cell of every grid the search tries): the second differences of
+    // w_i (P_i - c) and of w_i, times m (m - 1) / 8, the first times 1, the second times rho.
+    const Eigen::Vector3d c = points.center();
+    const double rho = 0.5 * points.diagonal().norm(), spread = 0.5 * differences.diagonal().norm();
+    double wmin = w[0], wmax = w[0], hh = 0, ww = 0;
+    for (int i = 0; i <= m; ++i) {
+        wmin = std::min(wmin, w[i]);
+        wmax = std::max(wmax, w[i]);
+        if (i + 2 > m) continue;
+        hh = std::max(hh, (w[i + 2] * (row[i + 2] - c) - 2 * w[i + 1] * (row[i + 1] - c) + w[i] * (row[i] - c)).norm());
+        ww = std::max(ww, std::abs(w[i + 2] - 2 * w[i + 1] + w[i]));
+    }
+    const double scale = double(m) * (m - 1) / 8;
+    const double e = (hh * scale + rho * ww * scale) / wmin;
+    return e + (wmax - wmin) / wmin * rho + 2 * (vb - va) * spread;
+}
+
+/// The largest bound of the cells of an nu x nv grid on the patch, each from its own sub-net:
+/// rationalTessellationErrorBound of the cell's patch, with its own centre and radius, so the
+/// weights' share, (radius) x (weight differences), shrinks with the cell instead of staying the
+/// whole patch's radius (a tall cylinder's quarter turn: a thousand cells fewer). On a patch ruled
+/// along one side (ruledInV) the smaller of that and ruledCellBound, which leaves the height out.
+double cellsBound(const RationalPatch& p, int nu, int nv)
+{
+    if (p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed())) return cellsBound(p.transposed(), nv, nu);
+    const bool ruled = ruledInV(p);
+    double worst = 0;
+    RationalPatch rest = p;
+    for (int i = 0; i < nu; ++i) {
+        RationalPatch column = rest;
+        if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
+        RationalPatch restV = column;
+        for (int j = 0; j < nv; ++j) {
+            RationalPatch cell = restV;
+            if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
+            double bound = rationalTessellationErrorBound(cell, 1, 1);
+            if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv));
+            worst = std::max(worst, bound);
+        }
+    }
+    return worst;
+}
+
+/// The largest ruledCellBound of an nu x nv grid on a patch ruled in v.
+double ruledGridBound(const RationalPatch& p, int nu, int nv)
+{
+    double worst = 0;
+    RationalPatch rest = p;
+    for (int i = 0; i < nu; ++i) {
+        RationalPatch column = rest;
+        if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
+        for (int j = 0; j < nv; ++j) worst = std::max(worst, ruledCellBound(column, double(j) / nv, double(j + 1) / nv));
+    }
+    return worst;
+}
+
+/// On a patch ruled in v, the grid with the fewest cells whose ruled bounds are within target,
+/// if it has fewer cells than `best` (else `best`): per count along v (up to 8: the height enters
+/// only through the differences' spread, which the cells' own bounds handle better where it
+/// dominates), the fewest along u by bisection.
+std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best)
+{
+    long bestCells = static_cast<long>(best[0]) * best[1];
+    for (int nv = 1; nv <= 8 && nv < bestCells; ++nv) {
+        const int cap = static_cast<int>(std::min<long>(4096, (bestCells - 1) / nv));
+        if (cap < 1 || ruledGridBound(p, cap, nv) > target) continue;
+        int lo = 1, hi = cap;
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (ruledGridBound(p, mid, nv) <= target) hi = mid;
+            else lo = mid + 1;
+        }
+        if (static_cast<long>(lo) * nv < bestCells) {
+            bestCells = static_cast<long>(lo) * nv;
+            best = {lo, nv};
+        }
+    }
+    return best;
+}
+
+} // namespace
+
+/// Bound on |S_u| and |S_v| of a rational patch over [0, 1]^2: S_u = (h'_u - (S - c) w_u) / w with
+/// h' = h - c w, c the centre and rho the half diagonal of the control box.
+std::pair<double, double> patchSlopes(const RationalPatch& patch)
+{
+    const int m = patch.degreeU(), n = patch.degreeV();
+    const Box<double, 3> box = patch.controlBox();
+    const Eigen::Vector3d c = box.center();
+    const double rho = 0.5 * box.diagonal().norm();
+    const auto& h = patch.homogeneous();
+    double wmin = kInf;
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) wmin = std::min(wmin, h.controlPoint(i, j)[3]);
+    auto shifted = [&](int i, int j) {
+        const Eigen::Vector4d p = h.controlPoint(i, j);
+        return Eigen::Vector3d(p.head<3>() - p[3] * c);
+    };
+    double hu = 0, wu = 0, hv = 0, wv = 0;
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            hu = std::max(hu, m * (shifted(i + 1, j) - shifted(i, j)).norm());
+            wu = std::max(wu, m * std::abs(h.controlPoint(i + 1, j)[3] - h.controlPoint(i, j)[3]));
+        }
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j < n; ++j) {
+            hv = std::max(hv, n * (shifted(i, j + 1) - shifted(i, j)).norm());
+            wv = std::max(wv, n * std::abs(h.controlPoint(i, j + 1)[3] - h.controlPoint(i, j)[3]));
+        }
+    return {(hu + rho * wu) / wmin, (hv + rho * wv) / wmin};
+}
+
+/// A patch whose weights differ (where the cells' own bounds beat the whole net's).
+bool weighted(const RationalPatch& p)
+{
+    const double w0 = p.weight(0, 0);
+    for (int i = 0; i <= p.degreeU(); ++i)
+        for (int j = 0; j <= p.degreeV(); ++j)
+            if (p.weight(i, j) != w0) return true;
+    return false;
+}
+
+/// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
+/// cells' own (up to 4096 cells).
+double gridBound(const RationalPatch& p, int nu, int nv, bool local)
+{
+    const double whole = rationalTessellationErrorBound(p, nu, nv);
+    if (!local) return whole;
+    if (nu * nv <= 4096) return std::min(whole, cellsBound(p, nu, nv));
+    // A ruled patch's search may go past 4096 cells (fewestRuled): its rows of cells are few.
+    if (nv <= 64 && ruledInV(p)) return std::min(whole, ruledGridBound(p, nu, nv));
+    if (nu <= 64 && ruledInV(p.transposed())) return std::min(whole, ruledGridBound(p.transposed(), nv, nu));
+    return whole;
+}
+
+/// The grid with the fewest cells whose bound is at most target: from the whole net's bound
+/// (rationalAdaptiveSegments), then, on a weighted patch of at most 1024 such cells, the fewest
+/// cells whose own bounds are within it.
+std::array<int, 2> patchSegments(const RationalPatch& p, double target)
+{
+    std::array<int, 2> best = rationalAdaptiveSegments(p, target);
+    if (!weighted(p)) return best;
+    if (ruledInV(p)) {
+        best = fewestRuled(p, target, best);
+    } else if (ruledInV(p.transposed())) {
+        const std::array<int, 2> t = fewestRuled(p.transposed(), target, {best[1], best[0]});
+        best = {t[1], t[0]};
+    }
+    if (best[0] * best[1] > 1024) return best;
+    // Per count along the shorter side, the fewest cells along the other by bisection (the cells'
+    // bound falls as they narrow).
+    const std::array<int, 2> upper = best;
+    const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
+    auto bound = [&](int na, int nb) { return a == 0 ? cellsBound(p, na, nb) : cellsBound(p, nb, na); };
+    for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
+        // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
+        const int cap = std::min(upper[b], (best[0] * best[1] - 1) / na);
+        if (bound(na, cap) > target) continue;
+        int lo = 1, hi = cap;
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (bound(na, mid) <= target) hi = mid;
+            else lo = mid + 1;
+        }
+        if (na * lo < best[0] * best[1]) {
+            best[static_cast<std::size_t>(a)] = na;
+            best[static_cast<std::size_t>(b)] = lo;
+        }
+    }
+    return best;
+}
+
+} // namespace freeform::part_mesh
