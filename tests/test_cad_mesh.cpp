@@ -16,6 +16,7 @@
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <GProp_GProps.hxx>
@@ -177,6 +178,50 @@ TEST_CASE("a finer tolerance gives a finer mesh whose bound follows it", "[cad]"
         CHECK(m.report.watertight);
         previous = m.mesh.faceCount();
     }
+}
+
+TEST_CASE("a cylinder's and a cone's cells are bounded without their height (ruled patches)", "[cad]")
+{
+    // A cylinder's side is S(u, v) = C(u) + v D with D constant: its cells' bound is the circle's
+    // chord bound however tall they are (docs/cad.md, "Tessellation"), so a cylinder ten times
+    // taller gets the same side mesh: the same number of triangles, certified and closed.
+    auto sideTriangles = [](const PartMesh& m, const Part& part) {
+        int n = 0;
+        for (std::size_t t = 0; t < m.triangleFace.size(); ++t)
+            n += part.faces[static_cast<std::size_t>(m.triangleFace[t])].surfaceKind == "cylinder";
+        return n;
+    };
+    PartMeshOptions options;
+    options.tolerance = 0.05;
+    int sides[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        const double height = k == 0 ? 10 : 100;
+        const TopoDS_Shape shape = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1)), 5, height).Shape();
+        const Part part = partFromShape(shape);
+        const PartMesh m = tessellatePart(part, options);
+        INFO("height " << height);
+        CHECK(m.report.certified);
+        CHECK(m.report.watertight);
+        const Measured got = measure(shape, m, 2000);
+        CHECK(got.closed);
+        CHECK(got.worst <= m.report.errorBound);
+        sides[k] = sideTriangles(m, part);
+    }
+    CHECK(sides[0] == sides[1]);
+    // A strip of one row needs two triangles per chord, and a circle of radius 5 within half the
+    // tolerance chords of 2 acos(1 - 0.025 / 5) = 0.2 rad, 32 around: at least 64 triangles, and
+    // (the bound, the edge samples) at most four times that. The cells' general bound, whose
+    // radius is half the height, needed over a thousand at the height of 100.
+    CHECK(sides[1] >= 64);
+    CHECK(sides[1] <= 4 * 64);
+    // A tall cone (its differences spread, so its cells carry that term) within its bound.
+    const TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 6, 2, 80).Shape();
+    const PartMesh m = tessellatePart(partFromShape(cone), options);
+    CHECK(m.report.certified);
+    CHECK(m.report.watertight);
+    const Measured got = measure(cone, m, 2000);
+    CHECK(got.closed);
+    CHECK(got.worst <= m.report.errorBound);
 }
 
 TEST_CASE("tessellatePart refuses a bad tolerance and a mesh over its triangle limit", "[cad]")

@@ -220,9 +220,16 @@ struct EdgeUse {
         }
         const auto [u1, u2] = grid->mu.slopes(qlo.x(), qhi.x());
         const auto [v1, v2] = grid->mv.slopes(qlo.y(), qhi.y());
-        const double bend = 0.125 * std::hypot(u2 * d.x() * d.x(), v2 * d.y() * d.y());
         // How far the snap moved the side's ends (pa, pb are the trim's points there: raw() of them).
         const Eigen::Vector2d ra = grid->toS(pa), rb = grid->toS(pb);
+        // The maps bend the side's image off the chord from ra to rb by at most u2 dx^2 / 8 along
+        // s and v2 dy^2 / 8 along r (monotone maps: inside the chord's box, so the nearest point
+        // is on the chord). Only the part across the chord counts: the circle that ends a
+        // cylinder (an iso line, dy = 0, the chord along s) stays on its line.
+        const Eigen::Vector2d chord = rb - ra;
+        const double across = chord.norm();
+        const double bend = across > 0 ? 0.125 * (u2 * d.x() * d.x() * std::abs(chord.y()) + v2 * d.y() * d.y() * std::abs(chord.x())) / across
+                                        : 0.125 * std::hypot(u2 * d.x() * d.x(), v2 * d.y() * d.y());
         const double snapped = (grid->snap(ra) - ra).norm() + (grid->snap(rb) - rb).norm();
         return std::max(u1, v1) * dev + bend + snapped;
     }
@@ -425,9 +432,12 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
                 if (c.edge < 0 || static_cast<std::size_t>(c.edge) >= part.edges.size())
                     throw Error(faceName(f) + ": a trim curve names no edge of the part");
                 const PartEdge& e = part.edges[static_cast<std::size_t>(c.edge)];
+                // The trims' share 2 L deviation of the face's bound: half of what its grid leaves
+                // (the other half for the vertex gaps), at least a quarter of the tolerance.
                 const double lip = std::max(grids[f].lipschitz, 1e-300);
+                const double share = 0.5 * std::max(tol - grids[f].bound, 0.5 * tol);
                 uses[static_cast<std::size_t>(c.edge)].push_back(
-                    {&c, &grids[f], tol / (8 * lip), e.first, e.last,
+                    {&c, &grids[f], share / (2 * lip), e.first, e.last,
                      std::make_shared<const std::vector<RationalBezierCurve<double, 2>>>(c.curve.nurbs.bezierPieces()),
                      std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints())});
                 useFace[static_cast<std::size_t>(c.edge)].push_back(f);
