@@ -287,7 +287,9 @@ TEST_CASE("compositions above degree 67 are formed at their own degree and reduc
         const Lattice lattice = movedLattice(part, c.latticeDegree, 0.02);
         const double size = part.bounds().diagonal().norm();
         auto map = [&](const Eigen::Vector3d& p) { return lattice.deform(p).point; };
+        // linkrods.step once, at the cap STEP and IGES need (the time goes into its compositions).
         for (int cap : {0, cadMaxDegree()}) {
+            if (cap == 0 && c.latticeDegree == 3) continue;
             INFO("maxDegree " << cap);
             PartDeformOptions options;
             options.maxDegree = cap; // 0: no cap but the library's own, 67
