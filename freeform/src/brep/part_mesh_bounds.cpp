@@ -36,7 +36,7 @@ bool ruledInV(const RationalPatch& p)
 /// control box half diagonal, c its centre). D is a convex combination of the differences
 /// P_i1 - P_i0, so D(u_k) - D(u) is at most twice their box's half diagonal (`spread`, 0 on a
 /// cylinder). The parameter point lies in the same triangle, so the pairing is the patch bound's.
-double ruledCellBound(const RationalPatch& column, double va, double vb)
+double ruledCellBound(const RationalPatch& column, double va, double vb, double* rowPart = nullptr)
 {
     const int m = column.degreeU();
     Eigen::Vector3d row[kMaxDegree + 1];
@@ -64,7 +64,9 @@ double ruledCellBound(const RationalPatch& column, double va, double vb)
     }
     const double scale = double(m) * (m - 1) / 8;
     const double e = (hh * scale + rho * ww * scale) / wmin;
-    return e + (wmax - wmin) / wmin * rho + 2 * (vb - va) * spread;
+    const double rowTerms = e + (wmax - wmin) / wmin * rho;
+    if (rowPart) *rowPart = std::max(*rowPart, rowTerms);
+    return rowTerms + 2 * (vb - va) * spread;
 }
 
 /// The largest bound of the cells of an nu x nv grid on the patch, each from its own sub-net:
@@ -93,15 +95,18 @@ double cellsBound(const RationalPatch& p, int nu, int nv)
     return worst;
 }
 
-/// The largest ruledCellBound of an nu x nv grid on a patch ruled in v.
-double ruledGridBound(const RationalPatch& p, int nu, int nv)
+/// The largest ruledCellBound of an nu x nv grid on a patch ruled in v; `rowPart` (when given)
+/// receives the largest of its row terms e + q rho, which more rows along v do not shrink.
+double ruledGridBound(const RationalPatch& p, int nu, int nv, double* rowPart = nullptr)
 {
     double worst = 0;
+    if (rowPart) *rowPart = 0;
     RationalPatch rest = p;
     for (int i = 0; i < nu; ++i) {
         RationalPatch column = rest;
         if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
-        for (int j = 0; j < nv; ++j) worst = std::max(worst, ruledCellBound(column, double(j) / nv, double(j + 1) / nv));
+        for (int j = 0; j < nv; ++j)
+            worst = std::max(worst, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, rowPart));
     }
     return worst;
 }
@@ -109,22 +114,35 @@ double ruledGridBound(const RationalPatch& p, int nu, int nv)
 /// On a patch ruled in v, the grid with the fewest cells whose ruled bounds are within target,
 /// if it has fewer cells than `best` (else `best`): per count along v (up to 8: the height enters
 /// only through the differences' spread, which the cells' own bounds handle better where it
-/// dominates), the fewest along u by bisection.
+/// dominates), the fewest along u, found by doubling (a ruled face needs a circle's chords, few)
+/// and then bisection. Where the rows alone are over the target at the most columns allowed, no
+/// count along v helps and the search stops.
 std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best)
 {
     long bestCells = static_cast<long>(best[0]) * best[1];
     for (int nv = 1; nv <= 8 && nv < bestCells; ++nv) {
         const int cap = static_cast<int>(std::min<long>(4096, (bestCells - 1) / nv));
-        if (cap < 1 || ruledGridBound(p, cap, nv) > target) continue;
-        int lo = 1, hi = cap;
+        if (cap < 1) break;
+        int hi = 1;
+        double rowPart = 0;
+        bool passes = ruledGridBound(p, hi, nv, &rowPart) <= target;
+        while (!passes && hi < cap) {
+            hi = std::min(cap, 2 * hi);
+            passes = ruledGridBound(p, hi, nv, &rowPart) <= target;
+        }
+        if (!passes) {
+            if (rowPart > target) break;
+            continue;
+        }
+        int lo = hi == 1 ? 1 : hi / 2 + 1; // hi / 2 did not pass
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
             if (ruledGridBound(p, mid, nv) <= target) hi = mid;
             else lo = mid + 1;
         }
-        if (static_cast<long>(lo) * nv < bestCells) {
-            bestCells = static_cast<long>(lo) * nv;
-            best = {lo, nv};
+        if (static_cast<long>(hi) * nv < bestCells) {
+            bestCells = static_cast<long>(hi) * nv;
+            best = {hi, nv};
         }
     }
     return best;
