@@ -281,7 +281,8 @@ file's length unit. Faces and edges are numbered as Open CASCADE numbers them, f
             "The part through the lattice (a Lattice, or a RationalLattice: docs/nurbs.md 'Rational FFD'), exactly "
             "(docs/cad.md, Deformation): (Part, report); strength is this argument's. Every face's surface "
             "and edge's curve composed with the lattice, trims kept, vertices mapped. max_degree > 0 (25 for save()) "
-            "reduces faces and edges above it within tolerance (<= 0: 1e-6 of the part's size), certified. The "
+            "reduces faces and edges above it within tolerance (<= 0: 1e-6 of the part's size), certified; "
+            "without it, faces the composition takes over degree 67 are reduced to 67 the same way. The "
             "report: faces, exact_faces, approximated_faces (indices), face_errors, max_approximation_error, "
             "max_degree, max_gap, outside_faces, approximated_edges, affine, lipschitz, max_tolerance.")
         .def(
