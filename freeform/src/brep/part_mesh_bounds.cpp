@@ -69,15 +69,18 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, double*
     return rowTerms + 2 * (vb - va) * spread;
 }
 
-/// The largest bound of the cells of an nu x nv grid on the patch, each from its own sub-net:
-/// rationalTessellationErrorBound of the cell's patch, with its own centre and radius, so the
-/// weights' share, (radius) x (weight differences), shrinks with the cell instead of staying the
-/// whole patch's radius (a tall cylinder's quarter turn: a thousand cells fewer). On a patch ruled
-/// along one side (ruledInV) the smaller of that and ruledCellBound, which leaves the height out.
-double cellsBound(const RationalPatch& p, int nu, int nv)
+/// The largest bound of the cells of an nu x nv grid on the patch. `general`: each cell's bound
+/// from its own sub-net, rationalTessellationErrorBound of the cell's patch with its own centre and
+/// radius, so the weights' share, (radius) x (weight differences), shrinks with the cell instead of
+/// staying the whole patch's radius (a tall cylinder's quarter turn: a thousand cells fewer); on a
+/// patch ruled along one side (ruledInV) the smaller of that and ruledCellBound, which leaves the
+/// height out. Not `general` (a patch ruled in v): ruledCellBound alone, no cell cut along v, and
+/// `rowPart` receives the largest of its row terms e + q rho, which more rows along v do not shrink.
+double cellsBound(const RationalPatch& p, int nu, int nv, bool general = true, double* rowPart = nullptr)
 {
-    if (p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed())) return cellsBound(p.transposed(), nv, nu);
-    const bool ruled = ruledInV(p);
+    if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed())) return cellsBound(p.transposed(), nv, nu);
+    const bool ruled = !general || ruledInV(p);
+    if (rowPart) *rowPart = 0;
     double worst = 0;
     RationalPatch rest = p;
     for (int i = 0; i < nu; ++i) {
@@ -85,30 +88,23 @@ double cellsBound(const RationalPatch& p, int nu, int nv)
         if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
         RationalPatch restV = column;
         for (int j = 0; j < nv; ++j) {
-            RationalPatch cell = restV;
-            if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
-            double bound = rationalTessellationErrorBound(cell, 1, 1);
-            if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv));
+            double bound = kInf;
+            if (general) {
+                RationalPatch cell = restV;
+                if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
+                bound = rationalTessellationErrorBound(cell, 1, 1);
+            }
+            if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, rowPart));
             worst = std::max(worst, bound);
         }
     }
     return worst;
 }
 
-/// The largest ruledCellBound of an nu x nv grid on a patch ruled in v; `rowPart` (when given)
-/// receives the largest of its row terms e + q rho, which more rows along v do not shrink.
+/// cellsBound on a patch ruled in v with the ruled bound alone.
 double ruledGridBound(const RationalPatch& p, int nu, int nv, double* rowPart = nullptr)
 {
-    double worst = 0;
-    if (rowPart) *rowPart = 0;
-    RationalPatch rest = p;
-    for (int i = 0; i < nu; ++i) {
-        RationalPatch column = rest;
-        if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
-        for (int j = 0; j < nv; ++j)
-            worst = std::max(worst, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, rowPart));
-    }
-    return worst;
+    return cellsBound(p, nu, nv, false, rowPart);
 }
 
 /// On a patch ruled in v, the grid with the fewest cells whose ruled bounds are within target,
