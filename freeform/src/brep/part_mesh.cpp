@@ -70,10 +70,41 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
     const std::vector<double> bu = r.knotsU().breakpoints(), bv = r.knotsV().breakpoints();
     const std::vector<RationalPatch> patches = r.bezierPatches();
     const std::size_t cols = bv.size() - 1;
+    // Where the trims run (TrimZones), in NURBS parameters: the box of each trim piece's control
+    // points (the parameter maps are monotone), except pieces along a side of the face's box.
+    std::vector<Eigen::AlignedBox2d> trimBoxes;
+    {
+        const double eu = 1e-7 * (su1 - su0), ev = 1e-7 * (sv1 - sv0);
+        auto onSide = [](double lo, double hi, double a, double b, double e) {
+            return hi - lo <= e && (std::abs(lo - a) <= e || std::abs(hi - b) <= e);
+        };
+        for (const TrimLoop& loop : ts.loops())
+            for (const TrimCurve& c : loop.curves)
+                for (const RationalBezierCurve<double, 2>& piece : c.curve.nurbs.bezierPieces()) {
+                    Eigen::AlignedBox2d box;
+                    for (int i = 0; i <= piece.degree(); ++i) box.extend(g.toS(piece.controlPoint(i)));
+                    if (onSide(box.min().x(), box.max().x(), su0, su1, eu) || onSide(box.min().y(), box.max().y(), sv0, sv1, ev))
+                        continue;
+                    trimBoxes.push_back(box);
+                }
+    }
+    auto zonesOf = [&](std::size_t a, std::size_t b) {
+        TrimZones z;
+        const double u0 = bu[a], du = bu[a + 1] - bu[a], v0 = bv[b], dv = bv[b + 1] - bv[b];
+        for (const Eigen::AlignedBox2d& box : trimBoxes) {
+            const Eigen::Vector2d lo((box.min().x() - u0) / du, (box.min().y() - v0) / dv);
+            const Eigen::Vector2d hi((box.max().x() - u0) / du, (box.max().y() - v0) / dv);
+            if (lo.x() < 1 && hi.x() > 0 && lo.y() < 1 && hi.y() > 0) z.boxes.emplace_back(lo, hi);
+        }
+        return z;
+    };
+    std::vector<TrimZones> zones;
+    for (std::size_t a = 0; a + 1 < bu.size(); ++a)
+        for (std::size_t b = 0; b < cols; ++b) zones.push_back(zonesOf(a, b));
     std::vector<int> nu(bu.size() - 1, 1), nv(cols, 1);
     for (std::size_t a = 0; a + 1 < bu.size(); ++a)
         for (std::size_t b = 0; b < cols; ++b) {
-            const std::array<int, 2> n = patchSegments(patches[a * cols + b], target);
+            const std::array<int, 2> n = patchSegments(patches[a * cols + b], target, zones[a * cols + b]);
             nu[a] = std::max(nu[a], n[0]);
             nv[b] = std::max(nv[b], n[1]);
         }
@@ -81,7 +112,7 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
     for (std::size_t a = 0; a + 1 < bu.size(); ++a)
         for (std::size_t b = 0; b < cols; ++b) {
             const RationalPatch& p = patches[a * cols + b];
-            g.bound = std::max(g.bound, gridBound(p, nu[a], nv[b], weighted(p)));
+            g.bound = std::max(g.bound, gridBound(p, nu[a], nv[b], weighted(p), zones[a * cols + b]));
             const auto [su, sv] = patchSlopes(p);
             lu = std::max(lu, su / (bu[a + 1] - bu[a]));
             lv = std::max(lv, sv / (bv[b + 1] - bv[b]));
@@ -594,14 +625,40 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     return result;
 }
 
+/// Whether every trim of the surface is a line of constant u or constant v in its parameters (all
+/// its pcurve's control points share one coordinate): the parameter maps keep it one, so it lies
+/// on a grid line of the face or inside one row of cells, and its polygon on it.
+/// Whether every trim of the surface is a line of constant u or constant v in its parameters (its
+/// pcurve's control points share one coordinate, to 1e-9 of the face's box: files write such
+/// lines as B-splines with noise in the last bits): the parameter maps keep it one, so its
+/// polygon lies on it and the trims leave the grid nearly the whole tolerance. (Only the grid's
+/// first aim depends on it; the deviation is measured all the same.)
+static bool isoTrimmed(const TrimmedSurface& surface)
+{
+    const Eigen::Vector2d size = surface.domain().diagonal();
+    for (const TrimLoop& loop : surface.loops())
+        for (const TrimCurve& c : loop.curves) {
+            const NurbsCurve<double, 2>& n = c.curve.nurbs;
+            Eigen::AlignedBox2d box;
+            for (int i = 0; i < n.controlCount(); ++i) box.extend(n.controlPoint(i));
+            const Eigen::Vector2d spread = box.diagonal();
+            if (!(spread.x() <= 1e-9 * size.x()) && !(spread.y() <= 1e-9 * size.y())) return false;
+        }
+    return true;
+}
+
 PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
 {
     if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
         throw Error("tessellatePart: the tolerance must be positive and finite");
     const double tol = options.tolerance;
-    // The grid aims at half the tolerance; a face whose gaps (delta) and trim deviation leave less
-    // than that is meshed again with its grid aimed at what they leave.
+    // The grid aims at half the tolerance, leaving the rest to the trims' deviation and the gaps
+    // (delta); a face whose trims all run along grid lines (a cylinder's or a torus's circles: the
+    // polygon is on them) has no deviation, and its grid aims at 9/10 of it. A face whose gaps
+    // and deviation leave less than its aim is meshed again with its grid aimed at what they leave.
     std::vector<double> target(part.faces.size(), 0.5 * tol), bound;
+    for (std::size_t f = 0; f < part.faces.size(); ++f)
+        if (isoTrimmed(part.faces[f].surface)) target[f] = 0.9 * tol;
     PartMesh mesh = meshPart(part, options, target, bound);
     for (int pass = 0; pass < 2 && !mesh.report.certified; ++pass) {
         bool again = false;

@@ -1,6 +1,7 @@
 // The bounds of the part tessellation's grids (brep/part_mesh.h, docs/cad.md "Tessellation"): a
 // rational patch's slopes, its cells' certified bounds (their own sub-nets; ruled patches without
-// their height), and the search for the grid with the fewest cells within a target.
+// their height; cones and surfaces of revolution from their curves), and the search for the grid
+// with the fewest cells within a target.
 
 #include <algorithm>
 #include <array>
@@ -24,49 +25,164 @@ bool ruledInV(const RationalPatch& p)
     return true;
 }
 
+} // namespace
+
+template <int D>
+double curveBound(const Eigen::Matrix<double, D, 1>* x, const double* w, int m)
+{
+    Eigen::AlignedBox<double, D> box;
+    for (int i = 0; i <= m; ++i) box.extend(x[i]);
+    const Eigen::Matrix<double, D, 1> c = box.center();
+    const double rho = 0.5 * box.diagonal().norm();
+    double wmin = w[0], wmax = w[0], hh = 0, ww = 0;
+    for (int i = 0; i <= m; ++i) {
+        wmin = std::min(wmin, w[i]);
+        wmax = std::max(wmax, w[i]);
+        if (i + 2 > m) continue;
+        hh = std::max(hh, (w[i + 2] * (x[i + 2] - c) - 2 * w[i + 1] * (x[i + 1] - c) + w[i] * (x[i] - c)).norm());
+        ww = std::max(ww, std::abs(w[i + 2] - 2 * w[i + 1] + w[i]));
+    }
+    const double scale = double(m) * (m - 1) / 8;
+    return (hh * scale + rho * ww * scale) / wmin + (wmax - wmin) / wmin * rho;
+}
+template double curveBound<2>(const Eigen::Vector2d*, const double*, int);
+template double curveBound<3>(const Eigen::Vector3d*, const double*, int);
+
+void endWeightsEqual(double* w, int m)
+{
+    if (m < 1) return;
+    const double ratio = std::pow(w[0] / w[m], 1.0 / m);
+    double factor = 1;
+    for (int i = 1; i <= m; ++i) w[i] *= (factor *= ratio);
+    w[m] = w[0];
+}
+
+double revolutionCellBound(const RationalPatch& cell)
+{
+    if (cell.degreeU() != 2) return kInf;
+    const int n = cell.degreeV();
+    // The row with the longest chord gives the axis (its plane's normal) and the centre.
+    int jr = 0;
+    double longest = -1;
+    for (int j = 0; j <= n; ++j) {
+        const double len = (cell.controlPoint(2, j) - cell.controlPoint(0, j)).squaredNorm();
+        if (len > longest) longest = len, jr = j;
+    }
+    const Eigen::Vector3d p0 = cell.controlPoint(0, jr), p1 = cell.controlPoint(1, jr), p2 = cell.controlPoint(2, jr);
+    Eigen::Vector3d a = (p1 - p0).cross(p2 - p0);
+    if (!(a.norm() > 0)) return kInf;
+    a.normalize();
+    // A circular arc's middle control point is where its end tangents meet: the centre lies on the
+    // line from it through the chord's midpoint M, at M - (d^2 / h^2) (P1 - M).
+    const Eigen::Vector3d mid = 0.5 * (p0 + p2);
+    const double h2 = (p1 - mid).squaredNorm(), d2 = (mid - p0).squaredNorm();
+    if (!(h2 > 0)) return kInf;
+    const Eigen::Vector3d centre = mid - (d2 / h2) * (p1 - mid);
+    double z[kMaxDegree + 1], r[kMaxDegree + 1], beta[kMaxDegree + 1];
+    for (int j = 0; j <= n; ++j) {
+        const Eigen::Vector3d q = cell.controlPoint(0, j) - centre;
+        z[j] = a.dot(q);
+        r[j] = (q - z[j] * a).norm();
+        beta[j] = cell.weight(0, j);
+    }
+    if (!(r[jr] > 0)) return kInf;
+    Eigen::Vector3d c[3];
+    double alpha[3];
+    for (int i = 0; i <= 2; ++i) {
+        const Eigen::Vector3d q = cell.controlPoint(i, jr) - centre;
+        c[i] = (q - a.dot(q) * a) / r[jr];
+        alpha[i] = cell.weight(i, jr) / cell.weight(0, jr);
+    }
+    // What the fit leaves: the points' distance from A + z_j a + r_j c_i, the weights' from
+    // alpha_i beta_j (relative).
+    double eps = 0, eta = 0;
+    Eigen::AlignedBox3d net;
+    for (int i = 0; i <= 2; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const Eigen::Vector3d p = cell.controlPoint(i, j);
+            net.extend(p);
+            eps = std::max(eps, (p - (centre + z[j] * a + r[j] * c[i])).norm());
+            eta = std::max(eta, std::abs(cell.weight(i, j) / (alpha[i] * beta[j]) - 1));
+        }
+    if (!(eta < 1e-6)) return kInf;
+    Eigen::Vector2d profile[kMaxDegree + 1];
+    double rmax = 0;
+    for (int j = 0; j <= n; ++j) {
+        profile[j] = {r[j], z[j]};
+        rmax = std::max(rmax, r[j]);
+    }
+    const double cmax = std::max({c[0].norm(), c[1].norm(), c[2].norm()});
+    // |S - S^| <= eps + 2 eta rho / (1 - eta) for the surface S^ of the fit, at both the triangle's
+    // corners and the surface point: twice that, with room.
+    endWeightsEqual(alpha, 2);
+    endWeightsEqual(beta, n);
+    return rmax * curveBound<3>(c, alpha, 2) + cmax * curveBound<2>(profile, beta, n) + 2 * eps +
+           5 * eta * 0.5 * net.diagonal().norm();
+}
+
+double conicalCellBound(const RationalPatch& column, double va, double vb)
+{
+    const int m = column.degreeU();
+    if (column.degreeV() != 1 || m < 1) return kInf;
+    Eigen::Vector3d d[kMaxDegree + 1], p[kMaxDegree + 1];
+    double w[kMaxDegree + 1];
+    for (int i = 0; i <= m; ++i) {
+        if (column.weight(i, 0) != column.weight(i, 1)) return kInf;
+        p[i] = column.controlPoint(i, 0);
+        d[i] = column.controlPoint(i, 1) - p[i];
+        w[i] = column.weight(i, 0);
+    }
+    // The apex: P_i0 + s D_i the same point for every i, s by least squares against row 0.
+    double num = 0, den = 0;
+    for (int i = 1; i <= m; ++i) {
+        num += (p[i] - p[0]).dot(d[i] - d[0]);
+        den += (d[i] - d[0]).squaredNorm();
+    }
+    if (!(den > 0)) return kInf;
+    const double s = -num / den, lambda = -s;
+    const double ta = lambda + va, tb = lambda + vb;
+    if (!std::isfinite(s) || ta * tb < 0) return kInf;
+    Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+    for (int i = 0; i <= m; ++i) apex += p[i] + s * d[i];
+    apex /= m + 1;
+    double r = 0;
+    for (int i = 0; i <= m; ++i) r = std::max(r, (p[i] + s * d[i] - apex).norm());
+    endWeightsEqual(w, m);
+    return std::max(std::abs(ta), std::abs(tb)) * curveBound<3>(d, w, m) + 2 * r;
+}
+
+namespace {
+
 /// The bound of the cell [va, vb] of a column (a patch ruled in v, cut to the cell's u range),
 /// which does not grow with the cell's height. With C_a = C + va D (the row at va), a parameter
 /// triangle with corners (u_k, v_k) in the cell and a point of it with barycentrics l_k,
 /// (u, v) = sum l_k (u_k, v_k), the mesh point T = sum l_k S(u_k, v_k) and the surface point S(u, v)
 /// differ by
 ///   [sum l_k C_a(u_k) - C_a(u)] + sum l_k (v_k - va) (D(u_k) - D(u)).
-/// The first bracket is R_C - C_a(u), at most e (the row's rational curve bound, R_C the
-/// weight-scaled combination sum m_k C_a(u_k), m_k = l_k w(u_k) / sum l_k w(u_k)), plus
-/// sum (l_k - m_k) (C_a(u_k) - c), at most q rho (q = (w_max - w_min) / w_min, rho the row's
-/// control box half diagonal, c its centre). D is a convex combination of the differences
+/// The first bracket is within curveBound of the row (R_C - C_a(u), with R_C the weight-scaled
+/// combination sum m_k C_a(u_k), m_k = l_k w(u_k) / sum l_k w(u_k), is at most e, and
+/// sum (l_k - m_k) (C_a(u_k) - c) at most q rho). D is a convex combination of the differences
 /// P_i1 - P_i0, so D(u_k) - D(u) is at most twice their box's half diagonal (`spread`, 0 on a
 /// cylinder). The parameter point lies in the same triangle, so the pairing is the patch bound's.
-double ruledCellBound(const RationalPatch& column, double va, double vb, double* rowPart = nullptr)
+/// On a cone, conicalCellBound is smaller where the column is narrow: this takes the smaller where
+/// `curves` (no trim runs through the cell: see TrimZones).
+double ruledCellBound(const RationalPatch& column, double va, double vb, bool curves, double* rowPart = nullptr)
 {
     const int m = column.degreeU();
     Eigen::Vector3d row[kMaxDegree + 1];
     double w[kMaxDegree + 1];
-    Eigen::AlignedBox3d differences, points;
+    Eigen::AlignedBox3d differences;
     for (int i = 0; i <= m; ++i) {
         const Eigen::Vector3d d = column.controlPoint(i, 1) - column.controlPoint(i, 0);
         row[i] = column.controlPoint(i, 0) + va * d;
         w[i] = column.weight(i, 0);
         differences.extend(d);
-        points.extend(row[i]);
     }
-    // e: rationalTessellationErrorBound of the row as a patch of degrees (m, 0), without building
-    // it (this runs for every cell of every grid the search tries): the second differences of
-    // w_i (P_i - c) and of w_i, times m (m - 1) / 8, the first times 1, the second times rho.
-    const Eigen::Vector3d c = points.center();
-    const double rho = 0.5 * points.diagonal().norm(), spread = 0.5 * differences.diagonal().norm();
-    double wmin = w[0], wmax = w[0], hh = 0, ww = 0;
-    for (int i = 0; i <= m; ++i) {
-        wmin = std::min(wmin, w[i]);
-        wmax = std::max(wmax, w[i]);
-        if (i + 2 > m) continue;
-        hh = std::max(hh, (w[i + 2] * (row[i + 2] - c) - 2 * w[i + 1] * (row[i + 1] - c) + w[i] * (row[i] - c)).norm());
-        ww = std::max(ww, std::abs(w[i + 2] - 2 * w[i + 1] + w[i]));
-    }
-    const double scale = double(m) * (m - 1) / 8;
-    const double e = (hh * scale + rho * ww * scale) / wmin;
-    const double rowTerms = e + (wmax - wmin) / wmin * rho;
+    const double spread = 0.5 * differences.diagonal().norm();
+    const double rowTerms = curveBound<3>(row, w, m);
     if (rowPart) *rowPart = std::max(*rowPart, rowTerms);
-    return rowTerms + 2 * (vb - va) * spread;
+    const double ruled = rowTerms + 2 * (vb - va) * spread;
+    return curves ? std::min(ruled, conicalCellBound(column, va, vb)) : ruled;
 }
 
 /// The largest bound of the cells of an nu x nv grid on the patch. `general`: each cell's bound
@@ -76,9 +192,11 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, double*
 /// patch ruled along one side (ruledInV) the smaller of that and ruledCellBound, which leaves the
 /// height out. Not `general` (a patch ruled in v): ruledCellBound alone, no cell cut along v, and
 /// `rowPart` receives the largest of its row terms e + q rho, which more rows along v do not shrink.
-double cellsBound(const RationalPatch& p, int nu, int nv, bool general = true, double* rowPart = nullptr)
+/// Cells that no trim runs through (`zones`) also take the bounds from curves (revolution, cone).
+double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, bool general = true, double* rowPart = nullptr)
 {
-    if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed())) return cellsBound(p.transposed(), nv, nu);
+    if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed()))
+        return cellsBound(p.transposed(), nv, nu, zones.transposed());
     const bool ruled = !general || ruledInV(p);
     if (rowPart) *rowPart = 0;
     double worst = 0;
@@ -88,13 +206,15 @@ double cellsBound(const RationalPatch& p, int nu, int nv, bool general = true, d
         if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
         RationalPatch restV = column;
         for (int j = 0; j < nv; ++j) {
+            const bool curves = !zones.meets(double(i) / nu, double(i + 1) / nu, double(j) / nv, double(j + 1) / nv);
             double bound = kInf;
             if (general) {
                 RationalPatch cell = restV;
                 if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
                 bound = rationalTessellationErrorBound(cell, 1, 1);
+                if (curves) bound = std::min({bound, revolutionCellBound(cell), revolutionCellBound(cell.transposed())});
             }
-            if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, rowPart));
+            if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
             worst = std::max(worst, bound);
         }
     }
@@ -102,9 +222,9 @@ double cellsBound(const RationalPatch& p, int nu, int nv, bool general = true, d
 }
 
 /// cellsBound on a patch ruled in v with the ruled bound alone.
-double ruledGridBound(const RationalPatch& p, int nu, int nv, double* rowPart = nullptr)
+double ruledGridBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, double* rowPart = nullptr)
 {
-    return cellsBound(p, nu, nv, false, rowPart);
+    return cellsBound(p, nu, nv, zones, false, rowPart);
 }
 
 /// On a patch ruled in v, the grid with the fewest cells whose ruled bounds are within target,
@@ -113,7 +233,7 @@ double ruledGridBound(const RationalPatch& p, int nu, int nv, double* rowPart = 
 /// dominates), the fewest along u, found by doubling (a ruled face needs a circle's chords, few)
 /// and then bisection. Where the rows alone are over the target at the most columns allowed, no
 /// count along v helps and the search stops.
-std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best)
+std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best, const TrimZones& zones)
 {
     long bestCells = static_cast<long>(best[0]) * best[1];
     for (int nv = 1; nv <= 8 && nv < bestCells; ++nv) {
@@ -121,10 +241,10 @@ std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array
         if (cap < 1) break;
         int hi = 1;
         double rowPart = 0;
-        bool passes = ruledGridBound(p, hi, nv, &rowPart) <= target;
+        bool passes = ruledGridBound(p, hi, nv, zones, &rowPart) <= target;
         while (!passes && hi < cap) {
             hi = std::min(cap, 2 * hi);
-            passes = ruledGridBound(p, hi, nv, &rowPart) <= target;
+            passes = ruledGridBound(p, hi, nv, zones, &rowPart) <= target;
         }
         if (!passes) {
             if (rowPart > target) break;
@@ -133,7 +253,7 @@ std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array
         int lo = hi == 1 ? 1 : hi / 2 + 1; // hi / 2 did not pass
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
-            if (ruledGridBound(p, mid, nv) <= target) hi = mid;
+            if (ruledGridBound(p, mid, nv, zones) <= target) hi = mid;
             else lo = mid + 1;
         }
         if (static_cast<long>(hi) * nv < bestCells) {
@@ -145,6 +265,21 @@ std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array
 }
 
 } // namespace
+
+bool TrimZones::meets(double u0, double u1, double v0, double v1) const
+{
+    for (const Eigen::AlignedBox2d& b : boxes)
+        if (b.min().x() < u1 && b.max().x() > u0 && b.min().y() < v1 && b.max().y() > v0) return true;
+    return false;
+}
+
+TrimZones TrimZones::transposed() const
+{
+    TrimZones t;
+    for (const Eigen::AlignedBox2d& b : boxes)
+        t.boxes.emplace_back(Eigen::Vector2d(b.min().y(), b.min().x()), Eigen::Vector2d(b.max().y(), b.max().x()));
+    return t;
+}
 
 /// Bound on |S_u| and |S_v| of a rational patch over [0, 1]^2: S_u = (h'_u - (S - c) w_u) / w with
 /// h' = h - c w, c the centre and rho the half diagonal of the control box.
@@ -188,28 +323,28 @@ bool weighted(const RationalPatch& p)
 
 /// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
 /// cells' own (up to 4096 cells).
-double gridBound(const RationalPatch& p, int nu, int nv, bool local)
+double gridBound(const RationalPatch& p, int nu, int nv, bool local, const TrimZones& zones)
 {
     const double whole = rationalTessellationErrorBound(p, nu, nv);
     if (!local) return whole;
-    if (nu * nv <= 4096) return std::min(whole, cellsBound(p, nu, nv));
+    if (nu * nv <= 4096) return std::min(whole, cellsBound(p, nu, nv, zones));
     // A ruled patch's search may go past 4096 cells (fewestRuled): its rows of cells are few.
-    if (nv <= 64 && ruledInV(p)) return std::min(whole, ruledGridBound(p, nu, nv));
-    if (nu <= 64 && ruledInV(p.transposed())) return std::min(whole, ruledGridBound(p.transposed(), nv, nu));
+    if (nv <= 64 && ruledInV(p)) return std::min(whole, ruledGridBound(p, nu, nv, zones));
+    if (nu <= 64 && ruledInV(p.transposed())) return std::min(whole, ruledGridBound(p.transposed(), nv, nu, zones.transposed()));
     return whole;
 }
 
 /// The grid with the fewest cells whose bound is at most target: from the whole net's bound
 /// (rationalAdaptiveSegments), then, on a weighted patch of at most 1024 such cells, the fewest
 /// cells whose own bounds are within it.
-std::array<int, 2> patchSegments(const RationalPatch& p, double target)
+std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones)
 {
     std::array<int, 2> best = rationalAdaptiveSegments(p, target);
     if (!weighted(p)) return best;
     if (ruledInV(p)) {
-        best = fewestRuled(p, target, best);
+        best = fewestRuled(p, target, best, zones);
     } else if (ruledInV(p.transposed())) {
-        const std::array<int, 2> t = fewestRuled(p.transposed(), target, {best[1], best[0]});
+        const std::array<int, 2> t = fewestRuled(p.transposed(), target, {best[1], best[0]}, zones.transposed());
         best = {t[1], t[0]};
     }
     if (best[0] * best[1] > 1024) return best;
@@ -217,7 +352,7 @@ std::array<int, 2> patchSegments(const RationalPatch& p, double target)
     // bound falls as they narrow).
     const std::array<int, 2> upper = best;
     const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
-    auto bound = [&](int na, int nb) { return a == 0 ? cellsBound(p, na, nb) : cellsBound(p, nb, na); };
+    auto bound = [&](int na, int nb) { return a == 0 ? cellsBound(p, na, nb, zones) : cellsBound(p, nb, na, zones); };
     for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
         // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
         const int cap = std::min(upper[b], (best[0] * best[1] - 1) / na);

@@ -142,10 +142,63 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
 std::pair<double, double> patchSlopes(const RationalPatch& patch);
 /// A patch whose weights differ (where the cells' own bounds beat the whole net's).
 bool weighted(const RationalPatch& p);
+/// Where a face's trims run through a patch, in the patch's parameters [0, 1]^2: the box of each
+/// trim piece's control points, except pieces along a side of the face's parameter box. The
+/// bounds from curves (revolutionCellBound, conicalCellBound) pair a triangle point with a surface
+/// point elsewhere in its cell (not at the point's own parameters, which lie in the triangle and
+/// so in the face): in a cell no trim runs through, that point is on the face too (the cell lies
+/// inside the face or outside it, where no triangle is); in a cell a trim crosses it may be outside
+/// the face (screw.step's head cone beside its slot: 0.042 mm from the face against a bound of
+/// 0.032). Such cells keep the bounds that pair with the point's own parameters.
+struct TrimZones {
+    std::vector<Eigen::AlignedBox2d> boxes;
+    /// Whether a trim may run through the open cell (u0, u1) x (v0, v1).
+    bool meets(double u0, double u1, double v0, double v1) const;
+    TrimZones transposed() const;
+};
+
 /// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
 /// cells' own (`local`: on a weighted patch).
-double gridBound(const RationalPatch& p, int nu, int nv, bool local);
+double gridBound(const RationalPatch& p, int nu, int nv, bool local, const TrimZones& zones);
 /// The grid with the fewest cells whose bound is at most target.
-std::array<int, 2> patchSegments(const RationalPatch& p, double target);
+std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones);
+
+// ---- cell bounds from a patch's curves (part_mesh_bounds.cpp; docs/cad.md "Tessellation") ------
+// Each bounds, for every triangle whose corners lie in the cell and every point T of it, the
+// distance from T to some point of the surface over the cell (one way: the mesh near the part).
+// kInf where the patch is not of the form asked for.
+
+/// The rational curve bound of control points x_0..x_m with weights w_i: any convex combination
+/// of curve points lies within it of the curve at the same combination of their parameters.
+/// (E_h + rho E_w) / w_min for the weight-scaled combination (docs/surfaces.md, "Rational
+/// patches"; E the second differences times m (m - 1) / 8, about the box centre), plus q rho for
+/// the plain one (q = (w_max - w_min) / w_min, rho the points' box half diagonal).
+template <int D>
+double curveBound(const Eigen::Matrix<double, D, 1>* x, const double* w, int m);
+/// The same curve's weights with equal ends (w_i r^i, r = (w_0 / w_m)^(1/m): a Moebius change of
+/// its parameter, the same points and curve). Where a bound needs only *some* curve point, not
+/// the one at the combination's parameter, curveBound may take these: a narrow cell of an arc
+/// has end weights that differ by its width (where the parameter speeds up), which adds a q rho
+/// as large as the chord's own error; in this form only the middle weight's difference is left.
+void endWeightsEqual(double* w, int m);
+
+/// A cell of a surface of revolution whose circles run along u (degree 2 in u): P_ij = A + z_j a
+/// + r_j c_i (+ eps_ij) with weights alpha_i beta_j (1 + eta_ij), so S(u, v) = A + z(v) a +
+/// r(v) C(u) with C the arc of the c_i (weights alpha_i) orthogonal to the axis a and (r, z)(v)
+/// the profile curve of the (r_j, z_j) (weights beta_j, r_j >= 0). A triangle point with
+/// barycentrics l_k is A + Z a + R sum mu_k C(u_k), (R, Z) = sum l_k (r, z)(v_k), mu_k = l_k
+/// r(v_k) / R (convex): within R_max E_C + c_max E_P of S(sum mu_k u_k, sum l_k v_k), E_C and E_P
+/// the curveBound of the arc and of the profile, c_max = max |c_i| >= |C(u)|, plus 2 max |eps| +
+/// 5 max eta rho_net for what the fit leaves. No twist term: a torus's cells need the chords of
+/// its two circles and no more.
+double revolutionCellBound(const RationalPatch& cell);
+
+/// The cell [va, vb] (fractions of v) of a column of degree 1 in v with weights constant along v
+/// whose rulings meet in one point (a cone): with P_i0 = A + lambda D_i + r_i (D_i = P_i1 - P_i0,
+/// A and lambda by least squares), S(u, v) = A + t D(u) + r(u), t = lambda + v. With the apex
+/// outside the cell (t of one sign), a triangle point is A + tau sum mu_k D(u_k) + sum l_k r(u_k),
+/// tau = sum l_k t_k, mu_k = l_k t_k / tau: within max |t| E_D + 2 max |r_i| of S(sum mu_k u_k,
+/// tau - lambda). The far end's circle is all that counts, not the column's width times its height.
+double conicalCellBound(const RationalPatch& column, double va, double vb);
 
 } // namespace freeform::part_mesh
