@@ -183,3 +183,61 @@ TEST_CASE("a patch that is no surface of revolution gets no revolution bound", "
 }
 
 } // namespace test_part_mesh_bounds
+
+namespace test_part_mesh_bounds {
+
+TEST_CASE("uneven columns are narrow only where a trim holds cells to their parametric bound", "[part_mesh]")
+{
+    using namespace freeform::part_mesh;
+    // A quarter of a cone (radius 1 to 3 over a height of 5) with a trim through its middle, as
+    // screw.step's slot runs through its head's cone.
+    const double r0 = 1, r1 = 3, H = 5, target = 0.01;
+    const RationalPatch p = patchesOf(freeform::exactLine<3>(Eigen::Vector3d(r0, 0, 0), Eigen::Vector3d(r1 - r0, 0, H), 0, 1)).front();
+    TrimZones zones;
+    zones.boxes.emplace_back(Eigen::Vector2d(0.45, 0.2), Eigen::Vector2d(0.5, 0.8));
+    const std::array<int, 2> even = patchSegments(p, target, zones);
+    double bound = 0;
+    const std::vector<double> breaks = unevenColumns({&p}, {even[1]}, {&zones}, target, even[0], bound);
+    INFO("even " << even[0] << " x " << even[1] << ", uneven " << breaks.size() - 1 << " columns");
+    REQUIRE(breaks.size() >= 2);
+    CHECK(breaks.front() == 0);
+    CHECK(breaks.back() == 1);
+    CHECK(static_cast<int>(breaks.size()) - 1 < even[0]);
+    CHECK(bound <= target);
+    double narrowest = 1, widest = 0, widestTrimmed = 0;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+        const double u0 = breaks[i], u1 = breaks[i + 1];
+        REQUIRE(u1 > u0);
+        const bool trimmed = zones.meets(u0, u1, 0, 1);
+        narrowest = std::min(narrowest, u1 - u0);
+        widest = std::max(widest, u1 - u0);
+        if (trimmed) widestTrimmed = std::max(widestTrimmed, u1 - u0);
+        for (int j = 0; j < even[1]; ++j) {
+            const double v0 = double(j) / even[1], v1 = double(j + 1) / even[1];
+            // Every triangle point against the surface at its own parameters (what a trim through
+            // the cell needs), and against the cone in closed form (what every cell needs).
+            for (int t = 0; t < 200; ++t) {
+                Eigen::Vector3d point = Eigen::Vector3d::Zero();
+                Eigen::Vector2d at = Eigen::Vector2d::Zero();
+                const double a = unit(rng), c = unit(rng) * (1 - a);
+                const double l[3] = {a, c, 1 - a - c};
+                for (int k = 0; k < 3; ++k) {
+                    const Eigen::Vector2d x(u0 + (u1 - u0) * (t < 3 ? (k == 1) : unit(rng)), v0 + (v1 - v0) * (t < 3 ? (k == 2) : unit(rng)));
+                    point += l[k] * p.evaluate(x.x(), x.y());
+                    at += l[k] * x;
+                }
+                const double cone = std::abs((std::hypot(point.x(), point.y()) - r0) * H - point.z() * (r1 - r0)) / std::hypot(H, r1 - r0);
+                CHECK(cone <= bound * (1 + 1e-9));
+                if (trimmed) CHECK((point - p.evaluate(at.x(), at.y())).norm() <= bound * (1 + 1e-9));
+            }
+        }
+    }
+    // The columns through the trim are held to the parametric bound, linear in their width; the
+    // others take the far circle's chords.
+    CHECK(widestTrimmed > 0);
+    CHECK(widestTrimmed < 0.5 * widest);
+}
+
+} // namespace test_part_mesh_bounds

@@ -109,24 +109,47 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
             nv[b] = std::max(nv[b], n[1]);
         }
     double lu = 0, lv = 0;
-    for (std::size_t a = 0; a + 1 < bu.size(); ++a)
+    // Per knot span in u: even columns, or (on weighted patches, where a trim holds some cells to
+    // their parametric bound) uneven ones when they are fewer.
+    std::vector<std::vector<double>> breaks(bu.size() - 1);
+    for (std::size_t a = 0; a + 1 < bu.size(); ++a) {
+        // (Only where a trim runs through the span, and for at most 2,048 even cells: the search
+        // bounds each column's cells a few dozen times.)
+        std::vector<const RationalPatch*> row;
+        std::vector<const TrimZones*> rowZones;
+        bool curved = true, trimmed = false;
+        long cells = 0;
         for (std::size_t b = 0; b < cols; ++b) {
-            const RationalPatch& p = patches[a * cols + b];
-            g.bound = std::max(g.bound, gridBound(p, nu[a], nv[b], weighted(p), zones[a * cols + b]));
-            const auto [su, sv] = patchSlopes(p);
+            row.push_back(&patches[a * cols + b]);
+            rowZones.push_back(&zones[a * cols + b]);
+            curved = curved && weighted(patches[a * cols + b]);
+            trimmed = trimmed || !zones[a * cols + b].boxes.empty();
+            cells += static_cast<long>(nu[a]) * nv[b];
+        }
+        double unevenBound = 0;
+        if (curved && trimmed && nu[a] > 1 && cells <= 2048) breaks[a] = unevenColumns(row, nv, rowZones, target, nu[a], unevenBound);
+        if (!breaks[a].empty()) {
+            g.bound = std::max(g.bound, unevenBound);
+        } else {
+            for (int i = 0; i <= nu[a]; ++i) breaks[a].push_back(double(i) / nu[a]);
+            for (std::size_t b = 0; b < cols; ++b) {
+                const RationalPatch& p = patches[a * cols + b];
+                g.bound = std::max(g.bound, gridBound(p, nu[a], nv[b], weighted(p), zones[a * cols + b]));
+            }
+        }
+        for (std::size_t b = 0; b < cols; ++b) {
+            const auto [su, sv] = patchSlopes(patches[a * cols + b]);
             lu = std::max(lu, su / (bu[a + 1] - bu[a]));
             lv = std::max(lv, sv / (bv[b + 1] - bv[b]));
         }
+    }
     g.lipschitz = std::hypot(lu, lv);
-    auto lines = [](const std::vector<double>& knots, const std::vector<int>& counts) {
-        std::vector<double> out;
-        for (std::size_t k = 0; k + 1 < knots.size(); ++k)
-            for (int i = 0; i < counts[k]; ++i) out.push_back(knots[k] + (knots[k + 1] - knots[k]) * i / counts[k]);
-        out.push_back(knots.back());
-        return out;
-    };
-    g.gu = lines(bu, nu);
-    g.gv = lines(bv, nv);
+    for (std::size_t a = 0; a + 1 < bu.size(); ++a)
+        for (std::size_t i = 0; i + 1 < breaks[a].size(); ++i) g.gu.push_back(bu[a] + (bu[a + 1] - bu[a]) * breaks[a][i]);
+    g.gu.push_back(bu.back());
+    for (std::size_t b = 0; b < cols; ++b)
+        for (int j = 0; j < nv[b]; ++j) g.gv.push_back(bv[b] + (bv[b + 1] - bv[b]) * j / nv[b]);
+    g.gv.push_back(bv.back());
     g.snapU = 1e-7 * (g.gu.back() - g.gu.front());
     g.snapV = 1e-7 * (g.gv.back() - g.gv.front());
     // Knots closer than twice the snapping distance (a B-spline's knot doubled to 4e-8 of its

@@ -281,6 +281,94 @@ TrimZones TrimZones::transposed() const
     return t;
 }
 
+namespace {
+
+RationalPatch cut(RationalPatch q, double a, double b, bool u)
+{
+    if (b < 1) q = (u ? q.splitU(b) : q.splitV(b)).first;
+    if (a > 0) q = (u ? q.splitU(a / b) : q.splitV(a / b)).second;
+    return q;
+}
+
+/// cellBound with the column [u0, u1] already cut from p.
+double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double u0, double u1, double v0, double v1,
+                    const TrimZones& zones)
+{
+    const bool curves = !zones.meets(u0, u1, v0, v1);
+    const RationalPatch cell = cut(column, v0, v1, false);
+    double bound = rationalTessellationErrorBound(cell, 1, 1);
+    if (curves) bound = std::min({bound, revolutionCellBound(cell), revolutionCellBound(cell.transposed())});
+    if (ruledInV(p)) {
+        bound = std::min(bound, ruledCellBound(column, v0, v1, curves));
+    } else if (ruledInV(p.transposed())) {
+        bound = std::min(bound, ruledCellBound(cut(p.transposed(), v0, v1, true), u0, u1, curves));
+    }
+    return bound;
+}
+
+} // namespace
+
+double cellBound(const RationalPatch& p, double u0, double u1, double v0, double v1, const TrimZones& zones)
+{
+    return cellOfColumn(p, cut(p, u0, u1, true), u0, u1, v0, v1, zones);
+}
+
+std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patches, const std::vector<int>& rows,
+                                  const std::vector<const TrimZones*>& zones, double target, int even, double& bound)
+{
+    // The largest bound of the column [x0, x1]'s cells, over every patch and its rows.
+    auto column = [&](double x0, double x1) {
+        double worst = 0;
+        for (std::size_t b = 0; b < patches.size() && worst <= target; ++b) {
+            const RationalPatch strip = cut(*patches[b], x0, x1, true);
+            for (int j = 0; j < rows[b] && worst <= target; ++j)
+                worst = std::max(worst, cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b]));
+        }
+        return worst;
+    };
+    const double step = 1.0 / even;
+    std::vector<double> breaks{0};
+    bound = 0;
+    double x = 0;
+    while (x < 1) {
+        if (static_cast<int>(breaks.size()) > even) return {}; // not fewer than the even columns
+        double b1 = column(x, 1);
+        if (b1 <= target) {
+            bound = std::max(bound, b1);
+            breaks.push_back(1);
+            break;
+        }
+        // A width that passes (from the even columns', halved while it does not), then doubled
+        // while it passes, then bisected to a tenth of the even width.
+        double w = step, passing = kInf;
+        while ((passing = column(x, std::min(1.0, x + w))) > target) {
+            w *= 0.5;
+            if (w < 1e-3 * step) return {};
+        }
+        double lo = std::min(1.0, x + w), hi = 1;
+        while (lo < 1) {
+            const double t = std::min(1.0, x + 2 * (lo - x));
+            const double bt = column(x, t);
+            if (bt > target) {
+                hi = t;
+                break;
+            }
+            lo = t;
+            passing = bt;
+        }
+        while (hi - lo > 0.1 * step) {
+            const double mid = 0.5 * (lo + hi), bm = column(x, mid);
+            if (bm <= target) lo = mid, passing = bm;
+            else hi = mid;
+        }
+        bound = std::max(bound, passing);
+        breaks.push_back(lo);
+        x = lo;
+    }
+    if (static_cast<int>(breaks.size()) - 1 >= even) return {};
+    return breaks;
+}
+
 /// Bound on |S_u| and |S_v| of a rational patch over [0, 1]^2: S_u = (h'_u - (S - c) w_u) / w with
 /// h' = h - c w, c the centre and rho the half diagonal of the control box.
 std::pair<double, double> patchSlopes(const RationalPatch& patch)
