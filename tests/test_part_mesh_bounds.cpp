@@ -137,7 +137,8 @@ TEST_CASE("a cone's cells are within their conical bound, which does not grow wi
     const Distance distance = [&](const Eigen::Vector3d& x) {
         return std::abs((std::hypot(x.x(), x.y()) - r0) * H - x.z() * (r1 - r0)) / std::hypot(H, r1 - r0);
     };
-    for (const auto& [nu, nv] : {std::pair{4, 1}, std::pair{16, 1}, std::pair{16, 3}}) {
+    for (const auto& grid : {std::pair{4, 1}, std::pair{16, 1}, std::pair{16, 3}}) {
+        const int nu = grid.first, nv = grid.second; // (clang 14 cannot capture a structured binding)
         INFO("cells " << nu << " x " << nv);
         const Worst w = sample(patches, nu, nv, distance, [&](const RationalPatch& p, int i, int j) {
             return conicalCellBound(cut(p, double(i) / nu, double(i + 1) / nu, 0, 1), double(j) / nv, double(j + 1) / nv);
