@@ -404,4 +404,27 @@ TEST_CASE("closest point is global: never farther than dense sampling, zero for 
     for (int i = 0; i <= 50; ++i) CHECK(piece.closestPoint(piece(i / 50.0)).distance <= 1e-9);
 }
 
+TEST_CASE("fromBezierPieces joins pieces in Bézier form at full-multiplicity knots", "[nurbs]")
+{
+    using C = NurbsCurve<double, 2>;
+    // Two quadratic pieces over [0, 1] and [1, 3]: (0,0) (1,2) (2,0), then (2,0) weight 1,
+    // (4,1) weight 2, (5,0) weight 1. The knots by hand: 0 0 0 1 1 3 3 3.
+    C::HPoints a(3, 3), b(3, 3);
+    a << 0, 1, 2, 0, 2, 0, 1, 1, 1;
+    b << 2, 8, 5, 0, 2, 0, 1, 2, 1;
+    const C c = C::fromBezierPieces({0, 1, 3}, 2, {a, b}, "two pieces");
+    CHECK(c.knots() == std::vector<double>{0, 0, 0, 1, 1, 3, 3, 3});
+    REQUIRE(c.controlCount() == 5);
+    // The middle of the first piece: (P0 + 2 P1 + P2) / 4 = (1, 1); of the second, at u = 2:
+    // (w0 P0 + 2 w1 P1 + w2 P2) / (w0 + 2 w1 + w2) = ((2,0) + 2 (8,2) + (5,0)) / 6 = (23/6, 4/6).
+    CHECK((c.evaluate(0.5) - Eigen::Vector2d(1, 1)).norm() <= 1e-15);
+    CHECK((c.evaluate(2.0) - Eigen::Vector2d(23.0 / 6, 4.0 / 6)).norm() <= 1e-15);
+    // A joint that differs (by rounding, here by 1e-3) keeps the left piece's end.
+    C::HPoints b2 = b;
+    b2(0, 0) += 1e-3;
+    CHECK(C::fromBezierPieces({0, 1, 3}, 2, {a, b2}, "two pieces").controlPoint(2).x() == 2.0);
+    CHECK_THROWS_WITH(C::fromBezierPieces({0, 1}, 2, {a, b}, "two pieces"), Catch::Contains("two pieces: 2 Bézier pieces need 3 breakpoints"));
+    CHECK_THROWS_WITH(C::fromBezierPieces({0, 1, 3}, 3, {a, b}, "two pieces"), Catch::Contains("piece 1 has 3 control points, not 4"));
+}
+
 } // namespace test_nurbs_curve

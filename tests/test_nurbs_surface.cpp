@@ -211,4 +211,32 @@ TEST_CASE("a surface restricted to a parameter box is the same surface there", "
     }
 }
 
+TEST_CASE("fromBezierPatches joins a grid of patches in Bézier form", "[nurbs]")
+{
+    // 2 x 1 bilinear patches over [0, 1] x [0, 2] and [1, 4] x [0, 2]: the plane z = x + y,
+    // points (x, y, x + y) with weight 1, the second patch's corners at x = 1 and 4.
+    auto patch = [](double x0, double x1) {
+        Surface::HPoints h(4, 4);
+        int k = 0;
+        for (double x : {x0, x1})
+            for (double y : {0.0, 2.0}) h.col(k++) << x, y, x + y, 1;
+        return h;
+    };
+    const Surface s = Surface::fromBezierPatches({0, 1, 4}, {0, 2}, 1, 1, {patch(0, 1), patch(1, 4)}, "plane");
+    CHECK(s.knotsU().knots() == std::vector<double>{0, 0, 1, 4, 4});
+    CHECK(s.knotsV().knots() == std::vector<double>{0, 0, 2, 2});
+    REQUIRE(s.countU() == 3);
+    REQUIRE(s.countV() == 2);
+    for (double u : {0.25, 1.0, 2.5})
+        for (double v : {0.0, 1.5}) {
+            // Patch parameters map to x linearly: x = u on [0, 1], x = 1 + (u - 1) on [1, 4].
+            const Eigen::Vector3d p = s.evaluate(u, v);
+            CHECK((p - Eigen::Vector3d(u, v, u + v)).norm() <= 1e-14);
+        }
+    CHECK_THROWS_WITH(Surface::fromBezierPatches({0, 1, 4}, {0, 2}, 1, 1, {patch(0, 1)}, "plane"),
+                      Catch::Contains("plane: 1 Bézier patches do not fill 2 x 1 spans"));
+    CHECK_THROWS_WITH(Surface::fromBezierPatches({0, 1, 4}, {0, 2}, 2, 1, {patch(0, 1), patch(1, 4)}, "plane"),
+                      Catch::Contains("patch (1, 0) has 4 control points, not 6"));
+}
+
 } // namespace test_nurbs_surface

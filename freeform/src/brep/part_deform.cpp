@@ -90,15 +90,6 @@ private:
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
 };
 
-/// The knot vector with every interior breakpoint at full multiplicity p (Bézier form).
-std::vector<double> bezierKnots(const std::vector<double>& breaks, int p)
-{
-    std::vector<double> k(static_cast<std::size_t>(p + 1), breaks.front());
-    for (std::size_t i = 1; i + 1 < breaks.size(); ++i) k.insert(k.end(), static_cast<std::size_t>(p), breaks[i]);
-    k.insert(k.end(), static_cast<std::size_t>(p + 1), breaks.back());
-    return k;
-}
-
 using Net = Eigen::Matrix<double, 4, Eigen::Dynamic>;
 
 /// A surface in Bézier form as its patches' homogeneous nets, of any degree (a composition above
@@ -239,26 +230,12 @@ void translate(PatchGrid& g, const Eigen::Vector3d& offset)
 
 NurbsSurface<double, 3> surfaceOf(const PatchGrid& g)
 {
-    const int cu = g.nu() * g.du + 1, cv = g.nv() * g.dv + 1;
-    Net h(4, cu * cv);
-    // A shared boundary keeps the first patch's value (the neighbours agree there to rounding).
-    for (int a = g.nu() - 1; a >= 0; --a)
-        for (int b = g.nv() - 1; b >= 0; --b) {
-            const Net& p = g.patches[static_cast<std::size_t>(a * g.nv() + b)];
-            for (int i = 0; i <= g.du; ++i)
-                for (int j = 0; j <= g.dv; ++j) h.col((a * g.du + i) * cv + b * g.dv + j) = p.col(i * (g.dv + 1) + j);
-        }
-    return NurbsSurface<double, 3>(KnotVector<double>(bezierKnots(g.bu, g.du), g.du, "reduced surface (knots in u)"),
-                                   KnotVector<double>(bezierKnots(g.bv, g.dv), g.dv, "reduced surface (knots in v)"),
-                                   std::move(h));
+    return NurbsSurface<double, 3>::fromBezierPatches(g.bu, g.bv, g.du, g.dv, g.patches, "reduced surface");
 }
 
 NurbsCurve<double, 3> curveOf(const PatchGrid& g)
 {
-    Net h(4, g.nu() * g.du + 1);
-    // A joint keeps the left piece's end.
-    for (int a = g.nu() - 1; a >= 0; --a) h.middleCols(a * g.du, g.du + 1) = g.patches[static_cast<std::size_t>(a)];
-    return NurbsCurve<double, 3>(KnotVector<double>(bezierKnots(g.bu, g.du), g.du, "reduced curve"), std::move(h));
+    return NurbsCurve<double, 3>::fromBezierPieces(g.bu, g.du, g.patches, "reduced curve");
 }
 
 struct ReducedGrid {

@@ -231,17 +231,10 @@ NurbsCurve<double, 3> deformCurve(const RationalLattice& lattice, const NurbsCur
     const auto& br = curve.breakpoints();
     std::vector<RationalBezierCurve<double, 3>> composed;
     for (const auto& piece : pieces) composed.push_back(deformCurve(lattice, piece, strength));
-    const int D = composed.front().degree();
-    std::vector<double> knots(static_cast<std::size_t>(D + 1), br.front());
-    for (std::size_t k = 1; k + 1 < br.size(); ++k) knots.insert(knots.end(), static_cast<std::size_t>(D), br[k]);
-    knots.insert(knots.end(), static_cast<std::size_t>(D + 1), br.back());
-    const int count = static_cast<int>(composed.size()) * D + 1;
-    PointMatrix<double, 4> h(4, count);
-    for (std::size_t k = 0; k < composed.size(); ++k) // joints: the left piece's end (equal to rounding)
-        h.middleCols(static_cast<Eigen::Index>(k) * D, D + 1) = composed[k].homogeneous().controlPoints();
-    for (std::size_t k = 1; k < composed.size(); ++k)
-        h.col(static_cast<Eigen::Index>(k) * D) = composed[k - 1].homogeneous().controlPoints().col(D);
-    return NurbsCurve<double, 3>(KnotVector<double>(std::move(knots), D, "deformCurve"), std::move(h));
+    std::vector<PointMatrix<double, 4>> nets;
+    nets.reserve(composed.size());
+    for (const auto& c : composed) nets.push_back(c.homogeneous().controlPoints());
+    return NurbsCurve<double, 3>::fromBezierPieces(br, composed.front().degree(), nets, "deformCurve");
 }
 
 namespace {
@@ -439,7 +432,6 @@ NurbsSurface<double, 3> deformSurface(const RationalLattice& lattice, const Nurb
 {
     const auto patches = surface.bezierPatches();
     const std::vector<double> bu = surface.knotsU().breakpoints(), bv = surface.knotsV().breakpoints();
-    const int nu = static_cast<int>(bu.size()) - 1, nv = static_cast<int>(bv.size()) - 1;
     std::vector<RationalBezierSurface<double, 3>> composed;
     composed.reserve(patches.size());
     for (const auto& patch : patches) {
@@ -452,26 +444,11 @@ NurbsSurface<double, 3> deformSurface(const RationalLattice& lattice, const Nurb
             composed.push_back(deformSurface(lattice, RationalBezierSurface<double, 3>(poly), strength));
         }
     }
-    const int du = composed.front().degreeU(), dv = composed.front().degreeV();
-    auto knots = [](const std::vector<double>& br, int d) {
-        std::vector<double> k(static_cast<std::size_t>(d + 1), br.front());
-        for (std::size_t i = 1; i + 1 < br.size(); ++i) k.insert(k.end(), static_cast<std::size_t>(d), br[i]);
-        k.insert(k.end(), static_cast<std::size_t>(d + 1), br.back());
-        return k;
-    };
-    const int cu = nu * du + 1, cv = nv * dv + 1;
-    PointMatrix<double, 4> h(4, cu * cv);
-    // Patch (pu, pv) point (a, b) is net point (pu du + a, pv dv + b); a shared boundary keeps the
-    // first patch's value (the neighbours agree there to rounding).
-    for (int pu = nu - 1; pu >= 0; --pu)
-        for (int pv = nv - 1; pv >= 0; --pv) {
-            const auto& c = composed[static_cast<std::size_t>(pu * nv + pv)].homogeneous().controlPoints();
-            for (int a = 0; a <= du; ++a)
-                for (int b = 0; b <= dv; ++b)
-                    h.col((pu * du + a) * cv + pv * dv + b) = c.col(a * (dv + 1) + b);
-        }
-    return NurbsSurface<double, 3>(KnotVector<double>(knots(bu, du), du, "deformSurface (knots in u)"),
-                                   KnotVector<double>(knots(bv, dv), dv, "deformSurface (knots in v)"), std::move(h));
+    std::vector<PointMatrix<double, 4>> nets;
+    nets.reserve(composed.size());
+    for (const auto& c : composed) nets.push_back(c.homogeneous().controlPoints());
+    return NurbsSurface<double, 3>::fromBezierPatches(bu, bv, composed.front().degreeU(), composed.front().degreeV(), nets,
+                                                      "deformSurface");
 }
 
 } // namespace freeform

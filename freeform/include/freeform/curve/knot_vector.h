@@ -32,6 +32,16 @@ namespace freeform {
 template <typename Scalar>
 class KnotVector {
 public:
+    /// The knots of a spline in Bézier form over `breaks` (increasing): the ends with multiplicity
+    /// degree + 1, every interior breakpoint with multiplicity degree.
+    static std::vector<Scalar> bezierForm(const std::vector<Scalar>& breaks, int degree)
+    {
+        std::vector<Scalar> k(static_cast<std::size_t>(degree + 1), breaks.front());
+        for (std::size_t i = 1; i + 1 < breaks.size(); ++i) k.insert(k.end(), static_cast<std::size_t>(degree), breaks[i]);
+        k.insert(k.end(), static_cast<std::size_t>(degree + 1), breaks.back());
+        return k;
+    }
+
     /// Validates `knots` for `degree` (see the header comment); `what` names the owner in errors.
     KnotVector(std::vector<Scalar> knots, int degree, const std::string& what = "KnotVector")
         : knots_(std::move(knots)), degree_(degree)

@@ -93,6 +93,25 @@ public:
         return NurbsCurve(Knots(std::move(k), n, "NurbsCurve::fromBezier"), c.homogeneous().controlPoints());
     }
 
+    /// The curve in Bézier form from its pieces: piece k (homogeneous points (w P, w), degree p)
+    /// over [breaks[k], breaks[k + 1]], every interior breakpoint a knot of multiplicity p. Where
+    /// two pieces meet (equal to rounding) the left piece's end is kept. `what` names it in errors.
+    static NurbsCurve fromBezierPieces(const std::vector<Scalar>& breaks, int p, const std::vector<HPoints>& pieces,
+                                       const std::string& what)
+    {
+        if (pieces.empty() || breaks.size() != pieces.size() + 1)
+            throw Error(what + ": " + std::to_string(pieces.size()) + " Bézier pieces need " + std::to_string(pieces.size() + 1) +
+                        " breakpoints, got " + std::to_string(breaks.size()));
+        HPoints h(Dim + 1, static_cast<Eigen::Index>(pieces.size()) * p + 1);
+        for (std::size_t k = pieces.size(); k-- > 0;) {
+            if (pieces[k].cols() != p + 1)
+                throw Error(what + ": piece " + std::to_string(k) + " has " + std::to_string(pieces[k].cols()) +
+                            " control points, not " + std::to_string(p + 1));
+            h.middleCols(static_cast<Eigen::Index>(k) * p, p + 1) = pieces[k];
+        }
+        return NurbsCurve(Knots(Knots::bezierForm(breaks, p), p, what), std::move(h));
+    }
+
     /// Closed (periodic) curve through the uniform knots 0..count+2p: the first p control points
     /// are repeated at the end, so the curve is C^(p-1) everywhere, including where it closes.
     static NurbsCurve periodic(int degree, const Points& points, const Weights& weights = Weights())

@@ -88,6 +88,32 @@ public:
         return NurbsSurface(m, n, knots(m), knots(n), pts, Weights(h.row(Dim).transpose()));
     }
 
+    /// The surface in Bézier form from its patches: patch (a, b) of degrees (p, q) over
+    /// [bu[a], bu[a + 1]] x [bv[b], bv[b + 1]] at index a (bv.size() - 1) + b, its homogeneous point
+    /// (i, j) at column i (q + 1) + j. A boundary two patches share (equal to rounding) keeps the
+    /// first patch's points. `what` names it in errors.
+    static NurbsSurface fromBezierPatches(const std::vector<Scalar>& bu, const std::vector<Scalar>& bv, int p, int q,
+                                          const std::vector<HPoints>& patches, const std::string& what)
+    {
+        const int nu = static_cast<int>(bu.size()) - 1, nv = static_cast<int>(bv.size()) - 1;
+        if (nu < 1 || nv < 1 || patches.size() != static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv))
+            throw Error(what + ": " + std::to_string(patches.size()) + " Bézier patches do not fill " + std::to_string(std::max(nu, 0)) +
+                        " x " + std::to_string(std::max(nv, 0)) + " spans");
+        const int cv = nv * q + 1;
+        HPoints h(Dim + 1, static_cast<Eigen::Index>(nu * p + 1) * cv);
+        for (int a = nu - 1; a >= 0; --a)
+            for (int b = nv - 1; b >= 0; --b) {
+                const HPoints& c = patches[static_cast<std::size_t>(a * nv + b)];
+                if (c.cols() != static_cast<Eigen::Index>(p + 1) * (q + 1))
+                    throw Error(what + ": patch (" + std::to_string(a) + ", " + std::to_string(b) + ") has " +
+                                std::to_string(c.cols()) + " control points, not " + std::to_string((p + 1) * (q + 1)));
+                for (int i = 0; i <= p; ++i)
+                    for (int j = 0; j <= q; ++j) h.col((a * p + i) * cv + b * q + j) = c.col(i * (q + 1) + j);
+            }
+        return NurbsSurface(Knots(Knots::bezierForm(bu, p), p, what + " (knots in u)"),
+                            Knots(Knots::bezierForm(bv, q), q, what + " (knots in v)"), std::move(h));
+    }
+
     /// The exact sphere of `radius` about c (3D): a full circle in u (four quarter arcs, u in
     /// [0, 1], counter-clockwise about z from +x) times a half circle from the south pole to the
     /// north pole in v (two quarter arcs, v in [0, 1]); degree (2, 2), 9 x 5 control points.
