@@ -147,7 +147,7 @@ TEST_CASE("a cone's cells are within their conical bound, which does not grow wi
         CHECK(std::isfinite(w.bound));
         CHECK(w.ratio <= 1 + 1e-9);
         // Measured: 1.32, 1.08 and 1.08 times the largest distance found. Without equal end
-        // weights (endWeightsEqual) it was 2.1 to 2.7: the cells' weights differ by their width.
+        // weights (endWeightsEqual) it was 2.0 to 2.3: the cells' weights differ by their width.
         CHECK(w.bound <= 1.4 * w.distance);
     }
     // A cell whose rows run across the apex has no conical bound (the rulings change side there).
