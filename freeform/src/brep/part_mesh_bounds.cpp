@@ -185,6 +185,14 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, bool cu
     return curves ? std::min(ruled, conicalCellBound(column, va, vb)) : ruled;
 }
 
+/// A cell's bound from its own sub-net, and where no trim runs through it (`curves`) the smaller of
+/// that and the bounds from its curves.
+double ownCellBound(const RationalPatch& cell, bool curves)
+{
+    const double own = rationalTessellationErrorBound(cell, 1, 1);
+    return curves ? std::min({own, revolutionCellBound(cell), revolutionCellBound(cell.transposed())}) : own;
+}
+
 /// The largest bound of the cells of an nu x nv grid on the patch. `general`: each cell's bound
 /// from its own sub-net, rationalTessellationErrorBound of the cell's patch with its own centre and
 /// radius, so the weights' share, (radius) x (weight differences), shrinks with the cell instead of
@@ -211,8 +219,7 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
             if (general) {
                 RationalPatch cell = restV;
                 if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
-                bound = rationalTessellationErrorBound(cell, 1, 1);
-                if (curves) bound = std::min({bound, revolutionCellBound(cell), revolutionCellBound(cell.transposed())});
+                bound = ownCellBound(cell, curves);
             }
             if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
             worst = std::max(worst, bound);
@@ -295,9 +302,7 @@ double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double 
                     const TrimZones& zones)
 {
     const bool curves = !zones.meets(u0, u1, v0, v1);
-    const RationalPatch cell = cut(column, v0, v1, false);
-    double bound = rationalTessellationErrorBound(cell, 1, 1);
-    if (curves) bound = std::min({bound, revolutionCellBound(cell), revolutionCellBound(cell.transposed())});
+    double bound = ownCellBound(cut(column, v0, v1, false), curves);
     if (ruledInV(p)) {
         bound = std::min(bound, ruledCellBound(column, v0, v1, curves));
     } else if (ruledInV(p.transposed())) {
