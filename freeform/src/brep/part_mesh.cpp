@@ -648,9 +648,6 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     return result;
 }
 
-/// Whether every trim of the surface is a line of constant u or constant v in its parameters (all
-/// its pcurve's control points share one coordinate): the parameter maps keep it one, so it lies
-/// on a grid line of the face or inside one row of cells, and its polygon on it.
 /// Whether every trim of the surface is a line of constant u or constant v in its parameters (its
 /// pcurve's control points share one coordinate, to 1e-9 of the face's box: files write such
 /// lines as B-splines with noise in the last bits): the parameter maps keep it one, so its
