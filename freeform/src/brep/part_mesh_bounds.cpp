@@ -297,7 +297,8 @@ RationalPatch cut(RationalPatch q, double a, double b, bool u)
     return q;
 }
 
-/// cellBound with the column [u0, u1] already cut from p.
+/// The bound of the cell [u0, u1] x [v0, v1] of the patch, the column [u0, u1] already cut from it:
+/// the smallest of the cell's own (ownCellBound) and the ruled one.
 double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double u0, double u1, double v0, double v1,
                     const TrimZones& zones)
 {
@@ -312,11 +313,6 @@ double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double 
 }
 
 } // namespace
-
-double cellBound(const RationalPatch& p, double u0, double u1, double v0, double v1, const TrimZones& zones)
-{
-    return cellOfColumn(p, cut(p, u0, u1, true), u0, u1, v0, v1, zones);
-}
 
 std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patches, const std::vector<int>& rows,
                                   const std::vector<const TrimZones*>& zones, double target, int even, double& bound)

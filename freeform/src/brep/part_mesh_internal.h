@@ -162,9 +162,6 @@ struct TrimZones {
 double gridBound(const RationalPatch& p, int nu, int nv, bool local, const TrimZones& zones);
 /// The grid with the fewest cells whose bound is at most target.
 std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones);
-/// The bound of the cell [u0, u1] x [v0, v1] of the patch (the smallest of the cell's own, the
-/// ruled one, and where no trim runs through it the ones from curves).
-double cellBound(const RationalPatch& p, double u0, double u1, double v0, double v1, const TrimZones& zones);
 /// Columns of uneven widths across one knot span in u (its patches, one per span in v, each cut
 /// into rows[b] even rows), each as wide as its cells' bounds allow within target, from left to
 /// right: narrow beside a trim that keeps a cell to its parametric bound, wide elsewhere. The
