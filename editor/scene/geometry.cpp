@@ -1,7 +1,7 @@
 // Derived geometry of scene items: curves sampled to polylines, surfaces tessellated to triangle
 // meshes with normals, control nets as edge lists, all through the document layer
-// (freeform/document/operations.h: controlNet, AnyCurve::polyline / objectPolyline, tessellateObject). Nothing here
-// touches the GPU.
+// (freeform/document/operations.h: controlNet, AnyCurve::polyline, tessellateObject). Nothing
+// here touches the GPU.
 
 #include <algorithm>
 #include <cmath>
@@ -158,11 +158,7 @@ ItemGeometry buildGeometry(const TypedObject& object, const ObjectSettings& sett
         const double tol = t.tolerance > 0 ? t.tolerance : tolerance;
         if (const auto curve = AnyCurve::of(object)) {
             g.curve = curve->polyline(tol);
-            g.curveClosed = curve->closed();
-        } else if (auto polyline = objectPolyline(object, tol)) {
-            // rational_bezier_curve and nurbs_curve (not AnyCurve's): a closed NURBS (the
-            // circle) ends where it starts, so its polyline closes by itself.
-            g.curve = std::move(*polyline);
+            g.curveClosed = curve->closed(); // a closed NURBS (the circle) ends where it starts by itself
         }
         ObjectTessellation options;
         options.tolerance = t.mode == Tessellation::Mode::Uniform ? 0 : tol;
@@ -171,8 +167,9 @@ ItemGeometry buildGeometry(const TypedObject& object, const ObjectSettings& sett
         options.splitFaces = true; // a part's faces shaded apart (creases stay sharp)
         if (view.on() && t.mode == Tessellation::Mode::Adaptive && !(t.tolerance > 0)) {
             // Per patch to the view: each patch's tolerance from its own control-point box.
-            if (const auto surface = AnySurface::of(object)) {
-                for (const Patch& p : surface->patches.patches) {
+            const auto surface = AnySurface::of(object);
+            if (surface && surface->patches()) {
+                for (const Patch& p : surface->patches()->patches.patches) {
                     Eigen::AlignedBox3d box;
                     box.setEmpty();
                     for (Eigen::Index k = 0; k < p.controlPoints().cols(); ++k) box.extend(Eigen::Vector3d(p.controlPoints().col(k)));

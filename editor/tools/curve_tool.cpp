@@ -181,8 +181,10 @@ void CurveTool::update(ToolContext& c, Overlay& o)
     // refuses: its message is in Properties); 2D curves lifted to z = 0.
     const TypedObject* typed = c.scene.typed(item);
     const std::optional<AnyCurve> curve = typed ? AnyCurve::of(*typed) : std::nullopt;
-    if (!curve) return;
-    const BezierSpline<double, 3> spline = curve->spline3();
+    // The polynomial curves only: a rational curve's overlays are the NURBS tool's.
+    const std::optional<BezierSpline<double, 3>> polynomial = curve ? curve->spline3() : std::nullopt;
+    if (!polynomial) return;
+    const BezierSpline<double, 3>& spline = *polynomial;
     if (std::holds_alternative<BezierCurveData>(object->data)) {
         if (construction) drawConstruction(o, spline.segmentPoints(0), t);
         if (comb) drawComb(o, curveJets(spline.segment(0), 200), size, combScale);

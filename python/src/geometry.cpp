@@ -496,15 +496,16 @@ and validated on load (freeform.Error with the library's message otherwise).)doc
             [](const freeform::TypedDocument& d, const std::string& name) -> py::object {
                 const auto& o = d.object(name);
                 auto c = freeform::AnyCurve::of(o);
-                if (!c) {
-                    if (o.info().isCurve()) return geometryObject(d, o); // the rational and NURBS curves
-                    throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a curve or spline");
-                }
+                if (!c) throw freeform::Error(d.what(o) + ": is a " + o.type() + ", not a curve or spline");
+                if (c->isRational()) return geometryObject(d, o); // RationalBezierCurve, NurbsCurve
                 return std::visit(
                     [](const auto& v) -> py::object {
                         using V = std::decay_t<decltype(v)>;
                         if constexpr (std::is_same_v<V, Curve2> || std::is_same_v<V, Curve3>) return py::cast(PyCurve{v});
-                        else return py::cast(PySpline{v});
+                        else if constexpr (std::is_same_v<V, freeform::BezierSpline<double, 2>> ||
+                                           std::is_same_v<V, freeform::BezierSpline<double, 3>>)
+                            return py::cast(PySpline{v});
+                        else return py::none(); // the rational forms: above
                     },
                     c->variant());
             },

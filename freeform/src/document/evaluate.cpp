@@ -9,7 +9,6 @@
 #include "freeform/document/operations.h"
 #include "evaluation.h"
 #include "part_ops.h"
-#include "rational.h"
 
 namespace freeform {
 namespace detail {
@@ -69,27 +68,19 @@ Evaluation evaluateCurve(const std::string& what, const AnyCurve& curve, const s
 {
     expectCount(what, at, 1, "T");
     const double t = at[0];
-    if (!curve.isSpline())
-        inDomain(what, "t", t, 0, 1, "curve");
-    else
-        inDomain(what, "T", t, 0, curve.domainEnd(), "spline");
+    // A spline and a NURBS curve take a global T, a Bézier curve (rational or not) its t.
+    const bool global = curve.isSpline() || curve.form() == AnyCurve::Form::Nurbs;
+    inDomain(what, global ? "T" : "t", t, curve.domainStart(), curve.domainEnd(), curve.isSpline() ? "spline" : "curve");
     return detail::curveEvaluation(curve.derivatives(t, order), order);
 }
 
 Evaluation evaluateSurface(const std::string& what, const AnySurface& surface, const std::vector<double>& uv, int order)
 {
     expectCount(what, uv, 2, "U,V");
-    const auto& segments = surface.segments;
-    int index[2] = {0, 0};
-    double local[2] = {0, 0};
-    for (int d = 0; d < 2; ++d) {
-        const double t = uv[static_cast<std::size_t>(d)];
-        inDomain(what, d == 0 ? "u" : "v", t, 0, segments[d], "surface");
-        index[d] = std::min(static_cast<int>(std::floor(t)), segments[d] - 1);
-        local[d] = t - index[d];
-    }
-    const Patch& patch = surface.patches.patches[static_cast<std::size_t>(index[0] * segments[1] + index[1])];
-    return detail::surfaceEvaluation(patch.jet(local[0], local[1], order), patch.normal(local[0], local[1]), order);
+    const std::array<double, 4> domain = surface.domain();
+    inDomain(what, "u", uv[0], domain[0], domain[1], "surface");
+    inDomain(what, "v", uv[1], domain[2], domain[3], "surface");
+    return detail::surfaceEvaluation(surface.jet(uv[0], uv[1], order), surface.normal(uv[0], uv[1]), order);
 }
 
 Evaluation evaluateLattice(const std::string& what, const Lattice& lattice, const std::vector<double>& stu, int order)
@@ -141,24 +132,25 @@ Evaluation evaluate(const TypedDocument& doc, const TypedObject& object, const s
     const std::string what = doc.what(object);
     if (order < 0) throw Error(what + ": the derivative order must not be negative");
     if (const auto curve = AnyCurve::of(object)) return evaluateCurve(what, *curve, at, order);
+    // A trimmed surface and a part print whether the point is inside the trims (part_ops.cpp).
+    if (auto e = detail::evaluatePartObject(what, object, at, order)) return std::move(*e);
     if (const auto surface = AnySurface::of(object)) return evaluateSurface(what, *surface, at, order);
     if (const auto* lattice = std::get_if<Lattice>(&object.geometry())) return evaluateLattice(what, *lattice, at, order);
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry())) return evaluateSubdivision(what, *s, at, order);
-    if (auto e = detail::evaluateRational(what, object, at, order)) return std::move(*e);
-    if (auto e = detail::evaluatePartObject(what, object, at, order)) return std::move(*e);
     throw Error(what + ": eval does not support type \"" + object.type() + "\" yet");
 }
 
 std::vector<double> parameterDomain(const TypedObject& object)
 {
     if (const auto curve = AnyCurve::of(object)) return {curve->domainEnd()};
-    if (const auto surface = AnySurface::of(object))
-        return {static_cast<double>(surface->segments[0]), static_cast<double>(surface->segments[1])};
+    if (auto d = detail::partDomain(object)) return *d; // a trimmed surface's box, a part's face count
+    if (const auto surface = AnySurface::of(object)) {
+        const std::array<double, 4> d = surface->domain();
+        return {d[1], d[3]};
+    }
     if (std::holds_alternative<Lattice>(object.geometry())) return {1, 1, 1};
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry()))
         return {static_cast<double>(s->surface.faceCount()), 1, 1};
-    if (auto d = detail::rationalDomain(object)) return *d;
-    if (auto d = detail::partDomain(object)) return *d;
     return {};
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Internal to src/document: the parameter checks and the Evaluation layout that evaluate.cpp (the
-// polynomial types) and rational.cpp (the rational types) share, so `freeform eval` words its
-// errors and orders its derivatives one way for every type (docs/cli.md, "eval").
+// curves, surfaces, lattices and subdivision surfaces) and part_ops.cpp (trimmed surfaces and
+// parts) share, so `freeform eval` words its errors and orders its derivatives one way for every
+// kind (docs/cli.md, "eval"); gridEdges for the control nets (model.cpp).
 
 #include <Eigen/Core>
 

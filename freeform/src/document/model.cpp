@@ -1,21 +1,28 @@
-// The typed document (document/model.h): geometry built from the plain data, stable ids, and the
-// run-time-dimension facades.
+// The typed document (document/model.h) and what each object kind needs of it, one visitor per
+// direction: the geometry built from the plain data (buildGeometry), the data of the geometry
+// (toData), the control net (controlNet, document/operations.h). The visitors over ObjectData
+// have no catch-all, so a new kind does not compile until it has its case in each. The facades
+// AnyCurve and AnySurface are in any_geometry.cpp.
 
 #include "freeform/document/model.h"
 
 #include <filesystem>
+#include <set>
 #include <type_traits>
 #include <utility>
 
 #include "freeform/core/error.h"
+#include "freeform/document/operations.h"
 #include "freeform/io/geometry_data.h"
 #include "../io/object_lookup.h"
+#include "evaluation.h"
 #include "overloaded.h"
 #include "part_data.h"
 
 namespace freeform {
 namespace {
 
+using detail::gridEdges;
 using detail::Overloaded;
 
 template <int Dim>
@@ -198,92 +205,221 @@ void TypedDocument::remove(ObjectId id)
     std::erase_if(objects_, [id](const TypedObject& o) { return o.id() == id; });
 }
 
-// ---------------------------------------------------------------- AnyCurve
-
-std::optional<AnyCurve> AnyCurve::of(const TypedObject& object)
-{
-    return std::visit(
-        Overloaded{
-            [](const BezierCurve<double, 2>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const BezierCurve<double, 3>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const BezierSpline<double, 2>& s) -> std::optional<AnyCurve> { return AnyCurve(s); },
-            [](const BezierSpline<double, 3>& s) -> std::optional<AnyCurve> { return AnyCurve(s); },
-            [](const DeBoorSpline<2>& s) -> std::optional<AnyCurve> { return AnyCurve(s.bezier); },
-            [](const DeBoorSpline<3>& s) -> std::optional<AnyCurve> { return AnyCurve(s.bezier); },
-            [](const auto&) -> std::optional<AnyCurve> { return std::nullopt; },
-        },
-        object.geometry());
-}
-
-int AnyCurve::dimension() const { return curve_.index() % 2 == 0 ? 2 : 3; }
-
-bool AnyCurve::closed() const
-{
-    return std::visit(
-        Overloaded{[](const BezierSpline<double, 2>& s) { return s.closed(); },
-                   [](const BezierSpline<double, 3>& s) { return s.closed(); }, [](const auto&) { return false; }},
-        curve_);
-}
-
-double AnyCurve::domainEnd() const
-{
-    return std::visit(
-        Overloaded{[](const BezierSpline<double, 2>& s) { return s.domainEnd(); },
-                   [](const BezierSpline<double, 3>& s) { return s.domainEnd(); }, [](const auto&) { return 1.0; }},
-        curve_);
-}
-
-Eigen::MatrixXd AnyCurve::derivatives(double t, int order) const
-{
-    return std::visit([&](const auto& c) -> Eigen::MatrixXd { return c.derivatives(t, order); }, curve_);
-}
-
-Eigen::MatrixXd AnyCurve::controlPoints() const
-{
-    return std::visit([](const auto& c) -> Eigen::MatrixXd { return c.controlPoints(); }, curve_);
-}
+// ---------------------------------------------------------------- toData: geometry -> data
 
 namespace {
-PointMatrix<double, 3> lift(const Eigen::MatrixXd& p)
+
+std::vector<double> weightList(const Eigen::Matrix<double, Eigen::Dynamic, 1>& w)
 {
-    PointMatrix<double, 3> out = PointMatrix<double, 3>::Zero(3, p.cols());
+    return std::vector<double>(w.data(), w.data() + w.size());
+}
+
+template <int Dim>
+NurbsCurveData curveData(const NurbsCurve<double, Dim>& c)
+{
+    NurbsCurveData d;
+    d.degree = c.degree();
+    d.knots = c.knots();
+    d.points = c.controlPoints();
+    if (c.isRational()) d.weights = weightList(c.weights());
+    return d;
+}
+
+template <int Dim>
+RationalBezierCurveData rationalData(const RationalBezierCurve<double, Dim>& c)
+{
+    RationalBezierCurveData d;
+    d.points = c.controlPoints();
+    d.weights = weightList(c.weights());
+    return d;
+}
+
+template <int Dim>
+BezierSplineData splineToData(const BezierSpline<double, Dim>& s)
+{
+    BezierSplineData d;
+    d.degree = s.degree();
+    d.closed = s.closed();
+    d.points = s.controlPoints();
+    d.intervals = s.intervals();
+    return d;
+}
+
+template <int Dim>
+DeBoorSplineData deBoorToData(const DeBoorSpline<Dim>& s)
+{
+    DeBoorSplineData d;
+    d.degree = 3;
+    d.end = toString(s.end);
+    d.points = s.points;
+    d.intervals = s.intervals;
+    return d;
+}
+
+} // namespace
+
+BezierCurveData toData(const BezierCurve<double, 2>& curve) { return {curve.controlPoints()}; }
+BezierCurveData toData(const BezierCurve<double, 3>& curve) { return {curve.controlPoints()}; }
+BezierSplineData toData(const BezierSpline<double, 2>& spline) { return splineToData(spline); }
+BezierSplineData toData(const BezierSpline<double, 3>& spline) { return splineToData(spline); }
+DeBoorSplineData toData(const DeBoorSpline<2>& spline) { return deBoorToData(spline); }
+DeBoorSplineData toData(const DeBoorSpline<3>& spline) { return deBoorToData(spline); }
+
+BezierSurfaceData toData(const BezierSurface<double, 3>& surface)
+{
+    BezierSurfaceData d;
+    d.degree = {surface.degreeU(), surface.degreeV()};
+    d.points = surface.controlPoints();
+    return d;
+}
+
+DeBoorSurfaceData toData(const DeBoorSurface& surface)
+{
+    DeBoorSurfaceData d;
+    d.degree = {3, 3};
+    d.end = {toString(surface.end[0]), toString(surface.end[1])};
+    d.rows = surface.rows;
+    d.cols = surface.cols;
+    d.points = surface.points;
+    return d;
+}
+
+LatticeData toData(const Lattice& lattice) { return latticeToData(lattice); }
+
+SubdivisionSurfaceData toData(const SubdivisionObject& surface)
+{
+    return cageToData(surface.cage(), toString(surface.surface.scheme()), toString(surface.surface.boundary()),
+                      "subdivision_surface");
+}
+
+ObjectData toData(const Geometry& geometry)
+{
+    return std::visit([](const auto& g) -> ObjectData { return toData(g); }, geometry);
+}
+
+NurbsCurveData toData(const NurbsCurve<double, 2>& curve) { return curveData(curve); }
+NurbsCurveData toData(const NurbsCurve<double, 3>& curve) { return curveData(curve); }
+
+NurbsSurfaceData toData(const NurbsSurface<double, 3>& surface)
+{
+    NurbsSurfaceData d;
+    d.degree = {surface.degreeU(), surface.degreeV()};
+    d.knots = {surface.knotsU().knots(), surface.knotsV().knots()};
+    d.rows = surface.countU();
+    d.cols = surface.countV();
+    d.points = surface.controlPoints();
+    if (surface.isRational()) d.weights = weightList(surface.weights());
+    return d;
+}
+
+RationalBezierCurveData toData(const RationalBezierCurve<double, 2>& curve) { return rationalData(curve); }
+RationalBezierCurveData toData(const RationalBezierCurve<double, 3>& curve) { return rationalData(curve); }
+
+RationalBezierSurfaceData toData(const RationalBezierSurface<double, 3>& surface)
+{
+    RationalBezierSurfaceData d;
+    const int m = surface.degreeU(), n = surface.degreeV();
+    d.degree = {m, n};
+    d.points.resize(3, (m + 1) * (n + 1));
+    for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j) {
+            d.points.col(i * (n + 1) + j) = surface.controlPoint(i, j);
+            d.weights.push_back(surface.weight(i, j));
+        }
+    return d;
+}
+
+// ---------------------------------------------------------------- the control net of every kind
+
+namespace {
+
+Eigen::Matrix<double, 3, Eigen::Dynamic> to3d(const PointColumns& p)
+{
+    Eigen::Matrix<double, 3, Eigen::Dynamic> out = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, p.cols());
     out.topRows(p.rows()) = p;
     return out;
 }
+
+void polygonEdges(std::vector<std::pair<int, int>>& edges, int count, bool closed)
+{
+    for (int i = 0; i + 1 < count; ++i) edges.emplace_back(i, i + 1);
+    if (closed && count > 2) edges.emplace_back(count - 1, 0);
+}
+
 } // namespace
 
-BezierSpline<double, 3> AnyCurve::spline3() const
+ControlNet controlNet(const TypedObject& object)
 {
-    return std::visit(
+    ControlNet net;
+    std::visit(
         Overloaded{
-            [](const BezierSpline<double, 3>& s) { return s; },
-            [](const BezierSpline<double, 2>& s) {
-                return BezierSpline<double, 3>(s.degree(), s.closed(), lift(s.controlPoints()), s.intervals());
+            [&](const BezierCurveData& d) {
+                net.points = to3d(d.points);
+                polygonEdges(net.edges, static_cast<int>(d.points.cols()), false);
             },
-            [](const auto& c) { return BezierSpline<double, 3>(c.degree(), false, lift(c.controlPoints())); },
+            [&](const BezierSplineData& d) {
+                net.points = to3d(d.points);
+                polygonEdges(net.edges, static_cast<int>(d.points.cols()), d.closed);
+            },
+            [&](const DeBoorSplineData& d) {
+                net.points = to3d(d.points);
+                polygonEdges(net.edges, static_cast<int>(d.points.cols()), d.end == "closed");
+            },
+            [&](const BezierSurfaceData& d) {
+                net.points = d.points;
+                gridEdges(net.edges, d.degree[0] + 1, d.degree[1] + 1);
+            },
+            [&](const DeBoorSurfaceData& d) {
+                net.points = d.points;
+                gridEdges(net.edges, d.rows, d.cols);
+            },
+            [&](const LatticeData& d) {
+                net.points = d.points;
+                const int a = d.degree[0] + 1, b = d.degree[1] + 1, c = d.degree[2] + 1;
+                auto index = [&](int i, int j, int k) { return (i * b + j) * c + k; };
+                for (int i = 0; i < a; ++i)
+                    for (int j = 0; j < b; ++j)
+                        for (int k = 0; k < c; ++k) {
+                            if (i + 1 < a) net.edges.emplace_back(index(i, j, k), index(i + 1, j, k));
+                            if (j + 1 < b) net.edges.emplace_back(index(i, j, k), index(i, j + 1, k));
+                            if (k + 1 < c) net.edges.emplace_back(index(i, j, k), index(i, j, k + 1));
+                        }
+            },
+            [&](const SubdivisionSurfaceData&) {
+                const SubdivisionCage& cage = std::get<SubdivisionObject>(object.geometry()).cage();
+                net.points = cage.mesh.positions;
+                std::set<std::pair<int, int>> edges;
+                for (int f = 0; f < cage.mesh.faceCount(); ++f)
+                    for (int k = 0; k < cage.mesh.faceSize(f); ++k) {
+                        const int u = cage.mesh.face(f)[k], v = cage.mesh.face(f)[(k + 1) % cage.mesh.faceSize(f)];
+                        edges.insert({std::min(u, v), std::max(u, v)});
+                    }
+                net.edges.assign(edges.begin(), edges.end());
+            },
+            [&](const RationalBezierCurveData& d) {
+                net.points = to3d(d.points);
+                polygonEdges(net.edges, static_cast<int>(d.points.cols()), false);
+            },
+            [&](const NurbsCurveData& d) {
+                net.points = to3d(d.points);
+                polygonEdges(net.edges, static_cast<int>(d.points.cols()), false);
+            },
+            [&](const RationalBezierSurfaceData& d) {
+                net.points = d.points;
+                gridEdges(net.edges, d.degree[0] + 1, d.degree[1] + 1);
+            },
+            [&](const NurbsSurfaceData& d) {
+                net.points = d.points;
+                gridEdges(net.edges, d.rows, d.cols);
+            },
+            [&](const TrimmedSurfaceData& d) { // its NURBS's grid
+                net.points = d.surface.points;
+                gridEdges(net.edges, d.surface.rows, d.surface.cols);
+            },
+            [](const PartData&) {}, // a part's faces are not edited point by point: no net drawn
         },
-        curve_);
-}
-
-Eigen::Matrix<double, 3, Eigen::Dynamic> AnyCurve::polyline(double tolerance) const
-{
-    // As the editor samples (scene/geometry.cpp): the curve in 3D, adaptive parameters, evaluated.
-    if (curve_.index() < 2) {
-        const BezierCurve<double, 3> curve(lift(controlPoints()));
-        return curve.evaluateMany(curve.sampleAdaptive(tolerance));
-    }
-    const BezierSpline<double, 3> spline = spline3();
-    const std::vector<double> ts = spline.sampleAdaptive(tolerance);
-    Eigen::Matrix<double, 3, Eigen::Dynamic> out(3, static_cast<Eigen::Index>(ts.size()));
-    for (std::size_t k = 0; k < ts.size(); ++k) out.col(static_cast<Eigen::Index>(k)) = spline.evaluate(ts[k]);
-    return out;
-}
-
-std::optional<AnySurface> AnySurface::of(const TypedObject& object)
-{
-    if (const auto* p = std::get_if<BezierSurface<double, 3>>(&object.geometry())) return AnySurface{PatchComplex{{*p}}, {1, 1}};
-    if (const auto* d = std::get_if<DeBoorSurface>(&object.geometry())) return AnySurface{d->patches, d->segments};
-    return std::nullopt;
+        object.data());
+    return net;
 }
 
 } // namespace freeform

@@ -1,37 +1,21 @@
-// continuity, tessellation, control nets and spline conversion on typed objects
-// (document/operations.h): what `freeform continuity`, `freeform tessellate`, `freeform convert
-// --to` and the editor's scene geometry compute.
+// continuity, tessellation and spline conversion on typed objects (document/operations.h): what
+// `freeform continuity`, `freeform tessellate`, `freeform convert --to` and the editor's scene
+// geometry compute. The control net of every kind is beside its build and toData (model.cpp).
 
 #include <algorithm>
-#include <set>
 
 #include "freeform/core/error.h"
 #include "freeform/document/operations.h"
 #include "freeform/curve/nurbs_continuity.h"
 #include "evaluation.h"
 #include "part_ops.h"
-#include "rational.h"
+#include "freeform/tessellate/tessellate_rational.h"
 #include "overloaded.h"
 
 namespace freeform {
 namespace {
 
-using detail::gridEdges;
 using detail::Overloaded;
-
-Eigen::Matrix<double, 3, Eigen::Dynamic> to3d(const PointColumns& p)
-{
-    Eigen::Matrix<double, 3, Eigen::Dynamic> out = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, p.cols());
-    out.topRows(p.rows()) = p;
-    return out;
-}
-
-void polygonEdges(std::vector<std::pair<int, int>>& edges, int count, bool closed)
-{
-    for (int i = 0; i + 1 < count; ++i) edges.emplace_back(i, i + 1);
-    if (closed && count > 2) edges.emplace_back(count - 1, 0);
-}
-
 
 std::string splineError(const TypedDocument& doc, const TypedObject& object)
 {
@@ -46,14 +30,15 @@ std::string splineError(const TypedDocument& doc, const TypedObject& object)
 std::vector<JointContinuity<double>> continuity(const TypedDocument& doc, const TypedObject& object,
                                                 const ContinuityTolerances<double>& tol)
 {
-    // nurbs_curve: every interior breakpoint (C^k from the geometry, docs/nurbs.md).
-    if (const auto* c = std::get_if<NurbsCurve<double, 2>>(&object.geometry())) return continuityReport(*c, tol);
-    if (const auto* c = std::get_if<NurbsCurve<double, 3>>(&object.geometry())) return continuityReport(*c, tol);
+    // A spline: its joints; a nurbs_curve: every interior breakpoint (C^k from the geometry,
+    // docs/nurbs.md). Any other curve has no joints to report.
     const auto curve = AnyCurve::of(object);
-    if (!curve || !curve->isSpline()) throw Error(splineError(doc, object));
+    if (!curve || !(curve->isSpline() || curve->form() == AnyCurve::Form::Nurbs)) throw Error(splineError(doc, object));
     return std::visit(
         Overloaded{[&](const BezierSpline<double, 2>& s) { return continuityReport(s, tol); },
                    [&](const BezierSpline<double, 3>& s) { return continuityReport(s, tol); },
+                   [&](const NurbsCurve<double, 2>& c) { return continuityReport(c, tol); },
+                   [&](const NurbsCurve<double, 3>& c) { return continuityReport(c, tol); },
                    [](const auto&) { return std::vector<JointContinuity<double>>{}; }},
         curve->variant());
 }
@@ -63,18 +48,20 @@ std::vector<JointContinuity<double>> continuity(const TypedDocument& doc, const 
 PatchComplex surfacePatches(const TypedDocument& doc, const TypedObject& object, std::array<int, 2>* segments)
 {
     const auto surface = AnySurface::of(object);
-    if (!surface)
+    if (!surface || !surface->patches())
         throw Error(doc.what(object) + ": type " + object.type() + " is not a surface (bezier_surface, deboor_surface)");
-    if (segments) *segments = surface->segments;
-    return surface->patches;
+    if (segments) *segments = surface->patches()->segments;
+    return surface->patches()->patches;
 }
 
 PatchComplex documentPatches(const TypedDocument& doc)
 {
     PatchComplex complex;
     for (const TypedObject& o : doc.objects())
-        if (const auto surface = AnySurface::of(o))
-            complex.patches.insert(complex.patches.end(), surface->patches.patches.begin(), surface->patches.patches.end());
+        if (const auto surface = AnySurface::of(o); surface && surface->patches()) {
+            const std::vector<Patch>& patches = surface->patches()->patches.patches;
+            complex.patches.insert(complex.patches.end(), patches.begin(), patches.end());
+        }
     if (complex.patches.empty())
         throw Error(doc.source + ": the document has no surface objects (bezier_surface, deboor_surface)");
     return complex;
@@ -83,17 +70,26 @@ PatchComplex documentPatches(const TypedDocument& doc)
 std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const ObjectTessellation& options,
                                             TessellationReport* report)
 {
+    // A trimmed surface and a part: the part mesh (part_ops.cpp), each edge sampled once.
+    if (auto mesh = detail::tessellatePartObject(object, options, report)) return mesh;
     if (const auto surface = AnySurface::of(object)) {
         TessellationOptions o;
         if (options.tolerance > 0) {
             o.tolerance = options.tolerance;
-            o.patchTolerance = options.patchTolerance;
+            if (surface->patches()) o.patchTolerance = options.patchTolerance;
         } else {
             o.tolerance = 0;
             o.segmentsU = o.segmentsV = options.segments;
         }
         o.flipNormals = options.flip;
-        return tessellate(surface->patches, o, report);
+        return std::visit(
+            Overloaded{
+                [&](const AnySurface::Patches& p) { return tessellate(p.patches, o, report); },
+                [&](const RationalBezierSurface<double, 3>& s) { return tessellateRational({s}, 1, 1, o, report); },
+                [&](const NurbsSurface<double, 3>& s) { return tessellateNurbs(s, o, report); },
+                [](const TrimmedSurface&) -> PolygonMesh { throw Error("tessellateObject: a trimmed surface is a part's"); },
+            },
+            surface->variant());
     }
     if (const auto* s = std::get_if<SubdivisionObject>(&object.geometry())) {
         SubdivisionTessellationOptions o;
@@ -108,69 +104,13 @@ std::optional<PolygonMesh> tessellateObject(const TypedObject& object, const Obj
         }
         return mesh;
     }
-    if (auto mesh = detail::tessellatePartObject(object, options, report)) return mesh;
-    return detail::tessellateRationalObject(object, options, report);
+    return std::nullopt;
 }
 
 std::optional<Eigen::Matrix<double, 3, Eigen::Dynamic>> objectPolyline(const TypedObject& object, double tolerance)
 {
     if (const auto curve = AnyCurve::of(object)) return curve->polyline(tolerance);
-    return detail::rationalPolyline(object, tolerance);
-}
-
-ControlNet controlNet(const TypedObject& object)
-{
-    ControlNet net;
-    if (detail::rationalControlNet(object, net) || detail::partControlNet(object, net)) return net;
-    std::visit(
-        Overloaded{
-            [&](const BezierCurveData& d) {
-                net.points = to3d(d.points);
-                polygonEdges(net.edges, static_cast<int>(d.points.cols()), false);
-            },
-            [&](const BezierSplineData& d) {
-                net.points = to3d(d.points);
-                polygonEdges(net.edges, static_cast<int>(d.points.cols()), d.closed);
-            },
-            [&](const DeBoorSplineData& d) {
-                net.points = to3d(d.points);
-                polygonEdges(net.edges, static_cast<int>(d.points.cols()), d.end == "closed");
-            },
-            [&](const BezierSurfaceData& d) {
-                net.points = d.points;
-                gridEdges(net.edges, d.degree[0] + 1, d.degree[1] + 1);
-            },
-            [&](const DeBoorSurfaceData& d) {
-                net.points = d.points;
-                gridEdges(net.edges, d.rows, d.cols);
-            },
-            [&](const LatticeData& d) {
-                net.points = d.points;
-                const int a = d.degree[0] + 1, b = d.degree[1] + 1, c = d.degree[2] + 1;
-                auto index = [&](int i, int j, int k) { return (i * b + j) * c + k; };
-                for (int i = 0; i < a; ++i)
-                    for (int j = 0; j < b; ++j)
-                        for (int k = 0; k < c; ++k) {
-                            if (i + 1 < a) net.edges.emplace_back(index(i, j, k), index(i + 1, j, k));
-                            if (j + 1 < b) net.edges.emplace_back(index(i, j, k), index(i, j + 1, k));
-                            if (k + 1 < c) net.edges.emplace_back(index(i, j, k), index(i, j, k + 1));
-                        }
-            },
-            [&](const SubdivisionSurfaceData&) {
-                const SubdivisionCage& cage = std::get<SubdivisionObject>(object.geometry()).cage();
-                net.points = cage.mesh.positions;
-                std::set<std::pair<int, int>> edges;
-                for (int f = 0; f < cage.mesh.faceCount(); ++f)
-                    for (int k = 0; k < cage.mesh.faceSize(f); ++k) {
-                        const int u = cage.mesh.face(f)[k], v = cage.mesh.face(f)[(k + 1) % cage.mesh.faceSize(f)];
-                        edges.insert({std::min(u, v), std::max(u, v)});
-                    }
-                net.edges.assign(edges.begin(), edges.end());
-            },
-            [](const auto&) {}, // the rational types, parts: rationalControlNet, partControlNet above
-        },
-        object.data());
-    return net;
+    return std::nullopt;
 }
 
 DocumentTessellation tessellateDocument(const TypedDocument& doc, const TypedObject* object,
@@ -189,7 +129,10 @@ DocumentTessellation tessellateDocument(const TypedDocument& doc, const TypedObj
         for (const TypedObject& o : doc.objects())
             if (rationalSurface(o)) rational.push_back(&o);
         const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(),
-                                            [](const TypedObject& o) { return AnySurface::of(o).has_value(); });
+                                            [](const TypedObject& o) {
+                                                const auto surface = AnySurface::of(o);
+                                                return surface && surface->patches();
+                                            });
         // documentPatches says "no surface objects" when the document has none of any kind.
         if (polynomial || rational.empty()) complex = documentPatches(doc);
     }

@@ -142,16 +142,6 @@ std::optional<PolygonMesh> tessellatePartObject(const TypedObject& object, const
     return std::move(mesh.mesh);
 }
 
-bool partControlNet(const TypedObject& object, ControlNet& net)
-{
-    if (const auto* d = std::get_if<TrimmedSurfaceData>(&object.data())) {
-        net.points = d->surface.points;
-        gridEdges(net.edges, d->surface.rows, d->surface.cols);
-        return true;
-    }
-    return std::holds_alternative<PartData>(object.data()); // no net drawn for a part
-}
-
 } // namespace freeform::detail
 
 namespace freeform {

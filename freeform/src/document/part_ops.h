@@ -1,6 +1,6 @@
 #pragma once
 // Internal to src/document: the operations on trimmed_surface and part objects (part_ops.cpp),
-// called from the per-operation files as rational.h's are.
+// called from the per-operation files.
 
 #include <optional>
 #include <string>
@@ -16,7 +16,5 @@ std::optional<Evaluation> evaluatePartObject(const std::string& what, const Type
 std::optional<std::vector<double>> partDomain(const TypedObject& object);
 std::optional<PolygonMesh> tessellatePartObject(const TypedObject& object, const ObjectTessellation& options,
                                                 TessellationReport* report);
-/// The control grid of a trimmed_surface's NURBS; false for other types (a part has none drawn).
-bool partControlNet(const TypedObject& object, ControlNet& net);
 
 } // namespace freeform::detail

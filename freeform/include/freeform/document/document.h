@@ -8,9 +8,9 @@
 //   TypedDocument doc = TypedDocument::read(path);   // readDocument + geometry of every object
 //   const TypedObject& o = doc.object(name);         // or doc.find(id): ids stay stable
 //
-//   AnyCurve::of(o) / AnySurface::of(o)   the polynomial curves and surfaces (dimension(),
-//                                         derivatives(), polyline, patches); the rational and
-//                                         NURBS kinds are not in them yet (docs/architecture.md)
+//   AnyCurve::of(o) / AnySurface::of(o)   every curve kind and every (u, v) surface kind, rational
+//                                         and NURBS included (dimension(), derivatives(), domain,
+//                                         polyline; jet(), normal(), patches() of the polynomial ones)
 //   evaluate(doc, o, parameters, K)       cli/eval_*.cpp, Python's Document.evaluate
 //   continuity(doc, o, tolerances)        cli/cmd_continuity.cpp
 //   surfacePatches / documentPatches      cli/cmd_tessellate.cpp, then tessellate()
@@ -21,14 +21,11 @@
 //   latticeFromData / latticeToData, cageFromData (io/geometry_data.h)
 //                                         lattices and cages from plain data, in every front end
 //
-// Adding an object type (rational Bézier, NURBS): its data struct in io/document.h, one
-// alternative in Geometry (model.h) plus its case in buildGeometry (src/document/model.cpp; that
-// visitor has no catch-all, so the compiler asks for it, as it does in controlNet), then its
-// operations in src/document/, called from evaluate, tessellateObject and deformDocument. A
-// polynomial curve or surface that joins AnyCurve / AnySurface is taken by evaluate, polylines,
-// continuity and tessellation unchanged; the rational and NURBS kinds still have code of their own
-// in each front end (docs/architecture.md, "Adding an object kind"). Until deformDocument knows a
-// new type it is listed as skipped ("no exact deformation for a TYPE"), never silently dropped.
+// Adding an object kind: the files, one by one, are in docs/architecture.md ("Adding an object
+// kind"); the visitors over ObjectData and Geometry have no catch-all, so the compiler asks for
+// each case. A curve or (u, v) surface that joins AnyCurve / AnySurface is taken by evaluate,
+// polylines, continuity and tessellation unchanged. Until deformDocument knows a new kind it is
+// listed as skipped ("no exact deformation for a TYPE"), never silently dropped.
 
 #include "freeform/document/model.h"
 #include "freeform/document/operations.h"
