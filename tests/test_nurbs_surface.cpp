@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <freeform/curve/nurbs_curve.h>
 #include <freeform/surface/nurbs_surface.h>
 
 #include <cmath>
@@ -208,6 +209,38 @@ TEST_CASE("a surface restricted to a parameter box is the same surface there", "
             }
         // The restricted net's box holds the surface there and lies within the whole net's box.
         CHECK(s.controlBox().contains(r.controlBox()));
+    }
+}
+
+TEST_CASE("refinement and restriction of the net equal the column curves' bit for bit", "[nurbs][surface]")
+{
+    // The surface refines and cuts all columns at once; NurbsCurve::refined and split do it column
+    // by column. The same operations: every number equal, not just close.
+    using Curve = NurbsCurve<double, 3>;
+    for (int p = 1; p <= 5; ++p) {
+        const Surface s = randomSurface(p, 2, p % 2, true, 800u + p);
+        const double a = s.knotsU().front(), b = s.knotsU().back();
+        const std::vector<double> extra{a + 0.3 * (b - a), a + 0.3 * (b - a), a + 0.8 * (b - a)};
+        const double a0 = a + 0.21 * (b - a), a1 = a + 0.77 * (b - a);
+        const Surface refined = s.refinedU(extra), restricted = s.restrictedU(a0, a1), right = s.restrictedU(a0, b);
+        for (int j = 0; j < s.countV(); ++j) {
+            Curve::HPoints column(4, s.countU());
+            for (int i = 0; i < s.countU(); ++i) column.col(i) = s.homogeneousPoints().col(s.index(i, j));
+            const Curve c(s.knotsU(), column);
+            const Curve cr = c.refined(extra), cut = c.split(a0).second.split(a1).first, tail = c.split(a0).second;
+            INFO("p = " << p << ", column " << j);
+            REQUIRE(refined.countU() == cr.controlCount());
+            REQUIRE(restricted.countU() == cut.controlCount());
+            REQUIRE(right.countU() == tail.controlCount());
+            CHECK(refined.knotsU().knots() == cr.knots());
+            CHECK(restricted.knotsU().knots() == cut.knots());
+            CHECK(right.knotsU().knots() == tail.knots());
+            for (int i = 0; i < cr.controlCount(); ++i) CHECK(refined.homogeneousPoints().col(refined.index(i, j)) == cr.homogeneousPoints().col(i));
+            for (int i = 0; i < cut.controlCount(); ++i)
+                CHECK(restricted.homogeneousPoints().col(restricted.index(i, j)) == cut.homogeneousPoints().col(i));
+            for (int i = 0; i < tail.controlCount(); ++i)
+                CHECK(right.homogeneousPoints().col(right.index(i, j)) == tail.homogeneousPoints().col(i));
+        }
     }
 }
 

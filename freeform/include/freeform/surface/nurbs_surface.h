@@ -311,28 +311,18 @@ public:
     /// homogeneous net. The surface is unchanged.
     NurbsSurface refinedU(const std::vector<Scalar>& extra) const
     {
-        std::vector<NurbsCurve<Scalar, Dim>> cols;
-        for (int j = 0; j < countV(); ++j) {
-            HPoints c(Dim + 1, countU());
-            for (int i = 0; i < countU(); ++i) c.col(i) = hom_.col(index(i, j));
-            cols.push_back(NurbsCurve<Scalar, Dim>(ku_, std::move(c)).refined(extra));
-        }
-        const int nu = cols.front().controlCount();
-        HPoints h(Dim + 1, nu * countV());
-        for (int i = 0; i < nu; ++i)
-            for (int j = 0; j < countV(); ++j) h.col(i * countV() + j) = cols[j].homogeneousPoints().col(i);
-        return NurbsSurface(cols.front().knotVector(), kv_, std::move(h));
+        for (Scalar x : extra)
+            if (!(x > ku_.front() && x < ku_.back()))
+                throw Error("NurbsCurve::refined: knot " + formatNumber(x) + " is not inside the domain (" +
+                            formatNumber(ku_.front()) + ", " + formatNumber(ku_.back()) + ")");
+        std::vector<Scalar> tau = ku_.knots();
+        tau.insert(tau.end(), extra.begin(), extra.end());
+        std::sort(tau.begin(), tau.end());
+        Knots k(std::move(tau), degreeU(), "NurbsCurve::refined");
+        HPoints h = refinedRows(ku_, hom_, countV(), k);
+        return NurbsSurface(std::move(k), kv_, std::move(h));
     }
-    NurbsSurface refinedV(const std::vector<Scalar>& extra) const
-    {
-        std::vector<NurbsCurve<Scalar, Dim>> rows;
-        for (int i = 0; i < countU(); ++i)
-            rows.push_back(NurbsCurve<Scalar, Dim>(kv_, HPoints(hom_.middleCols(i * countV(), countV()))).refined(extra));
-        const int nv = rows.front().controlCount();
-        HPoints h(Dim + 1, countU() * nv);
-        for (int i = 0; i < countU(); ++i) h.middleCols(i * nv, nv) = rows[i].homogeneousPoints();
-        return NurbsSurface(ku_, rows.front().knotVector(), std::move(h));
-    }
+    NurbsSurface refinedV(const std::vector<Scalar>& extra) const { return transposed().refinedU(extra).transposed(); }
 
     /// Result of removeKnotU/V() and reducedU/V(): the new surface and the error the operation
     /// reports. The error is the largest of the per-row curve errors (NurbsCurve::removeKnot,
@@ -480,12 +470,11 @@ public:
     /// (or on its end) leaves that end as it is.
     NurbsSurface restrictedU(Scalar a, Scalar b) const
     {
-        std::vector<NurbsCurve<Scalar, Dim>> cols = curvesU();
-        for (auto& c : cols) {
-            if (a > c.domainStart() && a < c.domainEnd()) c = c.split(a).second;
-            if (b > c.domainStart() && b < c.domainEnd()) c = c.split(b).first;
-        }
-        return fromCurvesU(cols, kv_);
+        Knots k = ku_;
+        HPoints h = hom_;
+        if (a > k.front() && a < k.back()) cutU(k, h, countV(), a, true);
+        if (b > k.front() && b < k.back()) cutU(k, h, countV(), b, false);
+        return NurbsSurface(std::move(k), kv_, std::move(h));
     }
     NurbsSurface restrictedV(Scalar a, Scalar b) const { return transposed().restrictedU(a, b).transposed(); }
 
@@ -510,6 +499,64 @@ private:
         }
         return cols;
     }
+    /// The Oslo refinement of NurbsCurve::refined on every column of a net at once: row i of the
+    /// net (along u) is columns i * nv .. i * nv + nv - 1 of hom, on knots k; `refined` holds k's
+    /// knots and more. Column by column the same operations as the curve's, so the same numbers,
+    /// without a NurbsCurve (and its Bézier pieces) per column.
+    static HPoints refinedRows(const Knots& k, const HPoints& hom, int nv, const Knots& refined)
+    {
+        const int p = k.degree(), count = refined.controlCount();
+        const std::vector<Scalar>& tau = refined.knots();
+        HPoints out(Dim + 1, static_cast<Eigen::Index>(count) * nv);
+        std::vector<HPoints> d(static_cast<std::size_t>(p + 1));
+        for (int j = 0; j < count; ++j) {
+            // A non-empty new span among j..j+p inside the domain; the old span containing it.
+            int s = std::max(j, p);
+            while (s < std::min(j + p, count - 1) && !(tau[s] < tau[s + 1])) ++s;
+            const int mu = k.findSpan(tau[s]);
+            for (int i = 0; i <= p; ++i) d[static_cast<std::size_t>(i)] = hom.middleCols((mu - p + i) * nv, nv);
+            for (int r = 1; r <= p; ++r) { // the blossom at tau[j + 1], ..., tau[j + p]
+                const Scalar x = tau[j + r];
+                for (int i = p; i >= r; --i) {
+                    const int g = mu - p + i;
+                    const Scalar alpha = (x - k[g]) / (k[g + p + 1 - r] - k[g]);
+                    d[static_cast<std::size_t>(i)] =
+                        (Scalar(1) - alpha) * d[static_cast<std::size_t>(i - 1)] + alpha * d[static_cast<std::size_t>(i)];
+                }
+            }
+            out.middleCols(static_cast<Eigen::Index>(j) * nv, nv) = d[static_cast<std::size_t>(p)];
+        }
+        return out;
+    }
+
+    /// NurbsCurve::split at u on every column of the net (rows along u, nv wide): the knots and
+    /// rows after u (keepRight) or before it.
+    static void cutU(Knots& k, HPoints& hom, int nv, Scalar u, bool keepRight)
+    {
+        const int p = k.degree(), s = k.multiplicity(u);
+        if (s < p + 1) {
+            std::vector<Scalar> tau = k.knots();
+            tau.insert(tau.end(), static_cast<std::size_t>(p + 1 - s), u);
+            std::sort(tau.begin(), tau.end());
+            Knots refined(std::move(tau), p, "NurbsCurve::refined");
+            hom = refinedRows(k, hom, nv, refined);
+            k = std::move(refined);
+        }
+        const std::vector<Scalar>& U = k.knots();
+        const int a = static_cast<int>(std::lower_bound(U.begin(), U.end(), u) - U.begin());
+        if (keepRight) {
+            std::vector<Scalar> right(static_cast<std::size_t>(p + 1), u);
+            right.insert(right.end(), U.begin() + a + p + 1, U.end());
+            hom = HPoints(hom.rightCols(hom.cols() - static_cast<Eigen::Index>(a) * nv));
+            k = Knots(std::move(right), p, "NurbsCurve::split");
+        } else {
+            std::vector<Scalar> left(U.begin(), U.begin() + a);
+            left.insert(left.end(), static_cast<std::size_t>(p + 1), u);
+            hom = HPoints(hom.leftCols(static_cast<Eigen::Index>(a) * nv));
+            k = Knots(std::move(left), p, "NurbsCurve::split");
+        }
+    }
+
     /// The surface whose column j is cols[j] (all on one knot vector in u), knots kv in v.
     static NurbsSurface fromCurvesU(const std::vector<NurbsCurve<Scalar, Dim>>& cols, const Knots& kv)
     {
