@@ -201,10 +201,14 @@ double ownCellBound(const RationalPatch& cell, bool curves)
 /// height out. Not `general` (a patch ruled in v): ruledCellBound alone, no cell cut along v, and
 /// `rowPart` receives the largest of its row terms e + q rho, which more rows along v do not shrink.
 /// Cells that no trim runs through (`zones`) also take the bounds from curves (revolution, cone).
-double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, bool general = true, double* rowPart = nullptr)
+///
+/// With a `limit`, the scan stops at the first cell whose bound is over it and returns that bound:
+/// whether the grid is within the limit is all a search asks, and the answer is the same.
+double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, bool general = true, double* rowPart = nullptr,
+                  double limit = kInf)
 {
     if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed()))
-        return cellsBound(p.transposed(), nv, nu, zones.transposed());
+        return cellsBound(p.transposed(), nv, nu, zones.transposed(), true, nullptr, limit);
     const bool ruled = !general || ruledInV(p);
     if (rowPart) *rowPart = 0;
     double worst = 0;
@@ -223,6 +227,7 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
             }
             if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
             worst = std::max(worst, bound);
+            if (worst > limit) return worst;
         }
     }
     return worst;
@@ -441,7 +446,9 @@ std::array<int, 2> patchSegments(const RationalPatch& p, double target, const Tr
     // bound falls as they narrow).
     const std::array<int, 2> upper = best;
     const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
-    auto bound = [&](int na, int nb) { return a == 0 ? cellsBound(p, na, nb, zones) : cellsBound(p, nb, na, zones); };
+    auto bound = [&](int na, int nb) {
+        return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target) : cellsBound(p, nb, na, zones, true, nullptr, target);
+    };
     for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
         // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
         const int cap = std::min(upper[b], (best[0] * best[1] - 1) / na);
