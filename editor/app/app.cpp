@@ -231,7 +231,10 @@ std::string App::statusHint()
             hint = "Select (" + selected.name + ", part): " + (face.empty() ? "click a face to see it" : face) +
                    "; L fits a lattice to it; File > Export part writes STEP or IGES";
         }
-        else if (NurbsTool::handles(selected.info())) hint += "; Alt+drag a point: its weight; K: insert a knot at t; T: de Boor construction";
+        else if (NurbsTool::handles(selected.info())) {
+            hint += "; Alt+drag a point: its weight; K: insert a knot at t";
+            if (selected.info()->isCurve()) hint += "; T: de Boor construction; V: curvature comb";
+        }
         hint += "; Escape deselects";
     } else {
         hint = "Select: click an object or point; C: curve, Shift+C: C2 spline; drag: orbit, wheel: zoom; F1: help";

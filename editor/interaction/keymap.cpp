@@ -75,6 +75,7 @@ std::vector<KeyBinding> makeKeymap()
         {GLFW_KEY_ESCAPE, 0, kPlain, C::Nurbs, A::CircleCancel, "Escape (circle or arc)", "cancel the circle or arc being created"},
         {GLFW_KEY_K, 0, kPlain, C::Nurbs, A::InsertKnot, "K (NURBS selected)", "insert a knot at the slider's parameter (shape unchanged)"},
         {GLFW_KEY_T, 0, kPlain, C::Nurbs, A::DeBoorConstruction, "T (NURBS curve selected)", "de Boor construction at the slider's parameter on / off"},
+        {GLFW_KEY_V, 0, kPlain, C::Nurbs, A::Comb, "V (NURBS curve selected)", "curvature comb on / off"},
         // Lattices.
         {GLFW_KEY_L, 0, kPlain, C::Lattice, A::FitLattice, "L (imported mesh selected)", "fit a lattice to it (degrees and margin in the panel)"},
         {GLFW_KEY_D, 0, kPlain, C::Lattice, A::DirectManipulation, "D", "direct manipulation on / off (drag a point of a deformed mesh; the lattice follows)"},

@@ -15,6 +15,8 @@
 //   - the de Boor overlay: its last point is the curve point at the slider's parameter (library
 //     evaluation) for a polynomial and a rational curve, with p (p + 1) / 2 construction points;
 //   - the knot display: one dot per distinct knot, one tick per unit of multiplicity;
+//   - the curvature comb: a circle's teeth radial and of one length, a rational cubic's in the
+//     ratio of its curvature by differences, a step at its C1 knot;
 //   - FFD "apply exactly" on 3D NURBS and rational curves: number for number what `freeform ffd`
 //     writes, and at sample parameters what Lattice::deform gives point by point (1e-9).
 
@@ -44,6 +46,8 @@ using namespace freeform;
 using namespace freeform::editor;
 using namespace freeform::editor::tool_test;
 using JsonV = nlohmann::json; // key order ignored (the editor's Json keeps it)
+using tool_util::kComb;
+using tool_util::sceneSize;
 
 namespace {
 
@@ -317,6 +321,74 @@ TEST_CASE("nurbs editor: the de Boor overlay ends at the curve point; knots draw
     b.select("sphere");
     b.update();
     CHECK(b.overlay.lines.positions.cols() == 2 * 64 * 8);
+}
+
+namespace {
+
+/// The comb's teeth in the overlay (kComb x 0.7, drawn on top): (base, tip) pairs in drawing order.
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> teeth(const Overlay& o)
+{
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> out;
+    const Vec3f colour = kComb * 0.7f;
+    for (Eigen::Index k = 0; k + 1 < o.linesOnTop.positions.cols(); k += 2)
+        if (o.linesOnTop.colors.col(k) == colour)
+            out.emplace_back(o.linesOnTop.positions.col(k).cast<double>(), o.linesOnTop.positions.col(k + 1).cast<double>());
+    return out;
+}
+
+/// The curvature of object `name` at u by central differences of the library's points (step h).
+double curvatureAt(Bench& b, const std::string& name, double u, double h = 1e-4)
+{
+    const Eigen::Vector3d p0 = b.eval(name, {u - h}), p1 = b.eval(name, {u}), p2 = b.eval(name, {u + h});
+    const Eigen::Vector3d d1 = (p2 - p0) / (2 * h), d2 = (p2 - 2 * p1 + p0) / (h * h);
+    return d1.cross(d2).norm() / std::pow(d1.norm(), 3);
+}
+
+} // namespace
+
+TEST_CASE("nurbs editor: the curvature comb of NURBS and rational curves", "[editor][nurbs]")
+{
+    Bench b(example());
+    // The circle (radius 1 about the origin, four spans): 49 teeth per span, all of one length
+    // (0.15 of the scene), each radial and outward (the curvature vector points at the centre).
+    b.select("circle");
+    b.tools.nurbs().showKnots = false;
+    REQUIRE(b.tools.onKey(b.context, GLFW_KEY_V, 0));
+    REQUIRE(b.tools.nurbs().comb);
+    b.update();
+    auto circle = teeth(b.overlay);
+    REQUIRE(circle.size() == 4 * 49);
+    const double length = (circle.front().second - circle.front().first).norm();
+    CHECK(length == Approx(0.15 * sceneSize(b.scene)).epsilon(1e-5));
+    for (const auto& [base, tip] : circle) {
+        CHECK(std::abs(base.norm() - 1) < 1e-6);
+        CHECK((tip - base * (1 + length)).norm() < 1e-5);
+    }
+    // The rational wave (weights 1, 1, 2, 1, 0.5, 1, 1, 1; knots 0, 1, 2 twice, 3, 4): the teeth's
+    // lengths in the ratio of the curvature by differences of the library's points, and at the
+    // double knot u = 2 (C1 there) two teeth on one point whose lengths step by the curvature's jump.
+    b.select("wave");
+    b.update();
+    const auto wave = teeth(b.overlay);
+    REQUIRE(wave.size() == 4 * 49);
+    auto len = [&](std::size_t i) { return (wave[i].second - wave[i].first).norm(); };
+    const double k0 = curvatureAt(b, "wave", 0.5);
+    for (const auto& [span, i] : {std::pair{1, 12}, std::pair{2, 24}, std::pair{3, 36}}) {
+        const double u = span + i / 48.0;
+        INFO("u = " << u);
+        CHECK((wave[static_cast<std::size_t>(49 * span + i)].first - b.eval("wave", {u})).norm() < 1e-5);
+        CHECK(len(static_cast<std::size_t>(49 * span + i)) / len(24) == Approx(curvatureAt(b, "wave", u) / k0).epsilon(1e-4));
+    }
+    const double left = curvatureAt(b, "wave", 2 - 2e-4), right = curvatureAt(b, "wave", 2 + 2e-4);
+    CHECK(std::abs(left / right - 1) > 0.05); // a real jump, which a comb sampled across the knot would smooth
+    CHECK((wave[97].first - wave[98].first).norm() < 1e-6);
+    CHECK(len(97) / len(98) == Approx(left / right).epsilon(1e-2));
+    // A polynomial spline is the curve tool's: the NURBS tool's V passes it on.
+    Bench s(curveScene("comb_spline.json"));
+    s.select("s");
+    s.tools.nurbs().comb = false;
+    s.tools.nurbs().onKey(s.context, KeyAction::Comb);
+    CHECK_FALSE(s.tools.nurbs().comb);
 }
 
 TEST_CASE("nurbs editor: apply exactly turns NURBS and rational curves as freeform ffd does", "[editor][nurbs][ffd]")

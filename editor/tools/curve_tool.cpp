@@ -21,21 +21,6 @@ void drawConstruction(Overlay& o, const Points3& control, double t)
     drawConstructionLevels(o, deCasteljauLevels(control, t));
 }
 
-void drawComb(Overlay& o, const std::vector<Eigen::Matrix3d>& jets, double size, double scale)
-{
-    double kmax = 0;
-    for (const auto& j : jets) {
-        const double s2 = j.col(1).squaredNorm();
-        if (s2 > 0) kmax = std::max(kmax, j.col(1).cross(j.col(2)).norm() / (s2 * std::sqrt(s2)));
-    }
-    if (!(kmax > 0)) return;
-    const Points3 comb = curvatureComb(jets, scale * 0.15 * size / kmax);
-    for (Eigen::Index i = 0; i < comb.cols(); i += 2) {
-        o.addLine(f3(comb.col(i)), f3(comb.col(i + 1)), kComb * 0.7f, true);
-        if (i + 3 < comb.cols()) o.addLine(f3(comb.col(i + 1)), f3(comb.col(i + 3)), kComb, true);
-    }
-}
-
 std::vector<Eigen::Matrix3d> curveJets(const BezierCurve<double, 3>& c, int samples)
 {
     std::vector<Eigen::Matrix3d> jets;

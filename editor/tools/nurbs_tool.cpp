@@ -44,6 +44,26 @@ std::vector<double>* weightsField(ObjectData& data, Eigen::Index& count)
 
 /// A rational curve object's geometry (the scene's typed object) as a 3D NURBS: a 2D one with
 /// z = 0, a rational Bézier curve on clamped knots over [0, 1].
+/// The jets (point, C', C'') of a curve for its curvature comb: `perSpan` + 1 samples of every
+/// knot span, each from the span's own rational Bézier piece, so both sides of a knot are drawn
+/// and a jump of the curvature there shows as a step of the comb.
+std::vector<Eigen::Matrix3d> combJets(const NurbsCurve<double, 3>& c, int perSpan)
+{
+    std::vector<Eigen::Matrix3d> jets;
+    const auto pieces = c.bezierPieces();
+    const std::vector<double>& breaks = c.breakpoints();
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+        const double h = breaks[k + 1] - breaks[k];
+        for (int i = 0; i <= perSpan; ++i) {
+            Eigen::Matrix3d j = pieces[k].derivatives(double(i) / perSpan, 2);
+            j.col(1) /= h; // derivatives with respect to the curve's parameter
+            j.col(2) /= h * h;
+            jets.push_back(j);
+        }
+    }
+    return jets;
+}
+
 std::optional<NurbsCurve<double, 3>> curve3(const Geometry& g)
 {
     const auto lift = [](const NurbsCurve<double, 2>& c) {
@@ -210,6 +230,10 @@ bool NurbsTool::onKey(ToolContext& c, KeyAction action)
     case KeyAction::DeBoorConstruction:
         if (!handles(kind) || !kind->isCurve()) return false;
         construction = !construction;
+        return true;
+    case KeyAction::Comb:
+        if (!handles(kind) || !kind->isCurve()) return false;
+        comb = !comb;
         return true;
     default: return false;
     }
@@ -481,6 +505,7 @@ void NurbsTool::update(ToolContext& c, Overlay& o)
                 }
             }
             if (construction) drawConstructionLevels(o, deBoorLevels(*curve, curve->domainStart() + t * (curve->domainEnd() - curve->domainStart())));
+            if (comb) drawComb(o, combJets(*curve, 48), size, combScale);
         } else if (const auto* surface = nurbsSurface; surface && showKnots) {
             // Isoparametric lines at the knots (the domain's edges included), 64 samples each,
             // lifted towards the eye by 0.4 % of the scene so that the depth test keeps them in
@@ -518,7 +543,8 @@ void NurbsTool::reset()
     dragStart_.clear();
     t = 0.5;
     direction = 0;
-    construction = false;
+    construction = comb = false;
+    combScale = 1;
     showKnots = true;
     typedWeight = 1;
 }

@@ -73,6 +73,8 @@ public:
     double t = 0.5;            // the slider: fraction of the domain (knot insertion, de Boor at t)
     int direction = 0;         // surfaces: insert in u (0) or v (1)
     bool construction = false; // the de Boor construction at t (NURBS and rational Bézier curves)
+    bool comb = false;         // the curvature comb of a curve (V)
+    double combScale = 1;      // its teeth's length per unit of curvature, relative
     bool showKnots = true;     // knot dots and ticks, isoparametric lines at the knots
     double typedWeight = 1;    // the panel's weight field
 

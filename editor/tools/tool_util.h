@@ -42,6 +42,9 @@ void drawPolyline(Overlay& o, const Points3& p, const Vec3f& color, bool closed 
 /// every further level's polygon and points faded with depth, the last level's point (the curve
 /// point) in kCurvePoint. The colours are defined below.
 void drawConstructionLevels(Overlay& o, const std::vector<Points3>& levels);
+/// The curvature comb (curvatureComb, tools/curve_tools.h) of a curve's jets (columns: point, first
+/// and second derivative), its longest tooth `scale` x 0.15 x the scene's `size`, in kComb.
+void drawComb(Overlay& o, const std::vector<Eigen::Matrix3d>& jets, double size, double scale);
 
 inline const Vec3f kConstruction{1.0f, 0.75f, 0.2f};
 inline const Vec3f kCurvePoint{1.0f, 0.3f, 0.2f};

@@ -21,6 +21,17 @@ namespace freeform::editor {
 
 namespace {
 
+/// The curvature comb's checkbox and, while it is on, its scale slider (the curve and NURBS tools).
+void combControls(bool& comb, double& combScale, const char* tip)
+{
+    ImGui::Checkbox("curvature comb (V)", &comb);
+    tooltip(tip);
+    if (!comb) return;
+    float scale = static_cast<float>(combScale);
+    if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) combScale = scale;
+    tooltip("Length of the comb's teeth per unit of curvature");
+}
+
 /// SameLine when a button labelled `next` still fits on this line, so that no button is cut off
 /// at the panel's edge (at 900 x 600 the toolbar wraps).
 void sameLineIfFits(const char* next)
@@ -90,13 +101,7 @@ void drawPanel(CurveTool& tool, ToolContext& c)
     tooltip("The parameter for split, insert and the de Casteljau construction (splines: a fraction of the whole range)");
     ImGui::Checkbox("de Casteljau at t (T)", &tool.construction);
     tooltip("Show every intermediate polygon of the de Casteljau triangle at t and the point f(t)");
-    ImGui::Checkbox("curvature comb (V)", &tool.comb);
-    tooltip("Teeth along the normal, of length proportional to the curvature, their tips joined");
-    if (tool.comb) {
-        float scale = static_cast<float>(tool.combScale);
-        if (ImGui::SliderFloat("comb scale", &scale, 0.05f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) tool.combScale = scale;
-        tooltip("Length of the comb's teeth per unit of curvature");
-    }
+    combControls(tool.comb, tool.combScale, "Teeth along the normal, of length proportional to the curvature, their tips joined");
     if (kind->kind != ObjectKind::DeBoorSpline) {
         if (ImGui::Button("elevate degree (E)")) tool.elevateSelected(c);
         tooltip("The same curve one degree higher (a spline: every segment; refused while a joint is C2)");
@@ -552,6 +557,10 @@ void drawPanel(NurbsTool& tool, ToolContext& c)
     const bool curve = kind->isCurve();
     if (curve) ImGui::Checkbox("de Boor construction at t (T)", &tool.construction);
     if (curve) tooltip("Show the de Boor construction (homogeneous, projected) at the slider's parameter t");
+    if (curve)
+        combControls(tool.comb, tool.combScale,
+                     "Teeth along the curve's normal, as long as its curvature: a circle's are all equal; a step at a knot is a "
+                     "jump of the curvature there");
     if (!kind->knots) return;
     ImGui::Separator();
     ImGui::TextUnformatted("Knots");
