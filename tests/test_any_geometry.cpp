@@ -1,8 +1,8 @@
 // AnyCurve and AnySurface (document/model.h) over every curve kind and every (u, v) surface kind,
 // against values computed here without them: circles and cylinders in closed form (a point's
 // radius, the tangent (-sin, cos) of an arc parametrised by its angle), Bernstein sums written
-// out, central differences of the points for the derivatives, the kind table for which objects
-// are curves and surfaces.
+// out, a uniform cubic B-spline surface's linear precision, central differences of the points for
+// the derivatives, the kind table for which objects are curves and surfaces.
 
 #include <catch2/catch.hpp>
 
@@ -19,7 +19,7 @@ namespace {
 
 const double kH = std::sqrt(0.5); // the middle weight of a quarter circle
 
-// One object of every curve kind, every (u, v) surface kind, and the kinds that are neither.
+// One object of every curve kind, every (u, v) surface kind, and a lattice, which is neither.
 // "tcyl" is the quarter cylinder x^2 + y^2 = 1, 0 <= z <= 2, as a trimmed surface whose u is the
 // angle (map_u half_angle over [0, pi/2], the NURBS's knots on the same interval, as Open CASCADE's
 // conversion gives them); its trim is the whole box.
@@ -32,7 +32,14 @@ const char* kDocument = R"({"format": "freeform", "version": 1, "objects": [
   {"name": "circle", "type": "nurbs_curve", "degree": 2, "knots": [0,0,0,1,1,2,2,3,3,4,4,4],
    "points": [[1,0,0],[1,1,0],[0,1,0],[-1,1,0],[-1,0,0],[-1,-1,0],[0,-1,0],[1,-1,0],[1,0,0]],
    "weights": [1,0.7071067811865476,1,0.7071067811865476,1,0.7071067811865476,1,0.7071067811865476,1]},
-  {"name": "patch", "type": "bezier_surface", "degree": [2, 1], "points": [[[0,0,0],[0,1,1]],[[1,0,2],[1,1,0]],[[2,0,0],[2,1,1]]]},
+  {"name": "patch", "type": "bezier_surface", "degree": [2, 1],
+   "points": [[[0,0,0],[0,1,1]],[[1,0,2],[1,1,0]],[[2,0,0],[2,1,1]]]},
+  {"name": "dbs", "type": "deboor_surface", "degree": [3, 3], "end": ["open", "open"],
+   "points": [[[0,0,1.0],[0,1,0.75],[0,2,0.5],[0,3,0.25]],
+              [[1,0,1.5],[1,1,1.25],[1,2,1.0],[1,3,0.75]],
+              [[2,0,2.0],[2,1,1.75],[2,2,1.5],[2,3,1.25]],
+              [[3,0,2.5],[3,1,2.25],[3,2,2.0],[3,3,1.75]],
+              [[4,0,3.0],[4,1,2.75],[4,2,2.5],[4,3,2.25]]]},
   {"name": "cyl", "type": "rational_bezier_surface", "degree": [2, 1],
    "points": [[[1,0,0],[1,0,2]],[[1,1,0],[1,1,2]],[[0,1,0],[0,1,2]]],
    "weights": [[1,1],[0.7071067811865476,0.7071067811865476],[1,1]]},
@@ -78,10 +85,17 @@ TEST_CASE("AnyCurve takes every curve kind and nothing else", "[document][any]")
         CHECK(surface.has_value() == (o.info().isSurface() && o.kind() != ObjectKind::SubdivisionSurface));
     }
     CHECK(curves == 5);
-    // Every curve kind of the table is in the document, so a new curve kind without a case fails here.
-    int curveKinds = 0;
-    for (const KindInfo& k : objectKinds()) curveKinds += k.isCurve();
+    // Every curve kind and every (u, v) surface kind of the table is in the document, so a new one
+    // without a case in AnyCurve::of or AnySurface::of fails here.
+    int curveKinds = 0, surfaceKinds = 0, surfaces = 0;
+    for (const KindInfo& k : objectKinds()) {
+        curveKinds += k.isCurve();
+        surfaceKinds += k.isSurface() && k.kind != ObjectKind::SubdivisionSurface;
+    }
+    for (const TypedObject& o : doc.objects()) surfaces += AnySurface::of(o).has_value();
     CHECK(curveKinds == 5);
+    CHECK(surfaceKinds == 5);
+    CHECK(surfaces == 5);
 
     using F = AnyCurve::Form;
     const struct {
@@ -178,18 +192,38 @@ TEST_CASE("AnySurface takes every (u, v) surface kind: domains, points, normals,
     const struct {
         const char* name;
         std::array<double, 4> domain;
-    } expected[] = {{"patch", {0, 1, 0, 1}}, {"cyl", {0, 1, 0, 1}}, {"ncyl", {0, 2, 1, 3}}, {"tcyl", {0, pi / 2, 0, 1}}};
+    } expected[] = {{"patch", {0, 1, 0, 1}},
+                    {"dbs", {0, 2, 0, 1}},
+                    {"cyl", {0, 1, 0, 1}},
+                    {"ncyl", {0, 2, 1, 3}},
+                    {"tcyl", {0, pi / 2, 0, 1}}};
     for (const auto& e : expected) {
         INFO(e.name);
         const AnySurface s = *AnySurface::of(doc.object(e.name));
         CHECK(s.domain() == e.domain);
-        CHECK((s.patches() != nullptr) == (std::string(e.name) == "patch"));
+        CHECK((s.patches() != nullptr) == (std::string(e.name) == "patch" || std::string(e.name) == "dbs"));
         CHECK((s.trimmed() != nullptr) == (std::string(e.name) == "tcyl"));
     }
 
     // The Bézier patch at (1/2, 1/4): Bernstein 1/4, 1/2, 1/4 along u, 3/4, 1/4 along v.
     const AnySurface patch = *AnySurface::of(doc.object("patch"));
     CHECK(patch.point(0.5, 0.25).isApprox(Eigen::Vector3d(1, 0.25, 0.75 * (0.5 * 2) + 0.25 * (0.25 + 0.25)), 1e-15));
+
+    // The uniform cubic B-spline surface on the 5 x 4 grid P_ij = (i, j, i/2 - j/4 + 1): 5 - 3 = 2
+    // spans along u and 4 - 3 = 1 along v, and uniform B-splines reproduce linear functions, so
+    // S(u, v) = P at (1 + u, 1 + v) everywhere, and du x dv = (1, 0, 1/2) x (0, 1, -1/4) = (-1/2, 1/4, 1).
+    const AnySurface dbs = *AnySurface::of(doc.object("dbs"));
+    const Eigen::Vector3d up = Eigen::Vector3d(-0.5, 0.25, 1).normalized();
+    for (int i = 0; i <= 8; ++i)
+        for (int j = 0; j <= 4; ++j) {
+            const double u = 2.0 * i / 8, v = 1.0 * j / 4, x = 1 + u, y = 1 + v;
+            CHECK((dbs.point(u, v) - Eigen::Vector3d(x, y, 0.5 * x - 0.25 * y + 1)).norm() <= 1e-14);
+            CHECK((dbs.normal(u, v) - up).norm() <= 1e-14);
+            const Eigen::MatrixXd jet = dbs.jet(u, v, 2);
+            CHECK((jet.col(1) - Eigen::Vector3d(1, 0, 0.5)).norm() <= 1e-13);
+            CHECK((jet.col(2) - Eigen::Vector3d(0, 1, -0.25)).norm() <= 1e-13);
+            CHECK(jet.rightCols(3).norm() <= 1e-12); // no second derivatives on a plane's linear map
+        }
 
     // The three cylinders: radius 1, z = 2 v (ncyl: v in [1, 3], z = v - 1), the normal radial and
     // outward (u turns counter-clockwise, v goes up: (-sin, cos, 0) x (0, 0, 2) = 2 (cos, sin, 0)).
@@ -252,7 +286,7 @@ TEST_CASE("the document layer evaluates every kind through AnyCurve and AnySurfa
         CHECK(e.derivatives.at(1) == Eigen::VectorXd(d.col(2)));
         CHECK(parameterDomain(doc.object(name)) == std::vector<double>{c.domainEnd()});
     }
-    for (const char* name : {"patch", "cyl", "ncyl"}) {
+    for (const char* name : {"patch", "dbs", "cyl", "ncyl"}) {
         INFO(name);
         const AnySurface s = *AnySurface::of(doc.object(name));
         const auto d = s.domain();
