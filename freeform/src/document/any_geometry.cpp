@@ -1,13 +1,16 @@
 // AnyCurve and AnySurface (document/model.h): every curve kind and every (u, v) surface kind behind
 // one run-time interface, so the document layer's evaluate, polylines and domains, the editor's
-// curve overlays and Python take each kind the same way.
+// curve overlays and Python take each kind the same way. Which object is which curve or surface is
+// its kind file's word (kindCurve, kindSurface: src/document/kind_file.h).
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "freeform/core/error.h"
 #include "freeform/document/model.h"
+#include "kind_file.h"
 #include "overloaded.h"
 
 namespace freeform {
@@ -69,21 +72,8 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> flattenPieces(const std::vector<Rationa
 
 std::optional<AnyCurve> AnyCurve::of(const TypedObject& object)
 {
-    return std::visit(
-        Overloaded{
-            [](const BezierCurve<double, 2>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const BezierCurve<double, 3>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const BezierSpline<double, 2>& s) -> std::optional<AnyCurve> { return AnyCurve(s); },
-            [](const BezierSpline<double, 3>& s) -> std::optional<AnyCurve> { return AnyCurve(s); },
-            [](const DeBoorSpline<2>& s) -> std::optional<AnyCurve> { return AnyCurve(s.bezier); },
-            [](const DeBoorSpline<3>& s) -> std::optional<AnyCurve> { return AnyCurve(s.bezier); },
-            [](const RationalBezierCurve<double, 2>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const RationalBezierCurve<double, 3>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const NurbsCurve<double, 2>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const NurbsCurve<double, 3>& c) -> std::optional<AnyCurve> { return AnyCurve(c); },
-            [](const auto&) -> std::optional<AnyCurve> { return std::nullopt; },
-        },
-        object.geometry());
+    return std::visit([&](const auto& d) { return detail::kindCurve(object.geometry(), std::type_identity<std::decay_t<decltype(d)>>{}); },
+                      object.data());
 }
 
 bool AnyCurve::closed() const
@@ -185,17 +175,8 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> AnyCurve::polyline(double tolerance) co
 std::optional<AnySurface> AnySurface::of(const TypedObject& object)
 {
     return std::visit(
-        Overloaded{
-            [](const BezierSurface<double, 3>& p) -> std::optional<AnySurface> {
-                return AnySurface(Patches{PatchComplex{{p}}, {1, 1}});
-            },
-            [](const DeBoorSurface& d) -> std::optional<AnySurface> { return AnySurface(Patches{d.patches, d.segments}); },
-            [](const RationalBezierSurface<double, 3>& s) -> std::optional<AnySurface> { return AnySurface(s); },
-            [](const NurbsSurface<double, 3>& s) -> std::optional<AnySurface> { return AnySurface(s); },
-            [](const TrimmedSurface& s) -> std::optional<AnySurface> { return AnySurface(s); },
-            [](const auto&) -> std::optional<AnySurface> { return std::nullopt; },
-        },
-        object.geometry());
+        [&](const auto& d) { return detail::kindSurface(object.geometry(), std::type_identity<std::decay_t<decltype(d)>>{}); },
+        object.data());
 }
 
 std::array<double, 4> AnySurface::domain() const

@@ -54,11 +54,19 @@ PatchComplex surfacePatches(const TypedDocument& doc, const TypedObject& object,
     return surface->patches()->patches;
 }
 
+namespace {
+
+/// A surface of polynomial patches (its AnySurface has patches()), by its row: (u, v) parameters
+/// and no weights. Asks the row, not AnySurface::of, which would copy a NURBS surface to say no.
+bool patchSurface(const TypedObject& o) { return o.info().parameters == KindParameters::UV && !o.info().rational; }
+
+} // namespace
+
 PatchComplex documentPatches(const TypedDocument& doc)
 {
     PatchComplex complex;
     for (const TypedObject& o : doc.objects())
-        if (const auto surface = AnySurface::of(o); surface && surface->patches()) {
+        if (const auto surface = patchSurface(o) ? AnySurface::of(o) : std::nullopt; surface && surface->patches()) {
             const std::vector<Patch>& patches = surface->patches()->patches.patches;
             complex.patches.insert(complex.patches.end(), patches.begin(), patches.end());
         }
@@ -128,11 +136,7 @@ DocumentTessellation tessellateDocument(const TypedDocument& doc, const TypedObj
     } else {
         for (const TypedObject& o : doc.objects())
             if (rationalSurface(o)) rational.push_back(&o);
-        const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(),
-                                            [](const TypedObject& o) {
-                                                const auto surface = AnySurface::of(o);
-                                                return surface && surface->patches();
-                                            });
+        const bool polynomial = std::any_of(doc.objects().begin(), doc.objects().end(), patchSurface);
         // documentPatches says "no surface objects" when the document has none of any kind.
         if (polynomial || rational.empty()) complex = documentPatches(doc);
     }

@@ -582,10 +582,9 @@ void writeNurbsSurface(Json& j, const NurbsSurfaceData& d)
 } // namespace document_json
 
 namespace {
-constexpr std::string_view kindNames[] = {"bezier_curve",   "bezier_spline", "deboor_spline",      "bezier_surface",
-                                          "deboor_surface", "lattice",       "subdivision_surface",
-                                          "rational_bezier_curve", "rational_bezier_surface", "nurbs_curve",
-                                          "nurbs_surface", "trimmed_surface", "part"};
+#define FREEFORM_KIND_NAME(Kind, Data, name) name,
+constexpr std::string_view kindNames[] = {FREEFORM_OBJECT_KINDS(FREEFORM_KIND_NAME)};
+#undef FREEFORM_KIND_NAME
 static_assert(std::variant_size_v<ObjectData> == std::size(kindNames));
 static_assert(objectKindCount == std::size(kindNames));
 } // namespace

@@ -22,10 +22,11 @@
 //                                         lattices and cages from plain data, in every front end
 //
 // Adding an object kind: the files, one by one, are in docs/architecture.md ("Adding an object
-// kind"); the visitors over ObjectData and Geometry have no catch-all, so the compiler asks for
-// each case. A curve or (u, v) surface that joins AnyCurve / AnySurface is taken by evaluate,
-// polylines, continuity and tessellation unchanged. Until deformDocument knows a new kind it is
-// listed as skipped ("no exact deformation for a TYPE"), never silently dropped.
+// kind"). Everything the document layer does per kind is in that kind's one file,
+// src/document/kinds/TYPE.cpp (the functions of src/document/kind_file.h, declared for every line
+// of FREEFORM_OBJECT_KINDS, so a kind whose file lacks one does not link). A curve or (u, v)
+// surface that joins AnyCurve / AnySurface there is taken by evaluate, polylines, continuity and
+// tessellation unchanged.
 
 #include "freeform/document/model.h"
 #include "freeform/document/operations.h"

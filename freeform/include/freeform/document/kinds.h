@@ -1,9 +1,10 @@
 #pragma once
 // The kind table: every object kind of a freeform document described once (its "type" name, what
 // it is, its parameters, what the document layer can do with it), so that the front ends (CLI,
-// editor, Python) dispatch on a descriptor instead of comparing type strings. A new kind is one
-// more row here (src/document/kinds.cpp), next to its data (io/document.h) and its geometry
-// (document/model.h); docs/architecture.md, "Adding an object kind".
+// editor, Python) dispatch on a descriptor instead of comparing type strings. A kind's row is in
+// its document file (src/document/kinds/TYPE.cpp), beside everything else the document layer does
+// with it; the kinds themselves are the lines of FREEFORM_OBJECT_KINDS (io/document.h).
+// docs/architecture.md, "Adding an object kind".
 
 #include <array>
 #include <optional>

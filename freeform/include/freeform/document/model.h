@@ -60,8 +60,9 @@ struct SubdivisionObject {
     const SubdivisionCage& cage() const { return surface.cage(); }
 };
 
-/// The geometry of one object. A new object type is one more alternative here and one case in
-/// buildGeometry (model.cpp); see document/document.h for the operations.
+/// The geometry of one object: the alternatives of every kind (a curve's 2D and 3D forms). A new
+/// kind adds its alternatives here and builds them in its document file (src/document/kinds/TYPE.cpp);
+/// docs/architecture.md, "Adding an object kind".
 using Geometry = std::variant<BezierCurve<double, 2>, BezierCurve<double, 3>, BezierSpline<double, 2>,
                               BezierSpline<double, 3>, DeBoorSpline<2>, DeBoorSpline<3>, BezierSurface<double, 3>,
                               DeBoorSurface, Lattice, SubdivisionObject, RationalBezierCurve<double, 2>,
@@ -72,9 +73,10 @@ using Geometry = std::variant<BezierCurve<double, 2>, BezierCurve<double, 3>, Be
 /// path; Error prefixed with `what` (e.g. `doc.json: object "c"`) when the data is not valid.
 Geometry buildGeometry(const ObjectData& data, const std::string& documentDirectory, const std::string& what);
 
-/// The data of any geometry, so that buildGeometry(toData(g)) is g again (a spline's intervals as
-/// it holds them; a subdivision cage written inline, its file's crease tags as the object's creases
-/// and corners). Error when the format cannot hold it: a cage with holes, `creasemethod chaikin` or
+/// The data of any geometry, so that buildGeometry(toData(g)) is g again (each defined in its
+/// kind's document file, src/document/kinds/TYPE.cpp): a spline's intervals as it holds them; a
+/// subdivision cage written inline, its file's crease tags as the object's creases and corners.
+/// Error when the format cannot hold it: a cage with holes, `creasemethod chaikin` or
 /// `smoothtriangles` from its mesh file (the inline form has no field for them).
 BezierCurveData toData(const BezierCurve<double, 2>& curve);
 BezierCurveData toData(const BezierCurve<double, 3>& curve);

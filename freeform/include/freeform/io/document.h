@@ -160,10 +160,38 @@ struct PartData {
     std::vector<std::vector<int>> solids; // shell indices
 };
 
-using ObjectData = std::variant<BezierCurveData, BezierSplineData, DeBoorSplineData, BezierSurfaceData,
-                                DeBoorSurfaceData, LatticeData, SubdivisionSurfaceData, RationalBezierCurveData,
-                                RationalBezierSurfaceData, NurbsCurveData, NurbsSurfaceData, TrimmedSurfaceData,
-                                PartData>;
+/// Every object kind, one line each in the order of ObjectData's alternatives: X(Kind, Data, "type").
+/// The ObjectKind enumerator, the data struct above and the "type" string as docs/format.md spells
+/// it (the only place the names are written). This list is the kind table's entry for each kind:
+/// the document layer declares from it the functions each kind's document file defines
+/// (src/document/kinds/TYPE.cpp), so a kind without its file does not link; docs/architecture.md,
+/// "Adding an object kind".
+#define FREEFORM_OBJECT_KINDS(X)                                                                     \
+    X(BezierCurve, BezierCurveData, "bezier_curve")                                                  \
+    X(BezierSpline, BezierSplineData, "bezier_spline")                                               \
+    X(DeBoorSpline, DeBoorSplineData, "deboor_spline")                                               \
+    X(BezierSurface, BezierSurfaceData, "bezier_surface")                                            \
+    X(DeBoorSurface, DeBoorSurfaceData, "deboor_surface")                                            \
+    X(Lattice, LatticeData, "lattice")                                                               \
+    X(SubdivisionSurface, SubdivisionSurfaceData, "subdivision_surface")                             \
+    X(RationalBezierCurve, RationalBezierCurveData, "rational_bezier_curve")                         \
+    X(RationalBezierSurface, RationalBezierSurfaceData, "rational_bezier_surface")                   \
+    X(NurbsCurve, NurbsCurveData, "nurbs_curve")                                                     \
+    X(NurbsSurface, NurbsSurfaceData, "nurbs_surface")                                               \
+    X(TrimmedSurface, TrimmedSurfaceData, "trimmed_surface")                                         \
+    X(Part, PartData, "part")
+
+namespace detail {
+template <class First, class... Rest>
+struct DropFirst {
+    using Variant = std::variant<Rest...>;
+};
+} // namespace detail
+
+#define FREEFORM_KIND_DATA_TYPE(Kind, Data, name) , Data
+/// The plain data of one object: one alternative per kind, in FREEFORM_OBJECT_KINDS' order.
+using ObjectData = detail::DropFirst<void FREEFORM_OBJECT_KINDS(FREEFORM_KIND_DATA_TYPE)>::Variant;
+#undef FREEFORM_KIND_DATA_TYPE
 
 struct DocumentObject {
     std::string name;
@@ -184,27 +212,15 @@ struct Document {
 
 /// The kind of an object: one per alternative of ObjectData, in its order. What each kind is and
 /// supports is described once, in the kind table (document/kinds.h).
-enum class ObjectKind {
-    BezierCurve,
-    BezierSpline,
-    DeBoorSpline,
-    BezierSurface,
-    DeBoorSurface,
-    Lattice,
-    SubdivisionSurface,
-    RationalBezierCurve,
-    RationalBezierSurface,
-    NurbsCurve,
-    NurbsSurface,
-    TrimmedSurface,
-    Part,
-};
-inline constexpr int objectKindCount = 13;
+#define FREEFORM_KIND_ENUMERATOR(Kind, Data, name) Kind,
+enum class ObjectKind { FREEFORM_OBJECT_KINDS(FREEFORM_KIND_ENUMERATOR) };
+#undef FREEFORM_KIND_ENUMERATOR
+inline constexpr int objectKindCount = static_cast<int>(std::variant_size_v<ObjectData>);
 
 inline ObjectKind objectKind(const ObjectData& data) { return static_cast<ObjectKind>(data.index()); }
 
-/// The "type" string of a kind as docs/format.md spells it ("bezier_curve", ...): the only place
-/// the names are written.
+/// The "type" string of a kind as docs/format.md spells it ("bezier_curve", ...), from
+/// FREEFORM_OBJECT_KINDS.
 std::string_view kindName(ObjectKind kind);
 
 /// The kind whose "type" string is name; nullopt for any other text.
