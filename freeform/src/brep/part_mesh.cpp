@@ -289,6 +289,50 @@ struct EdgeUse {
     }
 };
 
+/// Where the use's trim crosses the grid line `line` of `axis` between ta and tb, the side from ta
+/// lying `below` it: the bracket [lo, hi] shrunk until its ends are neighbouring doubles (their
+/// middle returned) or a point lands on the line, as bisection would end. Regula falsi with the
+/// Illinois rule (the end that stays twice has its value halved), and a halving after any step
+/// that did not halve the bracket. On screw.step it takes 17 of the trim's points per crossing
+/// where bisection took 49 (5,757 for its 330 crossings instead of 16,151, which were three
+/// fifths of all the points its edge samples evaluated).
+double crossingParameter(const EdgeUse& use, double ta, double tb, const Eigen::Vector2d& rawA, const Eigen::Vector2d& rawB,
+                         int axis, double line, bool below)
+{
+    double lo = ta, hi = tb;
+    // The values at the ends (rawA, rawB: raw() there), signed so that the `below` end is
+    // negative; the snap may have put an end's raw point on the other side of the line (within
+    // the snapping distance): then halve.
+    double flo = rawA[axis] - line, fhi = rawB[axis] - line;
+    if (!below) flo = -flo, fhi = -fhi;
+    bool secant = flo < 0 && fhi > 0;
+    int kept = 0; // +1: lo stayed at the last step, -1: hi did
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        double t = mid;
+        if (secant) {
+            const double r = lo + (hi - lo) * (flo / (flo - fhi));
+            if (r > lo && r < hi) t = r;
+        }
+        double f = use.raw(t)[axis] - line;
+        if (f == 0) return t;
+        if (!below) f = -f;
+        const double width = hi - lo;
+        if (f < 0) {
+            lo = t, flo = f;
+            if (kept == -1) fhi *= 0.5;
+            kept = -1;
+        } else {
+            hi = t, fhi = f;
+            if (kept == 1) flo *= 0.5;
+            kept = 1;
+        }
+        secant = flo < 0 && fhi > 0 && hi - lo <= 0.5 * width; // else halve next
+    }
+    return 0.5 * (lo + hi);
+}
+
 /// The samples of one edge: every crossing of a grid line by a use, and cuts in half until every
 /// use's polygon side is within its deviation target. Returns the samples (increasing, from
 /// first to last); `worst` receives per use the largest deviation left.
@@ -305,9 +349,10 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
             for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
                 std::vector<std::pair<double, int>> stack{{ts[k + 1], 0}};
                 double ta = ts[k];
+                Eigen::Vector2d rawA = use.raw(ta), a = use.grid->snap(rawA); // at(ta), kept while ta is
                 while (!stack.empty()) {
                     const auto [tb, depth] = stack.back();
-                    const Eigen::Vector2d a = use.at(ta), b = use.at(tb);
+                    const Eigen::Vector2d rawB = use.raw(tb), b = use.grid->snap(rawB);
                     const auto [axis, line] = use.grid->crossing(a, b);
                     const std::size_t count = out.size() + stack.size() + (ts.size() - k - 1); // samples so far
                     const bool full = count >= static_cast<std::size_t>(std::max(maxSamples, 2));
@@ -321,16 +366,7 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                     bool crossed = false;
                     if (axis >= 0 && room) {
                         crossed = true;
-                        const bool below = a[axis] < line;
-                        double lo = ta, hi = tb;
-                        for (int it = 0; it < 200; ++it) {
-                            const double mid = 0.5 * (lo + hi);
-                            if (mid <= lo || mid >= hi) break;
-                            const double s = use.raw(mid)[axis];
-                            if (s == line) { lo = hi = mid; break; }
-                            ((s < line) == below ? lo : hi) = mid;
-                        }
-                        cut = 0.5 * (lo + hi);
+                        cut = crossingParameter(use, ta, tb, rawA, rawB, axis, line, a[axis] < line);
                         if (!(cut > ta && cut < tb)) cut = std::numeric_limits<double>::quiet_NaN();
                     } else if (room && use.deviation(ta, tb) > use.deviationTarget) {
                         cut = 0.5 * (ta + tb);
@@ -338,6 +374,8 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                     if (std::isnan(cut)) {
                         out.push_back(tb);
                         ta = tb;
+                        rawA = rawB;
+                        a = b;
                         stack.pop_back();
                     } else {
                         // A cut at a crossing leaves the rest of the side one grid line fewer to
