@@ -51,7 +51,9 @@ template double curveBound<3>(const Eigen::Vector3d*, const double*, int);
 void endWeightsEqual(double* w, int m)
 {
     if (m < 1) return;
-    const double ratio = std::pow(w[0] / w[m], 1.0 / m);
+    // (A square root for the arcs' degree 2, which the grid searches ask for thousands of times.)
+    const double q = w[0] / w[m];
+    const double ratio = m == 1 ? q : m == 2 ? std::sqrt(q) : std::pow(q, 1.0 / m);
     double factor = 1;
     for (int i = 1; i <= m; ++i) w[i] *= (factor *= ratio);
     w[m] = w[0];
