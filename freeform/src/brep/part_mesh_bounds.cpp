@@ -192,7 +192,9 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, bool cu
 double ownCellBound(const RationalPatch& cell, bool curves)
 {
     const double own = rationalTessellationErrorBound(cell, 1, 1);
-    return curves ? std::min({own, revolutionCellBound(cell), revolutionCellBound(cell.transposed())}) : own;
+    if (!curves) return own;
+    // (revolutionCellBound asks for degree 2 along the circles: the transposed copy only then.)
+    return std::min({own, revolutionCellBound(cell), cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
 }
 
 /// The largest bound of the cells of an nu x nv grid on the patch. `general`: each cell's bound
