@@ -2,8 +2,10 @@
 // (src/document/kind_file.h; docs/architecture.md, "Adding an object kind"): one file per line of
 // FREEFORM_OBJECT_KINDS and no other there, and the files that dispatch to them (the typed
 // document, the kind table, the facades, deformDocument, the NURBS conversions, dataPoints) name
-// no kind's data type in code, so a per-kind case cannot come back into them unnoticed. That each
-// kind's file defines all its functions is the linker's check.
+// no kind's data type in code, so a case on an object's data cannot come back into them
+// unnoticed. (A case on a geometry class is not caught here: AnySurface's members have one per
+// surface class, and the compiler asks for each.) That each kind's file defines all its
+// functions is the linker's check.
 
 #include <catch2/catch.hpp>
 
@@ -59,7 +61,6 @@ TEST_CASE("the data-type check finds what it forbids", "[kinds]")
     CHECK(namedDataTypes("[](const BezierCurveData& a, const PartData& b) {}") == "BezierCurveData PartData");
     CHECK(namedDataTypes("    // a BezierCurveData here is fine") == "");
     CHECK(namedDataTypes("    TrimCurveData trim; PartFaceData face; NurbsCurveDataSet s;") == "");
-    CHECK(kEntries.size() == static_cast<std::size_t>(freeform::objectKindCount));
 }
 
 TEST_CASE("every kind has its document file, and every document file is a kind", "[kinds]")

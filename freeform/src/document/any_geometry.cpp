@@ -76,29 +76,38 @@ std::optional<AnyCurve> AnyCurve::of(const TypedObject& object)
                       object.data());
 }
 
+// The members below read what a curve class has by its member functions' names, so a new curve
+// class joins AnyCurve (its alternatives and Form in document/model.h) with no case here when it
+// has them: closed() (a Bézier spline), domainStart() / domainEnd() (else 0 and 1), weights()
+// (else all 1), bezierPieces() (a rational curve of several pieces).
+
 bool AnyCurve::closed() const
 {
     return std::visit(
-        Overloaded{[](const BezierSpline<double, 2>& s) { return s.closed(); },
-                   [](const BezierSpline<double, 3>& s) { return s.closed(); }, [](const auto&) { return false; }},
+        [](const auto& c) {
+            if constexpr (requires { c.closed(); }) return c.closed();
+            else return false;
+        },
         curve_);
 }
 
 double AnyCurve::domainStart() const
 {
     return std::visit(
-        Overloaded{[](const NurbsCurve<double, 2>& c) { return c.domainStart(); },
-                   [](const NurbsCurve<double, 3>& c) { return c.domainStart(); }, [](const auto&) { return 0.0; }},
+        [](const auto& c) -> double {
+            if constexpr (requires { c.domainStart(); }) return c.domainStart();
+            else return 0.0;
+        },
         curve_);
 }
 
 double AnyCurve::domainEnd() const
 {
     return std::visit(
-        Overloaded{[](const BezierSpline<double, 2>& s) { return s.domainEnd(); },
-                   [](const BezierSpline<double, 3>& s) { return s.domainEnd(); },
-                   [](const NurbsCurve<double, 2>& c) { return c.domainEnd(); },
-                   [](const NurbsCurve<double, 3>& c) { return c.domainEnd(); }, [](const auto&) { return 1.0; }},
+        [](const auto& c) -> double {
+            if constexpr (requires { c.domainEnd(); }) return c.domainEnd();
+            else return 1.0;
+        },
         curve_);
 }
 
@@ -115,11 +124,10 @@ Eigen::MatrixXd AnyCurve::controlPoints() const
 Eigen::VectorXd AnyCurve::weights() const
 {
     return std::visit(
-        Overloaded{[](const RationalBezierCurve<double, 2>& c) -> Eigen::VectorXd { return c.weights(); },
-                   [](const RationalBezierCurve<double, 3>& c) -> Eigen::VectorXd { return c.weights(); },
-                   [](const NurbsCurve<double, 2>& c) -> Eigen::VectorXd { return c.weights(); },
-                   [](const NurbsCurve<double, 3>& c) -> Eigen::VectorXd { return c.weights(); },
-                   [](const auto& c) -> Eigen::VectorXd { return Eigen::VectorXd::Ones(c.controlPoints().cols()); }},
+        [](const auto& c) -> Eigen::VectorXd {
+            if constexpr (requires { c.weights(); }) return c.weights();
+            else return Eigen::VectorXd::Ones(c.controlPoints().cols());
+        },
         curve_);
 }
 
@@ -160,12 +168,10 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> AnyCurve::polyline(double tolerance) co
     case Form::Nurbs: break;
     }
     return std::visit(
-        Overloaded{
-            [&](const RationalBezierCurve<double, 2>& c) { return flattenPieces<2>({c}, tolerance); },
-            [&](const RationalBezierCurve<double, 3>& c) { return flattenPieces<3>({c}, tolerance); },
-            [&](const NurbsCurve<double, 2>& c) { return flattenPieces<2>(c.bezierPieces(), tolerance); },
-            [&](const NurbsCurve<double, 3>& c) { return flattenPieces<3>(c.bezierPieces(), tolerance); },
-            [](const auto&) { return Eigen::Matrix<double, 3, Eigen::Dynamic>(3, 0); }, // the polynomial forms: above
+        [&](const auto& c) -> Eigen::Matrix<double, 3, Eigen::Dynamic> {
+            if constexpr (requires { c.bezierPieces(); }) return flattenPieces(c.bezierPieces(), tolerance);
+            else if constexpr (requires { c.weights(); }) return flattenPieces(std::vector{c}, tolerance);
+            else return Eigen::Matrix<double, 3, Eigen::Dynamic>(3, 0); // the polynomial forms: above
         },
         curve_);
 }

@@ -5,10 +5,11 @@
 // and its data from its geometry (toData), its control net, its words for people, its place behind
 // AnyCurve or AnySurface, its free-form deformation, its NURBS conversions and its control points.
 // The functions below are declared for every kind from that one list; the central files
-// (model.cpp, kinds.cpp, any_geometry.cpp, deform.cpp, nurbs_convert.cpp, object_data.cpp) only
-// visit an object's data and call them, so they name no kind, and a kind whose file lacks one
+// (model.cpp, kinds.cpp, any_geometry.cpp, deform.cpp, nurbs_convert.cpp, object_data.cpp) visit
+// an object's data and call them, so they name no kind's data, and a kind whose file lacks one
 // does not link (docs/architecture.md, "Adding an object kind"; tests/test_kind_files.cpp keeps
-// the central files free of kind names).
+// the central files free of the kinds' data types). What AnyCurve and AnySurface do with the
+// geometry classes behind them is any_geometry.cpp's.
 
 #include <cmath>
 #include <initializer_list>

@@ -174,7 +174,7 @@ BezierSplineData toBezierSplineData(const TypedDocument& doc, const TypedObject&
 {
     const auto curve = AnyCurve::of(object);
     if (!curve || !curve->isSpline()) throw Error(splineError(doc, object));
-    if (object.type() == "bezier_spline") throw Error(doc.source + ": object \"" + object.name() + "\" is already a bezier_spline");
+    if (object.kind() == ObjectKind::BezierSpline) throw Error(doc.source + ": object \"" + object.name() + "\" is already a bezier_spline");
     BezierSplineData out;
     out.degree = 3;
     out.closed = curve->closed();
@@ -187,7 +187,7 @@ DeBoorSplineData toDeBoorSplineData(const TypedDocument& doc, const TypedObject&
 {
     const auto curve = AnyCurve::of(object);
     if (!curve || !curve->isSpline()) throw Error(splineError(doc, object));
-    if (object.type() == "deboor_spline") throw Error(doc.source + ": object \"" + object.name() + "\" is already a deboor_spline");
+    if (object.kind() == ObjectKind::DeBoorSpline) throw Error(doc.source + ": object \"" + object.name() + "\" is already a deboor_spline");
     const auto& data = std::get<BezierSplineData>(object.data());
     if (data.degree != 3)
         throw Error(doc.source + ": object \"" + object.name() + "\": de Boor points need a cubic spline, this one has degree " +
@@ -233,8 +233,9 @@ void convertObject(TypedDocument& doc, ObjectId id, const std::string& to, std::
 void convertSpline(TypedDocument& doc, ObjectId id, const std::string& to, std::optional<EndCondition> end)
 {
     const TypedObject& object = doc.object(id);
-    if (to == "bezier_spline") doc.replace(id, toBezierSplineData(doc, object));
-    else if (to == "deboor_spline") doc.replace(id, toDeBoorSplineData(doc, object, end));
+    const std::optional<ObjectKind> kind = kindNamed(to);
+    if (kind == ObjectKind::BezierSpline) doc.replace(id, toBezierSplineData(doc, object));
+    else if (kind == ObjectKind::DeBoorSpline) doc.replace(id, toDeBoorSplineData(doc, object, end));
     else throw Error("convertSpline: \"" + to + "\" is not one of bezier_spline, deboor_spline");
 }
 

@@ -24,9 +24,10 @@
 // Adding an object kind: the files, one by one, are in docs/architecture.md ("Adding an object
 // kind"). Everything the document layer does per kind is in that kind's one file,
 // src/document/kinds/TYPE.cpp (the functions of src/document/kind_file.h, declared for every line
-// of FREEFORM_OBJECT_KINDS, so a kind whose file lacks one does not link). A curve or (u, v)
-// surface that joins AnyCurve / AnySurface there is taken by evaluate, polylines, continuity and
-// tessellation unchanged.
+// of FREEFORM_OBJECT_KINDS, so a kind whose file lacks one does not link). A curve that joins
+// AnyCurve there (its alternatives in model.h) is taken by evaluate, polylines and continuity
+// unchanged; a new surface class also adds its cases to AnySurface's domain and jet and to
+// tessellateObject, where the compiler asks for them.
 
 #include "freeform/document/model.h"
 #include "freeform/document/operations.h"
