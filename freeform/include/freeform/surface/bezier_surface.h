@@ -528,8 +528,10 @@ public:
 
 private:
     /// A patch built from another's points by convex combinations (a split at t in [0, 1]) or by
-    /// reordering them (transposed): the degrees and count hold and every coordinate stays finite,
-    /// so the public constructor's checks are skipped (they were 2% of a part's meshing).
+    /// reordering them (transposed): the degrees and count hold, and the coordinates stay finite
+    /// (the computed 1 - t and t may sum to 1 + 2^-53, which overflows only a coordinate within a
+    /// few ulps of the largest double, as evaluating such a patch would), so the public
+    /// constructor's checks are skipped (they were 2% of a part's meshing).
     struct Unchecked {};
     BezierSurface(int m, int n, Points points, Unchecked) : m_(m), n_(n), points_(std::move(points)) {}
 
