@@ -18,12 +18,7 @@ namespace {
 
 using detail::Overloaded;
 
-PointMatrix<double, 3> lift(const Eigen::MatrixXd& p)
-{
-    PointMatrix<double, 3> out = PointMatrix<double, 3>::Zero(3, p.cols());
-    out.topRows(p.rows()) = p;
-    return out;
-}
+using detail::lift3;
 
 /// Certified flattening of a rational Bézier piece (positive weights: the curve lies in the
 /// convex hull of its control points): split at 1/2 until every control point is within
@@ -137,13 +132,13 @@ std::optional<BezierSpline<double, 3>> AnyCurve::spline3() const
         Overloaded{
             [](const BezierSpline<double, 3>& s) -> std::optional<BezierSpline<double, 3>> { return s; },
             [](const BezierSpline<double, 2>& s) -> std::optional<BezierSpline<double, 3>> {
-                return BezierSpline<double, 3>(s.degree(), s.closed(), lift(s.controlPoints()), s.intervals());
+                return BezierSpline<double, 3>(s.degree(), s.closed(), lift3(s.controlPoints()), s.intervals());
             },
             [](const BezierCurve<double, 2>& c) -> std::optional<BezierSpline<double, 3>> {
-                return BezierSpline<double, 3>(c.degree(), false, lift(c.controlPoints()));
+                return BezierSpline<double, 3>(c.degree(), false, lift3(c.controlPoints()));
             },
             [](const BezierCurve<double, 3>& c) -> std::optional<BezierSpline<double, 3>> {
-                return BezierSpline<double, 3>(c.degree(), false, lift(c.controlPoints()));
+                return BezierSpline<double, 3>(c.degree(), false, lift3(c.controlPoints()));
             },
             [](const auto&) -> std::optional<BezierSpline<double, 3>> { return std::nullopt; },
         },
@@ -154,7 +149,7 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> AnyCurve::polyline(double tolerance) co
 {
     switch (form()) {
     case Form::Bezier: { // as the editor samples (scene/geometry.cpp): the curve in 3D, adaptive parameters
-        const BezierCurve<double, 3> curve(lift(controlPoints()));
+        const BezierCurve<double, 3> curve(lift3(controlPoints()));
         return curve.evaluateMany(curve.sampleAdaptive(tolerance));
     }
     case Form::Spline: {

@@ -7,14 +7,12 @@
 
 #include "freeform/core/error.h"
 #include "freeform/document/object_data.h"
+#include "kind_file.h"
 
 namespace freeform {
 namespace {
 
-Eigen::VectorXd weightVector(const std::vector<double>& w)
-{
-    return Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
-}
+using detail::weightVector;
 
 template <int Dim>
 MappedCurve<Dim> mappedCurve(const MappedCurveData& d)
