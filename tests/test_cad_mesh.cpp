@@ -208,12 +208,12 @@ TEST_CASE("a cylinder's and a cone's cells are bounded without their height (rul
         sides[k] = sideTriangles(m, part);
     }
     CHECK(sides[0] == sides[1]);
-    // A strip of one row needs two triangles per chord, and a circle of radius 5 within half the
-    // tolerance chords of 2 acos(1 - 0.025 / 5) = 0.2 rad, 32 around: at least 64 triangles, and
-    // (the bound, the edge samples) at most four times that. The cells' general bound, whose
-    // radius is half the height, needed over a thousand at the height of 100.
-    CHECK(sides[1] >= 64);
-    CHECK(sides[1] <= 4 * 64);
+    // A strip of one row needs two triangles per chord, and a circle of radius 5 within the
+    // tolerance chords of at most 2 acos(1 - 0.05 / 5) = 0.28 rad, 23 around: at least 46
+    // triangles, and (the bound, the edge samples) at most four times that. The cells' general
+    // bound, whose radius is half the height, needed over a thousand at the height of 100.
+    CHECK(sides[1] >= 46);
+    CHECK(sides[1] <= 4 * 46);
     // A tall cone (its differences spread, so its cells carry that term) within its bound.
     const TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 6, 2, 80).Shape();
     const PartMesh m = tessellatePart(partFromShape(cone), options);
@@ -222,6 +222,47 @@ TEST_CASE("a cylinder's and a cone's cells are bounded without their height (rul
     const Measured got = measure(cone, m, 2000);
     CHECK(got.closed);
     CHECK(got.worst <= m.report.errorBound);
+}
+
+TEST_CASE("the trims' term of the bound is the sagitta of a circle's chords on a plane", "[cad]")
+{
+    // A cylinder's caps are planes trimmed by circles (docs/cad.md, "Tessellation", step 2): on a
+    // plane the term is how far the region between a chord and its arc reaches from the arc, the
+    // chord's sagitta R - sqrt(R^2 - c^2 / 4), and the pairing by projection with the weights'
+    // share bounds it exactly on an arc with equal end weights (a hair over it where a side is
+    // cut from a piece by de Casteljau). The hull's distance in any direction, doubled (the term
+    // before), was 4x it. Measured here from the mesh: the chords along the caps' boundary.
+    const double R = 5;
+    const Part part = partFromShape(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1)), R, 2).Shape());
+    for (const double tolerance : {0.2, 0.05, 0.01}) {
+        PartMeshOptions options;
+        options.tolerance = tolerance;
+        const PartMesh m = tessellatePart(part, options);
+        // The caps' boundary: mesh edges in one triangle of their face.
+        std::map<std::pair<int, int>, int> uses;
+        for (std::size_t t = 0; t < m.triangleFace.size(); ++t) {
+            if (part.faces[static_cast<std::size_t>(m.triangleFace[t])].surfaceKind != "plane") continue;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const int a = m.mesh.faceVertices[3 * t + k], b = m.mesh.faceVertices[3 * t + (k + 1) % 3];
+                ++uses[{std::min(a, b), std::max(a, b)}];
+            }
+        }
+        double sagitta = 0;
+        int chords = 0;
+        for (const auto& [edge, count] : uses) {
+            if (count != 1) continue;
+            const Eigen::Vector3d a = m.mesh.positions.col(edge.first), b = m.mesh.positions.col(edge.second);
+            const double c = (a - b).norm();
+            sagitta = std::max(sagitta, R - std::sqrt(R * R - 0.25 * c * c));
+            ++chords;
+        }
+        INFO("tolerance " << tolerance << ": " << chords << " chords, largest sagitta " << sagitta << ", trims' term "
+                          << m.report.maxTrimDeviation);
+        CHECK(m.report.certified);
+        CHECK(chords > 0);
+        CHECK(m.report.maxTrimDeviation >= sagitta * (1 - 1e-9));
+        CHECK(m.report.maxTrimDeviation <= 1.1 * sagitta);
+    }
 }
 
 TEST_CASE("tessellatePart refuses a bad tolerance and a mesh over its triangle limit", "[cad]")

@@ -409,6 +409,117 @@ std::pair<double, double> patchSlopes(const RationalPatch& patch)
     return {(hu + rho * wu) / wmin, (hv + rho * wv) / wmin};
 }
 
+const FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
+{
+    const long long key = static_cast<long long>(i) * static_cast<long long>(gv.size()) + static_cast<long long>(j);
+    if (const auto it = cells_.find(key); it != cells_.end()) return it->second;
+    // The knot span holding the cell (a cell across a merged knot, or of no width: the face's).
+    Cell c;
+    c.slopes = {slopeU, slopeV};
+    const double u0 = gu[i], u1 = gu[i + 1], v0 = gv[j], v1 = gv[j + 1];
+    const std::size_t a = static_cast<std::size_t>(
+        std::clamp<std::ptrdiff_t>(std::upper_bound(bu.begin(), bu.end(), 0.5 * (u0 + u1)) - bu.begin() - 1, 0,
+                                   static_cast<std::ptrdiff_t>(bu.size()) - 2));
+    const std::size_t b = static_cast<std::size_t>(
+        std::clamp<std::ptrdiff_t>(std::upper_bound(bv.begin(), bv.end(), 0.5 * (v0 + v1)) - bv.begin() - 1, 0,
+                                   static_cast<std::ptrdiff_t>(bv.size()) - 2));
+    const double du = bu[a + 1] - bu[a], dv = bv[b + 1] - bv[b];
+    if (u1 > u0 && v1 > v0 && u0 >= bu[a] && u1 <= bu[a + 1] && v0 >= bv[b] && v1 <= bv[b + 1]) {
+        RationalPatch q = patches[a * (bv.size() - 1) + b];
+        const double a0 = (u0 - bu[a]) / du, a1 = (u1 - bu[a]) / du, b0 = (v0 - bv[b]) / dv, b1 = (v1 - bv[b]) / dv;
+        if (a1 < 1) q = q.splitU(a1).first;
+        if (a0 > 0) q = q.splitU(a0 / a1).second;
+        if (b1 < 1) q = q.splitV(b1).first;
+        if (b0 > 0) q = q.splitV(b0 / b1).second;
+        const auto [su, sv] = patchSlopes(q);
+        // The sub-net's slopes are per its own [0, 1]; the face's bound caps them (a split in
+        // floating point is a hair off the exact sub-net).
+        c.slopes = {std::min(slopeU, su / (u1 - u0)), std::min(slopeV, sv / (v1 - v0))};
+        c.net = std::move(q);
+        c.width = u1 - u0;
+        c.height = v1 - v0;
+    }
+    return cells_.emplace(key, std::move(c)).first->second;
+}
+
+bool FaceGrid::cellsOf(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::size_t& i0, std::size_t& i1, std::size_t& j0,
+                       std::size_t& j1) const
+{
+    if (!(hi.x() >= lo.x()) || !(hi.y() >= lo.y())) return false;
+    auto range = [](const std::vector<double>& l, double x0, double x1, std::size_t& first, std::size_t& end) {
+        const std::ptrdiff_t last = static_cast<std::ptrdiff_t>(l.size()) - 2;
+        const std::ptrdiff_t f = std::clamp<std::ptrdiff_t>(std::upper_bound(l.begin(), l.end(), x0) - l.begin() - 1, 0, last);
+        first = static_cast<std::size_t>(f);
+        end = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(std::lower_bound(l.begin(), l.end(), x1) - l.begin() - 1, f, last));
+    };
+    range(gu, lo.x(), hi.x(), i0, i1);
+    range(gv, lo.y(), hi.y(), j0, j1);
+    return (i1 - i0 + 1) * (j1 - j0 + 1) <= 4;
+}
+
+std::pair<double, double> FaceGrid::slopesOver(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) const
+{
+    std::size_t i0, i1, j0, j1;
+    if (!cellsOf(lo, hi, i0, i1, j0, j1)) return {slopeU, slopeV};
+    std::pair<double, double> s{0, 0};
+    for (std::size_t i = i0; i <= i1; ++i)
+        for (std::size_t j = j0; j <= j1; ++j) {
+            const auto [su, sv] = cell(i, j).slopes;
+            s = {std::max(s.first, su), std::max(s.second, sv)};
+        }
+    return s;
+}
+
+double FaceGrid::slopeAlong(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Eigen::Vector2d& n) const
+{
+    std::size_t i0, i1, j0, j1;
+    const double plain = std::abs(n.x()) * slopeU + std::abs(n.y()) * slopeV;
+    if (!cellsOf(lo, hi, i0, i1, j0, j1)) return plain;
+    double worst = 0;
+    for (std::size_t i = i0; i <= i1; ++i)
+        for (std::size_t j = j0; j <= j1; ++j) {
+            const Cell& c = cell(i, j);
+            const double fromSlopes = std::abs(n.x()) * c.slopes.first + std::abs(n.y()) * c.slopes.second;
+            if (!c.net) {
+                worst = std::max(worst, fromSlopes);
+                continue;
+            }
+            // D_n S = (D_n h' - (S - c) D_n w) / w with h' = h - c w (c the control box's centre,
+            // |S - c| <= rho). D_n h' = su h'_u + sv h'_v, both raised to degree (m, n): its
+            // Bézier coefficients are su m [(i/m) (h'_ij - h'_i-1,j) + (1 - i/m) (h'_i+1,j - h'_ij)]
+            // plus the same along v, and it lies in their hull.
+            const RationalPatch& q = *c.net;
+            const int m = q.degreeU(), k = q.degreeV();
+            const double su = n.x() / c.width, sv = n.y() / c.height;
+            const Box<double, 3> box = q.controlBox();
+            const Eigen::Vector3d centre = box.center();
+            const double rho = 0.5 * box.diagonal().norm();
+            const auto& h = q.homogeneous();
+            auto shifted = [&](int a, int b) {
+                const Eigen::Vector4d p = h.controlPoint(a, b);
+                return Eigen::Vector4d(p[0] - p[3] * centre.x(), p[1] - p[3] * centre.y(), p[2] - p[3] * centre.z(), p[3]);
+            };
+            double dh = 0, dw = 0, wmin = kInf;
+            for (int a = 0; a <= m; ++a)
+                for (int b = 0; b <= k; ++b) {
+                    wmin = std::min(wmin, h.controlPoint(a, b)[3]);
+                    Eigen::Vector4d d = Eigen::Vector4d::Zero();
+                    if (m > 0) {
+                        if (a > 0) d += su * a * (shifted(a, b) - shifted(a - 1, b));
+                        if (a < m) d += su * (m - a) * (shifted(a + 1, b) - shifted(a, b));
+                    }
+                    if (k > 0) {
+                        if (b > 0) d += sv * b * (shifted(a, b) - shifted(a, b - 1));
+                        if (b < k) d += sv * (k - b) * (shifted(a, b + 1) - shifted(a, b));
+                    }
+                    dh = std::max(dh, d.head<3>().norm());
+                    dw = std::max(dw, std::abs(d[3]));
+                }
+            worst = std::max(worst, std::min(fromSlopes, (dh + rho * dw) / wmin));
+        }
+    return worst;
+}
+
 /// A patch whose weights differ (where the cells' own bounds beat the whole net's).
 bool weighted(const RationalPatch& p)
 {

@@ -6,8 +6,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "freeform/brep/part.h"
@@ -69,8 +72,34 @@ struct FaceGrid {
     double snapU = 0, snapV = 0;
     double bound = 0;     // the largest certified cell bound
     double lipschitz = 0; // bound on |grad S| in NURBS parameters
+    double slopeU = 0, slopeV = 0; // bounds on |S_u| and |S_v| over the face's box
+    std::vector<RationalPatch> patches; // the face's Bézier patches, knot span (a, b) at a * (bv.size() - 1) + b
+    std::vector<double> bu, bv;         // their knot lines
+
+    /// Bounds on |S_u| and |S_v| over the box [lo, hi] of NURBS parameters: the largest of the
+    /// cells' own (the first differences of each cell's sub-net) where the box meets at most four
+    /// cells, the face's otherwise.
+    std::pair<double, double> slopesOver(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) const;
+    /// A bound on |n_u S_u + n_v S_v| over the box (the derivative along n, of unit length): from
+    /// each cell's sub-net (its first differences raised to a common degree, so a plane's is
+    /// exact), where the box meets at most four cells; otherwise from the slopes, |n_u| lu + |n_v| lv.
+    double slopeAlong(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Eigen::Vector2d& n) const;
 
     Eigen::Vector2d toS(const Eigen::Vector2d& uv) const { return {mu(uv.x()), mv(uv.y())}; }
+
+private:
+    struct Cell {
+        std::pair<double, double> slopes; // bounds on |S_u|, |S_v|
+        std::optional<RationalPatch> net; // its sub-net, where the cell lies in one patch
+        double width = 0, height = 0;     // in NURBS parameters
+    };
+    mutable std::unordered_map<long long, Cell> cells_; // by cell, as computed
+    const Cell& cell(std::size_t i, std::size_t j) const;
+    /// The cells [i0, i1] x [j0, j1] the box [lo, hi] meets; false where it meets more than four.
+    bool cellsOf(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::size_t& i0, std::size_t& i1, std::size_t& j0,
+                 std::size_t& j1) const;
+
+public:
 
     static double snapTo(double s, const std::vector<double>& lines, double tol)
     {
@@ -131,6 +160,36 @@ struct Builder {
 /// the polygon joins them by a side whose ends are the same vertex; its points on grid lines
 /// (the same vertex again) keep every side inside one cell. Appends them to `out`.
 void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, std::vector<PolyPoint>& out);
+
+/// One use of an edge by a face: the trim curve and the face's grid.
+struct EdgeUse {
+    const TrimCurve* trim;
+    const FaceGrid* grid;
+    double deviationTarget; // what deviation() may reach on every side (the face's trim share)
+    double edgeFirst, edgeLast;
+    std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces; // the trim's, once
+    std::shared_ptr<const std::vector<double>> breaks;
+
+    double trimParameter(double t) const
+    {
+        const MappedCurve<2>& c = trim->curve;
+        if (c.first == edgeFirst && c.last == edgeLast) return t;
+        return c.first + (t - edgeFirst) / (edgeLast - edgeFirst) * (c.last - c.first);
+    }
+    Eigen::Vector2d raw(double t) const { return grid->toS(trim->curve.point(trimParameter(t))); }
+    Eigen::Vector2d at(double t) const { return grid->snap(raw(t)); }
+
+    /// A certified bound on how far the points of the face's surface at parameters between the
+    /// polygon side from at(ta) to at(tb) and the trim between them lie from the trim's points
+    /// (part_mesh_edges.cpp).
+    double deviation(double ta, double tb) const;
+};
+
+/// The samples of one edge: every crossing of a grid line by a use, and cuts in half until every
+/// use's polygon side is within its deviation target. Returns the samples (increasing, from
+/// first to last); `worst` receives per use the largest deviation left (part_mesh_edges.cpp).
+std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, double last, int maxSamples,
+                               std::vector<double>& worst);
 
 /// Meshes one face: its loops (in NURBS parameters, with the vertices of the edge samples) clipped
 /// by the grid cells, each clipped cell cut by ear clipping. Returns the largest distance between a

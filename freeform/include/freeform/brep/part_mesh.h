@@ -8,25 +8,26 @@
 // face's trim polygon (the edge samples, in the face's parameters), and each clipped cell is cut
 // into triangles by ear clipping, so every triangle has its corners in one cell. The edge samples
 // include every point where a trim crosses a grid line, and are dense enough that the trim
-// polygon stays within `deviation` of the trims. The bound of a face is then
+// polygon stays near the trims. The bound of a face is then
 //
-//     bound = e + delta + 2 L deviation
+//     bound = e + delta + T
 //
 // e      the largest certified bound of a grid cell of the face (the triangle's points against the
 //        surface points at the same parameters);
 // delta  the largest distance between a mesh vertex on the face's edges (the edge's own 3D curve,
 //        or the part's vertex) and the face's surface at that vertex's parameters: the gaps that
 //        the edge tolerances allow, measured at every such vertex;
-// L      a bound on the surface's parameter gradient |grad S| (from the patch's first
-//        differences), and `deviation` the certified largest distance in the parameter plane
-//        between the trim polygon and the trims (from the trim's restricted control points and
-//        the parameter map's second derivative): triangle points whose parameters lie just
-//        outside the trims are within 2 L deviation of the face's boundary.
+// T      the trims' term: a certified bound on how far the surface at parameters between a
+//        polygon side and its trim lies from the trim (each trim point paired continuously with
+//        a side point, the pair's parameters apart by (du, dv), the surface points by at most
+//        |S_u| |du| + |S_v| |dv| with the slopes of the side's own cell): triangle points whose
+//        parameters lie just outside the trims are within T of the face's boundary.
 //
 // So every point of every triangle lies within `bound` of its face (one way: the mesh near the
-// part, not every point of the part near the mesh). The tessellation aims at e <= tolerance / 2
-// and 2 L deviation <= tolerance / 4, leaving the rest for delta; `certified` says the largest
-// bound is within the tolerance (a part whose gaps exceed a quarter of it may not be).
+// part, not every point of the part near the mesh). The grid aims at e <= 85/100 of the tolerance
+// (9/10 on a face trimmed along iso lines only) and the samples at what the grid and the gaps
+// leave; `certified` says the largest bound is within the tolerance (a part whose gaps exceed
+// part of it may not be).
 #include <vector>
 
 #include "freeform/brep/part.h"
@@ -49,7 +50,7 @@ struct PartMeshReport {
     double errorBound = 0;                // the largest face bound
     bool certified = false;               // errorBound <= tolerance
     double maxVertexGap = 0;              // the largest delta
-    double maxTrimDeviation = 0;          // the largest 2 L deviation
+    double maxTrimDeviation = 0;          // the largest T (the trims' term)
     std::vector<double> faceBound;        // per face of the part
 };
 
