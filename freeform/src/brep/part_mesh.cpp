@@ -315,9 +315,10 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             }
     // The trims' share of each face's bound: what its grid and its vertex gaps leave, at least
     // kLeastTrimShare of the tolerance. The gaps (delta, measured at the mesh vertices once they are
-    // known) are guessed from each trim's ends and the ends and middles of its Bézier pieces (a
-    // file whose pcurve and 3D curve do not share their parameter parts there: screw.step's
-    // largest gaps lie within its first pieces), and `gapReserve` keeps at least what they were.
+    // known) are guessed from each trim's ends and the middles of its first four and last four
+    // Bézier pieces and of every eighth between (a file whose pcurve and 3D curve do not share
+    // their parameter near an end: screw.step's largest gaps lie within its first pieces), and
+    // `gapReserve` keeps at least what they were.
     std::vector<double> gapGuess(part.faces.size(), 0);
     for (std::size_t e = 0; e < part.edges.size(); ++e) {
         const PartEdge& edge = part.edges[e];
@@ -335,18 +336,18 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             };
             gapAt(edge.first, edge.start);
             gapAt(edge.last, edge.end);
-            // The pieces' ends in the edge's parameter (the trim's range mapped onto the edge's).
+            // The pieces' middles in the edge's parameter (the trim's range mapped onto the edge's).
             const MappedCurve<2>& c = use.trim->curve;
             const std::vector<double>& b = *use.breaks;
-            const std::size_t step = std::max<std::size_t>(1, b.size() / 64);
-            for (std::size_t k = 0; k + 1 < b.size(); k += step)
-                for (const double x : {b[k], 0.5 * (b[k] + b[k + 1])}) {
-                    const double trimT = c.map.inverse(x);
-                    const double t = c.first == use.edgeFirst && c.last == use.edgeLast
-                                         ? trimT
-                                         : use.edgeFirst + (trimT - c.first) / (c.last - c.first) * (use.edgeLast - use.edgeFirst);
-                    if (t > std::min(edge.first, edge.last) && t < std::max(edge.first, edge.last)) gapAt(t, -1);
-                }
+            const std::size_t pieces = b.size() - 1, step = std::max<std::size_t>(1, pieces / 8);
+            for (std::size_t k = 0; k < pieces; ++k) {
+                if (k >= 4 && k + 4 < pieces && k % step != 0) continue;
+                const double trimT = c.map.inverse(0.5 * (b[k] + b[k + 1]));
+                const double t = c.first == use.edgeFirst && c.last == use.edgeLast
+                                     ? trimT
+                                     : use.edgeFirst + (trimT - c.first) / (c.last - c.first) * (use.edgeLast - use.edgeFirst);
+                if (t > std::min(edge.first, edge.last) && t < std::max(edge.first, edge.last)) gapAt(t, -1);
+            }
         }
     }
     for (std::size_t e = 0; e < part.edges.size(); ++e)

@@ -409,7 +409,7 @@ std::pair<double, double> patchSlopes(const RationalPatch& patch)
     return {(hu + rho * wu) / wmin, (hv + rho * wv) / wmin};
 }
 
-const FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
+FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
 {
     const long long key = static_cast<long long>(i) * static_cast<long long>(gv.size()) + static_cast<long long>(j);
     if (const auto it = cells_.find(key); it != cells_.end()) return it->second;
@@ -435,12 +435,49 @@ const FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
         // The sub-net's slopes are per its own [0, 1]; the face's bound caps them (a split in
         // floating point is a hair off the exact sub-net).
         c.slopes = {std::min(slopeU, su / (u1 - u0)), std::min(slopeV, sv / (v1 - v0))};
-        c.net = std::move(q);
         c.width = u1 - u0;
         c.height = v1 - v0;
+        c.net = std::move(q);
     }
     return cells_.emplace(key, std::move(c)).first->second;
 }
+
+namespace {
+
+/// What slopeAlong needs of a cell with its own net, computed once.
+void prepareAlong(FaceGrid::Cell& c)
+{
+    if (!c.net || !c.alongU.empty()) return;
+    // For slopeAlong: D_n S = (D_n h' - (S - c) D_n w) / w with h' = h - c w (c the control
+    // box's centre, |S - c| <= rho), and D_n h' = n_u h'_u + n_v h'_v with both raised to
+    // degree (m, n): its Bézier coefficients are n_u m [(i/m) (h'_ij - h'_i-1,j) + (1 - i/m)
+    // (h'_i+1,j - h'_ij)] / width plus the same along v, and it lies in their hull.
+    const RationalPatch& q = *c.net;
+    const int m = q.degreeU(), k = q.degreeV();
+    const Box<double, 3> box = q.controlBox();
+    const Eigen::Vector3d centre = box.center();
+    const auto& h = q.homogeneous();
+    auto shifted = [&](int a, int b) {
+        const Eigen::Vector4d p = h.controlPoint(a, b);
+        return Eigen::Vector4d(p[0] - p[3] * centre.x(), p[1] - p[3] * centre.y(), p[2] - p[3] * centre.z(), p[3]);
+    };
+    double wmin = kInf;
+    for (int a = 0; a <= m; ++a)
+        for (int b = 0; b <= k; ++b) {
+            wmin = std::min(wmin, h.controlPoint(a, b)[3]);
+            Eigen::Vector4d du = Eigen::Vector4d::Zero(), dv = Eigen::Vector4d::Zero();
+            if (a > 0) du += a * (shifted(a, b) - shifted(a - 1, b));
+            if (a < m) du += (m - a) * (shifted(a + 1, b) - shifted(a, b));
+            if (b > 0) dv += b * (shifted(a, b) - shifted(a, b - 1));
+            if (b < k) dv += (k - b) * (shifted(a, b + 1) - shifted(a, b));
+            c.alongU.push_back(du / c.width);
+            c.alongV.push_back(dv / c.height);
+        }
+    c.overW = 1 / wmin;
+    c.rhoOverW = 0.5 * box.diagonal().norm() / wmin;
+}
+
+} // namespace
 
 bool FaceGrid::cellsOf(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::size_t& i0, std::size_t& i1, std::size_t& j0,
                        std::size_t& j1) const
@@ -478,44 +515,20 @@ double FaceGrid::slopeAlong(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi
     double worst = 0;
     for (std::size_t i = i0; i <= i1; ++i)
         for (std::size_t j = j0; j <= j1; ++j) {
-            const Cell& c = cell(i, j);
+            Cell& c = cell(i, j);
+            prepareAlong(c);
             const double fromSlopes = std::abs(n.x()) * c.slopes.first + std::abs(n.y()) * c.slopes.second;
             if (!c.net) {
                 worst = std::max(worst, fromSlopes);
                 continue;
             }
-            // D_n S = (D_n h' - (S - c) D_n w) / w with h' = h - c w (c the control box's centre,
-            // |S - c| <= rho). D_n h' = su h'_u + sv h'_v, both raised to degree (m, n): its
-            // Bézier coefficients are su m [(i/m) (h'_ij - h'_i-1,j) + (1 - i/m) (h'_i+1,j - h'_ij)]
-            // plus the same along v, and it lies in their hull.
-            const RationalPatch& q = *c.net;
-            const int m = q.degreeU(), k = q.degreeV();
-            const double su = n.x() / c.width, sv = n.y() / c.height;
-            const Box<double, 3> box = q.controlBox();
-            const Eigen::Vector3d centre = box.center();
-            const double rho = 0.5 * box.diagonal().norm();
-            const auto& h = q.homogeneous();
-            auto shifted = [&](int a, int b) {
-                const Eigen::Vector4d p = h.controlPoint(a, b);
-                return Eigen::Vector4d(p[0] - p[3] * centre.x(), p[1] - p[3] * centre.y(), p[2] - p[3] * centre.z(), p[3]);
-            };
-            double dh = 0, dw = 0, wmin = kInf;
-            for (int a = 0; a <= m; ++a)
-                for (int b = 0; b <= k; ++b) {
-                    wmin = std::min(wmin, h.controlPoint(a, b)[3]);
-                    Eigen::Vector4d d = Eigen::Vector4d::Zero();
-                    if (m > 0) {
-                        if (a > 0) d += su * a * (shifted(a, b) - shifted(a - 1, b));
-                        if (a < m) d += su * (m - a) * (shifted(a + 1, b) - shifted(a, b));
-                    }
-                    if (k > 0) {
-                        if (b > 0) d += sv * b * (shifted(a, b) - shifted(a, b - 1));
-                        if (b < k) d += sv * (k - b) * (shifted(a, b + 1) - shifted(a, b));
-                    }
-                    dh = std::max(dh, d.head<3>().norm());
-                    dw = std::max(dw, std::abs(d[3]));
-                }
-            worst = std::max(worst, std::min(fromSlopes, (dh + rho * dw) / wmin));
+            double dh = 0, dw = 0;
+            for (std::size_t x = 0; x < c.alongU.size(); ++x) {
+                const Eigen::Vector4d d = n.x() * c.alongU[x] + n.y() * c.alongV[x];
+                dh = std::max(dh, d.head<3>().squaredNorm());
+                dw = std::max(dw, std::abs(d[3]));
+            }
+            worst = std::max(worst, std::min(fromSlopes, std::sqrt(dh) * c.overW + dw * c.rhoOverW));
         }
     return worst;
 }

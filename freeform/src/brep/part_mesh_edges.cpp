@@ -73,85 +73,86 @@ SideDeviation sideDeviation(const std::vector<RationalBezierCurve<double, 2>>& c
 
 } // namespace
 
-double EdgeUse::deviation(double ta, double tb) const
-    {
-        const MappedCurve<2>& c = trim->curve;
-        const double ca = trimParameter(ta), cb = trimParameter(tb);
-        const double lo = std::min(ca, cb), hi = std::max(ca, cb);
-        // The trim's Bézier pieces over [lo, hi], cut by de Casteljau (no knot insertion: a cut a
-        // hair from a knot would leave a span too short for its ratios); a periodic trim is
-        // unrolled and, where [lo, hi] runs over the end of its period, taken in two pieces.
-        std::vector<RationalBezierCurve<double, 2>> cut;
-        auto addPiece = [&](double s0, double s1) {
-            const std::vector<double>& b = *breaks;
-            const std::size_t first = static_cast<std::size_t>(
-                std::max<std::ptrdiff_t>(0, std::upper_bound(b.begin(), b.end(), s0) - b.begin() - 1));
-            for (std::size_t k = first; k + 1 < b.size() && b[k] < s1; ++k) {
-                const double w = b[k + 1] - b[k];
-                const double a = std::clamp((s0 - b[k]) / w, 0.0, 1.0), e = std::clamp((s1 - b[k]) / w, 0.0, 1.0);
-                if (!(e > a)) continue;
-                RationalBezierCurve<double, 2> piece = (*pieces)[k];
-                if (a > 0) piece = piece.split(a).second;
-                const double e2 = a > 0 ? (e - a) / (1 - a) : e;
-                if (e2 < 1) piece = piece.split(e2).first;
-                cut.push_back(std::move(piece));
-            }
-        };
-        const double s0 = c.map(lo);
-        double s1 = c.map(hi);
-        if (c.map.kind == ParameterMap::Kind::Identity && c.map.period > 0) {
-            s1 = s0 + (hi - lo);
-            const double end = c.nurbs.domainEnd();
-            if (s1 > end) {
-                addPiece(s0, end);
-                addPiece(c.nurbs.domainStart(), std::min(end, s1 - c.map.period));
-            } else {
-                addPiece(s0, s1);
-            }
+double EdgeUse::deviation(double ta, double tb, double enough) const
+{
+    const MappedCurve<2>& c = trim->curve;
+    const double ca = trimParameter(ta), cb = trimParameter(tb);
+    const double lo = std::min(ca, cb), hi = std::max(ca, cb);
+    // The trim's Bézier pieces over [lo, hi], cut by de Casteljau (no knot insertion: a cut a
+    // hair from a knot would leave a span too short for its ratios); a periodic trim is
+    // unrolled and, where [lo, hi] runs over the end of its period, taken in two pieces.
+    std::vector<RationalBezierCurve<double, 2>> cut;
+    auto addPiece = [&](double s0, double s1) {
+        const std::vector<double>& b = *breaks;
+        const std::size_t first = static_cast<std::size_t>(
+            std::max<std::ptrdiff_t>(0, std::upper_bound(b.begin(), b.end(), s0) - b.begin() - 1));
+        for (std::size_t k = first; k + 1 < b.size() && b[k] < s1; ++k) {
+            const double w = b[k + 1] - b[k];
+            const double a = std::clamp((s0 - b[k]) / w, 0.0, 1.0), e = std::clamp((s1 - b[k]) / w, 0.0, 1.0);
+            if (!(e > a)) continue;
+            RationalBezierCurve<double, 2> piece = (*pieces)[k];
+            if (a > 0) piece = piece.split(a).second;
+            const double e2 = a > 0 ? (e - a) / (1 - a) : e;
+            if (e2 < 1) piece = piece.split(e2).first;
+            cut.push_back(std::move(piece));
+        }
+    };
+    const double s0 = c.map(lo);
+    double s1 = c.map(hi);
+    if (c.map.kind == ParameterMap::Kind::Identity && c.map.period > 0) {
+        s1 = s0 + (hi - lo);
+        const double end = c.nurbs.domainEnd();
+        if (s1 > end) {
+            addPiece(s0, end);
+            addPiece(c.nurbs.domainStart(), std::min(end, s1 - c.map.period));
         } else {
-            if (!(s1 > s0)) return kInf;
             addPiece(s0, s1);
         }
-        const Eigen::Vector2d pa = c.point(ca), pb = c.point(cb);
-        const Eigen::Vector2d d = pb - pa;
-        const SideDeviation dev = sideDeviation(cut, pa, pb);
-        Eigen::Vector2d qlo = pa.cwiseMin(pb), qhi = pa.cwiseMax(pb);
-        for (const RationalBezierCurve<double, 2>& piece : cut)
-            for (int i = 0; i <= piece.degree(); ++i) {
-                qlo = qlo.cwiseMin(piece.controlPoint(i));
-                qhi = qhi.cwiseMax(piece.controlPoint(i));
-            }
-        const auto [u1, u2] = grid->mu.slopes(qlo.x(), qhi.x());
-        const auto [v1, v2] = grid->mv.slopes(qlo.y(), qhi.y());
-        // The surface's slopes over the side's box (the cell it lies in, once cut at its crossings).
-        const Eigen::Vector2d ra = grid->toS(pa), rb = grid->toS(pb);
-        const Eigen::Vector2d slo = grid->toS(qlo).cwiseMin(ra).cwiseMin(rb), shi = grid->toS(qhi).cwiseMax(ra).cwiseMax(rb);
-        const auto [lu, lv] = grid->slopesOver(slo, shi);
-        // A pair's parameters differ by (du, dv): its surface points by at most lu |du| + lv |dv|.
-        // The trim against the file chord: along the chord's normal where the pairing is the
-        // projection, any direction otherwise; the maps scale u by at most u1 and v by v1.
-        // Where the maps are the identity (planes, B-splines), the pairs differ along n itself and
-        // the slope along n is bounded from the cell's net directly (exact on a plane, where
-        // |n_u| lu + |n_v| lv would be up to sqrt 2 times it).
-        const double anyWay = std::hypot(lu * u1, lv * v1);
-        const bool identity = u1 == 1 && v1 == 1 && u2 == 0 && v2 == 0;
-        double bound = !dev.alongNormal ? anyWay * dev.distance
-                       : identity       ? grid->slopeAlong(slo, shi, dev.normal) * dev.distance + anyWay * dev.slack
-                                        : (lu * u1 * std::abs(dev.normal.x()) + lv * v1 * std::abs(dev.normal.y())) * dev.distance + anyWay * dev.slack;
-        // The maps bend the file chord's image off the chord from ra to rb by at most u2 dx^2 / 8
-        // along s and v2 dy^2 / 8 along r (monotone maps: inside the chord's box, so every point
-        // projects onto the chord). Only the part across the chord counts: the circle that ends a
-        // cylinder (an iso line, dy = 0, the chord along s) stays on its line.
-        const Eigen::Vector2d chord = rb - ra;
-        const double length = chord.norm(), bendS = 0.125 * u2 * d.x() * d.x(), bendR = 0.125 * v2 * d.y() * d.y();
-        bound += length > 0 ? (lu * std::abs(chord.y()) + lv * std::abs(chord.x())) * (bendS * std::abs(chord.y()) + bendR * std::abs(chord.x())) /
-                                  (length * length)
-                            : lu * bendS + lv * bendR;
-        // The snap moves the side's ends (pa, pb are the trim's points there): its points move by
-        // a convex combination of the two moves.
-        const Eigen::Vector2d snapA = (grid->snap(ra) - ra).cwiseAbs(), snapB = (grid->snap(rb) - rb).cwiseAbs();
-        return bound + lu * std::max(snapA.x(), snapB.x()) + lv * std::max(snapA.y(), snapB.y());
+    } else {
+        if (!(s1 > s0)) return kInf;
+        addPiece(s0, s1);
     }
+    const Eigen::Vector2d pa = c.point(ca), pb = c.point(cb);
+    const Eigen::Vector2d d = pb - pa;
+    const SideDeviation dev = sideDeviation(cut, pa, pb);
+    Eigen::Vector2d qlo = pa.cwiseMin(pb), qhi = pa.cwiseMax(pb);
+    for (const RationalBezierCurve<double, 2>& piece : cut)
+        for (int i = 0; i <= piece.degree(); ++i) {
+            qlo = qlo.cwiseMin(piece.controlPoint(i));
+            qhi = qhi.cwiseMax(piece.controlPoint(i));
+        }
+    const auto [u1, u2] = grid->mu.slopes(qlo.x(), qhi.x());
+    const auto [v1, v2] = grid->mv.slopes(qlo.y(), qhi.y());
+    // The surface's slopes over the side's box (the cell it lies in, once cut at its crossings).
+    const Eigen::Vector2d ra = grid->toS(pa), rb = grid->toS(pb);
+    const Eigen::Vector2d slo = grid->toS(qlo).cwiseMin(ra).cwiseMin(rb), shi = grid->toS(qhi).cwiseMax(ra).cwiseMax(rb);
+    const auto [lu, lv] = grid->slopesOver(slo, shi);
+    // The maps bend the file chord's image off the chord from ra to rb by at most u2 dx^2 / 8
+    // along s and v2 dy^2 / 8 along r (monotone maps: inside the chord's box, so every point
+    // projects onto the chord). Only the part across the chord counts: the circle that ends a
+    // cylinder (an iso line, dy = 0, the chord along s) stays on its line.
+    const Eigen::Vector2d chord = rb - ra;
+    const double length = chord.norm(), bendS = 0.125 * u2 * d.x() * d.x(), bendR = 0.125 * v2 * d.y() * d.y();
+    double rest = length > 0 ? (lu * std::abs(chord.y()) + lv * std::abs(chord.x())) * (bendS * std::abs(chord.y()) + bendR * std::abs(chord.x())) /
+                                   (length * length)
+                             : lu * bendS + lv * bendR;
+    // The snap moves the side's ends (pa, pb are the trim's points there): its points move by
+    // a convex combination of the two moves.
+    const Eigen::Vector2d snapA = (grid->snap(ra) - ra).cwiseAbs(), snapB = (grid->snap(rb) - rb).cwiseAbs();
+    rest += lu * std::max(snapA.x(), snapB.x()) + lv * std::max(snapA.y(), snapB.y());
+    // A pair's parameters differ by (du, dv): its surface points by at most lu |du| + lv |dv|.
+    // The trim against the file chord: along the chord's normal where the pairing is the
+    // projection, any direction otherwise; the maps scale u by at most u1 and v by v1.
+    const double anyWay = std::hypot(lu * u1, lv * v1);
+    if (!dev.alongNormal) return anyWay * dev.distance + rest;
+    const double perAxis = (lu * u1 * std::abs(dev.normal.x()) + lv * v1 * std::abs(dev.normal.y())) * dev.distance + anyWay * dev.slack + rest;
+    // Where the maps are the identity (planes, B-splines), the pairs differ along n itself and
+    // the slope along n is bounded from the cell's net directly (exact on a plane, where
+    // |n_u| lu + |n_v| lv would be up to sqrt 2 times it); not where the slopes' bound is
+    // already `enough`.
+    if (!(u1 == 1 && v1 == 1 && u2 == 0 && v2 == 0) || perAxis <= enough) return perAxis;
+    return std::min(perAxis, grid->slopeAlong(slo, shi, dev.normal) * dev.distance + anyWay * dev.slack + rest);
+}
 
 namespace {
 
@@ -233,7 +234,7 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                         crossed = true;
                         cut = crossingParameter(use, ta, tb, rawA, rawB, axis, line, a[axis] < line);
                         if (!(cut > ta && cut < tb)) cut = std::numeric_limits<double>::quiet_NaN();
-                    } else if (room && use.deviation(ta, tb) > use.deviationTarget) {
+                    } else if (room && use.deviation(ta, tb, use.deviationTarget) > use.deviationTarget) {
                         cut = 0.5 * (ta + tb);
                     }
                     if (std::isnan(cut)) {

@@ -87,20 +87,24 @@ struct FaceGrid {
 
     Eigen::Vector2d toS(const Eigen::Vector2d& uv) const { return {mu(uv.x()), mv(uv.y())}; }
 
-private:
     struct Cell {
         std::pair<double, double> slopes; // bounds on |S_u|, |S_v|
         std::optional<RationalPatch> net; // its sub-net, where the cell lies in one patch
         double width = 0, height = 0;     // in NURBS parameters
+        // The sub-net's first differences along u and v raised to its degree, shifted by the
+        // control box's centre, per NURBS parameter (slopeAlong); and rho / w_min, 1 / w_min.
+        std::vector<Eigen::Vector4d> alongU, alongV;
+        double rhoOverW = 0, overW = 0;
     };
+
+private:
     mutable std::unordered_map<long long, Cell> cells_; // by cell, as computed
-    const Cell& cell(std::size_t i, std::size_t j) const;
+    Cell& cell(std::size_t i, std::size_t j) const; // computed once (the cache is mutable)
     /// The cells [i0, i1] x [j0, j1] the box [lo, hi] meets; false where it meets more than four.
     bool cellsOf(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::size_t& i0, std::size_t& i1, std::size_t& j0,
                  std::size_t& j1) const;
 
 public:
-
     static double snapTo(double s, const std::vector<double>& lines, double tol)
     {
         if (s <= lines.front()) return lines.front();
@@ -181,8 +185,8 @@ struct EdgeUse {
 
     /// A certified bound on how far the points of the face's surface at parameters between the
     /// polygon side from at(ta) to at(tb) and the trim between them lie from the trim's points
-    /// (part_mesh_edges.cpp).
-    double deviation(double ta, double tb) const;
+    /// (part_mesh_edges.cpp). A bound at most `enough` may be returned without the tightest step.
+    double deviation(double ta, double tb, double enough = 0) const;
 };
 
 /// The samples of one edge: every crossing of a grid line by a use, and cuts in half until every
