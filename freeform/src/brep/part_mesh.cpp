@@ -26,7 +26,7 @@ using namespace part_mesh;
 
 // The parts of the tolerance (tessellatePart): the grid's aim, on a face trimmed along grid lines
 // only, and the least share of the trims' term.
-constexpr double kGridAim = 0.85, kIsoGridAim = 0.9, kLeastTrimShare = 0.05;
+constexpr double kGridAim = 0.86, kIsoGridAim = 0.9, kLeastTrimShare = 0.05;
 
 AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStart, double domainEnd, std::size_t f,
                 const char* dir)
@@ -353,18 +353,49 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     for (std::size_t e = 0; e < part.edges.size(); ++e)
         for (std::size_t u = 0; u < uses[e].size(); ++u) {
             const std::size_t f = useFace[e][u];
-            const double gaps = std::max(gapReserve[f], 1.5 * gapGuess[f] + 1e-3 * tol);
+            const double gaps = std::max(gapReserve[f], 1.2 * gapGuess[f] + 1e-4 * tol);
             uses[e][u].deviationTarget = std::max(tol - grids[f].bound - gaps, kLeastTrimShare * tol);
         }
-    std::vector<double> faceDeviation(part.faces.size(), 0);
-    std::vector<std::vector<double>> samples(part.edges.size());
-    for (std::size_t e = 0; e < part.edges.size(); ++e) {
-        if (uses[e].empty()) continue;
-        std::vector<double> worst;
-        samples[e] = sampleEdge(uses[e], part.edges[e].first, part.edges[e].last, options.maxEdgeSamples, worst);
-        for (std::size_t u = 0; u < worst.size(); ++u)
-            faceDeviation[useFace[e][u]] = std::max(faceDeviation[useFace[e][u]], worst[u]);
+    std::vector<std::vector<double>> samples(part.edges.size()), worst(part.edges.size());
+    for (std::size_t e = 0; e < part.edges.size(); ++e)
+        if (!uses[e].empty()) samples[e] = sampleEdge(uses[e], part.edges[e].first, part.edges[e].last, options.maxEdgeSamples, worst[e]);
+    // A face thinner than its trims' share (Motor-c.brep's ring 0.05 mm wide at 0.5 mm) gets a
+    // polygon that crosses itself, and its cells' triangles may then cover what lies outside
+    // it, far from the face: the edges of such a face get a quarter of their target, up to six
+    // times, until its polygon is simple (docs/cad.md, "Tessellation").
+    for (int round = 0; round < 6; ++round) {
+        std::vector<char> refine(part.edges.size(), 0);
+        for (std::size_t f = 0; f < part.faces.size(); ++f) {
+            std::vector<std::vector<Eigen::Vector2d>> loops;
+            std::vector<std::vector<int>> edgeOf;
+            for (const TrimLoop& loop : part.faces[f].surface.loops()) {
+                loops.emplace_back();
+                edgeOf.emplace_back();
+                for (const TrimCurve& c : loop.curves) {
+                    const std::size_t e = static_cast<std::size_t>(c.edge);
+                    for (const EdgeUse& u : uses[e])
+                        if (u.trim == &c)
+                            for (std::size_t k = 0, n = samples[e].size(); k < n; ++k) {
+                                loops.back().push_back(u.at(samples[e][c.reversed ? n - 1 - k : k]));
+                                edgeOf.back().push_back(c.edge);
+                            }
+                }
+            }
+            const std::vector<int> crossing = crossingEdges(grids[f], loops, edgeOf);
+            if (crossing.empty()) continue;
+            for (const int e : crossing) refine[static_cast<std::size_t>(e)] = 1;
+        }
+        if (std::find(refine.begin(), refine.end(), 1) == refine.end()) break;
+        for (std::size_t e = 0; e < part.edges.size(); ++e) {
+            if (!refine[e]) continue;
+            for (EdgeUse& u : uses[e]) u.deviationTarget *= 0.25;
+            samples[e] = sampleEdge(uses[e], part.edges[e].first, part.edges[e].last, options.maxEdgeSamples, worst[e]);
+        }
     }
+    std::vector<double> faceDeviation(part.faces.size(), 0);
+    for (std::size_t e = 0; e < part.edges.size(); ++e)
+        for (std::size_t u = 0; u < worst[e].size(); ++u)
+            faceDeviation[useFace[e][u]] = std::max(faceDeviation[useFace[e][u]], worst[e][u]);
 
     // The mesh vertices of the part's vertices and of every edge sample.
     Builder out;
@@ -534,16 +565,18 @@ PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
     if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
         throw Error("tessellatePart: the tolerance must be positive and finite");
     const double tol = options.tolerance;
-    // The grid aims at 85/100 of the tolerance, leaving the rest to the trims' deviation and the
+    // The grid aims at 86/100 of the tolerance, leaving the rest to the trims' deviation and the
     // gaps (delta); a face whose trims all run along grid lines (a cylinder's or a torus's
     // circles: the polygon is on them) has no deviation, and its grid aims at 9/10 of it. A face
     // over the tolerance is meshed again with more room for the gaps it had, and where they and
     // the deviation leave less than its grid's aim, with the grid aimed at what they leave.
-    // Measured (grid aim / least trim share: screw.step at 0.1 mm, linkrods.step at 0.01 mm, the
-    // 26 closed .brep samples at 1e-3 of their size): 0.7 / 0.25: 1,008, 4,526, 103,924
-    // triangles; 0.8 / 0.1: 974, 4,278; 0.85 / 0.05: 952, 4,270, 88,784; 0.93 / 0.05: 1,020,
-    // 4,408 (the trims then take more than the cells save). Half the tolerance, with half of the
-    // rest kept for the gaps, gave 1,232 and 5,088.
+    // Measured (grid aim, least trim share: screw.step at 0.1 mm, linkrods.step at 0.01 mm, the
+    // 26 closed .brep samples at 1e-3 of their size, with the gaps' reserve of 1.5x the guess):
+    // 0.7, 0.25: 1,008, 4,526, 103,924 triangles; 0.8, 0.1: 974, 4,278; 0.85, 0.05: 952, 4,270,
+    // 88,784; 0.93, 0.05: 1,020, 4,408 (the trims take more than the cells save). With 1.2x
+    // the guess and a share of 0.05: 0.8: 970 (meshed twice), 4,272; 0.82: 948, 4,272; 0.84:
+    // 946, 4,194; 0.86: 924, 4,204, 88,988; 0.88: 926, 4,198, 89,034; 0.9: 944, 89,168.
+    // Half the tolerance, with half of the rest kept for the gaps, gave 1,232 and 5,088.
     std::vector<double> target(part.faces.size(), kGridAim * tol), reserve(part.faces.size(), 0), bound, gap;
     for (std::size_t f = 0; f < part.faces.size(); ++f)
         if (isoTrimmed(part.faces[f].surface)) target[f] = kIsoGridAim * tol;

@@ -73,6 +73,60 @@ void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, 
 
 /// Meshes one face: its loops (in NURBS parameters, with the vertices of the edge samples) clipped
 /// by the grid cells. Returns the largest distance between a polygon vertex and the surface.
+std::vector<int> crossingEdges(const FaceGrid& g, const std::vector<std::vector<Eigen::Vector2d>>& loops,
+                               const std::vector<std::vector<int>>& edgeOf)
+{
+    struct Side {
+        Eigen::Vector2d a, b;
+        int edgeA, edgeB;
+        std::size_t loop, index, count;
+    };
+    std::vector<Side> sides;
+    for (std::size_t l = 0; l < loops.size(); ++l)
+        for (std::size_t k = 0, n = loops[l].size(); k < n; ++k) {
+            const Eigen::Vector2d &a = loops[l][k], &b = loops[l][(k + 1) % n];
+            if (a != b) sides.push_back({a, b, edgeOf[l][k], edgeOf[l][(k + 1) % n], l, k, n});
+        }
+    // Sides a few points apart along their loop cross where trims meet at a vertex within the
+    // file's tolerance, at any density: not counted.
+    auto near = [](const Side& s, const Side& t) {
+        if (s.loop != t.loop) return false;
+        const std::size_t d = s.index > t.index ? s.index - t.index : t.index - s.index;
+        return std::min(d, s.count - d) <= 3;
+    };
+    if (sides.size() < 4) return {};
+    // Buckets: about as many as sides, over the face's box; each side in those its box meets.
+    const Eigen::Vector2d lo(g.gu.front(), g.gv.front()), hi(g.gu.back(), g.gv.back());
+    const int K = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(sides.size()))), 1, 512);
+    const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1e-300));
+    auto bucket = [&](double x, double l, double w) { return std::clamp(static_cast<int>((x - l) / w * K), 0, K - 1); };
+    std::unordered_map<int, std::vector<std::size_t>> buckets;
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+        const Side& s = sides[i];
+        const int x0 = bucket(std::min(s.a.x(), s.b.x()), lo.x(), size.x()), x1 = bucket(std::max(s.a.x(), s.b.x()), lo.x(), size.x());
+        const int y0 = bucket(std::min(s.a.y(), s.b.y()), lo.y(), size.y()), y1 = bucket(std::max(s.a.y(), s.b.y()), lo.y(), size.y());
+        for (int x = x0; x <= x1; ++x)
+            for (int y = y0; y <= y1; ++y) buckets[x * K + y].push_back(i);
+    }
+    auto orient = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+        const double v = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+        return (v > 0) - (v < 0);
+    };
+    std::vector<int> out;
+    for (const auto& [key, list] : buckets)
+        for (std::size_t x = 0; x < list.size(); ++x)
+            for (std::size_t y = x + 1; y < list.size(); ++y) {
+                const Side &s = sides[list[x]], &t = sides[list[y]];
+                if (near(s, t)) continue;
+                // Sides that cross in both of their interiors (not at a shared point, not along a line).
+                if (orient(s.a, s.b, t.a) * orient(s.a, s.b, t.b) < 0 && orient(t.a, t.b, s.a) * orient(t.a, t.b, s.b) < 0)
+                    out.insert(out.end(), {s.edgeA, s.edgeB, t.edgeA, t.edgeB});
+            }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
 double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vector<std::vector<PolyPoint>> loops,
                 Builder& out)
 {

@@ -195,6 +195,11 @@ struct EdgeUse {
 std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, double last, int maxSamples,
                                std::vector<double>& worst);
 
+/// The edges (edgeOf: per loop point, the edge it samples) whose sides cross another side of the
+/// face's polygon in both their interiors (part_mesh_cells.cpp).
+std::vector<int> crossingEdges(const FaceGrid& g, const std::vector<std::vector<Eigen::Vector2d>>& loops,
+                               const std::vector<std::vector<int>>& edgeOf);
+
 /// Meshes one face: its loops (in NURBS parameters, with the vertices of the edge samples) clipped
 /// by the grid cells, each clipped cell cut by ear clipping. Returns the largest distance between a
 /// polygon vertex and the surface.

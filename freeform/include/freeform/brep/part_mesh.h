@@ -24,7 +24,7 @@
 //        parameters lie just outside the trims are within T of the face's boundary.
 //
 // So every point of every triangle lies within `bound` of its face (one way: the mesh near the
-// part, not every point of the part near the mesh). The grid aims at e <= 85/100 of the tolerance
+// part, not every point of the part near the mesh). The grid aims at e <= 86/100 of the tolerance
 // (9/10 on a face trimmed along iso lines only) and the samples at what the grid and the gaps
 // leave; `certified` says the largest bound is within the tolerance (a part whose gaps exceed
 // part of it may not be).
