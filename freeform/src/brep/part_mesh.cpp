@@ -363,6 +363,20 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     // polygon that crosses itself, and its cells' triangles may then cover what lies outside
     // it, far from the face: the edges of such a face get a quarter of their target, up to six
     // times, until its polygon is simple (docs/cad.md, "Tessellation").
+    // The samples in each use's face parameters (at()), per edge and use, as the polygons take them.
+    std::vector<std::vector<std::vector<Eigen::Vector2d>>> sampleAt(part.edges.size());
+    auto place = [&](std::size_t e) {
+        sampleAt[e].assign(uses[e].size(), {});
+        for (std::size_t u = 0; u < uses[e].size(); ++u)
+            for (const double t : samples[e]) sampleAt[e][u].push_back(uses[e][u].at(t));
+    };
+    for (std::size_t e = 0; e < part.edges.size(); ++e) place(e);
+    auto useOf = [&](const TrimCurve& c) {
+        const std::size_t e = static_cast<std::size_t>(c.edge);
+        std::size_t u = 0;
+        while (uses[e][u].trim != &c) ++u;
+        return u;
+    };
     for (int round = 0; round < 6; ++round) {
         std::vector<char> refine(part.edges.size(), 0);
         for (std::size_t f = 0; f < part.faces.size(); ++f) {
@@ -372,13 +386,10 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
                 loops.emplace_back();
                 edgeOf.emplace_back();
                 for (const TrimCurve& c : loop.curves) {
-                    const std::size_t e = static_cast<std::size_t>(c.edge);
-                    for (const EdgeUse& u : uses[e])
-                        if (u.trim == &c)
-                            for (std::size_t k = 0, n = samples[e].size(); k < n; ++k) {
-                                loops.back().push_back(u.at(samples[e][c.reversed ? n - 1 - k : k]));
-                                edgeOf.back().push_back(c.edge);
-                            }
+                    const std::vector<Eigen::Vector2d>& at = sampleAt[static_cast<std::size_t>(c.edge)][useOf(c)];
+                    if (c.reversed) loops.back().insert(loops.back().end(), at.rbegin(), at.rend());
+                    else loops.back().insert(loops.back().end(), at.begin(), at.end());
+                    edgeOf.back().resize(loops.back().size(), c.edge);
                 }
             }
             const std::vector<int> crossing = crossingEdges(grids[f], loops, edgeOf);
@@ -390,6 +401,7 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             if (!refine[e]) continue;
             for (EdgeUse& u : uses[e]) u.deviationTarget *= 0.25;
             samples[e] = sampleEdge(uses[e], part.edges[e].first, part.edges[e].last, options.maxEdgeSamples, worst[e]);
+            place(e);
         }
     }
     std::vector<double> faceDeviation(part.faces.size(), 0);
@@ -440,13 +452,11 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             std::vector<PolyPoint> pts;
             for (const TrimCurve& c : loop.curves) {
                 const std::size_t e = static_cast<std::size_t>(c.edge);
-                const EdgeUse* use = nullptr;
-                for (const EdgeUse& u : uses[e])
-                    if (u.trim == &c) use = &u;
+                const std::vector<Eigen::Vector2d>& at = sampleAt[e][useOf(c)];
                 const std::size_t n = samples[e].size();
                 for (std::size_t k = 0; k < n; ++k) {
                     const std::size_t idx = c.reversed ? n - 1 - k : k;
-                    const PolyPoint p{use->at(samples[e][idx]), sampleVertex[e][idx]};
+                    const PolyPoint p{at[idx], sampleVertex[e][idx]};
                     if (!pts.empty() && pts.back().vertex == p.vertex) {
                         if (near(pts.back().s, p.s)) continue;
                         joinAcrossLines(grids[f], pts.back(), p, pts);
