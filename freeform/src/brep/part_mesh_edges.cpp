@@ -33,7 +33,7 @@ struct SideDeviation {
     Eigen::Vector2d normal = Eigen::Vector2d::Zero();
 };
 SideDeviation sideDeviation(const std::vector<RationalBezierCurve<double, 2>>& cut, const Eigen::Vector2d& pa,
-                                   const Eigen::Vector2d& pb)
+                            const Eigen::Vector2d& pb)
 {
     const Eigen::Vector2d d = pb - pa;
     const double len2 = d.squaredNorm();
