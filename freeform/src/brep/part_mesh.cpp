@@ -147,7 +147,6 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
             lv = std::max(lv, sv / (bv[b + 1] - bv[b]));
         }
     }
-    g.lipschitz = std::hypot(lu, lv);
     g.slopeU = lu;
     g.slopeV = lv;
     g.bu = bu;
@@ -342,10 +341,7 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             const std::size_t pieces = b.size() - 1, step = std::max<std::size_t>(1, pieces / 8);
             for (std::size_t k = 0; k < pieces; ++k) {
                 if (k >= 4 && k + 4 < pieces && k % step != 0) continue;
-                const double trimT = c.map.inverse(0.5 * (b[k] + b[k + 1]));
-                const double t = c.first == use.edgeFirst && c.last == use.edgeLast
-                                     ? trimT
-                                     : use.edgeFirst + (trimT - c.first) / (c.last - c.first) * (use.edgeLast - use.edgeFirst);
+                const double t = use.edgeParameter(c.map.inverse(0.5 * (b[k] + b[k + 1])));
                 if (t > std::min(edge.first, edge.last) && t < std::max(edge.first, edge.last)) gapAt(t, -1);
             }
         }
@@ -377,9 +373,12 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
         while (uses[e][u].trim != &c) ++u;
         return u;
     };
+    std::vector<char> check(part.faces.size(), 1); // faces whose samples changed since their last check
     for (int round = 0; round < 6; ++round) {
         std::vector<char> refine(part.edges.size(), 0);
         for (std::size_t f = 0; f < part.faces.size(); ++f) {
+            if (!check[f]) continue;
+            check[f] = 0;
             std::vector<std::vector<Eigen::Vector2d>> loops;
             std::vector<std::vector<int>> edgeOf;
             for (const TrimLoop& loop : part.faces[f].surface.loops()) {
@@ -402,6 +401,7 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
             for (EdgeUse& u : uses[e]) u.deviationTarget *= 0.25;
             samples[e] = sampleEdge(uses[e], part.edges[e].first, part.edges[e].last, options.maxEdgeSamples, worst[e]);
             place(e);
+            for (const std::size_t f : useFace[e]) check[f] = 1;
         }
     }
     std::vector<double> faceDeviation(part.faces.size(), 0);

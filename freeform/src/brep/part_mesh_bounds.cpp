@@ -299,6 +299,28 @@ TrimZones TrimZones::transposed() const
 
 namespace {
 
+/// A rational patch's homogeneous points (h, w) moved so that the centre c of its control box is
+/// the origin: (h - c w, w). With rho the box's half diagonal (|S - c| <= rho) and wmin the least
+/// weight, a derivative of S is (h'_d - (S - c) w_d) / w, bounded by the differences of these.
+struct CentredNet {
+    explicit CentredNet(const RationalPatch& p) : h(p.homogeneous())
+    {
+        const Box<double, 3> box = p.controlBox();
+        centre = box.center();
+        rho = 0.5 * box.diagonal().norm();
+        for (int i = 0; i <= p.degreeU(); ++i)
+            for (int j = 0; j <= p.degreeV(); ++j) wmin = std::min(wmin, h.controlPoint(i, j)[3]);
+    }
+    Eigen::Vector4d operator()(int i, int j) const
+    {
+        const Eigen::Vector4d q = h.controlPoint(i, j);
+        return {q[0] - q[3] * centre.x(), q[1] - q[3] * centre.y(), q[2] - q[3] * centre.z(), q[3]};
+    }
+    const RationalPatch::Homogeneous& h;
+    Eigen::Vector3d centre;
+    double rho = 0, wmin = kInf;
+};
+
 RationalPatch cut(RationalPatch q, double a, double b, bool u)
 {
     if (b < 1) q = (u ? q.splitU(b) : q.splitV(b)).first;
@@ -384,29 +406,21 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
 std::pair<double, double> patchSlopes(const RationalPatch& patch)
 {
     const int m = patch.degreeU(), n = patch.degreeV();
-    const Box<double, 3> box = patch.controlBox();
-    const Eigen::Vector3d c = box.center();
-    const double rho = 0.5 * box.diagonal().norm();
-    const auto& h = patch.homogeneous();
-    double wmin = kInf;
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) wmin = std::min(wmin, h.controlPoint(i, j)[3]);
-    auto shifted = [&](int i, int j) {
-        const Eigen::Vector4d p = h.controlPoint(i, j);
-        return Eigen::Vector3d(p.head<3>() - p[3] * c);
-    };
+    const CentredNet net(patch);
     double hu = 0, wu = 0, hv = 0, wv = 0;
     for (int i = 0; i < m; ++i)
         for (int j = 0; j <= n; ++j) {
-            hu = std::max(hu, m * (shifted(i + 1, j) - shifted(i, j)).norm());
-            wu = std::max(wu, m * std::abs(h.controlPoint(i + 1, j)[3] - h.controlPoint(i, j)[3]));
+            const Eigen::Vector4d d = m * (net(i + 1, j) - net(i, j));
+            hu = std::max(hu, d.head<3>().norm());
+            wu = std::max(wu, std::abs(d[3]));
         }
     for (int i = 0; i <= m; ++i)
         for (int j = 0; j < n; ++j) {
-            hv = std::max(hv, n * (shifted(i, j + 1) - shifted(i, j)).norm());
-            wv = std::max(wv, n * std::abs(h.controlPoint(i, j + 1)[3] - h.controlPoint(i, j)[3]));
+            const Eigen::Vector4d d = n * (net(i, j + 1) - net(i, j));
+            hv = std::max(hv, d.head<3>().norm());
+            wv = std::max(wv, std::abs(d[3]));
         }
-    return {(hu + rho * wu) / wmin, (hv + rho * wv) / wmin};
+    return {(hu + net.rho * wu) / net.wmin, (hv + net.rho * wv) / net.wmin};
 }
 
 FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
@@ -454,27 +468,19 @@ void prepareAlong(FaceGrid::Cell& c)
     // (h'_i+1,j - h'_ij)] / width plus the same along v, and it lies in their hull.
     const RationalPatch& q = *c.net;
     const int m = q.degreeU(), k = q.degreeV();
-    const Box<double, 3> box = q.controlBox();
-    const Eigen::Vector3d centre = box.center();
-    const auto& h = q.homogeneous();
-    auto shifted = [&](int a, int b) {
-        const Eigen::Vector4d p = h.controlPoint(a, b);
-        return Eigen::Vector4d(p[0] - p[3] * centre.x(), p[1] - p[3] * centre.y(), p[2] - p[3] * centre.z(), p[3]);
-    };
-    double wmin = kInf;
+    const CentredNet net(q);
     for (int a = 0; a <= m; ++a)
         for (int b = 0; b <= k; ++b) {
-            wmin = std::min(wmin, h.controlPoint(a, b)[3]);
             Eigen::Vector4d du = Eigen::Vector4d::Zero(), dv = Eigen::Vector4d::Zero();
-            if (a > 0) du += a * (shifted(a, b) - shifted(a - 1, b));
-            if (a < m) du += (m - a) * (shifted(a + 1, b) - shifted(a, b));
-            if (b > 0) dv += b * (shifted(a, b) - shifted(a, b - 1));
-            if (b < k) dv += (k - b) * (shifted(a, b + 1) - shifted(a, b));
+            if (a > 0) du += a * (net(a, b) - net(a - 1, b));
+            if (a < m) du += (m - a) * (net(a + 1, b) - net(a, b));
+            if (b > 0) dv += b * (net(a, b) - net(a, b - 1));
+            if (b < k) dv += (k - b) * (net(a, b + 1) - net(a, b));
             c.alongU.push_back(du / c.width);
             c.alongV.push_back(dv / c.height);
         }
-    c.overW = 1 / wmin;
-    c.rhoOverW = 0.5 * box.diagonal().norm() / wmin;
+    c.overW = 1 / net.wmin;
+    c.rhoOverW = net.rho / net.wmin;
 }
 
 } // namespace

@@ -71,7 +71,6 @@ struct FaceGrid {
     std::vector<double> gu, gv; // grid lines
     double snapU = 0, snapV = 0;
     double bound = 0;     // the largest certified cell bound
-    double lipschitz = 0; // bound on |grad S| in NURBS parameters
     double slopeU = 0, slopeV = 0; // bounds on |S_u| and |S_v| over the face's box
     std::vector<RationalPatch> patches; // the face's Bézier patches, knot span (a, b) at a * (bv.size() - 1) + b
     std::vector<double> bu, bv;         // their knot lines
@@ -179,6 +178,13 @@ struct EdgeUse {
         const MappedCurve<2>& c = trim->curve;
         if (c.first == edgeFirst && c.last == edgeLast) return t;
         return c.first + (t - edgeFirst) / (edgeLast - edgeFirst) * (c.last - c.first);
+    }
+    /// The edge's parameter of the trim's parameter u (the inverse of trimParameter).
+    double edgeParameter(double u) const
+    {
+        const MappedCurve<2>& c = trim->curve;
+        if (c.first == edgeFirst && c.last == edgeLast) return u;
+        return edgeFirst + (u - c.first) / (c.last - c.first) * (edgeLast - edgeFirst);
     }
     Eigen::Vector2d raw(double t) const { return grid->toS(trim->curve.point(trimParameter(t))); }
     Eigen::Vector2d at(double t) const { return grid->snap(raw(t)); }
