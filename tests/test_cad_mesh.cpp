@@ -12,6 +12,10 @@
 #include <freeform/cad/occt_bridge.h>
 
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepLib.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
@@ -20,6 +24,11 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom2d_Circle.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 
@@ -262,6 +271,52 @@ TEST_CASE("the trims' term of the bound is the sagitta of a circle's chords on a
         CHECK(chords > 0);
         CHECK(m.report.maxTrimDeviation >= sagitta * (1 - 1e-9));
         CHECK(m.report.maxTrimDeviation <= 1.1 * sagitta);
+    }
+}
+
+TEST_CASE("a trim that runs outside its face's parameter box costs its snap, not the sample cap", "[cad]")
+{
+    // hammer.iges has planes (bilinear B-splines on [0, 2.589]^2) trimmed by circles whose pcurves
+    // run 1.2e-4 past the box. The polygon's points are snapped into the box, which moves them by
+    // that much times the plane's slope, and no cut of a side undoes it: at 0.1 mm the sampling
+    // cut such sides down to the 200,000-sample cap and left half a circle as one side, a bound of
+    // 380 mm. Here a 10 mm square plane on [0, 1]^2 trimmed by a circle of radius 0.5 + 1e-4 about
+    // its centre: its pcurve runs 1e-4 (1e-3 mm) past each side of the box.
+    TColgp_Array2OfPnt poles(1, 2, 1, 2);
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) poles(i + 1, j + 1) = gp_Pnt(10.0 * i, 10.0 * j, 1.0);
+    TColStd_Array1OfReal knots(1, 2);
+    knots(1) = 0;
+    knots(2) = 1;
+    TColStd_Array1OfInteger mults(1, 2);
+    mults.Init(2);
+    const Handle(Geom_BSplineSurface) plane = new Geom_BSplineSurface(poles, knots, knots, mults, mults, 1, 1);
+    const double over = 1e-4, slope = 10;
+    const Handle(Geom2d_Circle) circle = new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0.5, 0.5), gp_Dir2d(1, 0)), 0.5 + over);
+    TopoDS_Edge edge = BRepBuilderAPI_MakeEdge(circle, plane).Edge();
+    BRepLib::BuildCurves3d(edge);
+    const TopoDS_Face face = BRepBuilderAPI_MakeFace(plane, BRepBuilderAPI_MakeWire(edge).Wire());
+    const Part part = partFromShape(face);
+    REQUIRE(part.faces.size() == 1);
+    INFO("the face's box: u " << part.faces[0].surface.domain().min().x() << " to " << part.faces[0].surface.domain().max().x());
+    for (const double tolerance : {1e-4, 0.01}) {
+        PartMeshOptions options;
+        options.tolerance = tolerance;
+        const PartMesh m = tessellatePart(part, options);
+        const PartMeshReport& r = m.report;
+        INFO("tolerance " << tolerance << ": " << m.mesh.faceCount() << " triangles, bound " << r.errorBound << " (gaps "
+                          << r.maxVertexGap << ", trims " << r.maxTrimDeviation << ")");
+        // The overshoot costs slope * over = 1e-3 mm twice: as the vertex gap (the edge's point
+        // against the surface at its snapped parameters) and as the snap's part of the trims'
+        // term. At 1e-4 the bound says so (not certified) and is at most that plus the tolerance
+        // (sides are cut while that helps); at 0.01 the face is certified as any other.
+        CHECK(r.maxVertexGap >= slope * over * (1 - 1e-6));
+        CHECK(r.errorBound <= 2 * slope * over + tolerance);
+        CHECK(r.certified == (tolerance > 2 * slope * over));
+        CHECK(m.mesh.faceCount() < 10000);
+        const Measured got = measure(face, m, 400);
+        INFO("largest distance found " << got.worst);
+        CHECK(got.worst <= r.errorBound * (1 + 1e-9) + 1e-12);
     }
 }
 

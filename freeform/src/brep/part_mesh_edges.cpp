@@ -12,6 +12,11 @@
 namespace freeform::part_mesh {
 namespace {
 
+/// A side over its deviation target is cut in half only while its bound less the snap's part is
+/// over this share of the target (so a trim outside the face's box, whose snap alone passes the
+/// target, gets a bound a little over that part instead of samples up to the cap).
+constexpr double kCuttable = 0.05;
+
 /// A bound on how far the trim's pieces (consecutive, from pa to pb) lie from the chord from pa to
 /// pb, in the form the face's bound needs: a continuous pairing of every trim point with a chord
 /// point, each pair within the bound (so every point between the chord and the trim, which the
@@ -73,7 +78,7 @@ SideDeviation sideDeviation(const std::vector<RationalBezierCurve<double, 2>>& c
 
 } // namespace
 
-double EdgeUse::deviation(double ta, double tb, double enough) const
+double EdgeUse::deviation(double ta, double tb, double enough, double* moved) const
 {
     const MappedCurve<2>& c = trim->curve;
     const double ca = trimParameter(ta), cb = trimParameter(tb);
@@ -139,7 +144,9 @@ double EdgeUse::deviation(double ta, double tb, double enough) const
     // The snap moves the side's ends (pa, pb are the trim's points there): its points move by
     // a convex combination of the two moves.
     const Eigen::Vector2d snapA = (grid->snap(ra) - ra).cwiseAbs(), snapB = (grid->snap(rb) - rb).cwiseAbs();
-    rest += lu * std::max(snapA.x(), snapB.x()) + lv * std::max(snapA.y(), snapB.y());
+    const double snapped = lu * std::max(snapA.x(), snapB.x()) + lv * std::max(snapA.y(), snapB.y());
+    rest += snapped;
+    if (moved) *moved = snapped;
     // A pair's parameters differ by (du, dv): its surface points by at most lu |du| + lv |dv|.
     // The trim against the file chord: along the chord's normal where the pairing is the
     // projection, any direction otherwise; the maps scale u by at most u1 and v by v1.
@@ -234,8 +241,12 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                         crossed = true;
                         cut = crossingParameter(use, ta, tb, rawA, rawB, axis, line, a[axis] < line);
                         if (!(cut > ta && cut < tb)) cut = std::numeric_limits<double>::quiet_NaN();
-                    } else if (room && use.deviation(ta, tb, use.deviationTarget) > use.deviationTarget) {
-                        cut = 0.5 * (ta + tb);
+                    } else if (room) {
+                        // Cut in half while that can still help: not where what is left over
+                        // the target is the snap's part (a trim outside the face's box).
+                        double moved = 0;
+                        const double deviation = use.deviation(ta, tb, use.deviationTarget, &moved);
+                        if (deviation > use.deviationTarget && deviation - moved > kCuttable * use.deviationTarget) cut = 0.5 * (ta + tb);
                     }
                     if (std::isnan(cut)) {
                         out.push_back(tb);

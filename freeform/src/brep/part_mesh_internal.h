@@ -116,14 +116,20 @@ public:
     /// On a grid line when within the snapping distance of it, and inside the grid's box.
     Eigen::Vector2d snap(const Eigen::Vector2d& s) const { return {snapTo(s.x(), gu, snapU), snapTo(s.y(), gv, snapV)}; }
 
-    /// A grid line strictly between a and b: (axis, value), axis -1 when there is none.
+    /// A grid line strictly between a and b, the one nearest a of its axis: (axis, value), axis -1
+    /// when there is none. (Nearest a: the part of the side from a to the cut crosses no line of
+    /// that axis, so cutting a side across thousands of lines does not nest a cut per line.)
     std::pair<int, double> crossing(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const
     {
         for (int axis = 0; axis < 2; ++axis) {
             const std::vector<double>& lines = axis == 0 ? gu : gv;
-            const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
-            const auto it = std::upper_bound(lines.begin(), lines.end(), lo);
-            if (it != lines.end() && *it < hi) return {axis, *it};
+            if (a[axis] < b[axis]) {
+                const auto it = std::upper_bound(lines.begin(), lines.end(), a[axis]);
+                if (it != lines.end() && *it < b[axis]) return {axis, *it};
+            } else {
+                const auto it = std::lower_bound(lines.begin(), lines.end(), a[axis]);
+                if (it != lines.begin() && *(it - 1) > b[axis]) return {axis, *(it - 1)};
+            }
         }
         return {-1, 0};
     }
@@ -192,7 +198,10 @@ struct EdgeUse {
     /// A certified bound on how far the points of the face's surface at parameters between the
     /// polygon side from at(ta) to at(tb) and the trim between them lie from the trim's points
     /// (part_mesh_edges.cpp). A bound at most `enough` may be returned without the tightest step.
-    double deviation(double ta, double tb, double enough = 0) const;
+    /// `moved` (when given) receives the part of it that the snap of the side's ends costs: where
+    /// the trim runs outside the face's parameter box (hammer.iges: 1.2e-4 past its edge), the
+    /// snap into the box moves them, and cutting the side does not shrink that part.
+    double deviation(double ta, double tb, double enough = 0, double* moved = nullptr) const;
 };
 
 /// The samples of one edge: every crossing of a grid line by a use, and cuts in half until every
