@@ -236,17 +236,27 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                                     " samples at this tolerance (PartMeshOptions::maxEdgeSamples); use a coarser tolerance");
                     const bool room = depth < 200 && tb - ta > minStep && !full;
                     double cut = std::numeric_limits<double>::quiet_NaN();
+                    int parts = 2;
                     bool crossed = false;
                     if (axis >= 0 && room) {
                         crossed = true;
                         cut = crossingParameter(use, ta, tb, rawA, rawB, axis, line, a[axis] < line);
                         if (!(cut > ta && cut < tb)) cut = std::numeric_limits<double>::quiet_NaN();
                     } else if (room) {
-                        // Cut in half while that can still help: not where what is left over
-                        // the target is the snap's part (a trim outside the face's box).
+                        // Cut while that can still help: not where what is left over the target
+                        // is the snap's part (a trim outside the face's box). The rest of the
+                        // term shrinks as the square of the side's length (the pcurve's sagitta,
+                        // the maps' bend), so the side is cut into as many equal parts as bring
+                        // it to the target at that rate (checked again all the same); halving
+                        // left sides between a quarter of the target and all of it.
                         double moved = 0;
-                        const double deviation = use.deviation(ta, tb, use.deviationTarget, &moved);
-                        if (deviation > use.deviationTarget && deviation - moved > kCuttable * use.deviationTarget) cut = 0.5 * (ta + tb);
+                        const double target = use.deviationTarget;
+                        const double deviation = use.deviation(ta, tb, target, &moved);
+                        if (deviation > target && deviation - moved > kCuttable * target) {
+                            const double ratio = (deviation - moved) / std::max(target - moved, kCuttable * target);
+                            parts = static_cast<int>(std::clamp(std::ceil(std::sqrt(ratio)), 2.0, 16.0));
+                            cut = ta + (tb - ta) / parts;
+                        }
                     }
                     if (std::isnan(cut)) {
                         out.push_back(tb);
@@ -257,8 +267,9 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                     } else {
                         // A cut at a crossing leaves the rest of the side one grid line fewer to
                         // cross: its depth stays (an edge along thousands of grid lines is cut at
-                        // each), while halvings count towards the depth limit.
+                        // each), while cuts into parts count towards the depth limit.
                         if (!crossed) stack.back().second = depth + 1;
+                        for (int p = parts - 1; p >= 2; --p) stack.push_back({ta + (tb - ta) * p / parts, depth + 1});
                         stack.push_back({cut, depth + 1});
                         changed = true;
                     }
