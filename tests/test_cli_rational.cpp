@@ -241,6 +241,46 @@ TEST_CASE("rational document: certified tessellation of rational patches and NUR
     }
 }
 
+TEST_CASE("rational patches: the bound per axis of the patch's frame is exact on a parabola across a line")
+{
+    // S(u, v) = (v + k v^2, u, c u^2): across (u) a parabola, along (v) a straight line run
+    // unevenly. On the cell [0, 1]^2 cut along its diagonal the mesh point T(x) misses S(x) by
+    // k v (1 - v) along x (the interpolant of v^2 from the corners is v) and c u (1 - u) across
+    // the line in the y-z plane: |S - T| = sqrt(k^2 v^2 (1 - v)^2 + c^2 u^2 (1 - u)^2), largest at
+    // the centre, sqrt(k^2 + c^2) / 4. The second differences' norms summed give (k + c) / 4;
+    // per axis of the frame (the corners' normal, their u direction, a third) the two parts are
+    // orthogonal and the bound is the exact sqrt(k^2 + c^2) / 4 (docs/surfaces.md).
+    for (const auto& [k, c] : {std::pair{0.5, 0.5}, std::pair{0.3, 1.7}, std::pair{2.0, 0.1}}) {
+        PointMatrix<double, 3> points(3, 9);
+        const double xs[3] = {0, 0.5, 1 + k}, ys[3] = {0, 0.5, 1}, zs[3] = {0, 0, c};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) points.col(i * 3 + j) = Eigen::Vector3d(xs[j], ys[i], zs[i]);
+        const RationalPatch patch(2, 2, points, Eigen::VectorXd::Ones(9));
+        INFO("k " << k << ", c " << c);
+        CHECK(patch.evaluate(0.3, 0.6).isApprox(Eigen::Vector3d(0.6 + k * 0.36, 0.3, c * 0.09), 1e-14));
+        const double bound = rationalTessellationErrorBound(patch, 1, 1);
+        CHECK(std::abs(bound - std::hypot(k, c) / 4) <= 1e-12);
+        CHECK(bound < (k + c) / 4 * (1 - 1e-3));
+        // Measured: the two triangles (0,0),(1,0),(1,1) and (0,0),(1,1),(0,1) of the cell.
+        const Eigen::Vector3d p00 = patch.evaluate(0, 0), p10 = patch.evaluate(1, 0), p01 = patch.evaluate(0, 1), p11 = patch.evaluate(1, 1);
+        double worst = 0;
+        for (int a = 0; a <= 64; ++a)
+            for (int b = 0; b <= 64; ++b) {
+                const double u = a / 64.0, v = b / 64.0;
+                const Eigen::Vector3d t = u >= v ? Eigen::Vector3d(p00 + u * (p10 - p00) + v * (p11 - p10))
+                                                 : Eigen::Vector3d(p00 + v * (p01 - p00) + u * (p11 - p01));
+                worst = std::max(worst, (patch.evaluate(u, v) - t).norm());
+            }
+        CHECK(worst <= bound * (1 + 1e-12));
+        CHECK(worst >= bound * (1 - 1e-12)); // attained at the centre, a sample
+        // Finer grids: the per-axis parts shrink with their own counts.
+        for (const auto& [nu, nv] : {std::pair{2, 3}, std::pair{5, 1}}) {
+            const double expected = std::hypot(c / (4.0 * nu * nu), k / (4.0 * nv * nv));
+            CHECK(std::abs(rationalTessellationErrorBound(patch, nu, nv) - expected) <= 1e-12);
+        }
+    }
+}
+
 TEST_CASE("rational document: freeform eval in process, exit statuses")
 {
     const std::string path = tmp("rational_eval.json");

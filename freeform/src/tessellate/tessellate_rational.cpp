@@ -4,6 +4,7 @@
 #include "freeform/tessellate/tessellate_rational.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -41,7 +42,11 @@ SecondDifferences secondDifferences(int m, int n, const Value& value)
 
 /// The rational patch's bound as a function of the segment counts (docs/surfaces.md, "Rational
 /// patches"): (bound of w (P - c) + rho * bound of w) / min w, with c the centre and rho the
-/// half-diagonal of the control points' box.
+/// half-diagonal of the control points' box; and the same per axis of a frame that follows the
+/// patch (its normal, its u direction and a third), combined as sqrt(sum over the axes of their
+/// squares), where that is smaller: the error of a cell of a fillet is mostly along the normal
+/// across the fillet and mostly along the fillet in the other direction, and the sum of the two
+/// norms counted both in full.
 class RationalBound {
 public:
     explicit RationalBound(const RationalPatch& patch)
@@ -73,12 +78,56 @@ public:
         weight_ = secondDifferences(m, n, [&](int i, int j) -> const Eigen::Matrix<double, 1, 1>& {
             return weights[static_cast<std::size_t>(h.index(i, j))];
         });
+        // The frame: the normal of the corners' mean u and v directions, the u direction, and
+        // their cross product (none where the corners are degenerate: a flat line, a pole).
+        const Eigen::Vector3d p00 = patch.controlPoint(0, 0), pm0 = patch.controlPoint(m, 0), p0n = patch.controlPoint(0, n),
+                              pmn = patch.controlPoint(m, n);
+        const Eigen::Vector3d du = (pm0 - p00) + (pmn - p0n), dv = (p0n - p00) + (pmn - pm0), normal = du.cross(dv);
+        if (!(normal.norm() > 1e-9 * du.norm() * dv.norm()) || m + n < 2) return;
+        Eigen::Matrix3d frame;
+        frame.row(0) = normal.normalized();
+        frame.row(1) = du.normalized();
+        frame.row(2) = frame.row(0).cross(frame.row(1));
+        // Per axis x: |(S - R)_x| <= (E_h,x + rho_x E_w) / w_min, with rho_x the half extent of
+        // the control points' box along x (R lies in their hull) and E_h,x the scalar bound of
+        // the numerator's component, centred on that box.
+        Eigen::Vector3d flo = frame * patch.controlPoint(0, 0), fhi = flo;
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) {
+                const Eigen::Vector3d q = frame * patch.controlPoint(i, j);
+                flo = flo.cwiseMin(q);
+                fhi = fhi.cwiseMax(q);
+            }
+        const Eigen::Vector3d fc = (flo + fhi) / 2;
+        for (Eigen::Index k = 0; k < points.cols(); ++k)
+            shifted[static_cast<std::size_t>(k)] = frame * points.col(k).head<3>() - points(3, k) * fc;
+        for (int x = 0; x < 3; ++x) {
+            axes_[static_cast<std::size_t>(x)] = secondDifferences(m, n, [&](int i, int j) {
+                return Eigen::Matrix<double, 1, 1>(shifted[static_cast<std::size_t>(h.index(i, j))][x]);
+            });
+            axisRho_[static_cast<std::size_t>(x)] = (fhi[x] - flo[x]) / 2;
+        }
+        framed_ = true;
     }
-    double operator()(int nu, int nv) const { return (numerator_.bound(nu, nv) + rho_ * weight_.bound(nu, nv)) / wmin_; }
+    double operator()(int nu, int nv) const
+    {
+        const double ew = weight_.bound(nu, nv);
+        const double whole = (numerator_.bound(nu, nv) + rho_ * ew) / wmin_;
+        if (!framed_) return whole;
+        double sum = 0;
+        for (std::size_t x = 0; x < 3; ++x) {
+            const double e = (axes_[x].bound(nu, nv) + axisRho_[x] * ew) / wmin_;
+            sum += e * e;
+        }
+        return std::min(whole, std::sqrt(sum));
+    }
 
 private:
     SecondDifferences numerator_, weight_;
     double rho_ = 0, wmin_ = 1;
+    bool framed_ = false;
+    std::array<SecondDifferences, 3> axes_;
+    std::array<double, 3> axisRho_{};
 };
 
 void checkOptions(const TessellationOptions& o)
