@@ -18,6 +18,7 @@
 #include <BRepLib.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -271,6 +272,52 @@ TEST_CASE("the trims' term of the bound is the sagitta of a circle's chords on a
         CHECK(chords > 0);
         CHECK(m.report.maxTrimDeviation >= sagitta * (1 - 1e-9));
         CHECK(m.report.maxTrimDeviation <= 1.1 * sagitta);
+    }
+}
+
+TEST_CASE("faces that share a circle put their grid lines on the same points of it", "[cad]")
+{
+    // A cylinder (radius 5, height 10) whose top edge is filleted (radius 1): its side meets the
+    // fillet's torus along the circle z = 9, and the torus meets the top plane along the circle of
+    // radius 4 at z = 10. An edge's samples are every crossing of either face's grid lines, and
+    // the plane has none inside, so the top circle carries the torus's lines alone and the
+    // bottom circle the cylinder's alone. Where the two faces' lines lie apart, the circle between
+    // them carries both sets; aligned (docs/cad.md, "Tessellation", step 1), it carries the finer
+    // face's: as many vertices as the larger of the other two circles.
+    BRepPrimAPI_MakeCylinder cylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 5, 10);
+    BRepFilletAPI_MakeFillet fillet(cylinder.Shape());
+    TopTools_IndexedMapOfShape edges;
+    TopExp::MapShapes(cylinder.Shape(), TopAbs_EDGE, edges);
+    for (int i = 1; i <= edges.Extent(); ++i) {
+        GProp_GProps props;
+        BRepGProp::LinearProperties(edges(i), props);
+        if (std::abs(props.CentreOfMass().Z() - 10) < 1e-9 && props.Mass() > 1) fillet.Add(1.0, TopoDS::Edge(edges(i)));
+    }
+    const TopoDS_Shape shape = fillet.Shape();
+    const Part part = partFromShape(shape);
+    for (const double tolerance : {0.05, 0.02, 0.01}) {
+        PartMeshOptions options;
+        options.tolerance = tolerance;
+        const PartMesh m = tessellatePart(part, options);
+        auto on = [&](double z, double r) {
+            int n = 0;
+            for (Eigen::Index k = 0; k < m.mesh.positions.cols(); ++k) {
+                const Eigen::Vector3d p = m.mesh.positions.col(k);
+                n += std::abs(p.z() - z) <= 1e-9 && std::abs(p.head<2>().norm() - r) <= 1e-9;
+            }
+            return n;
+        };
+        const int shared = on(9, 5), top = on(10, 4), bottom = on(0, 5);
+        INFO("tolerance " << tolerance << ": vertices on the shared circle " << shared << ", the top " << top << ", the bottom "
+                          << bottom);
+        CHECK(m.report.certified);
+        CHECK(m.report.watertight);
+        CHECK(top > 8);
+        CHECK(bottom > 8);
+        CHECK(shared == std::max(top, bottom));
+        const Measured got = measure(shape, m, 400);
+        CHECK(got.closed);
+        CHECK(got.worst <= m.report.errorBound * (1 + 1e-9) + 1e-12);
     }
 }
 

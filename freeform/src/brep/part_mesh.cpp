@@ -9,6 +9,7 @@
 #include "freeform/brep/part_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -45,7 +46,9 @@ AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStar
     return a;
 }
 
-FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
+/// The grid of face f aimed at `target`; `least` (per axis, per knot span of the face's box) the
+/// fewest cells a span gets (alignGrids), in even columns or rows.
+FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std::array<std::vector<int>, 2>* least = nullptr)
 {
     const TrimmedSurface& ts = face.surface;
     const NurbsSurface<double, 3>& nurbs = ts.surface().nurbs;
@@ -112,6 +115,12 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
             nu[a] = std::max(nu[a], n[0]);
             nv[b] = std::max(nv[b], n[1]);
         }
+    std::vector<char> forcedU(nu.size(), 0);
+    if (least) {
+        for (std::size_t a = 0; a < nu.size() && a < (*least)[0].size(); ++a)
+            if ((*least)[0][a] > nu[a]) nu[a] = (*least)[0][a], forcedU[a] = 1;
+        for (std::size_t b = 0; b < nv.size() && b < (*least)[1].size(); ++b) nv[b] = std::max(nv[b], (*least)[1][b]);
+    }
     double lu = 0, lv = 0;
     // Per knot span in u: even columns, or (on weighted patches, where a trim holds some cells to
     // their parametric bound) uneven ones when they are fewer.
@@ -131,7 +140,7 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target)
             cells += static_cast<long>(nu[a]) * nv[b];
         }
         double unevenBound = 0;
-        if (curved && trimmed && nu[a] > 1 && cells <= 2048) breaks[a] = unevenColumns(row, nv, rowZones, target, nu[a], unevenBound);
+        if (curved && trimmed && nu[a] > 1 && cells <= 2048 && !forcedU[a]) breaks[a] = unevenColumns(row, nv, rowZones, target, nu[a], unevenBound);
         if (!breaks[a].empty()) {
             g.bound = std::max(g.bound, unevenBound);
         } else {
@@ -278,6 +287,140 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
     out.dropTriangles(drop);
 }
 
+
+/// Per knot span of one axis of the grid: its cell count where its lines are even, else -1.
+std::vector<int> evenCounts(const FaceGrid& g, int axis)
+{
+    const std::vector<double>& b = axis == 0 ? g.bu : g.bv;
+    const std::vector<double>& l = axis == 0 ? g.gu : g.gv;
+    std::vector<int> out;
+    for (std::size_t s = 0; s + 1 < b.size(); ++s) {
+        const double width = b[s + 1] - b[s], e = 1e-12 * width;
+        const auto lo = std::lower_bound(l.begin(), l.end(), b[s] - e), hi = std::upper_bound(l.begin(), l.end(), b[s + 1] + e);
+        const int n = static_cast<int>(hi - lo) - 1;
+        bool even = n >= 1 && std::abs(*lo - b[s]) <= e && std::abs(*(hi - 1) - b[s + 1]) <= e;
+        for (int k = 0; even && k <= n; ++k) even = std::abs(*(lo + k) - (b[s] + width * k / n)) <= e;
+        out.push_back(even ? n : -1);
+    }
+    return out;
+}
+
+/// The axis along which a trim runs as an iso line of the other (its control points' other
+/// coordinate all equal), or -1.
+int isoAxis(const TrimCurve& c)
+{
+    const auto& p = c.curve.nurbs.controlPoints();
+    for (int along = 0; along < 2; ++along) {
+        const int other = 1 - along;
+        bool iso = true;
+        for (Eigen::Index i = 1; iso && i < p.cols(); ++i) iso = std::abs(p(other, i) - p(other, 0)) <= 1e-12 * (1 + std::abs(p(other, 0)));
+        if (iso && p.row(along).maxCoeff() > p.row(along).minCoeff()) return along;
+    }
+    return -1;
+}
+
+/// Grid lines that meet on the edges two faces share (docs/cad.md, "Tessellation", step 1): an
+/// edge's samples are every crossing of either face's grid lines, so where both faces cross it
+/// with lines of their own (a cylinder and the torus it runs into, along their common circle)
+/// it gets both sets, and both faces' polygons carry them. Where the edge is an iso line of both
+/// faces, running along the same parameter map over the same knot spans, and the spans' lines
+/// are even, equal counts put the lines at the same points. Each such span takes the larger
+/// count on both faces where the cells that costs (the difference times the other face's rows)
+/// are fewer than the smaller count, about the edge samples saved. Returns per face the least
+/// counts (empty where nothing changes), found over up to four rounds (a cylinder between two
+/// tori takes the larger of both).
+std::vector<std::array<std::vector<int>, 2>> alignGrids(const Part& part, const std::vector<FaceGrid>& grids)
+{
+    const std::size_t faces = part.faces.size();
+    std::vector<std::array<std::vector<int>, 2>> counts(faces), least(faces);
+    for (std::size_t f = 0; f < faces; ++f) counts[f] = {evenCounts(grids[f], 0), evenCounts(grids[f], 1)};
+    // The uses of each edge that run along an axis of their face.
+    struct Use {
+        std::size_t face;
+        const TrimCurve* trim;
+        int axis;
+    };
+    std::vector<std::vector<Use>> uses(part.edges.size());
+    for (std::size_t f = 0; f < faces; ++f)
+        for (const TrimLoop& loop : part.faces[f].surface.loops())
+            for (const TrimCurve& c : loop.curves) {
+                if (c.edge < 0 || static_cast<std::size_t>(c.edge) >= part.edges.size()) continue;
+                uses[static_cast<std::size_t>(c.edge)].push_back({f, &c, isoAxis(c)});
+            }
+    struct Pair {
+        std::size_t fa, fb;
+        int axisA, axisB;
+        std::vector<std::pair<std::size_t, std::size_t>> spans; // matching knot spans (a's, b's)
+    };
+    std::vector<Pair> pairs;
+    for (std::size_t e = 0; e < part.edges.size(); ++e) {
+        const std::vector<Use>& u = uses[e];
+        if (u.size() != 2 || u[0].face == u[1].face || u[0].axis < 0 || u[1].axis < 0) continue;
+        const FaceGrid& ga = grids[u[0].face];
+        const FaceGrid& gb = grids[u[1].face];
+        const AxisMap& ma = u[0].axis == 0 ? ga.mu : ga.mv;
+        const AxisMap& mb = u[1].axis == 0 ? gb.mu : gb.mv;
+        // (The same map up to rounding: a cylinder's and a torus's arcs start at 0 and at -8.9e-16.)
+        const double scale = 1e-12 * (1 + std::abs(ma.map.start) + std::abs(ma.map.span) * ma.map.spans + ma.map.period);
+        if (ma.map.kind != mb.map.kind || ma.map.spans != mb.map.spans || std::abs(ma.map.start - mb.map.start) > scale ||
+            std::abs(ma.map.span - mb.map.span) > scale || std::abs(ma.map.period - mb.map.period) > scale ||
+            std::abs(ma.centre - mb.centre) > scale)
+            continue;
+        // The same parameter along the edge at its ends and middle (the file's, then the NURBS').
+        const PartEdge& edge = part.edges[e];
+        bool same = true;
+        double lo = kInf, hi = -kInf;
+        for (const double t : {edge.first, 0.5 * (edge.first + edge.last), edge.last}) {
+            auto param = [&](const Use& use) {
+                const MappedCurve<2>& c = use.trim->curve;
+                const double s = c.first + (t - edge.first) / (edge.last - edge.first) * (c.last - c.first);
+                return c.point(s)[use.axis];
+            };
+            const double a = ma(param(u[0])), b = mb(param(u[1]));
+            same = same && std::abs(a - b) <= 1e-9 * (1 + std::abs(a));
+            lo = std::min(lo, a);
+            hi = std::max(hi, a);
+        }
+        if (!same || !(hi > lo)) continue;
+        const std::vector<double>& ba = u[0].axis == 0 ? ga.bu : ga.bv;
+        const std::vector<double>& bb = u[1].axis == 0 ? gb.bu : gb.bv;
+        Pair p{u[0].face, u[1].face, u[0].axis, u[1].axis, {}};
+        for (std::size_t i = 0; i + 1 < ba.size(); ++i) {
+            if (ba[i + 1] <= lo || ba[i] >= hi) continue;
+            const double e = 1e-12 * (ba[i + 1] - ba[i]);
+            std::size_t j = 0;
+            while (j + 1 < bb.size() && !(std::abs(bb[j] - ba[i]) <= e && std::abs(bb[j + 1] - ba[i + 1]) <= e)) ++j;
+            if (j + 1 < bb.size()) p.spans.emplace_back(i, j);
+        }
+        if (!p.spans.empty()) pairs.push_back(std::move(p));
+    }
+    if (pairs.empty()) return least;
+    auto rows = [&](std::size_t f, int axis) {
+        const std::vector<double>& l = axis == 0 ? grids[f].gv : grids[f].gu;
+        return static_cast<int>(l.size()) - 1;
+    };
+    for (int round = 0; round < 4; ++round) {
+        bool changed = false;
+        for (const Pair& p : pairs)
+            for (const auto& [i, j] : p.spans) {
+                int& ca = counts[p.fa][static_cast<std::size_t>(p.axisA)][i];
+                int& cb = counts[p.fb][static_cast<std::size_t>(p.axisB)][j];
+                if (ca < 1 || cb < 1 || ca == cb) continue;
+                const bool raiseA = ca < cb;
+                const int low = std::min(ca, cb), high = std::max(ca, cb);
+                if ((high - low) * (raiseA ? rows(p.fa, p.axisA) : rows(p.fb, p.axisB)) >= low) continue;
+                (raiseA ? ca : cb) = high;
+                changed = true;
+            }
+        if (!changed) break;
+    }
+    for (std::size_t f = 0; f < faces; ++f) {
+        const std::array<std::vector<int>, 2> own = {evenCounts(grids[f], 0), evenCounts(grids[f], 1)};
+        if (own != counts[f]) least[f] = counts[f];
+    }
+    return least;
+}
+
 } // namespace
 
 /// One meshing of the part with the grid of face f aimed at cellTarget[f]; cellBound receives the
@@ -289,9 +432,11 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     std::vector<FaceGrid> grids;
     grids.reserve(part.faces.size());
     long long estimate = 0;
+    for (std::size_t f = 0; f < part.faces.size(); ++f) grids.push_back(makeGrid(part.faces[f], f, cellTarget[f]));
+    const std::vector<std::array<std::vector<int>, 2>> least = alignGrids(part, grids);
     for (std::size_t f = 0; f < part.faces.size(); ++f) {
-        grids.push_back(makeGrid(part.faces[f], f, cellTarget[f]));
-        estimate += 2LL * static_cast<long long>(grids.back().gu.size() - 1) * static_cast<long long>(grids.back().gv.size() - 1);
+        if (!least[f][0].empty()) grids[f] = makeGrid(part.faces[f], f, cellTarget[f], &least[f]);
+        estimate += 2LL * static_cast<long long>(grids[f].gu.size() - 1) * static_cast<long long>(grids[f].gv.size() - 1);
     }
     if (options.maxTriangles > 0 && estimate > options.maxTriangles)
         throw Error("tessellatePart: about " + std::to_string(estimate) + " triangles exceed the limit of " +
