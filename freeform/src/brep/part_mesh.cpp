@@ -33,6 +33,7 @@ AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStar
                 const char* dir)
 {
     AxisMap a{map, 0};
+    if (map.kind == ParameterMap::Kind::HalfAngle) a.invTanQuarter = 1 / std::tan(0.25 * map.span);
     if (map.kind == ParameterMap::Kind::Identity && map.period > 0) {
         const double tol = 1e-9 * map.period;
         double s0 = map(lo);

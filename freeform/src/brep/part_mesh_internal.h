@@ -28,9 +28,17 @@ struct AxisMap {
     ParameterMap map;
     double centre = 0;
     double lo = 0, hi = 0; // a periodic direction: the face's box, unrolled
+    double invTanQuarter = 0; // a half-angle map: 1 / tan(span / 4), once (axisMap)
 
     double operator()(double u) const
     {
+        if (map.kind == ParameterMap::Kind::HalfAngle && invTanQuarter > 0) {
+            // ParameterMap's own, with its constant tangent kept: the edge samples map every
+            // trim point they evaluate (a tenth of screw.step's time went to tan).
+            const int k = std::clamp(static_cast<int>(std::floor((u - map.start) / map.span)), 0, map.spans - 1);
+            const double mid = map.start + (k + 0.5) * map.span;
+            return map.start + (k + 0.5 * (1 + std::tan(0.5 * (u - mid)) * invTanQuarter)) * map.span;
+        }
         if (map.kind == ParameterMap::Kind::Identity && map.period > 0) {
             // A parameter already in the box stays: on a face one period wide, a point on the seam
             // is half a period from the centre either way (u = 0 would round to 2 pi), and a

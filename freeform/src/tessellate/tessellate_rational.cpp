@@ -14,31 +14,14 @@
 namespace freeform {
 namespace {
 
-/// The second differences of a polynomial patch with control values value(i, j) (a vector of any
-/// size), measured in the Euclidean norm and scaled by the degrees: M_uu, M_uv and M_vv of the
-/// bound M_uu/(8 nu^2) + M_uv/(4 nu nv) + M_vv/(8 nv^2) (docs/surfaces.md). They do not depend on
-/// the segment counts, so a search over the counts computes them once.
+/// The largest second differences of a polynomial patch's control values (a vector of any size,
+/// in the Euclidean norm, or a scalar), scaled by the degrees: M_uu, M_uv and M_vv of the bound
+/// M_uu/(8 nu^2) + M_uv/(4 nu nv) + M_vv/(8 nv^2) (docs/surfaces.md). They do not depend on the
+/// segment counts, so a search over the counts computes them once.
 struct SecondDifferences {
     double muu = 0, muv = 0, mvv = 0;
     double bound(int nu, int nv) const { return muu / (8.0 * nu * nu) + muv / (4.0 * nu * nv) + mvv / (8.0 * nv * nv); }
 };
-
-template <class Value>
-SecondDifferences secondDifferences(int m, int n, const Value& value)
-{
-    SecondDifferences d;
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            if (i + 2 <= m) d.muu = std::max(d.muu, (value(i + 2, j) - 2 * value(i + 1, j) + value(i, j)).norm());
-            if (j + 2 <= n) d.mvv = std::max(d.mvv, (value(i, j + 2) - 2 * value(i, j + 1) + value(i, j)).norm());
-            if (i + 1 <= m && j + 1 <= n)
-                d.muv = std::max(d.muv, (value(i + 1, j + 1) - value(i + 1, j) - value(i, j + 1) + value(i, j)).norm());
-        }
-    d.muu *= double(m) * (m - 1);
-    d.mvv *= double(n) * (n - 1);
-    d.muv *= double(m) * n;
-    return d;
-}
 
 /// The rational patch's bound as a function of the segment counts (docs/surfaces.md, "Rational
 /// patches"): (bound of w (P - c) + rho * bound of w) / min w, with c the centre and rho the
@@ -53,6 +36,7 @@ public:
     {
         const int m = patch.degreeU(), n = patch.degreeV();
         const auto& h = patch.homogeneous();
+        const auto& points = h.controlPoints(); // homogeneous (w P, w), column h.index(i, j)
         Eigen::Vector3d lo = patch.controlPoint(0, 0), hi = lo;
         wmin_ = patch.weight(0, 0);
         for (int i = 0; i <= m; ++i)
@@ -63,51 +47,52 @@ public:
             }
         const Eigen::Vector3d c = (lo + hi) / 2;
         rho_ = (hi - lo).norm() / 2;
-        // Translated numerator w (P - c) = h.head(3) - w c, and the weight alone: each computed
-        // once (the differences read every control point up to seven times).
-        const auto& points = h.controlPoints(); // column h.index(i, j)
-        std::vector<Eigen::Vector3d> shifted(static_cast<std::size_t>(points.cols()));
-        std::vector<Eigen::Matrix<double, 1, 1>> weights(shifted.size());
-        for (Eigen::Index k = 0; k < points.cols(); ++k) {
-            shifted[static_cast<std::size_t>(k)] = points.col(k).head<3>() - points(3, k) * c;
-            weights[static_cast<std::size_t>(k)](0) = points(3, k);
-        }
-        numerator_ = secondDifferences(m, n, [&](int i, int j) -> const Eigen::Vector3d& {
-            return shifted[static_cast<std::size_t>(h.index(i, j))];
-        });
-        weight_ = secondDifferences(m, n, [&](int i, int j) -> const Eigen::Matrix<double, 1, 1>& {
-            return weights[static_cast<std::size_t>(h.index(i, j))];
-        });
         // The frame: the normal of the corners' mean u and v directions, the u direction, and
         // their cross product (none where the corners are degenerate: a flat line, a pole).
         const Eigen::Vector3d p00 = patch.controlPoint(0, 0), pm0 = patch.controlPoint(m, 0), p0n = patch.controlPoint(0, n),
                               pmn = patch.controlPoint(m, n);
         const Eigen::Vector3d du = (pm0 - p00) + (pmn - p0n), dv = (p0n - p00) + (pmn - pm0), normal = du.cross(dv);
-        if (!(normal.norm() > 1e-9 * du.norm() * dv.norm()) || m + n < 2) return;
-        Eigen::Matrix3d frame;
-        frame.row(0) = normal.normalized();
-        frame.row(1) = du.normalized();
-        frame.row(2) = frame.row(0).cross(frame.row(1));
-        // Per axis x: |(S - R)_x| <= (E_h,x + rho_x E_w) / w_min, with rho_x the half extent of
-        // the control points' box along x (R lies in their hull) and E_h,x the scalar bound of
-        // the numerator's component, centred on that box.
-        Eigen::Vector3d flo = frame * patch.controlPoint(0, 0), fhi = flo;
+        Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+        Eigen::Vector3d fc = Eigen::Vector3d::Zero();
+        framed_ = normal.norm() > 1e-9 * du.norm() * dv.norm() && m + n >= 2;
+        if (framed_) {
+            frame.row(0) = normal.normalized();
+            frame.row(1) = du.normalized();
+            frame.row(2) = frame.row(0).cross(frame.row(1));
+            // Per axis x: |(S - R)_x| <= (E_h,x + rho_x E_w) / w_min, with rho_x the half extent
+            // of the control points' box along x (R lies in their hull) and E_h,x the scalar bound
+            // of the numerator's component, centred on that box.
+            Eigen::Vector3d flo = frame * p00, fhi = flo;
+            for (int i = 0; i <= m; ++i)
+                for (int j = 0; j <= n; ++j) {
+                    const Eigen::Vector3d q = frame * patch.controlPoint(i, j);
+                    flo = flo.cwiseMin(q);
+                    fhi = fhi.cwiseMax(q);
+                }
+            fc = (flo + fhi) / 2;
+            axisRho_ = (fhi - flo) / 2;
+        }
+        // One pass over the second differences d of the homogeneous net: the numerator
+        // w (P - c) has d.head(3) - d.w c, the weight d.w, and the numerator in the frame,
+        // centred on its box, frame d.head(3) - d.w fc.
+        Eigen::Vector3d axisUU = Eigen::Vector3d::Zero(), axisUV = axisUU, axisVV = axisUU;
+        auto take = [&](const Eigen::Vector4d& d, double& whole, double& weight, Eigen::Vector3d& axis) {
+            whole = std::max(whole, (d.head<3>() - d[3] * c).norm());
+            weight = std::max(weight, std::abs(d[3]));
+            if (framed_) axis = axis.cwiseMax((frame * d.head<3>() - d[3] * fc).cwiseAbs());
+        };
+        auto at = [&](int i, int j) { return points.col(h.index(i, j)); };
         for (int i = 0; i <= m; ++i)
             for (int j = 0; j <= n; ++j) {
-                const Eigen::Vector3d q = frame * patch.controlPoint(i, j);
-                flo = flo.cwiseMin(q);
-                fhi = fhi.cwiseMax(q);
+                if (i + 2 <= m) take(at(i + 2, j) - 2 * at(i + 1, j) + at(i, j), numerator_.muu, weight_.muu, axisUU);
+                if (j + 2 <= n) take(at(i, j + 2) - 2 * at(i, j + 1) + at(i, j), numerator_.mvv, weight_.mvv, axisVV);
+                if (i + 1 <= m && j + 1 <= n)
+                    take(at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j), numerator_.muv, weight_.muv, axisUV);
             }
-        const Eigen::Vector3d fc = (flo + fhi) / 2;
-        for (Eigen::Index k = 0; k < points.cols(); ++k)
-            shifted[static_cast<std::size_t>(k)] = frame * points.col(k).head<3>() - points(3, k) * fc;
-        for (int x = 0; x < 3; ++x) {
-            axes_[static_cast<std::size_t>(x)] = secondDifferences(m, n, [&](int i, int j) {
-                return Eigen::Matrix<double, 1, 1>(shifted[static_cast<std::size_t>(h.index(i, j))][x]);
-            });
-            axisRho_[static_cast<std::size_t>(x)] = (fhi[x] - flo[x]) / 2;
-        }
-        framed_ = true;
+        const double su = double(m) * (m - 1), sv = double(n) * (n - 1), suv = double(m) * n;
+        numerator_.muu *= su, numerator_.mvv *= sv, numerator_.muv *= suv;
+        weight_.muu *= su, weight_.mvv *= sv, weight_.muv *= suv;
+        for (int x = 0; x < 3; ++x) axes_[static_cast<std::size_t>(x)] = {axisUU[x] * su, axisUV[x] * suv, axisVV[x] * sv};
     }
     double operator()(int nu, int nv) const
     {
@@ -116,7 +101,7 @@ public:
         if (!framed_) return whole;
         double sum = 0;
         for (std::size_t x = 0; x < 3; ++x) {
-            const double e = (axes_[x].bound(nu, nv) + axisRho_[x] * ew) / wmin_;
+            const double e = (axes_[x].bound(nu, nv) + axisRho_[static_cast<Eigen::Index>(x)] * ew) / wmin_;
             sum += e * e;
         }
         return std::min(whole, std::sqrt(sum));
@@ -127,7 +112,7 @@ private:
     double rho_ = 0, wmin_ = 1;
     bool framed_ = false;
     std::array<SecondDifferences, 3> axes_;
-    std::array<double, 3> axisRho_{};
+    Eigen::Vector3d axisRho_ = Eigen::Vector3d::Zero();
 };
 
 void checkOptions(const TessellationOptions& o)
