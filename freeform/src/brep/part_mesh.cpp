@@ -288,7 +288,6 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
     out.dropTriangles(drop);
 }
 
-
 /// Per knot span of one axis of the grid: its cell count where its lines are even, else -1.
 std::vector<int> evenCounts(const FaceGrid& g, int axis)
 {
