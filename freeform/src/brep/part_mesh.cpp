@@ -332,8 +332,9 @@ int isoAxis(const TrimCurve& c)
 std::vector<std::array<std::vector<int>, 2>> alignGrids(const Part& part, const std::vector<FaceGrid>& grids)
 {
     const std::size_t faces = part.faces.size();
-    std::vector<std::array<std::vector<int>, 2>> counts(faces), least(faces);
-    for (std::size_t f = 0; f < faces; ++f) counts[f] = {evenCounts(grids[f], 0), evenCounts(grids[f], 1)};
+    std::vector<std::array<std::vector<int>, 2>> own(faces), least(faces);
+    for (std::size_t f = 0; f < faces; ++f) own[f] = {evenCounts(grids[f], 0), evenCounts(grids[f], 1)};
+    std::vector<std::array<std::vector<int>, 2>> counts = own;
     // The uses of each edge that run along an axis of their face.
     struct Use {
         std::size_t face;
@@ -373,8 +374,7 @@ std::vector<std::array<std::vector<int>, 2>> alignGrids(const Part& part, const 
         for (const double t : {edge.first, 0.5 * (edge.first + edge.last), edge.last}) {
             auto param = [&](const Use& use) {
                 const MappedCurve<2>& c = use.trim->curve;
-                const double s = c.first + (t - edge.first) / (edge.last - edge.first) * (c.last - c.first);
-                return c.point(s)[use.axis];
+                return c.point(trimParameterOf(c, edge.first, edge.last, t))[use.axis];
             };
             const double a = ma(param(u[0])), b = mb(param(u[1]));
             same = same && std::abs(a - b) <= 1e-9 * (1 + std::abs(a));
@@ -414,10 +414,8 @@ std::vector<std::array<std::vector<int>, 2>> alignGrids(const Part& part, const 
             }
         if (!changed) break;
     }
-    for (std::size_t f = 0; f < faces; ++f) {
-        const std::array<std::vector<int>, 2> own = {evenCounts(grids[f], 0), evenCounts(grids[f], 1)};
-        if (own != counts[f]) least[f] = counts[f];
-    }
+    for (std::size_t f = 0; f < faces; ++f)
+        if (own[f] != counts[f]) least[f] = counts[f];
     return least;
 }
 

@@ -179,6 +179,14 @@ struct Builder {
 void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, std::vector<PolyPoint>& out);
 
 /// One use of an edge by a face: the trim curve and the face's grid.
+/// The trim's parameter at the edge's parameter t (the edge's range [edgeFirst, edgeLast] mapped
+/// linearly onto the trim's).
+inline double trimParameterOf(const MappedCurve<2>& c, double edgeFirst, double edgeLast, double t)
+{
+    if (c.first == edgeFirst && c.last == edgeLast) return t;
+    return c.first + (t - edgeFirst) / (edgeLast - edgeFirst) * (c.last - c.first);
+}
+
 struct EdgeUse {
     const TrimCurve* trim;
     const FaceGrid* grid;
@@ -187,12 +195,7 @@ struct EdgeUse {
     std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces; // the trim's, once
     std::shared_ptr<const std::vector<double>> breaks;
 
-    double trimParameter(double t) const
-    {
-        const MappedCurve<2>& c = trim->curve;
-        if (c.first == edgeFirst && c.last == edgeLast) return t;
-        return c.first + (t - edgeFirst) / (edgeLast - edgeFirst) * (c.last - c.first);
-    }
+    double trimParameter(double t) const { return trimParameterOf(trim->curve, edgeFirst, edgeLast, t); }
     /// The edge's parameter of the trim's parameter u (the inverse of trimParameter).
     double edgeParameter(double u) const
     {
