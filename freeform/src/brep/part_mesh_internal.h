@@ -178,7 +178,6 @@ struct Builder {
 /// (the same vertex again) keep every side inside one cell. Appends them to `out`.
 void joinAcrossLines(const FaceGrid& g, const PolyPoint& a, const PolyPoint& b, std::vector<PolyPoint>& out);
 
-/// One use of an edge by a face: the trim curve and the face's grid.
 /// The trim's parameter at the edge's parameter t (the edge's range [edgeFirst, edgeLast] mapped
 /// linearly onto the trim's).
 inline double trimParameterOf(const MappedCurve<2>& c, double edgeFirst, double edgeLast, double t)
@@ -187,6 +186,7 @@ inline double trimParameterOf(const MappedCurve<2>& c, double edgeFirst, double 
     return c.first + (t - edgeFirst) / (edgeLast - edgeFirst) * (c.last - c.first);
 }
 
+/// One use of an edge by a face: the trim curve and the face's grid.
 struct EdgeUse {
     const TrimCurve* trim;
     const FaceGrid* grid;
