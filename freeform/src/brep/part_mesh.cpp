@@ -33,7 +33,7 @@ AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStar
                 const char* dir)
 {
     AxisMap a{map, 0};
-    if (map.kind == ParameterMap::Kind::HalfAngle) a.invTanQuarter = 1 / std::tan(0.25 * map.span);
+    a.invTanQuarter = invTanQuarterOf(map);
     if (map.kind == ParameterMap::Kind::Identity && map.period > 0) {
         const double tol = 1e-9 * map.period;
         double s0 = map(lo);
@@ -452,7 +452,7 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
                 uses[static_cast<std::size_t>(c.edge)].push_back(
                     {&c, &grids[f], 0, e.first, e.last,
                      std::make_shared<const std::vector<RationalBezierCurve<double, 2>>>(c.curve.nurbs.bezierPieces()),
-                     std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints())});
+                     std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints()), invTanQuarterOf(c.curve.map)});
                 useFace[static_cast<std::size_t>(c.edge)].push_back(f);
             }
     // The trims' share of each face's bound: what its grid and its vertex gaps leave, at least

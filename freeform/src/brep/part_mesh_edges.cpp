@@ -3,10 +3,15 @@
 // an edge, shared by the faces that use it (sampleEdge).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
+#include "freeform/core/bernstein.h" // kMaxDegree
 #include "part_mesh_internal.h"
 
 namespace freeform::part_mesh {
@@ -31,20 +36,51 @@ constexpr double kCuttable = 0.05;
 /// end weight. On a circular arc with equal end weights this is its sagitta exactly; on a
 /// polynomial quadratic, half its control point's distance. Otherwise, the control points'
 /// largest distance from the chord (the pieces lie in their hull).
+/// A Bézier piece of a trim, cut from its pieces without allocating: degree p, homogeneous control
+/// points (w x, w y, w). The cuts are BezierCurve::split's de Casteljau steps, to the bit.
+struct CutPiece {
+    int p = 0;
+    std::array<Eigen::Vector3d, kMaxDegree + 1> h;
+
+    int degree() const { return p; }
+    double weight(int i) const { return h[static_cast<std::size_t>(i)].z(); }
+    Eigen::Vector2d controlPoint(int i) const { return h[static_cast<std::size_t>(i)].head<2>() / weight(i); }
+    /// Keeps the part over [t, 1].
+    void keepAfter(double t)
+    {
+        // In place, the de Casteljau triangle's right side is left in h.
+        const double s = 1 - t;
+        for (int k = 1; k <= p; ++k)
+            for (int i = 0; i <= p - k; ++i) h[static_cast<std::size_t>(i)] = s * h[static_cast<std::size_t>(i)] + t * h[static_cast<std::size_t>(i) + 1];
+    }
+    /// Keeps the part over [0, t].
+    void keepBefore(double t)
+    {
+        const double s = 1 - t;
+        std::array<Eigen::Vector3d, kMaxDegree + 1> left;
+        left[0] = h[0];
+        for (int k = 1; k <= p; ++k) {
+            for (int i = 0; i <= p - k; ++i) h[static_cast<std::size_t>(i)] = s * h[static_cast<std::size_t>(i)] + t * h[static_cast<std::size_t>(i) + 1];
+            left[static_cast<std::size_t>(k)] = h[0];
+        }
+        h = left;
+    }
+};
+
 struct SideDeviation {
     double distance = 0;      // along `normal` when alongNormal, else in any direction
     double slack = 0;         // alongNormal: and at most this much along the chord
     bool alongNormal = false;
     Eigen::Vector2d normal = Eigen::Vector2d::Zero();
 };
-SideDeviation sideDeviation(const std::vector<RationalBezierCurve<double, 2>>& cut, const Eigen::Vector2d& pa,
+SideDeviation sideDeviation(const std::vector<CutPiece>& cut, const Eigen::Vector2d& pa,
                             const Eigen::Vector2d& pb)
 {
     const Eigen::Vector2d d = pb - pa;
     const double len2 = d.squaredNorm();
     double hull = 0, line = 0, over = 0;
     const Eigen::Vector2d n = len2 > 0 ? Eigen::Vector2d(Eigen::Vector2d(-d.y(), d.x()) / std::sqrt(len2)) : Eigen::Vector2d::Zero();
-    for (const RationalBezierCurve<double, 2>& piece : cut) {
+    for (const CutPiece& piece : cut) {
         const int p = piece.degree();
         double ends = 0, interior = 0, wIn = 0;
         const double wEnd = std::min(piece.weight(0), piece.weight(p));
@@ -78,15 +114,18 @@ SideDeviation sideDeviation(const std::vector<RationalBezierCurve<double, 2>>& c
 
 } // namespace
 
-double EdgeUse::deviation(double ta, double tb, double enough, double* moved) const
+double EdgeUse::deviation(double ta, double tb, double enough, double* moved, bool* tightest) const
 {
+    if (tightest) *tightest = true;
     const MappedCurve<2>& c = trim->curve;
     const double ca = trimParameter(ta), cb = trimParameter(tb);
     const double lo = std::min(ca, cb), hi = std::max(ca, cb);
     // The trim's Bézier pieces over [lo, hi], cut by de Casteljau (no knot insertion: a cut a
     // hair from a knot would leave a span too short for its ratios); a periodic trim is
     // unrolled and, where [lo, hi] runs over the end of its period, taken in two pieces.
-    std::vector<RationalBezierCurve<double, 2>> cut;
+    // (One buffer per thread: the samples of an edge bound thousands of sides.)
+    thread_local std::vector<CutPiece> cut;
+    cut.clear();
     auto addPiece = [&](double s0, double s1) {
         const std::vector<double>& b = *breaks;
         const std::size_t first = static_cast<std::size_t>(
@@ -95,15 +134,17 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved) co
             const double w = b[k + 1] - b[k];
             const double a = std::clamp((s0 - b[k]) / w, 0.0, 1.0), e = std::clamp((s1 - b[k]) / w, 0.0, 1.0);
             if (!(e > a)) continue;
-            RationalBezierCurve<double, 2> piece = (*pieces)[k];
-            if (a > 0) piece = piece.split(a).second;
+            const auto& h = (*pieces)[k].homogeneous().controlPoints();
+            CutPiece& piece = cut.emplace_back();
+            piece.p = static_cast<int>(h.cols()) - 1;
+            for (int i = 0; i <= piece.p; ++i) piece.h[static_cast<std::size_t>(i)] = h.col(i);
+            if (a > 0) piece.keepAfter(a);
             const double e2 = a > 0 ? (e - a) / (1 - a) : e;
-            if (e2 < 1) piece = piece.split(e2).first;
-            cut.push_back(std::move(piece));
+            if (e2 < 1) piece.keepBefore(e2);
         }
     };
-    const double s0 = c.map(lo);
-    double s1 = c.map(hi);
+    const double s0 = trimNurbsParameter(lo);
+    double s1 = trimNurbsParameter(hi);
     if (c.map.kind == ParameterMap::Kind::Identity && c.map.period > 0) {
         s1 = s0 + (hi - lo);
         const double end = c.nurbs.domainEnd();
@@ -117,11 +158,11 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved) co
         if (!(s1 > s0)) return kInf;
         addPiece(s0, s1);
     }
-    const Eigen::Vector2d pa = c.point(ca), pb = c.point(cb);
+    const Eigen::Vector2d pa = trimPoint(ca), pb = trimPoint(cb);
     const Eigen::Vector2d d = pb - pa;
     const SideDeviation dev = sideDeviation(cut, pa, pb);
     Eigen::Vector2d qlo = pa.cwiseMin(pb), qhi = pa.cwiseMax(pb);
-    for (const RationalBezierCurve<double, 2>& piece : cut)
+    for (const CutPiece& piece : cut)
         for (int i = 0; i <= piece.degree(); ++i) {
             qlo = qlo.cwiseMin(piece.controlPoint(i));
             qhi = qhi.cwiseMax(piece.controlPoint(i));
@@ -157,7 +198,11 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved) co
     // the slope along n is bounded from the cell's net directly (exact on a plane, where
     // |n_u| lu + |n_v| lv would be up to sqrt 2 times it); not where the slopes' bound is
     // already `enough`.
-    if (!(u1 == 1 && v1 == 1 && u2 == 0 && v2 == 0) || perAxis <= enough) return perAxis;
+    if (!(u1 == 1 && v1 == 1 && u2 == 0 && v2 == 0)) return perAxis;
+    if (perAxis <= enough) {
+        if (tightest) *tightest = false;
+        return perAxis;
+    }
     return std::min(perAxis, grid->slopeAlong(slo, shi, dev.normal) * dev.distance + anyWay * dev.slack + rest);
 }
 
@@ -214,18 +259,48 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
 {
     std::vector<double> ts{first, last};
     const double minStep = 1e-12 * std::max(1.0, std::abs(last - first));
+    // What each use has found so far: its raw point at each sample, and the sides it kept after
+    // bounding their deviation (with the bound, and whether that is the tightest one). Each round
+    // walks every side again after the other uses' cuts; a side kept stays kept, and only the
+    // new sides are bounded (on screw.step this halved the bounds computed).
+    struct Kept {
+        double deviation;
+        bool tightest;
+    };
+    struct SideHash {
+        std::size_t operator()(const std::pair<double, double>& side) const
+        {
+            return std::hash<double>()(side.first) * 1000003u ^ std::hash<double>()(side.second);
+        }
+    };
+    std::vector<std::unordered_map<double, Eigen::Vector2d>> rawAt(uses.size());
+    std::vector<std::unordered_map<std::pair<double, double>, Kept, SideHash>> kept(uses.size());
+    auto raw = [&](std::size_t u, double t) {
+        const auto [it, fresh] = rawAt[u].try_emplace(t);
+        if (fresh) it->second = uses[u].raw(t);
+        return it->second;
+    };
     for (int round = 0; round < 16; ++round) {
         bool changed = false;
-        for (const EdgeUse& use : uses) {
+        for (std::size_t u = 0; u < uses.size(); ++u) {
+            const EdgeUse& use = uses[u];
             std::vector<double> out{ts.front()};
             // Depth-first over the sides; each is cut at a crossing or in half until it passes.
             for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
                 std::vector<std::pair<double, int>> stack{{ts[k + 1], 0}};
                 double ta = ts[k];
-                Eigen::Vector2d rawA = use.raw(ta), a = use.grid->snap(rawA); // at(ta), kept while ta is
+                Eigen::Vector2d rawA = raw(u, ta), a = use.grid->snap(rawA); // at(ta), kept while ta is
                 while (!stack.empty()) {
                     const auto [tb, depth] = stack.back();
-                    const Eigen::Vector2d rawB = use.raw(tb), b = use.grid->snap(rawB);
+                    const Eigen::Vector2d rawB = raw(u, tb), b = use.grid->snap(rawB);
+                    if (kept[u].count({ta, tb})) {
+                        out.push_back(tb);
+                        ta = tb;
+                        rawA = rawB;
+                        a = b;
+                        stack.pop_back();
+                        continue;
+                    }
                     const auto [axis, line] = use.grid->crossing(a, b);
                     const std::size_t count = out.size() + stack.size() + (ts.size() - k - 1); // samples so far
                     const bool full = count >= static_cast<std::size_t>(std::max(maxSamples, 2));
@@ -250,12 +325,15 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                         // it to the target at that rate (checked again all the same); halving
                         // left sides between a quarter of the target and all of it.
                         double moved = 0;
+                        bool tightest = true;
                         const double target = use.deviationTarget;
-                        const double deviation = use.deviation(ta, tb, target, &moved);
+                        const double deviation = use.deviation(ta, tb, target, &moved, &tightest);
                         if (deviation > target && deviation - moved > kCuttable * target) {
                             const double ratio = (deviation - moved) / std::max(target - moved, kCuttable * target);
                             parts = static_cast<int>(std::clamp(std::ceil(std::sqrt(ratio)), 2.0, 16.0));
                             cut = ta + (tb - ta) / parts;
+                        } else {
+                            kept[u].emplace(std::make_pair(ta, tb), Kept{deviation, tightest});
                         }
                     }
                     if (std::isnan(cut)) {
@@ -282,34 +360,41 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
     // Crossings found for two faces at one point (a vertex on both faces' grid lines) differ in the
     // last bits: keep one sample (the snap puts it on both lines).
     const double merge = 1e-10 * std::abs(last - first);
-    std::vector<double> kept{ts.front()};
+    std::vector<double> merged{ts.front()};
     for (std::size_t k = 1; k + 1 < ts.size(); ++k)
-        if (ts[k] - kept.back() > merge && ts.back() - ts[k] > merge) kept.push_back(ts[k]);
-    kept.push_back(ts.back());
-    ts = std::move(kept);
+        if (ts[k] - merged.back() > merge && ts.back() - ts[k] > merge) merged.push_back(ts[k]);
+    merged.push_back(ts.back());
+    ts = std::move(merged);
     // A sample that a face's snap puts within the snapping distance of the next one makes a side
     // of no real length whose direction is noise: where the trim meets a grid line at a tangent or
     // at its apex (a slot's end on a cylinder's seam), the snapped side can run back along the line,
     // out of the cell that holds its neighbours. Such a sample goes, for every face alike, unless a
     // face would then lose a grid line's crossing.
+    auto at = [&](std::size_t u, double t) { return uses[u].grid->snap(raw(u, t)); };
     auto tiny = [&](double ta, double tb) {
-        for (const EdgeUse& use : uses) {
-            const Eigen::Vector2d d = (use.at(ta) - use.at(tb)).cwiseAbs();
-            if (d.x() <= use.grid->snapU && d.y() <= use.grid->snapV) return true;
+        for (std::size_t u = 0; u < uses.size(); ++u) {
+            const Eigen::Vector2d d = (at(u, ta) - at(u, tb)).cwiseAbs();
+            if (d.x() <= uses[u].grid->snapU && d.y() <= uses[u].grid->snapV) return true;
         }
         return false;
     };
     auto crosses = [&](double ta, double tb) {
-        return std::any_of(uses.begin(), uses.end(), [&](const EdgeUse& use) { return use.grid->crossing(use.at(ta), use.at(tb)).first >= 0; });
+        for (std::size_t u = 0; u < uses.size(); ++u)
+            if (uses[u].grid->crossing(at(u, ta), at(u, tb)).first >= 0) return true;
+        return false;
     };
-    kept.assign(1, ts.front());
+    merged.assign(1, ts.front());
     for (std::size_t k = 1; k + 1 < ts.size(); ++k)
-        if (!((tiny(kept.back(), ts[k]) || tiny(ts[k], ts[k + 1])) && !crosses(kept.back(), ts[k + 1]))) kept.push_back(ts[k]);
-    kept.push_back(ts.back());
-    ts = std::move(kept);
+        if (!((tiny(merged.back(), ts[k]) || tiny(ts[k], ts[k + 1])) && !crosses(merged.back(), ts[k + 1]))) merged.push_back(ts[k]);
+    merged.push_back(ts.back());
+    ts = std::move(merged);
     worst.assign(uses.size(), 0);
     for (std::size_t u = 0; u < uses.size(); ++u)
-        for (std::size_t k = 0; k + 1 < ts.size(); ++k) worst[u] = std::max(worst[u], uses[u].deviation(ts[k], ts[k + 1]));
+        for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+            const auto it = kept[u].find({ts[k], ts[k + 1]});
+            const double deviation = it != kept[u].end() && it->second.tightest ? it->second.deviation : uses[u].deviation(ts[k], ts[k + 1]);
+            worst[u] = std::max(worst[u], deviation);
+        }
     return ts;
 }
 

@@ -22,23 +22,33 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 inline std::string faceName(std::size_t f) { return "face " + std::to_string(f); }
 
+/// 1 / tan(span / 4) of a half-angle map (0 for the other kinds), for halfAngleOf.
+inline double invTanQuarterOf(const ParameterMap& map)
+{
+    return map.kind == ParameterMap::Kind::HalfAngle ? 1 / std::tan(0.25 * map.span) : 0.0;
+}
+
+/// A half-angle map's NURBS parameter of the angle u: ParameterMap's own, with its constant
+/// tangent (invTanQuarterOf) kept. The edge samples map every trim point they evaluate, through
+/// the trim's map and the face's, and a tenth of screw.step's time went to tan.
+inline double halfAngleOf(const ParameterMap& map, double invTanQuarter, double u)
+{
+    const int k = std::clamp(static_cast<int>(std::floor((u - map.start) / map.span)), 0, map.spans - 1);
+    const double mid = map.start + (k + 0.5) * map.span;
+    return map.start + (k + 0.5 * (1 + std::tan(0.5 * (u - mid)) * invTanQuarter)) * map.span;
+}
+
 /// A face's file parameter to its NURBS parameter in one direction; a periodic direction is
 /// unrolled next to `centre` so that the face's box stays in one piece.
 struct AxisMap {
     ParameterMap map;
     double centre = 0;
     double lo = 0, hi = 0; // a periodic direction: the face's box, unrolled
-    double invTanQuarter = 0; // a half-angle map: 1 / tan(span / 4), once (axisMap)
+    double invTanQuarter = 0; // a half-angle map: invTanQuarterOf(map), once (axisMap)
 
     double operator()(double u) const
     {
-        if (map.kind == ParameterMap::Kind::HalfAngle && invTanQuarter > 0) {
-            // ParameterMap's own, with its constant tangent kept: the edge samples map every
-            // trim point they evaluate (a tenth of screw.step's time went to tan).
-            const int k = std::clamp(static_cast<int>(std::floor((u - map.start) / map.span)), 0, map.spans - 1);
-            const double mid = map.start + (k + 0.5) * map.span;
-            return map.start + (k + 0.5 * (1 + std::tan(0.5 * (u - mid)) * invTanQuarter)) * map.span;
-        }
+        if (map.kind == ParameterMap::Kind::HalfAngle && invTanQuarter > 0) return halfAngleOf(map, invTanQuarter, u);
         if (map.kind == ParameterMap::Kind::Identity && map.period > 0) {
             // A parameter already in the box stays: on a face one period wide, a point on the seam
             // is half a period from the centre either way (u = 0 would round to 2 pi), and a
@@ -194,8 +204,17 @@ struct EdgeUse {
     double edgeFirst, edgeLast;
     std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces; // the trim's, once
     std::shared_ptr<const std::vector<double>> breaks;
+    double invTanQuarter = 0; // the trim's map: invTanQuarterOf, once
 
     double trimParameter(double t) const { return trimParameterOf(trim->curve, edgeFirst, edgeLast, t); }
+    /// The trim's NURBS parameter of its parameter u (its map, with the constant tangent kept).
+    double trimNurbsParameter(double u) const
+    {
+        const ParameterMap& map = trim->curve.map;
+        return invTanQuarter > 0 && map.kind == ParameterMap::Kind::HalfAngle ? halfAngleOf(map, invTanQuarter, u) : map(u);
+    }
+    /// The trim's point at its parameter u.
+    Eigen::Vector2d trimPoint(double u) const { return trim->curve.nurbs.evaluate(trimNurbsParameter(u)); }
     /// The edge's parameter of the trim's parameter u (the inverse of trimParameter).
     double edgeParameter(double u) const
     {
@@ -203,7 +222,7 @@ struct EdgeUse {
         if (c.first == edgeFirst && c.last == edgeLast) return u;
         return edgeFirst + (u - c.first) / (c.last - c.first) * (edgeLast - edgeFirst);
     }
-    Eigen::Vector2d raw(double t) const { return grid->toS(trim->curve.point(trimParameter(t))); }
+    Eigen::Vector2d raw(double t) const { return grid->toS(trimPoint(trimParameter(t))); }
     Eigen::Vector2d at(double t) const { return grid->snap(raw(t)); }
 
     /// A certified bound on how far the points of the face's surface at parameters between the
@@ -211,8 +230,9 @@ struct EdgeUse {
     /// (part_mesh_edges.cpp). A bound at most `enough` may be returned without the tightest step.
     /// `moved` (when given) receives the part of it that the snap of the side's ends costs: where
     /// the trim runs outside the face's parameter box (hammer.iges: 1.2e-4 past its edge), the
-    /// snap into the box moves them, and cutting the side does not shrink that part.
-    double deviation(double ta, double tb, double enough = 0, double* moved = nullptr) const;
+    /// snap into the box moves them, and cutting the side does not shrink that part. `tightest`
+    /// (when given) is set to whether the bound is the one `enough` = 0 would give.
+    double deviation(double ta, double tb, double enough = 0, double* moved = nullptr, bool* tightest = nullptr) const;
 };
 
 /// The samples of one edge: every crossing of a grid line by a use, and cuts in half until every
