@@ -197,6 +197,13 @@ double ownCellBound(const RationalPatch& cell, bool curves)
     return std::min({own, revolutionCellBound(cell), cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
 }
 
+/// Where a search's last grid failed: the centre of its first cell over the limit, in the patch's
+/// [0, 1]^2. The next grid checks the cell holding it first.
+struct FailHint {
+    bool set = false;
+    double u = 0, v = 0;
+};
+
 /// The largest bound of the cells of an nu x nv grid on the patch. `general`: each cell's bound
 /// from its own sub-net, rationalTessellationErrorBound of the cell's patch with its own centre and
 /// radius, so the weights' share, (radius) x (weight differences), shrinks with the cell instead of
@@ -207,14 +214,52 @@ double ownCellBound(const RationalPatch& cell, bool curves)
 /// Cells that no trim runs through (`zones`) also take the bounds from curves (revolution, cone).
 ///
 /// With a `limit`, the scan stops at the first cell whose bound is over it and returns that bound:
-/// whether the grid is within the limit is all a search asks, and the answer is the same.
+/// whether the grid is within the limit is all a search asks, and the answer is the same. With a
+/// `hint` too, the cell holding the last failed grid's first cell over the limit is checked first
+/// (the grids a search tries fail mostly where the patch bends most): its sub-net is cut by the same
+/// splits as the scan's, so its bound is the scan's to the bit, and a grid over the limit is mostly
+/// found so at one cell. On screw.step, half the cells the searches bounded were in grids that failed.
 double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, bool general = true, double* rowPart = nullptr,
-                  double limit = kInf)
+                  double limit = kInf, FailHint* hint = nullptr)
 {
-    if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed()))
-        return cellsBound(p.transposed(), nv, nu, zones.transposed(), true, nullptr, limit);
+    if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed())) {
+        FailHint t;
+        if (hint) t = {hint->set, hint->v, hint->u};
+        const double bound = cellsBound(p.transposed(), nv, nu, zones.transposed(), true, nullptr, limit, hint ? &t : nullptr);
+        if (hint) *hint = {t.set, t.v, t.u};
+        return bound;
+    }
     const bool ruled = !general || ruledInV(p);
     if (rowPart) *rowPart = 0;
+    auto cellBound = [&](const RationalPatch& column, const RationalPatch& cell, int i, int j) {
+        const bool curves = !zones.meets(double(i) / nu, double(i + 1) / nu, double(j) / nv, double(j + 1) / nv);
+        double bound = general ? ownCellBound(cell, curves) : kInf;
+        if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
+        return bound;
+    };
+    // The column i and (when general) its cell j, as the scan below cuts them.
+    auto columnOf = [&](int i) {
+        RationalPatch rest = p, column = p;
+        for (int k = 0; k <= i; ++k) {
+            column = rest;
+            if (k + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - k));
+        }
+        return column;
+    };
+    auto cellOf = [&](const RationalPatch& column, int j) {
+        RationalPatch restV = column, cell = column;
+        for (int k = 0; k <= j; ++k) {
+            cell = restV;
+            if (k + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - k));
+        }
+        return cell;
+    };
+    if (hint && hint->set && limit < kInf && !rowPart) {
+        const int i = std::clamp(static_cast<int>(hint->u * nu), 0, nu - 1), j = std::clamp(static_cast<int>(hint->v * nv), 0, nv - 1);
+        const RationalPatch column = columnOf(i);
+        const double bound = cellBound(column, general ? cellOf(column, j) : column, i, j);
+        if (bound > limit) return bound;
+    }
     double worst = 0;
     RationalPatch rest = p;
     for (int i = 0; i < nu; ++i) {
@@ -222,16 +267,17 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
         if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
         RationalPatch restV = column;
         for (int j = 0; j < nv; ++j) {
-            const bool curves = !zones.meets(double(i) / nu, double(i + 1) / nu, double(j) / nv, double(j + 1) / nv);
-            double bound = kInf;
             if (general) {
                 RationalPatch cell = restV;
                 if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
-                bound = ownCellBound(cell, curves);
+                worst = std::max(worst, cellBound(column, cell, i, j));
+            } else {
+                worst = std::max(worst, cellBound(column, column, i, j));
             }
-            if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
-            worst = std::max(worst, bound);
-            if (worst > limit) return worst;
+            if (worst > limit) {
+                if (hint) *hint = {true, (i + 0.5) / nu, (j + 0.5) / nv};
+                return worst;
+            }
         }
     }
     return worst;
@@ -348,13 +394,28 @@ double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double 
 std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patches, const std::vector<int>& rows,
                                   const std::vector<const TrimZones*>& zones, double target, int even, double& bound)
 {
-    // The largest bound of the column [x0, x1]'s cells, over every patch and its rows.
+    // The largest bound of the column [x0, x1]'s cells, over every patch and its rows, or the
+    // first over the target; the row that was over it last time first (as cellsBound's hint).
+    std::size_t hintPatch = patches.size();
+    int hintRow = 0;
     auto column = [&](double x0, double x1) {
+        auto cellAt = [&](std::size_t b, const RationalPatch& strip, int j) {
+            return cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b]);
+        };
+        if (hintPatch < patches.size()) {
+            const double bound = cellAt(hintPatch, cut(*patches[hintPatch], x0, x1, true), hintRow);
+            if (bound > target) return bound;
+        }
         double worst = 0;
-        for (std::size_t b = 0; b < patches.size() && worst <= target; ++b) {
+        for (std::size_t b = 0; b < patches.size(); ++b) {
             const RationalPatch strip = cut(*patches[b], x0, x1, true);
-            for (int j = 0; j < rows[b] && worst <= target; ++j)
-                worst = std::max(worst, cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b]));
+            for (int j = 0; j < rows[b]; ++j) {
+                worst = std::max(worst, cellAt(b, strip, j));
+                if (worst > target) {
+                    hintPatch = b, hintRow = j;
+                    return worst;
+                }
+            }
         }
         return worst;
     };
@@ -580,8 +641,9 @@ std::array<int, 2> patchSegments(const RationalPatch& p, double target, const Tr
     // bound falls as they narrow).
     const std::array<int, 2> upper = best;
     const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
+    FailHint hint;
     auto bound = [&](int na, int nb) {
-        return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target) : cellsBound(p, nb, na, zones, true, nullptr, target);
+        return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target, &hint) : cellsBound(p, nb, na, zones, true, nullptr, target, &hint);
     };
     for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
         // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
