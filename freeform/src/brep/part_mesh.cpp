@@ -236,9 +236,25 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
     auto sidesOf = [&](const std::array<int, 3>& t) {
         return std::array<std::pair<int, int>, 3>{key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])};
     };
-    std::map<std::pair<int, int>, int> uses;
+    // Each mesh edge and its triangles' count, sorted (as a map would be, without its nodes).
+    std::vector<std::pair<std::pair<int, int>, int>> uses;
+    uses.reserve(3 * out.triangles.size());
     for (const auto& t : out.triangles)
-        for (const auto& side : sidesOf(t)) ++uses[side];
+        for (const auto& side : sidesOf(t)) uses.push_back({side, 1});
+    std::sort(uses.begin(), uses.end());
+    {
+        std::size_t n = 0;
+        for (std::size_t k = 0; k < uses.size(); ++k) {
+            if (n > 0 && uses[n - 1].first == uses[k].first) ++uses[n - 1].second;
+            else uses[n++] = uses[k];
+        }
+        uses.resize(n);
+    }
+    auto usesOf = [&](const std::pair<int, int>& side) -> int& {
+        return std::lower_bound(uses.begin(), uses.end(), std::make_pair(side, 0),
+                                [](const auto& a, const auto& b) { return a.first < b.first; })
+            ->second;
+    };
     // The index of vertex v among edge e's samples, -1 when it is none of them.
     auto indexOn = [&](int v, std::size_t e) {
         const std::vector<int>& ids = sampleVertex[e];
@@ -252,7 +268,8 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
         for (int v : out.triangles[t])
             if (sampleOf.count(v)) byVertex[v].push_back(t);
     std::vector<char> drop(out.triangles.size(), 0);
-    for (const auto& [side, count] : uses) {
+    for (std::size_t u = 0; u < uses.size(); ++u) {
+        const auto [side, count] = uses[u];
         if (count != 4) continue;
         const auto a = sampleOf.find(side.first), b = sampleOf.find(side.second);
         const auto& found = a != sampleOf.end() ? a : b;
@@ -279,9 +296,9 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
         for (const auto& [f, ts] : perFace)
             for (std::size_t t : ts)
                 for (const auto& s : sidesOf(out.triangles[t])) ++own[s];
-        if (!std::all_of(own.begin(), own.end(), [&](const auto& o) { const int left = uses.at(o.first) - o.second; return left == 0 || left == 2; }))
+        if (!std::all_of(own.begin(), own.end(), [&](const auto& o) { const int left = usesOf(o.first) - o.second; return left == 0 || left == 2; }))
             continue;
-        for (const auto& [s, c] : own) uses[s] -= c;
+        for (const auto& [s, c] : own) usesOf(s) -= c;
         for (const auto& [f, ts] : perFace)
             for (std::size_t t : ts) drop[t] = 1;
     }
@@ -629,22 +646,37 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     // triangle and its reverse: such a pair of one triangle goes (what is left meets along the
     // chord; leaving triangles out never moves the mesh from the part).
     {
-        std::map<std::array<int, 3>, std::size_t> seen;
-        std::vector<char> drop(out.triangles.size(), 0);
+        // The triangles grouped by their corners (sorted), each group in the triangles' order: its
+        // first triangle pairs with the next that is its reverse, and so on.
+        std::vector<std::pair<std::array<int, 3>, std::size_t>> byCorners;
+        byCorners.reserve(out.triangles.size());
         for (std::size_t t = 0; t < out.triangles.size(); ++t) {
             std::array<int, 3> key = out.triangles[t];
             std::sort(key.begin(), key.end());
-            const auto [it, fresh] = seen.try_emplace(key, t);
-            // The reverse of triangle t runs its corners the other way: (a, c, b) after (a, b, c).
-            auto reversed = [&](const std::array<int, 3>& x, const std::array<int, 3>& y) {
-                for (int r = 0; r < 3; ++r)
-                    if (x[0] == y[static_cast<std::size_t>(r)] && x[1] == y[static_cast<std::size_t>((r + 2) % 3)]) return true;
-                return false;
-            };
-            if (!fresh && !drop[it->second] && reversed(out.triangles[it->second], out.triangles[t])) {
-                drop[it->second] = drop[t] = 1;
-                seen.erase(it);
+            byCorners.push_back({key, t});
+        }
+        std::sort(byCorners.begin(), byCorners.end());
+        // The reverse of triangle t runs its corners the other way: (a, c, b) after (a, b, c).
+        auto reversed = [&](const std::array<int, 3>& x, const std::array<int, 3>& y) {
+            for (int r = 0; r < 3; ++r)
+                if (x[0] == y[static_cast<std::size_t>(r)] && x[1] == y[static_cast<std::size_t>((r + 2) % 3)]) return true;
+            return false;
+        };
+        std::vector<char> drop(out.triangles.size(), 0);
+        for (std::size_t k = 0; k < byCorners.size();) {
+            std::size_t end = k;
+            while (end < byCorners.size() && byCorners[end].first == byCorners[k].first) ++end;
+            std::size_t first = out.triangles.size(); // the group's unpaired first triangle, if any
+            for (std::size_t g = k; g < end; ++g) {
+                const std::size_t t = byCorners[g].second;
+                if (first == out.triangles.size()) {
+                    first = t;
+                } else if (reversed(out.triangles[first], out.triangles[t])) {
+                    drop[first] = drop[t] = 1;
+                    first = out.triangles.size();
+                }
             }
+            k = end;
         }
         out.dropTriangles(drop);
     }
@@ -665,16 +697,23 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
         ++report.closedShells;
         for (int f : part.shells[s].faces) shellOf[static_cast<std::size_t>(f)] = static_cast<int>(s);
     }
-    std::map<std::tuple<int, int, int>, int> meshEdges;
+    std::vector<std::array<int, 3>> meshEdges; // (shell, lower vertex, higher vertex) per triangle side
+    meshEdges.reserve(3 * out.triangles.size());
     for (std::size_t t = 0; t < out.triangles.size(); ++t) {
         const int s = shellOf[static_cast<std::size_t>(out.triangleFace[t])];
         if (s < 0) continue;
         for (int k = 0; k < 3; ++k) {
             const int a = out.triangles[t][static_cast<std::size_t>(k)], b = out.triangles[t][static_cast<std::size_t>((k + 1) % 3)];
-            ++meshEdges[{s, std::min(a, b), std::max(a, b)}];
+            meshEdges.push_back({s, std::min(a, b), std::max(a, b)});
         }
     }
-    for (const auto& [key, count] : meshEdges) report.openMeshEdges += count != 2 ? 1 : 0;
+    std::sort(meshEdges.begin(), meshEdges.end());
+    for (std::size_t k = 0; k < meshEdges.size();) {
+        std::size_t end = k;
+        while (end < meshEdges.size() && meshEdges[end] == meshEdges[k]) ++end;
+        report.openMeshEdges += end - k != 2 ? 1 : 0;
+        k = end;
+    }
     report.watertight = report.closedShells > 0 && report.openMeshEdges == 0;
 
     // The mesh, without the vertices no triangle uses.
