@@ -188,9 +188,19 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, bool cu
 }
 
 /// A cell's bound from its own sub-net, and where no trim runs through it (`curves`) the smaller of
-/// that and the bounds from its curves.
-double ownCellBound(const RationalPatch& cell, bool curves)
+/// that and the bounds from its curves. A search that asks only whether the bound is within
+/// `enough` gets the first of the cheaper bounds that is (the revolution's where it applies, the
+/// whole net's without the frame): the same answer.
+double ownCellBound(const RationalPatch& cell, bool curves, double enough = 0)
 {
+    if (enough > 0) {
+        if (curves && cell.degreeU() == 2) {
+            const double revolution = revolutionCellBound(cell);
+            if (revolution <= enough) return revolution;
+        }
+        const double whole = rationalWholeNetBound(cell, 1, 1);
+        if (whole <= enough) return whole;
+    }
     const double own = rationalTessellationErrorBound(cell, 1, 1);
     if (!curves) return own;
     // (revolutionCellBound asks for degree 2 along the circles: the transposed copy only then.)
@@ -233,7 +243,8 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
     if (rowPart) *rowPart = 0;
     auto cellBound = [&](const RationalPatch& column, const RationalPatch& cell, int i, int j) {
         const bool curves = !zones.meets(double(i) / nu, double(i + 1) / nu, double(j) / nv, double(j + 1) / nv);
-        double bound = general ? ownCellBound(cell, curves) : kInf;
+        // (With a limit, only whether each cell is within it counts.)
+        double bound = general ? ownCellBound(cell, curves, limit < kInf ? limit : 0) : kInf;
         if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
         return bound;
     };
@@ -377,10 +388,10 @@ RationalPatch cut(RationalPatch q, double a, double b, bool u)
 /// The bound of the cell [u0, u1] x [v0, v1] of the patch, the column [u0, u1] already cut from it:
 /// the smallest of the cell's own (ownCellBound) and the ruled one.
 double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double u0, double u1, double v0, double v1,
-                    const TrimZones& zones)
+                    const TrimZones& zones, double enough = 0)
 {
     const bool curves = !zones.meets(u0, u1, v0, v1);
-    double bound = ownCellBound(cut(column, v0, v1, false), curves);
+    double bound = ownCellBound(cut(column, v0, v1, false), curves, enough);
     if (ruledInV(p)) {
         bound = std::min(bound, ruledCellBound(column, v0, v1, curves));
     } else if (ruledInV(p.transposed())) {
@@ -396,11 +407,14 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
 {
     // The largest bound of the column [x0, x1]'s cells, over every patch and its rows, or the
     // first over the target; the row that was over it last time first (as cellsBound's hint).
+    // The search asks only whether a column is within the target (`probe`: any bound that is
+    // decides); the columns kept are bounded in full at the end.
     std::size_t hintPatch = patches.size();
     int hintRow = 0;
-    auto column = [&](double x0, double x1) {
+    auto column = [&](double x0, double x1, bool probe = true) {
         auto cellAt = [&](std::size_t b, const RationalPatch& strip, int j) {
-            return cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b]);
+            return cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b],
+                                probe ? target : 0);
         };
         if (hintPatch < patches.size()) {
             const double bound = cellAt(hintPatch, cut(*patches[hintPatch], x0, x1, true), hintRow);
@@ -425,40 +439,36 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     double x = 0;
     while (x < 1) {
         if (static_cast<int>(breaks.size()) > even) return {}; // not fewer than the even columns
-        double b1 = column(x, 1);
-        if (b1 <= target) {
-            bound = std::max(bound, b1);
+        if (column(x, 1) <= target) {
             breaks.push_back(1);
             break;
         }
         // A width that passes (from the even columns', halved while it does not), then doubled
         // while it passes, then bisected to a tenth of the even width.
-        double w = step, passing = kInf;
-        while ((passing = column(x, std::min(1.0, x + w))) > target) {
+        double w = step;
+        while (column(x, std::min(1.0, x + w)) > target) {
             w *= 0.5;
             if (w < 1e-3 * step) return {};
         }
         double lo = std::min(1.0, x + w), hi = 1;
         while (lo < 1) {
             const double t = std::min(1.0, x + 2 * (lo - x));
-            const double bt = column(x, t);
-            if (bt > target) {
+            if (column(x, t) > target) {
                 hi = t;
                 break;
             }
             lo = t;
-            passing = bt;
         }
         while (hi - lo > 0.1 * step) {
-            const double mid = 0.5 * (lo + hi), bm = column(x, mid);
-            if (bm <= target) lo = mid, passing = bm;
+            const double mid = 0.5 * (lo + hi);
+            if (column(x, mid) <= target) lo = mid;
             else hi = mid;
         }
-        bound = std::max(bound, passing);
         breaks.push_back(lo);
         x = lo;
     }
     if (static_cast<int>(breaks.size()) - 1 >= even) return {};
+    for (std::size_t k = 0; k + 1 < breaks.size(); ++k) bound = std::max(bound, column(breaks[k], breaks[k + 1], false));
     return breaks;
 }
 

@@ -32,7 +32,8 @@ struct SecondDifferences {
 /// norms counted both in full.
 class RationalBound {
 public:
-    explicit RationalBound(const RationalPatch& patch)
+    /// `framed`: also the bound per axis of the frame (else the whole net's alone).
+    explicit RationalBound(const RationalPatch& patch, bool framed = true)
     {
         const int m = patch.degreeU(), n = patch.degreeV();
         const auto& h = patch.homogeneous();
@@ -54,7 +55,7 @@ public:
         const Eigen::Vector3d du = (pm0 - p00) + (pmn - p0n), dv = (p0n - p00) + (pmn - pm0), normal = du.cross(dv);
         Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
         Eigen::Vector3d fc = Eigen::Vector3d::Zero();
-        framed_ = normal.norm() > 1e-9 * du.norm() * dv.norm() && m + n >= 2;
+        framed_ = framed && normal.norm() > 1e-9 * du.norm() * dv.norm() && m + n >= 2;
         if (framed_) {
             frame.row(0) = normal.normalized();
             frame.row(1) = du.normalized();
@@ -209,6 +210,12 @@ double rationalTessellationErrorBound(const RationalPatch& patch, int nu, int nv
 {
     if (nu < 1 || nv < 1) throw Error("rationalTessellationErrorBound: segment counts must be at least 1");
     return RationalBound(patch)(nu, nv);
+}
+
+double rationalWholeNetBound(const RationalPatch& patch, int nu, int nv)
+{
+    if (nu < 1 || nv < 1) throw Error("rationalWholeNetBound: segment counts must be at least 1");
+    return RationalBound(patch, false)(nu, nv);
 }
 
 std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double tolerance, int maxSegments)

@@ -30,6 +30,11 @@ using RationalPatch = RationalBezierSurface<double, 3>;
 /// (E_h + rho E_w) / w_min for the patch on an nu x nv grid (see above).
 double rationalTessellationErrorBound(const RationalPatch& patch, int segmentsU, int segmentsV);
 
+/// The same bound from the whole net alone, without the axes of the frame that follows the patch
+/// (tessellate_rational.cpp): at least rationalTessellationErrorBound and cheaper, for a search
+/// that asks only whether a bound is within its target.
+double rationalWholeNetBound(const RationalPatch& patch, int segmentsU, int segmentsV);
+
 /// The grid with the fewest cells whose rational bound is at most tolerance (each count at most
 /// maxSegments).
 std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double tolerance, int maxSegments = 4096);
