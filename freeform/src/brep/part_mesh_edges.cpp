@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <unordered_map>
@@ -220,11 +218,10 @@ namespace {
 /// screw.step, regula falsi alone 19 (its far end stayed until halved), and this takes 7.8 (6.9 on
 /// linkrods.step, against 15.5). The crossing found is the same up to the last bits (where the
 /// trim's computed coordinate is not monotone within them, or lands on the line).
-long g_evals=0, g_calls=0; struct P{~P(){ if(getenv("FF_COUNT")) fprintf(stderr,"crossings %ld evals %ld\n", g_calls, g_evals);}} g_p;
 double crossingParameter(const EdgeUse& use, double ta, double tb, const Eigen::Vector2d& rawA, const Eigen::Vector2d& rawB,
                          int axis, double line, bool below)
 {
-    ++g_calls; double lo = ta, hi = tb;
+    double lo = ta, hi = tb;
     // The values at the ends (rawA, rawB: raw() there), signed so that the `below` end is
     // negative; the snap may have put an end's raw point on the other side of the line (within
     // the snapping distance): then halve. flo and fhi are the Illinois rule's (halved) values,
@@ -246,7 +243,7 @@ double crossingParameter(const EdgeUse& use, double ta, double tb, const Eigen::
         } else if (next == Step::Past && past > lo && past < hi) {
             t = past;
         }
-        ++g_evals; double f = use.raw(t)[axis] - line;
+        double f = use.raw(t)[axis] - line;
         if (f == 0) return t;
         if (!below) f = -f;
         const double width = hi - lo;
