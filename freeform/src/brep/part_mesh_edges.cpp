@@ -22,6 +22,41 @@ namespace {
 /// target, gets a bound a little over that part instead of samples up to the cap).
 constexpr double kCuttable = 0.05;
 
+/// A Bézier piece of a trim, cut from its pieces without allocating: degree p, homogeneous control
+/// points (w x, w y, w). The cuts are BezierCurve::split's de Casteljau steps, to the bit.
+struct CutPiece {
+    int p = 0;
+    std::array<Eigen::Vector3d, kMaxDegree + 1> h;
+
+    int degree() const { return p; }
+    double weight(int i) const { return h[static_cast<std::size_t>(i)].z(); }
+    Eigen::Vector2d controlPoint(int i) const { return h[static_cast<std::size_t>(i)].head<2>() / weight(i); }
+    /// Keeps the part over [t, 1]: in place, the de Casteljau triangle's right side is left in h.
+    void keepAfter(double t)
+    {
+        for (int k = 1; k <= p; ++k) level(k, t);
+    }
+    /// Keeps the part over [0, t]: the triangle's left side, the first point of each level.
+    void keepBefore(double t)
+    {
+        std::array<Eigen::Vector3d, kMaxDegree + 1> left;
+        left[0] = h[0];
+        for (int k = 1; k <= p; ++k) {
+            level(k, t);
+            left[static_cast<std::size_t>(k)] = h[0];
+        }
+        h = left;
+    }
+
+private:
+    /// Level k of the de Casteljau triangle at t, in place over h[0 .. p - k].
+    void level(int k, double t)
+    {
+        const double s = 1 - t;
+        for (std::size_t i = 0; i <= static_cast<std::size_t>(p - k); ++i) h[i] = s * h[i] + t * h[i + 1];
+    }
+};
+
 /// A bound on how far the trim's pieces (consecutive, from pa to pb) lie from the chord from pa to
 /// pb, in the form the face's bound needs: a continuous pairing of every trim point with a chord
 /// point, each pair within the bound (so every point between the chord and the trim, which the
@@ -36,37 +71,6 @@ constexpr double kCuttable = 0.05;
 /// end weight. On a circular arc with equal end weights this is its sagitta exactly; on a
 /// polynomial quadratic, half its control point's distance. Otherwise, the control points'
 /// largest distance from the chord (the pieces lie in their hull).
-/// A Bézier piece of a trim, cut from its pieces without allocating: degree p, homogeneous control
-/// points (w x, w y, w). The cuts are BezierCurve::split's de Casteljau steps, to the bit.
-struct CutPiece {
-    int p = 0;
-    std::array<Eigen::Vector3d, kMaxDegree + 1> h;
-
-    int degree() const { return p; }
-    double weight(int i) const { return h[static_cast<std::size_t>(i)].z(); }
-    Eigen::Vector2d controlPoint(int i) const { return h[static_cast<std::size_t>(i)].head<2>() / weight(i); }
-    /// Keeps the part over [t, 1].
-    void keepAfter(double t)
-    {
-        // In place, the de Casteljau triangle's right side is left in h.
-        const double s = 1 - t;
-        for (int k = 1; k <= p; ++k)
-            for (int i = 0; i <= p - k; ++i) h[static_cast<std::size_t>(i)] = s * h[static_cast<std::size_t>(i)] + t * h[static_cast<std::size_t>(i) + 1];
-    }
-    /// Keeps the part over [0, t].
-    void keepBefore(double t)
-    {
-        const double s = 1 - t;
-        std::array<Eigen::Vector3d, kMaxDegree + 1> left;
-        left[0] = h[0];
-        for (int k = 1; k <= p; ++k) {
-            for (int i = 0; i <= p - k; ++i) h[static_cast<std::size_t>(i)] = s * h[static_cast<std::size_t>(i)] + t * h[static_cast<std::size_t>(i) + 1];
-            left[static_cast<std::size_t>(k)] = h[0];
-        }
-        h = left;
-    }
-};
-
 struct SideDeviation {
     double distance = 0;      // along `normal` when alongNormal, else in any direction
     double slack = 0;         // alongNormal: and at most this much along the chord
