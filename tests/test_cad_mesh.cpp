@@ -124,10 +124,20 @@ std::vector<Case> cases()
         file("occ/Bottom.brep", 0.5);
         file("occ/Top.brep", 0.5);
         file("occ/Motor-c.brep", 0.5);
+        // Bottom's plate at 0.7 mm and Top at 2 mm left a mesh edge in four triangles: a hole's
+        // cut put a grid line tangent to a circle of radius 45 on the plate, and ear clipping
+        // ran across the point where the cell's region is pinched.
+        file("occ/Bottom.brep", 0.7);
+        file("occ/Top.brep", 2.0);
         // A periodic B-spline face one period wide whose seam edge's pcurve lies on both ends of its
         // box (u = 0 and an ulp past 2 pi): unrolled around the box's centre, its points jumped a
         // period and the face was refused as a trim across the seam.
         file("occ/MODERN_Sink_1.brep", 0.5);
+        // The same face at coarse tolerances: with two columns around it, both columns joined the
+        // same points (22 mm: three mesh edges in four triangles), and at 15 mm a trim side half a
+        // turn long in one wide column was taken for a crossing of the seam. Three columns at least.
+        file("occ/MODERN_Sink_1.brep", 15.0);
+        file("occ/MODERN_Sink_1.brep", 22.0);
         built("bspline_prism", test::bsplinePrism(), 0.01);
         built("fused", BRepAlgoAPI_Fuse(test::filletedBox(), BRepPrimAPI_MakeSphere(gp_Pnt(2, 1, 2), 1.5).Shape()).Shape(), 0.01);
     }

@@ -14,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <tuple>
 #include <unordered_map>
 
@@ -122,10 +123,50 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
             if ((*least)[0][a] > nu[a]) nu[a] = (*least)[0][a], forcedU[a] = 1;
         for (std::size_t b = 0; b < nv.size() && b < (*least)[1].size(); ++b) nv[b] = std::max(nv[b], (*least)[1][b]);
     }
+    // A face closed along an axis (a periodic surface one period wide, its seam an edge of the
+    // face) gets three cells around at least: with two, both cells' sides join the same points and
+    // each row is a flat double sheet (MODERN_Sink_1.brep at 15% of its size: three mesh edges in
+    // four triangles); with three, a prism. Closed: the box's two ends are the same curve, its
+    // first and last rows of control points (the restricted net is clamped there) equal to 1e-9 of
+    // their size, the weights in one ratio. (Three spans or more give three cells anyway.)
+    auto closedAlong = [&](int axis) {
+        const int n = axis == 0 ? r.countV() : r.countU(), last = (axis == 0 ? r.countU() : r.countV()) - 1;
+        auto point = [&](int end, int k) { return axis == 0 ? r.controlPoint(end, k) : r.controlPoint(k, end); };
+        auto weight = [&](int end, int k) { return axis == 0 ? r.weight(end, k) : r.weight(k, end); };
+        Eigen::AlignedBox3d box;
+        for (int k = 0; k < n; ++k) box.extend(point(0, k)).extend(point(last, k));
+        const double e = 1e-9 * box.diagonal().norm(), ratio = weight(last, 0) / weight(0, 0);
+        for (int k = 0; k < n; ++k)
+            if ((point(0, k) - point(last, k)).norm() > e || std::abs(weight(last, k) - ratio * weight(0, k)) > 1e-12 * weight(last, k))
+                return false;
+        return box.diagonal().norm() > 0;
+    };
+    auto threeAround = [](std::vector<int>& n, const std::vector<double>& knots, std::vector<char>* forced) {
+        while (std::accumulate(n.begin(), n.end(), 0) < 3) {
+            std::size_t widest = 0;
+            for (std::size_t a = 1; a < n.size(); ++a)
+                if ((knots[a + 1] - knots[a]) / n[a] > (knots[widest + 1] - knots[widest]) / n[widest]) widest = a;
+            ++n[widest];
+            if (forced) (*forced)[widest] = 1;
+        }
+    };
+    const bool closedU = nu.size() < 3 && closedAlong(0);
+    if (closedU) threeAround(nu, bu, &forcedU);
+    if (std::accumulate(nv.begin(), nv.end(), 0) < 3 && closedAlong(1)) threeAround(nv, bv, nullptr);
     double lu = 0, lv = 0;
     // Per knot span in u: even columns, or (on weighted patches, where a trim holds some cells to
     // their parametric bound) uneven ones when they are fewer.
     std::vector<std::vector<double>> breaks(bu.size() - 1);
+    std::vector<double> spanBound(bu.size() - 1, 0);
+    auto evenColumns = [&](std::size_t a) {
+        breaks[a].clear();
+        spanBound[a] = 0;
+        for (int i = 0; i <= nu[a]; ++i) breaks[a].push_back(double(i) / nu[a]);
+        for (std::size_t b = 0; b < cols; ++b) {
+            const RationalPatch& p = patches[a * cols + b];
+            spanBound[a] = std::max(spanBound[a], gridBound(p, nu[a], nv[b], weighted(p), zones[a * cols + b]));
+        }
+    };
     for (std::size_t a = 0; a + 1 < bu.size(); ++a) {
         // (Only where a trim runs through the span, and for at most 2,048 even cells: the search
         // bounds each column's cells a few dozen times.)
@@ -140,23 +181,22 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
             trimmed = trimmed || !zones[a * cols + b].boxes.empty();
             cells += static_cast<long>(nu[a]) * nv[b];
         }
-        double unevenBound = 0;
-        if (curved && trimmed && nu[a] > 1 && cells <= 2048 && !forcedU[a]) breaks[a] = unevenColumns(row, nv, rowZones, target, nu[a], unevenBound);
-        if (!breaks[a].empty()) {
-            g.bound = std::max(g.bound, unevenBound);
-        } else {
-            for (int i = 0; i <= nu[a]; ++i) breaks[a].push_back(double(i) / nu[a]);
-            for (std::size_t b = 0; b < cols; ++b) {
-                const RationalPatch& p = patches[a * cols + b];
-                g.bound = std::max(g.bound, gridBound(p, nu[a], nv[b], weighted(p), zones[a * cols + b]));
-            }
-        }
+        if (curved && trimmed && nu[a] > 1 && cells <= 2048 && !forcedU[a])
+            breaks[a] = unevenColumns(row, nv, rowZones, target, nu[a], spanBound[a]);
+        if (breaks[a].empty()) evenColumns(a);
         for (std::size_t b = 0; b < cols; ++b) {
             const auto [su, sv] = patchSlopes(patches[a * cols + b]);
             lu = std::max(lu, su / (bu[a + 1] - bu[a]));
             lv = std::max(lv, sv / (bv[b + 1] - bv[b]));
         }
     }
+    // (Uneven columns may be fewer than three around a closed face: then even ones.)
+    std::size_t around = 0;
+    for (const std::vector<double>& b : breaks) around += b.size() - 1;
+    if (around < 3 && closedU)
+        for (std::size_t a = 0; a + 1 < bu.size(); ++a)
+            if (static_cast<int>(breaks[a].size()) - 1 != nu[a]) evenColumns(a);
+    for (const double b : spanBound) g.bound = std::max(g.bound, b);
     g.slopeU = lu;
     g.slopeV = lv;
     g.bu = bu;

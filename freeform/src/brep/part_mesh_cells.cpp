@@ -157,7 +157,9 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
     }
 
     // A trim that runs across the seam of a closed surface leaves its parameter box on one side and
-    // comes back on the other: not cut at the seam yet (docs/cad.md, "Tessellation").
+    // comes back on the other: not cut at the seam yet (docs/cad.md, "Tessellation"). Its side
+    // jumps more than half the period, across grid lines (a side that long within one cell is a
+    // trim along a wide cell).
     auto period = [](const AxisMap& a) {
         if (a.map.kind == ParameterMap::Kind::Identity) return a.map.period;
         if (a.map.kind == ParameterMap::Kind::HalfAngle && a.map.spans * a.map.span >= 2 * std::numbers::pi * (1 - 1e-9))
@@ -167,8 +169,12 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
     const double pu = period(g.mu), pv = period(g.mv);
     for (const auto& loop : loops)
         for (std::size_t k = 0; k < loop.size(); ++k) {
-            const Eigen::Vector2d jump = (loop[(k + 1) % loop.size()].s - loop[k].s).cwiseAbs();
-            if ((pu > 0 && jump.x() > 0.5 * pu) || (pv > 0 && jump.y() > 0.5 * pv))
+            const Eigen::Vector2d a = loop[k].s, b = loop[(k + 1) % loop.size()].s, jump = (b - a).cwiseAbs();
+            auto across = [&](const std::vector<double>& lines, int axis) {
+                const auto it = std::upper_bound(lines.begin(), lines.end(), std::min(a[axis], b[axis]));
+                return it != lines.end() && *it < std::max(a[axis], b[axis]);
+            };
+            if ((pu > 0 && jump.x() > 0.5 * pu && across(g.gu, 0)) || (pv > 0 && jump.y() > 0.5 * pv && across(g.gv, 1)))
                 throw Error(faceName(f) + ": a trim crosses the seam of its closed surface, which the tessellation does not cut yet");
         }
     const int Nu = static_cast<int>(g.gu.size()) - 1, Nv = static_cast<int>(g.gv.size()) - 1;
@@ -242,7 +248,7 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
             if (sideCell[l][k] >= 0) cellSides[sideCell[l][k]].push_back({static_cast<int>(l), static_cast<int>(k)});
     }
 
-    auto emit = [&](const std::vector<PolyPoint>& poly) {
+    auto clip = [&](const std::vector<PolyPoint>& poly) {
         if (poly.size() < 3) return;
         Eigen::Matrix<double, 2, Eigen::Dynamic> corners(2, static_cast<Eigen::Index>(poly.size()));
         for (std::size_t k = 0; k < poly.size(); ++k) corners.col(static_cast<Eigen::Index>(k)) = poly[k].s;
@@ -253,6 +259,42 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
             out.triangles.push_back(face.reversed ? std::array<int, 3>{a, c, b} : std::array<int, 3>{a, b, c});
             out.triangleFace.push_back(static_cast<int>(f));
         }
+    };
+    // A cell's region pinched to a point passes it twice (a hole that touches a grid line from
+    // inside the cell: Bottom.brep's plate, where a circle of radius 45 touches the line u = -45
+    // that a hole's cut put there). Ear clipping across the pinch would cut triangles that overlap
+    // (four on one mesh edge): each lobe is clipped on its own.
+    auto pinched = [](const std::vector<PolyPoint>& poly) {
+        if (poly.size() <= 16) { // most cells: no sort
+            for (std::size_t i = 0; i < poly.size(); ++i)
+                for (std::size_t j = i + 1; j < poly.size(); ++j)
+                    if (poly[i].s == poly[j].s) return true;
+            return false;
+        }
+        thread_local std::vector<Eigen::Vector2d> sorted;
+        sorted.clear();
+        for (const PolyPoint& p : poly) sorted.push_back(p.s);
+        std::sort(sorted.begin(), sorted.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+            return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+        });
+        return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+    };
+    auto emit = [&](const std::vector<PolyPoint>& poly) {
+        if (!pinched(poly)) return clip(poly);
+        // Lobes: a point met again closes the run since its first visit, which goes on its own;
+        // a lobe of no area (a spike out and back) goes with nothing.
+        std::vector<PolyPoint> rest;
+        for (const PolyPoint& p : poly) {
+            const auto again = std::find_if(rest.begin(), rest.end(), [&](const PolyPoint& q) { return q.s == p.s; });
+            if (again != rest.end()) {
+                const std::vector<PolyPoint> lobe(again, rest.end());
+                rest.erase(again + 1, rest.end());
+                if (signedArea(lobe) > 0) clip(lobe);
+                continue;
+            }
+            rest.push_back(p);
+        }
+        if (signedArea(rest) > 0) clip(rest);
     };
 
     for (int i = 0; i < Nu; ++i)
