@@ -162,8 +162,12 @@ std::optional<double> identityShift(const ParameterMap& map, double lo, double h
 {
     if (map.isIdentity()) return 0.0;
     if (map.kind != ParameterMap::Kind::Identity) return std::nullopt;
+    const double slack = 1e-9 * map.period;
+    // A pcurve already on the period's closed range stays: a seam's use at start + period would
+    // otherwise move onto the other use, at start, and leave its wire open.
+    if (lo >= map.start - slack && hi <= map.start + map.period + slack) return 0.0;
     const double k = std::floor((0.5 * (lo + hi) - map.start) / map.period);
-    const double shift = -k * map.period, slack = 1e-9 * map.period;
+    const double shift = -k * map.period;
     if (lo + shift < map.start - slack || hi + shift > map.start + map.period + slack) return std::nullopt;
     return shift;
 }
@@ -250,9 +254,16 @@ PcurveResult Writer::pcurve(const PartFace& face, const TrimCurve& trim, const P
     const double s0 = sigma(edge, edge.first), s1 = sigma(edge, edge.last);
     const ParameterMap edgeMap = edge.curve ? edge.curve->map : ParameterMap::identity();
     // g(sigma) in the surface's NURBS parameters.
+    // (A periodic map's parameter already on the period's closed range stays, as in identityShift.)
+    auto onSurface = [](const ParameterMap& map, double x) {
+        const double slack = 1e-9 * map.period;
+        if (map.kind == ParameterMap::Kind::Identity && map.period > 0 && x >= map.start - slack && x <= map.start + map.period + slack)
+            return x;
+        return map(x);
+    };
     auto g = [&](double s) {
         const Eigen::Vector2d uv = pc.point(fileParameter(edge, s));
-        return Eigen::Vector2d(surface.mapU(uv.x()), surface.mapV(uv.y()));
+        return Eigen::Vector2d(onSurface(surface.mapU, uv.x()), onSurface(surface.mapV, uv.y()));
     };
     const Box<double, 2> range = pc.nurbs.controlBox();
     const auto shiftU = identityShift(surface.mapU, range.min().x(), range.max().x());
