@@ -244,6 +244,31 @@ TEST_CASE("faces over Open CASCADE's degree 25 are reduced within their certifie
     CHECK(test::occtCount(back, TopAbs_FACE) == static_cast<int>(part.faces.size()));
 }
 
+TEST_CASE("a reduction whose weights come out not positive halves its spans (MODERN_Sink_1.brep)", "[cad][ffd]")
+{
+    // Face 55, a rational B-spline of degree (6, 9), goes to degree 54 x 81 through a cubic
+    // lattice; reduced to 25 in one piece, some of its weights come out negative, which has no
+    // bound. The search stopped there ("best inf after 3 halvings", with none done): the spans
+    // are now halved until the reduction has a bound within the tolerance.
+    if (test::underSanitizers) return; // (two seconds in Release)
+    const TopoDS_Shape shape = test::occtRead("/usr/share/opencascade/data/occ/MODERN_Sink_1.brep");
+    const Part part = partFromShape(shape);
+    const Lattice lattice = movedLattice(part, 3, 0.03);
+    PartDeformOptions options;
+    options.maxDegree = 25;
+    const DeformedPart capped = deformPart(part, RationalLattice(lattice), options);
+    const PartDeformReport& r = capped.report;
+    CHECK(r.maxDegree <= 25);
+    REQUIRE(std::find(r.approximatedFaces.begin(), r.approximatedFaces.end(), 54) != r.approximatedFaces.end());
+    const double size = part.bounds().diagonal().norm();
+    CHECK(r.maxApproximationError <= 1e-6 * size);
+    auto map = [&](const Eigen::Vector3d& p) { return lattice.deform(p).point; };
+    CHECK(worstFaceDeviation(shape, part, capped.part, map, size, 4, &r.faceErrors) < 1e-12);
+    const std::string path = std::string(FREEFORM_TEST_TMP) + "/cad_sink_cubic.step";
+    CHECK(writeCadFile(capped.part, path).valid);
+    CHECK(BRepCheck_Analyzer(test::occtRead(path)).IsValid());
+}
+
 /// Every edge point of `moved` at its own parameters against `map` applied to Open CASCADE's
 /// point there, less the edge's allowed error; the largest distance relative to `size`.
 template <typename Map>

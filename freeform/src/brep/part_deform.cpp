@@ -247,7 +247,8 @@ struct ReducedGrid {
 /// (so the bound's max|B_i/V_i| is the net's radius, not its distance from the origin), the spans
 /// halved while the bound is too large. Nothing when that does not reach it; `best` then holds the
 /// smallest error seen.
-std::optional<ReducedGrid> reduceGrid(const PatchGrid& grid, int cap, double tolerance, int maxSplits, double& best)
+std::optional<ReducedGrid> reduceGrid(const PatchGrid& grid, int cap, double tolerance, int maxSplits, double& best,
+                                      int& halvings)
 {
     Eigen::AlignedBox3d box;
     for (const Net& p : grid.patches)
@@ -276,8 +277,10 @@ std::optional<ReducedGrid> reduceGrid(const PatchGrid& grid, int cap, double tol
             return ReducedGrid{std::move(r), error};
         }
         // Halving the spans shrinks a reduction's error by a large power of 2 where the surface is
-        // smooth; when it does not even halve it, more halvings only multiply the work.
-        if (split == maxSplits || !(error < 0.5 * best)) {
+        // smooth; when it does not even halve it, more halvings only multiply the work. (A
+        // reduction with a weight that is not positive has no bound: its spans are halved too.)
+        halvings = split;
+        if (split == maxSplits || (std::isfinite(best) && !(error < 0.5 * best))) {
             best = std::min(best, error);
             return std::nullopt;
         }
@@ -346,11 +349,13 @@ double composeCapped(Nurbs& nurbs, const Exact& exact, const RationalLattice& ma
         grid = gridOf(nurbs);
     }
     double best = 0;
-    const std::optional<ReducedGrid> reduced = reduceGrid(grid, cap, tolerance, maxSplits, best);
+    int halvings = 0;
+    const std::optional<ReducedGrid> reduced = reduceGrid(grid, cap, tolerance, maxSplits, best, halvings);
     if (!reduced)
         throw Error("degree " + std::to_string(grid.du) + (grid.dv > 0 ? " x " + std::to_string(grid.dv) : std::string()) +
-                    " cannot be brought to " + std::to_string(cap) + " within " + number(tolerance) + " (best " +
-                    number(best) + " after " + std::to_string(maxSplits) + " halvings)");
+                    " cannot be brought to " + std::to_string(cap) + " within " + number(tolerance) + " (" +
+                    (std::isfinite(best) ? "best " + number(best) : std::string("a reduced weight is not positive")) +
+                    " after " + std::to_string(halvings) + (halvings == 1 ? " halving)" : " halvings)"));
     assemble(reduced->grid, nurbs);
     return reduced->error;
 }
