@@ -155,6 +155,35 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
         }
         loops = std::move(kept);
     }
+    // Samples of other vertices at the very point of one before them (a grid line's crossing that
+    // another face needs, within this face's snapping distance of the edge's end: Bottom.brep
+    // deformed, where a circle's last crossing snapped onto its end at the seam) leave the polygon,
+    // whose cells would drop them as a side of no length, and go into thin triangles with the next
+    // point instead: from r0 through r1 .. rm to the next point c, each (r_i, r_i+1, c) in the
+    // loop's direction. The other face of the edge has the sides r_i r_i+1; these close them, and
+    // lie within the snap's share of the trims' term (step 2 counts the snapped ends).
+    for (auto& loop : loops) {
+        const std::size_t n = loop.size();
+        std::size_t first = 0; // a point that differs in s from the one before it
+        while (first < n && loop[first].s == loop[(first + n - 1) % n].s) ++first;
+        if (first == n) continue;
+        std::vector<PolyPoint> kept;
+        for (std::size_t k = 0; k < n;) {
+            const std::size_t start = (first + k) % n;
+            std::size_t m = 1;
+            while (k + m < n && loop[(start + m) % n].s == loop[start].s) ++m;
+            kept.push_back(loop[start]);
+            const PolyPoint& c = loop[(start + m) % n];
+            for (std::size_t i = 0; i + 1 < m; ++i) {
+                const int a = loop[(start + i) % n].vertex, b = loop[(start + i + 1) % n].vertex;
+                if (a == b || b == c.vertex || a == c.vertex) continue;
+                out.triangles.push_back(face.reversed ? std::array<int, 3>{a, c.vertex, b} : std::array<int, 3>{a, b, c.vertex});
+                out.triangleFace.push_back(static_cast<int>(f));
+            }
+            k += m;
+        }
+        loop = std::move(kept);
+    }
 
     // A trim that runs across the seam of a closed surface leaves its parameter box on one side and
     // comes back on the other: not cut at the seam yet (docs/cad.md, "Tessellation"). Its side
