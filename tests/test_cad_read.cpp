@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <freeform/brep/part_mesh.h>
 #include <freeform/cad/cad_file.h>
 #include <freeform/cad/occt_bridge.h>
 
@@ -39,6 +40,7 @@
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
 #include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
 #include <Geom_OffsetSurface.hxx>
 #include <Geom_Plane.hxx>
 #include <IGESControl_Reader.hxx>
@@ -272,6 +274,38 @@ TEST_CASE("parts built with Open CASCADE read back from STEP as Open CASCADE rea
         CHECK(checkPart(read).closed);
         CHECK(checkPart(read).openEdges == 0);
     }
+}
+
+TEST_CASE("a periodic B-spline face whose range straddles its period's start reads and meshes", "[cad]")
+{
+    // Ball.brep written as STEP: Open CASCADE reads its sphere faces' B-splines back as periodic,
+    // with the period starting at the first knot, and face 10's range runs across that start. The
+    // period now starts at the face's range (a knot inserted there): before, reading gave a face
+    // that the mesher refused ("its u range straddles the start of its periodic surface's period").
+    const std::string path = std::string(FREEFORM_TEST_TMP) + "/cad_ball.step";
+    std::filesystem::remove(path);
+    const Part original = readCadFile(kData + "/occ/Ball.brep");
+    REQUIRE(writeCadFile(original, path).valid);
+    const TopoDS_Shape shape = test::occtRead(path);
+    // (That face is periodic and straddles its period's start as Open CASCADE reads it.)
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(shape, TopAbs_FACE, faces);
+    const TopoDS_Face face10 = TopoDS::Face(faces(10));
+    const Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(face10));
+    REQUIRE(!bs.IsNull());
+    REQUIRE(bs->IsUPeriodic());
+    double u0, u1, v0, v1, a0, a1, b0, b1;
+    BRepTools::UVBounds(face10, u0, u1, v0, v1);
+    bs->Bounds(a0, a1, b0, b1);
+    CHECK((u0 < a0 - 1e-9 || u1 > a1 + 1e-9));
+    const Part part = readCadFile(path);
+    const Stats s = compare(shape, part, path);
+    CHECK(s.facePoints > 0);
+    PartMeshOptions options;
+    options.tolerance = 0.4;
+    const PartMesh m = tessellatePart(part, options);
+    CHECK(m.report.certified);
+    CHECK(m.report.watertight);
 }
 
 TEST_CASE("face areas equal BRepGProp's, and the closed forms of the primitives", "[cad]")

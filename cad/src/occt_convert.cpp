@@ -198,6 +198,31 @@ std::pair<MappedSurface, std::string> exactSurface(const Handle(Geom_Surface)& s
     if (auto src = Handle(Geom_BSplineSurface)::DownCast(surface)) {
         Handle(Geom_BSplineSurface) s = Handle(Geom_BSplineSurface)::DownCast(src->Copy());
         ParameterMap mapU, mapV;
+        // A face whose range straddles the start of a periodic direction's period (Open CASCADE
+        // reads a closed B-spline that freeform wrote as periodic, its origin where the file's
+        // knots start) gets the period started at its range's start: a knot inserted there (the
+        // same surface) and made the origin. A range inside the period stays as it is.
+        auto startAt = [&](bool alongU, double lo, double hi) {
+            double a0, a1, b0, b1;
+            s->Bounds(a0, a1, b0, b1);
+            const double first = alongU ? a0 : b0, period = alongU ? s->UPeriod() : s->VPeriod();
+            const double slack = 1e-9 * period;
+            if ((lo >= first - slack && hi <= first + period + slack) || hi - lo > period + slack) return;
+            double at = first + std::fmod(lo - first, period);
+            if (at < first) at += period;
+            const double tol = 1e-12 * period;
+            if (alongU) s->InsertUKnot(at, 1, tol, false);
+            else s->InsertVKnot(at, 1, tol, false);
+            const int n = alongU ? s->NbUKnots() : s->NbVKnots();
+            for (int k = 1; k <= n; ++k)
+                if (std::abs((alongU ? s->UKnot(k) : s->VKnot(k)) - at) <= tol) {
+                    if (alongU) s->SetUOrigin(k);
+                    else s->SetVOrigin(k);
+                    return;
+                }
+        };
+        if (s->IsUPeriodic()) startAt(true, u0, u1);
+        if (s->IsVPeriodic()) startAt(false, v0, v1);
         double a0, a1, b0, b1;
         s->Bounds(a0, a1, b0, b1);
         if (s->IsUPeriodic()) {

@@ -20,7 +20,9 @@ namespace freeform::part_mesh {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-inline std::string faceName(std::size_t f) { return "face " + std::to_string(f); }
+/// Face f as errors name it: counted from 1, as Open CASCADE and the reader, the writer and the
+/// deformation count them (docs/cad.md, "The model").
+inline std::string faceName(std::size_t f) { return "face " + std::to_string(f + 1); }
 
 /// 1 / tan(span / 4) of a half-angle map (0 for the other kinds), for halfAngleOf.
 inline double invTanQuarterOf(const ParameterMap& map)
