@@ -51,7 +51,7 @@ std::string faceSummary(const PartData& part, int face)
     if (face < 0 || static_cast<std::size_t>(face) >= part.faces.size()) return {};
     const PartFaceData& f = part.faces[static_cast<std::size_t>(face)];
     const std::size_t loops = f.surface.loops.size();
-    return "face " + std::to_string(face) + ": " + (f.kind.empty() ? std::string("nurbs") : f.kind) + ", degree " +
+    return "face " + std::to_string(face + 1) + ": " + (f.kind.empty() ? std::string("nurbs") : f.kind) + ", degree " +
            std::to_string(f.surface.surface.degree[0]) + " x " + std::to_string(f.surface.surface.degree[1]) + ", " +
            std::to_string(loops) + (loops == 1 ? " trim loop" : " trim loops");
 }

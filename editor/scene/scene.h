@@ -405,7 +405,8 @@ PolygonMesh withNormals(PolygonMesh mesh);
 /// The edges of a mesh used by one polygon only: for a part tessellated face by face
 /// (splitFaces), the boundaries of its faces.
 std::vector<std::pair<int, int>> faceOutline(const PolygonMesh& mesh);
-/// One face of a part in words: "face 6: cone, degree 2 x 1, 1 trim loop" (empty when out of range).
+/// One face of a part in words: "face 8: cylinder, degree 2 x 1, 1 trim loop" (empty when out of
+/// range), the face counted from 1 as errors and Open CASCADE count it.
 std::string faceSummary(const PartData& part, int face);
 /// Whether a lattice can deform item i live (a link, scene/derived.h): an imported mesh, or a
 /// part or trimmed surface object, whose tessellation follows the drag (applied exactly on request).

@@ -165,7 +165,8 @@ void partTable(const Scene& scene, int index, UiState& s)
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
             // A row click picks the face (outlined in the view), as a click on it in the view does.
-            const std::string number = std::to_string(f);
+            // Faces count from 1, as Open CASCADE and every error count them.
+            const std::string number = std::to_string(f + 1);
             if (ImGui::Selectable(number.c_str(), s.selection.face == f, ImGuiSelectableFlags_SpanAllColumns))
                 s.selection.face = s.selection.face == f ? -1 : f;
             tooltip(s, "Pick this face: its boundary is outlined in the view, the status line describes it (click again: none)");

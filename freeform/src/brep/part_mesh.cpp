@@ -16,7 +16,6 @@
 #include <memory>
 #include <numeric>
 #include <tuple>
-#include <unordered_map>
 
 #include "freeform/tessellate/tessellate_rational.h"
 #include "part_mesh_internal.h"
@@ -255,94 +254,6 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
         }
     }
     return g;
-}
-
-/// Removes the pockets of no volume that two faces close between a run of one edge's samples and
-/// its chord (see meshPart): a chord between samples i and j of an edge in four triangles, where
-/// each of the edge's two faces has j - i - 1 triangles with all corners among samples i..j (it
-/// triangulates the run's polygon), goes with those triangles when every mesh edge they touch is
-/// then in none or two triangles.
-void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVertex,
-                     const std::vector<std::vector<std::size_t>>& useFace)
-{
-    // Each interior sample's edge and index (an edge's ends are the part's vertices, shared).
-    std::unordered_map<int, std::pair<std::size_t, int>> sampleOf;
-    for (std::size_t e = 0; e < sampleVertex.size(); ++e)
-        if (useFace[e].size() == 2 && useFace[e][0] != useFace[e][1])
-            for (std::size_t k = 1; k + 1 < sampleVertex[e].size(); ++k)
-                sampleOf.emplace(sampleVertex[e][k], std::make_pair(e, static_cast<int>(k)));
-    if (sampleOf.empty()) return;
-    auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
-    auto sidesOf = [&](const std::array<int, 3>& t) {
-        return std::array<std::pair<int, int>, 3>{key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])};
-    };
-    // Each mesh edge and its triangles' count, sorted (as a map would be, without its nodes).
-    std::vector<std::pair<std::pair<int, int>, int>> uses;
-    uses.reserve(3 * out.triangles.size());
-    for (const auto& t : out.triangles)
-        for (const auto& side : sidesOf(t)) uses.push_back({side, 1});
-    std::sort(uses.begin(), uses.end());
-    {
-        std::size_t n = 0;
-        for (std::size_t k = 0; k < uses.size(); ++k) {
-            if (n > 0 && uses[n - 1].first == uses[k].first) ++uses[n - 1].second;
-            else uses[n++] = uses[k];
-        }
-        uses.resize(n);
-    }
-    auto usesOf = [&](const std::pair<int, int>& side) -> int& {
-        return std::lower_bound(uses.begin(), uses.end(), std::make_pair(side, 0),
-                                [](const auto& a, const auto& b) { return a.first < b.first; })
-            ->second;
-    };
-    // The index of vertex v among edge e's samples, -1 when it is none of them.
-    auto indexOn = [&](int v, std::size_t e) {
-        const std::vector<int>& ids = sampleVertex[e];
-        if (v == ids.front()) return 0;
-        if (v == ids.back()) return static_cast<int>(ids.size()) - 1;
-        const auto it = sampleOf.find(v);
-        return it != sampleOf.end() && it->second.first == e ? it->second.second : -1;
-    };
-    std::unordered_map<int, std::vector<std::size_t>> byVertex;
-    for (std::size_t t = 0; t < out.triangles.size(); ++t)
-        for (int v : out.triangles[t])
-            if (sampleOf.count(v)) byVertex[v].push_back(t);
-    std::vector<char> drop(out.triangles.size(), 0);
-    for (std::size_t u = 0; u < uses.size(); ++u) {
-        const auto [side, count] = uses[u];
-        if (count != 4) continue;
-        const auto a = sampleOf.find(side.first), b = sampleOf.find(side.second);
-        const auto& found = a != sampleOf.end() ? a : b;
-        if (found == sampleOf.end()) continue;
-        const std::size_t e = found->second.first;
-        int i = indexOn(side.first, e), j = indexOn(side.second, e);
-        if (i < 0 || j < 0) continue;
-        if (i > j) std::swap(i, j);
-        if (j - i < 2) continue;
-        // Each face's triangles over samples i..j (all found through the run's inner samples).
-        std::map<std::size_t, std::vector<std::size_t>> perFace;
-        std::vector<std::size_t> seen;
-        for (int k = i + 1; k < j; ++k)
-            for (std::size_t t : byVertex[sampleVertex[e][static_cast<std::size_t>(k)]]) {
-                if (drop[t] || std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
-                seen.push_back(t);
-                const auto& tri = out.triangles[t];
-                if (std::all_of(tri.begin(), tri.end(), [&](int v) { const int x = indexOn(v, e); return x >= i && x <= j; }))
-                    perFace[static_cast<std::size_t>(out.triangleFace[t])].push_back(t);
-            }
-        const std::size_t need = static_cast<std::size_t>(j - i - 1);
-        if (perFace.size() != 2 || perFace[useFace[e][0]].size() != need || perFace[useFace[e][1]].size() != need) continue;
-        std::map<std::pair<int, int>, int> own;
-        for (const auto& [f, ts] : perFace)
-            for (std::size_t t : ts)
-                for (const auto& s : sidesOf(out.triangles[t])) ++own[s];
-        if (!std::all_of(own.begin(), own.end(), [&](const auto& o) { const int left = usesOf(o.first) - o.second; return left == 0 || left == 2; }))
-            continue;
-        for (const auto& [s, c] : own) usesOf(s) -= c;
-        for (const auto& [f, ts] : perFace)
-            for (std::size_t t : ts) drop[t] = 1;
-    }
-    out.dropTriangles(drop);
 }
 
 /// Per knot span of one axis of the grid: its cell count where its lines are even, else -1.

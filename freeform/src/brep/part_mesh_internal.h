@@ -254,6 +254,15 @@ std::vector<int> crossingEdges(const FaceGrid& g, const std::vector<std::vector<
 double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vector<std::vector<PolyPoint>> loops,
                 Builder& out);
 
+/// Removes the pockets of no volume that two faces close between a run of one edge's samples and
+/// its chord (meshPart): a chord between samples i and j of an edge in four triangles, where each
+/// of the edge's two faces has j - i - 1 triangles with all corners among samples i..j (it
+/// triangulates the run's polygon), goes with those triangles when every mesh edge they touch is
+/// then in none or two triangles. (sampleVertex: the mesh vertex of each edge's samples; useFace:
+/// the face of each use of each edge.)
+void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVertex,
+                     const std::vector<std::vector<std::size_t>>& useFace);
+
 /// Bounds on |S_u| and |S_v| of a rational patch over [0, 1]^2 (part_mesh_bounds.cpp).
 std::pair<double, double> patchSlopes(const RationalPatch& patch);
 /// A patch whose weights differ (where the cells' own bounds beat the whole net's).
