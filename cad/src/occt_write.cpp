@@ -158,14 +158,22 @@ bool sameMap(const ParameterMap& a, const ParameterMap& b)
 
 /// A map that is the identity on [lo, hi] once the values are shifted by a whole number of periods:
 /// the shift, or nothing.
+/// Whether [lo, hi] lies on a periodic identity map's closed range [start, start + period] (to 1e-9
+/// of the period). Such parameters stay as they are: a seam's use at start + period would
+/// otherwise move onto the other use, at start, and leave its wire open.
+bool onPeriod(const ParameterMap& map, double lo, double hi)
+{
+    const double slack = 1e-9 * map.period;
+    return map.kind == ParameterMap::Kind::Identity && map.period > 0 && lo >= map.start - slack &&
+           hi <= map.start + map.period + slack;
+}
+
 std::optional<double> identityShift(const ParameterMap& map, double lo, double hi)
 {
     if (map.isIdentity()) return 0.0;
     if (map.kind != ParameterMap::Kind::Identity) return std::nullopt;
     const double slack = 1e-9 * map.period;
-    // A pcurve already on the period's closed range stays: a seam's use at start + period would
-    // otherwise move onto the other use, at start, and leave its wire open.
-    if (lo >= map.start - slack && hi <= map.start + map.period + slack) return 0.0;
+    if (onPeriod(map, lo, hi)) return 0.0;
     const double k = std::floor((0.5 * (lo + hi) - map.start) / map.period);
     const double shift = -k * map.period;
     if (lo + shift < map.start - slack || hi + shift > map.start + map.period + slack) return std::nullopt;
@@ -254,13 +262,7 @@ PcurveResult Writer::pcurve(const PartFace& face, const TrimCurve& trim, const P
     const double s0 = sigma(edge, edge.first), s1 = sigma(edge, edge.last);
     const ParameterMap edgeMap = edge.curve ? edge.curve->map : ParameterMap::identity();
     // g(sigma) in the surface's NURBS parameters.
-    // (A periodic map's parameter already on the period's closed range stays, as in identityShift.)
-    auto onSurface = [](const ParameterMap& map, double x) {
-        const double slack = 1e-9 * map.period;
-        if (map.kind == ParameterMap::Kind::Identity && map.period > 0 && x >= map.start - slack && x <= map.start + map.period + slack)
-            return x;
-        return map(x);
-    };
+    auto onSurface = [](const ParameterMap& map, double x) { return onPeriod(map, x, x) ? x : map(x); };
     auto g = [&](double s) {
         const Eigen::Vector2d uv = pc.point(fileParameter(edge, s));
         return Eigen::Vector2d(onSurface(surface.mapU, uv.x()), onSurface(surface.mapV, uv.y()));

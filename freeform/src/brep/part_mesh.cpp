@@ -244,11 +244,7 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
     for (std::size_t l = 0; l < boxes.size(); ++l) {
         const Box<double, 2>& bb = boxes[l];
         if (l == outer || bb.isEmpty() || !(bb.max().x() > bb.min().x())) continue;
-        auto inside = [](const std::vector<double>& l, double lo, double hi) {
-            const auto it = std::upper_bound(l.begin(), l.end(), lo);
-            return it != l.end() && *it < hi;
-        };
-        if (!inside(g.gu, bb.min().x(), bb.max().x()) && !inside(g.gv, bb.min().y(), bb.max().y())) {
+        if (!lineBetween(g.gu, bb.min().x(), bb.max().x()) && !lineBetween(g.gv, bb.min().y(), bb.max().y())) {
             g.gu.push_back(0.5 * (bb.min().x() + bb.max().x()));
             std::sort(g.gu.begin(), g.gu.end());
         }

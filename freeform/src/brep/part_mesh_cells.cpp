@@ -201,8 +201,7 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
         for (std::size_t k = 0; k < loop.size(); ++k) {
             const Eigen::Vector2d a = loop[k].s, b = loop[(k + 1) % loop.size()].s, jump = (b - a).cwiseAbs();
             auto across = [&](const std::vector<double>& lines, int axis) {
-                const auto it = std::upper_bound(lines.begin(), lines.end(), std::min(a[axis], b[axis]));
-                return it != lines.end() && *it < std::max(a[axis], b[axis]);
+                return lineBetween(lines, std::min(a[axis], b[axis]), std::max(a[axis], b[axis]));
             };
             if ((pu > 0 && jump.x() > 0.5 * pu && across(g.gu, 0)) || (pv > 0 && jump.y() > 0.5 * pv && across(g.gv, 1)))
                 throw Error(faceName(f) + ": a trim crosses the seam of its closed surface, which the tessellation does not cut yet");

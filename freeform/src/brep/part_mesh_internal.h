@@ -3,6 +3,7 @@
 // samples, the whole part), part_mesh_bounds.cpp (the grids' certified bounds and their search)
 // and part_mesh_cells.cpp (one face's trim polygon cut by its grid cells).
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -23,6 +24,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Face f as errors name it: counted from 1, as Open CASCADE and the reader, the writer and the
 /// deformation count them (docs/cad.md, "The model").
 inline std::string faceName(std::size_t f) { return "face " + std::to_string(f + 1); }
+
+/// Whether a line of the sorted `lines` lies strictly between lo and hi.
+inline bool lineBetween(const std::vector<double>& lines, double lo, double hi)
+{
+    const auto it = std::upper_bound(lines.begin(), lines.end(), lo);
+    return it != lines.end() && *it < hi;
+}
 
 /// 1 / tan(span / 4) of a half-angle map (0 for the other kinds), for halfAngleOf.
 inline double invTanQuarterOf(const ParameterMap& map)
