@@ -13,6 +13,8 @@
 //   - derivatives(): basis derivatives (A2.3) on the homogeneous points, then Leibniz's rule;
 //   - insertKnot(): Boehm's algorithm, r times; refined(): the Oslo algorithm in blossom form
 //     (each new control point is the blossom of the old curve at p consecutive new knots);
+//   - split(): Boehm's insertion of the cut to multiplicity p in one pass (A5.1: only the p - s - 1
+//     points around it are new, the rest copied), the point there shared by both pieces;
 //   - bezierPieces(): Bézier extraction, one rational Bézier piece per non-empty knot span, its
 //     points the blossom values at (a^(p-i), b^i);
 //   - evaluateMany()/evaluateManyWithDerivative(): the batch path; the spans' Bézier pieces are
@@ -321,15 +323,65 @@ public:
         if (!(u > domainStart() && u < domainEnd()))
             throw Error("NurbsCurve::split: " + num(u) + " is not inside the domain (" + num(domainStart()) + ", " +
                         num(domainEnd()) + ")");
-        const int s = knots_.multiplicity(u);
-        const NurbsCurve c = s < p + 1 ? refined(std::vector<Scalar>(static_cast<std::size_t>(p + 1 - s), u)) : *this;
-        const std::vector<Scalar>& U = c.knots();
+        std::vector<Scalar> U = knots(), left, right;
+        HPoints P = hom_, leftRows, rightRows;
+        insertRows(U, P, 1, p, u);
+        cutRows(U, P, 1, p, u, false, left, leftRows);
+        cutRows(U, P, 1, p, u, true, right, rightRows);
+        return {NurbsCurve(Knots(std::move(left), p, "NurbsCurve::split"), std::move(leftRows)),
+                NurbsCurve(Knots(std::move(right), p, "NurbsCurve::split"), std::move(rightRows))};
+    }
+
+    /// Boehm's insertion of u (strictly inside the domain) until its multiplicity is at least p,
+    /// in one pass (The NURBS Book, A5.1), on a net of rows on the knots U: row i is the columns
+    /// i * width .. i * width + width - 1 of hom (a curve is one column wide; NurbsSurface cuts
+    /// every column of its net at once with the same operations, so the same numbers). Only the
+    /// p - s - 1 rows around u are new; the others are copied, not recomputed.
+    static void insertRows(std::vector<Scalar>& U, HPoints& hom, Eigen::Index width, int p, Scalar u)
+    {
+        const int s = static_cast<int>(std::count(U.begin(), U.end(), u)), r = p - s;
+        if (r <= 0) return;
+        const int k = static_cast<int>(std::upper_bound(U.begin(), U.end(), u) - U.begin()) - 1; // U[k] <= u < U[k+1]
+        const int n = static_cast<int>(hom.cols() / width) - 1;
+        auto row = [width](auto& m, int i) { return m.middleCols(static_cast<Eigen::Index>(i) * width, width); };
+        HPoints Q(Dim + 1, static_cast<Eigen::Index>(n + 1 + r) * width), R(Dim + 1, static_cast<Eigen::Index>(p - s + 1) * width);
+        for (int i = 0; i <= k - p; ++i) row(Q, i) = row(hom, i);
+        for (int i = k - s; i <= n; ++i) row(Q, i + r) = row(hom, i);
+        for (int i = 0; i <= p - s; ++i) row(R, i) = row(hom, k - p + i);
+        int L = k - p;
+        for (int j = 1; j <= r; ++j) {
+            L = k - p + j;
+            for (int i = 0; i <= p - j - s; ++i) {
+                const Scalar alpha = (u - U[static_cast<std::size_t>(L + i)]) /
+                                     (U[static_cast<std::size_t>(i + k + 1)] - U[static_cast<std::size_t>(L + i)]);
+                row(R, i) = alpha * row(R, i + 1) + (Scalar(1) - alpha) * row(R, i);
+            }
+            row(Q, L) = row(R, 0);
+            row(Q, k + r - j - s) = row(R, p - j - s);
+        }
+        for (int i = L + 1; i < k - s; ++i) row(Q, i) = row(R, i - L);
+        U.insert(U.begin() + k + 1, static_cast<std::size_t>(r), u);
+        hom = std::move(Q);
+    }
+
+    /// After insertRows(u): the knots and rows before u (or after it, keepRight), with u of
+    /// multiplicity p + 1 at the cut. At multiplicity p the row at u (the curve's point there) ends
+    /// the one piece and starts the other; at p + 1 (a break already) each keeps its own.
+    static void cutRows(const std::vector<Scalar>& U, const HPoints& hom, Eigen::Index width, int p, Scalar u, bool keepRight,
+                        std::vector<Scalar>& knotsOut, HPoints& rowsOut)
+    {
         const int a = static_cast<int>(std::lower_bound(U.begin(), U.end(), u) - U.begin());
-        std::vector<Scalar> left(U.begin(), U.begin() + a), right(static_cast<std::size_t>(p + 1), u);
-        left.insert(left.end(), static_cast<std::size_t>(p + 1), u);
-        right.insert(right.end(), U.begin() + a + p + 1, U.end());
-        return {NurbsCurve(Knots(std::move(left), p, "NurbsCurve::split"), HPoints(c.hom_.leftCols(a))),
-                NurbsCurve(Knots(std::move(right), p, "NurbsCurve::split"), HPoints(c.hom_.rightCols(c.hom_.cols() - a)))};
+        const int s = static_cast<int>(std::count(U.begin(), U.end(), u));
+        const Eigen::Index rows = hom.cols() / width, shared = s <= p ? 1 : 0;
+        if (keepRight) {
+            knotsOut.assign(static_cast<std::size_t>(p + 1), u);
+            knotsOut.insert(knotsOut.end(), U.begin() + a + s, U.end());
+            rowsOut = hom.rightCols((rows - a + shared) * width);
+        } else {
+            knotsOut.assign(U.begin(), U.begin() + a);
+            knotsOut.insert(knotsOut.end(), static_cast<std::size_t>(p + 1), u);
+            rowsOut = hom.leftCols(static_cast<Eigen::Index>(a) * width);
+        }
     }
 
     /// The same curve run backwards on the same domain: D(u) = C(a + b - u).

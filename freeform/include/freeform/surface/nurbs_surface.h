@@ -530,31 +530,17 @@ private:
     }
 
     /// NurbsCurve::split at u on every column of the net (rows along u, nv wide): the knots and
-    /// rows after u (keepRight) or before it.
+    /// rows after u (keepRight) or before it, by the curve's insertRows and cutRows.
     static void cutU(Knots& k, HPoints& hom, int nv, Scalar u, bool keepRight)
     {
-        const int p = k.degree(), s = k.multiplicity(u);
-        if (s < p + 1) {
-            std::vector<Scalar> tau = k.knots();
-            tau.insert(tau.end(), static_cast<std::size_t>(p + 1 - s), u);
-            std::sort(tau.begin(), tau.end());
-            Knots refined(std::move(tau), p, "NurbsCurve::refined");
-            hom = refinedRows(k, hom, nv, refined);
-            k = std::move(refined);
-        }
-        const std::vector<Scalar>& U = k.knots();
-        const int a = static_cast<int>(std::lower_bound(U.begin(), U.end(), u) - U.begin());
-        if (keepRight) {
-            std::vector<Scalar> right(static_cast<std::size_t>(p + 1), u);
-            right.insert(right.end(), U.begin() + a + p + 1, U.end());
-            hom = HPoints(hom.rightCols(hom.cols() - static_cast<Eigen::Index>(a) * nv));
-            k = Knots(std::move(right), p, "NurbsCurve::split");
-        } else {
-            std::vector<Scalar> left(U.begin(), U.begin() + a);
-            left.insert(left.end(), static_cast<std::size_t>(p + 1), u);
-            hom = HPoints(hom.leftCols(static_cast<Eigen::Index>(a) * nv));
-            k = Knots(std::move(left), p, "NurbsCurve::split");
-        }
+        using Curve = NurbsCurve<Scalar, Dim>;
+        const int p = k.degree();
+        std::vector<Scalar> U = k.knots(), out;
+        Curve::insertRows(U, hom, nv, p, u);
+        HPoints rows;
+        Curve::cutRows(U, hom, nv, p, u, keepRight, out, rows);
+        hom = std::move(rows);
+        k = Knots(std::move(out), p, "NurbsCurve::split");
     }
 
     /// The surface whose column j is cols[j] (all on one knot vector in u), knots kv in v.
