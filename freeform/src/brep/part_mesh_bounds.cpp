@@ -295,9 +295,9 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
 }
 
 /// cellsBound on a patch ruled in v with the ruled bound alone.
-double ruledGridBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, double* rowPart = nullptr)
+double ruledGridBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, double* rowPart = nullptr, double limit = kInf)
 {
-    return cellsBound(p, nu, nv, zones, false, rowPart);
+    return cellsBound(p, nu, nv, zones, false, rowPart, limit);
 }
 
 /// On a patch ruled in v, the grid with the fewest cells whose ruled bounds are within target,
@@ -312,8 +312,16 @@ std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array
     for (int nv = 1; nv <= 8 && nv < bestCells; ++nv) {
         const int cap = static_cast<int>(std::min<long>(4096, (bestCells - 1) / nv));
         if (cap < 1) break;
-        int hi = 1;
+        // After one row, the most columns allowed first (fewer than one row needed, mostly): where
+        // they fail, fewer fail too (the doubling would end there), and where their rows alone are
+        // over the target, more rows cannot help either (the scan stops at the first cell over it:
+        // rowPart is then that of the rows before).
         double rowPart = 0;
+        if (nv > 1 && !(ruledGridBound(p, cap, nv, zones, &rowPart, target) <= target)) {
+            if (rowPart > target) break;
+            continue;
+        }
+        int hi = 1;
         bool passes = ruledGridBound(p, hi, nv, zones, &rowPart) <= target;
         while (!passes && hi < cap) {
             hi = std::min(cap, 2 * hi);
@@ -438,11 +446,15 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     bound = 0;
     double x = 0;
     while (x < 1) {
-        if (static_cast<int>(breaks.size()) > even) return {}; // not fewer than the even columns
+        // Only fewer columns than the even ones are kept: with `even - 1` so far (or more) none
+        // can be; with `even - 2`, only a last one that reaches the end.
+        const int columns = static_cast<int>(breaks.size()) - 1;
+        if (columns >= even - 1) return {};
         if (column(x, 1) <= target) {
             breaks.push_back(1);
             break;
         }
+        if (columns >= even - 2) return {};
         // A width that passes (from the even columns', halved while it does not), then doubled
         // while it passes, then bisected to a tenth of the even width.
         double w = step;
@@ -467,7 +479,6 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
         breaks.push_back(lo);
         x = lo;
     }
-    if (static_cast<int>(breaks.size()) - 1 >= even) return {};
     for (std::size_t k = 0; k + 1 < breaks.size(); ++k) bound = std::max(bound, column(breaks[k], breaks[k + 1], false));
     return breaks;
 }
