@@ -76,20 +76,24 @@ public:
         // One pass over the second differences d of the homogeneous net: the numerator
         // w (P - c) has d.head(3) - d.w c, the weight d.w, and the numerator in the frame,
         // centred on its box, frame d.head(3) - d.w fc.
+        // (The numerator's largest norm is the root of its largest square: the same number, with
+        // no root in the loop, whose latency each maximum would wait for.)
         Eigen::Vector3d axisUU = Eigen::Vector3d::Zero(), axisUV = axisUU, axisVV = axisUU;
-        auto take = [&](const Eigen::Vector4d& d, double& whole, double& weight, Eigen::Vector3d& axis) {
-            whole = std::max(whole, (d.head<3>() - d[3] * c).norm());
+        double squareUU = 0, squareUV = 0, squareVV = 0, weightUU = 0, weightUV = 0, weightVV = 0;
+        auto take = [&](const Eigen::Vector4d& d, double& square, double& weight, Eigen::Vector3d& axis) {
+            square = std::max(square, (d.head<3>() - d[3] * c).squaredNorm());
             weight = std::max(weight, std::abs(d[3]));
             if (framed_) axis = axis.cwiseMax((frame * d.head<3>() - d[3] * fc).cwiseAbs());
         };
         auto at = [&](int i, int j) { return points.col(h.index(i, j)); };
         for (int i = 0; i <= m; ++i)
             for (int j = 0; j <= n; ++j) {
-                if (i + 2 <= m) take(at(i + 2, j) - 2 * at(i + 1, j) + at(i, j), numerator_.muu, weight_.muu, axisUU);
-                if (j + 2 <= n) take(at(i, j + 2) - 2 * at(i, j + 1) + at(i, j), numerator_.mvv, weight_.mvv, axisVV);
-                if (i + 1 <= m && j + 1 <= n)
-                    take(at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j), numerator_.muv, weight_.muv, axisUV);
+                if (i + 2 <= m) take(at(i + 2, j) - 2 * at(i + 1, j) + at(i, j), squareUU, weightUU, axisUU);
+                if (j + 2 <= n) take(at(i, j + 2) - 2 * at(i, j + 1) + at(i, j), squareVV, weightVV, axisVV);
+                if (i + 1 <= m && j + 1 <= n) take(at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j), squareUV, weightUV, axisUV);
             }
+        numerator_ = {std::sqrt(squareUU), std::sqrt(squareUV), std::sqrt(squareVV)};
+        weight_ = {weightUU, weightUV, weightVV};
         const double su = double(m) * (m - 1), sv = double(n) * (n - 1), suv = double(m) * n;
         numerator_.muu *= su, numerator_.mvv *= sv, numerator_.muv *= suv;
         weight_.muu *= su, weight_.mvv *= sv, weight_.muv *= suv;
