@@ -13,8 +13,7 @@
 //   - derivatives(): basis derivatives (A2.3) on the homogeneous points, then Leibniz's rule;
 //   - insertKnot(): Boehm's algorithm, r times; refined(): the Oslo algorithm in blossom form
 //     (each new control point is the blossom of the old curve at p consecutive new knots);
-//   - split(): Boehm's insertion of the cut to multiplicity p in one pass (A5.1: only the p - s - 1
-//     points around it are new, the rest copied), the point there shared by both pieces;
+//   - split(): Boehm's insertion of the cut up to multiplicity p in one pass (A5.1), rest copied;
 //   - bezierPieces(): Bézier extraction, one rational Bézier piece per non-empty knot span, its
 //     points the blossom values at (a^(p-i), b^i);
 //   - evaluateMany()/evaluateManyWithDerivative(): the batch path; the spans' Bézier pieces are
@@ -364,9 +363,8 @@ public:
         hom = std::move(Q);
     }
 
-    /// After insertRows(u): the knots and rows before u (or after it, keepRight), with u of
-    /// multiplicity p + 1 at the cut. At multiplicity p the row at u (the curve's point there) ends
-    /// the one piece and starts the other; at p + 1 (a break already) each keeps its own.
+    /// After insertRows(u): the knots and rows before u (or after it, keepRight), u of multiplicity
+    /// p + 1 at the cut; the row at u (multiplicity p) ends one piece and starts the other.
     static void cutRows(const std::vector<Scalar>& U, const HPoints& hom, Eigen::Index width, int p, Scalar u, bool keepRight,
                         std::vector<Scalar>& knotsOut, HPoints& rowsOut)
     {
