@@ -386,11 +386,9 @@ struct CentredNet {
     double rho = 0, wmin = kInf;
 };
 
-RationalPatch cut(RationalPatch q, double a, double b, bool u)
+RationalPatch cut(const RationalPatch& q, double a, double b, bool u)
 {
-    if (b < 1) q = (u ? q.splitU(b) : q.splitV(b)).first;
-    if (a > 0) q = (u ? q.splitU(a / b) : q.splitV(a / b)).second;
-    return q;
+    return u ? q.pieceU(a, b) : q.pieceV(a, b);
 }
 
 /// The bound of the cell [u0, u1] x [v0, v1] of the patch, the column [u0, u1] already cut from it:
@@ -521,12 +519,8 @@ FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
                                    static_cast<std::ptrdiff_t>(bv.size()) - 2));
     const double du = bu[a + 1] - bu[a], dv = bv[b + 1] - bv[b];
     if (u1 > u0 && v1 > v0 && u0 >= bu[a] && u1 <= bu[a + 1] && v0 >= bv[b] && v1 <= bv[b + 1]) {
-        RationalPatch q = patches[a * (bv.size() - 1) + b];
         const double a0 = (u0 - bu[a]) / du, a1 = (u1 - bu[a]) / du, b0 = (v0 - bv[b]) / dv, b1 = (v1 - bv[b]) / dv;
-        if (a1 < 1) q = q.splitU(a1).first;
-        if (a0 > 0) q = q.splitU(a0 / a1).second;
-        if (b1 < 1) q = q.splitV(b1).first;
-        if (b0 > 0) q = q.splitV(b0 / b1).second;
+        RationalPatch q = patches[a * (bv.size() - 1) + b].pieceU(a0, a1).pieceV(b0, b1);
         const auto [su, sv] = patchSlopes(q);
         // The sub-net's slopes are per its own [0, 1]; the face's bound caps them (a split in
         // floating point is a hair off the exact sub-net).

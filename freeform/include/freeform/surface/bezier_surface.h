@@ -352,13 +352,15 @@ public:
     {
         if (!(Scalar(0) <= u0 && u0 < u1 && u1 <= Scalar(1) && Scalar(0) <= v0 && v0 < v1 && v1 <= Scalar(1)))
             throw Error("BezierSurface::subPatch: needs 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1");
-        BezierSurface p = *this;
-        if (u1 < Scalar(1)) p = p.splitU(u1).first;
-        if (u0 > Scalar(0)) p = p.splitU(u0 / u1).second;
-        if (v1 < Scalar(1)) p = p.splitV(v1).first;
-        if (v0 > Scalar(0)) p = p.splitV(v0 / v1).second;
-        return p;
+        return pieceU(u0, u1).pieceV(v0, v1);
     }
+
+    /// The piece over [a, b] in u (0 <= a < b <= 1, unchecked), reparametrised: splitU(b)'s first
+    /// piece, then that one's splitU(a / b) second (where b < 1 and a > 0), the same de Casteljau
+    /// steps to the bit, without building the pieces it drops.
+    BezierSurface pieceU(Scalar a, Scalar b) const { return piece(a, b, true); }
+    /// The same in v.
+    BezierSurface pieceV(Scalar a, Scalar b) const { return piece(a, b, false); }
 
     /// The same surface with degree m + times in u (every column elevated).
     BezierSurface elevatedU(int times = 1) const
@@ -534,6 +536,40 @@ private:
     /// constructor's checks are skipped (they were 2% of a part's meshing).
     struct Unchecked {};
     BezierSurface(int m, int n, Points points, Unchecked) : m_(m), n_(n), points_(std::move(points)) {}
+
+    /// pieceU (alongU) or pieceV: each line of the net along that axis cut at b (keeping the left
+    /// side of the de Casteljau triangle), then at a / b (keeping the right side).
+    BezierSurface piece(Scalar a, Scalar b, bool alongU) const
+    {
+        Points out(Dim, points_.cols());
+        const int d = alongU ? m_ : n_, lines = alongU ? n_ : m_;
+        std::array<PointType, kMaxDegree + 1> w, l;
+        for (int line = 0; line <= lines; ++line) {
+            auto at = [&](int k) { return alongU ? index(k, line) : index(line, k); };
+            for (int k = 0; k <= d; ++k) w[k] = points_.col(at(k));
+            if (b < Scalar(1)) {
+                const Scalar s = Scalar(1) - b;
+                l[0] = w[0];
+                for (int k = 1; k <= d; ++k) {
+                    for (int i = 0; i <= d - k; ++i) w[i] = s * w[i] + b * w[i + 1];
+                    l[k] = w[0];
+                }
+            } else {
+                l = w;
+            }
+            if (a > Scalar(0)) {
+                const Scalar t = a / b, s = Scalar(1) - t;
+                out.col(at(d)) = l[d];
+                for (int k = 1; k <= d; ++k) {
+                    for (int i = 0; i <= d - k; ++i) l[i] = s * l[i] + t * l[i + 1];
+                    out.col(at(d - k)) = l[d - k];
+                }
+            } else {
+                for (int k = 0; k <= d; ++k) out.col(at(k)) = l[k];
+            }
+        }
+        return BezierSurface(m_, n_, std::move(out), Unchecked{});
+    }
 
     /// Whether a computed value `value` of f_u x f_v (or a Taylor coefficient of it) counts as
     /// zero: below sqrt(eps) times the sum of the magnitudes it was formed from, or (order 0)

@@ -104,16 +104,23 @@ public:
         return len > Scalar(0) ? PointType(c / len) : PointType::Zero();
     }
 
+    /// (Inside [0, 1] the pieces' weights are convex combinations of positive ones: not checked
+    /// again. Outside, extrapolated, they are.)
     std::pair<RationalBezierSurface, RationalBezierSurface> splitU(Scalar t) const
     {
         auto [a, b] = hom_.splitU(t);
-        return {RationalBezierSurface(std::move(a)), RationalBezierSurface(std::move(b))};
+        if (!(t >= Scalar(0) && t <= Scalar(1))) return {RationalBezierSurface(std::move(a)), RationalBezierSurface(std::move(b))};
+        return {RationalBezierSurface(std::move(a), Unchecked{}), RationalBezierSurface(std::move(b), Unchecked{})};
     }
     std::pair<RationalBezierSurface, RationalBezierSurface> splitV(Scalar t) const
     {
         auto [a, b] = hom_.splitV(t);
-        return {RationalBezierSurface(std::move(a)), RationalBezierSurface(std::move(b))};
+        if (!(t >= Scalar(0) && t <= Scalar(1))) return {RationalBezierSurface(std::move(a)), RationalBezierSurface(std::move(b))};
+        return {RationalBezierSurface(std::move(a), Unchecked{}), RationalBezierSurface(std::move(b), Unchecked{})};
     }
+    /// BezierSurface::pieceU and pieceV on the homogeneous net (0 <= a < b <= 1, unchecked).
+    RationalBezierSurface pieceU(Scalar a, Scalar b) const { return RationalBezierSurface(hom_.pieceU(a, b), Unchecked{}); }
+    RationalBezierSurface pieceV(Scalar a, Scalar b) const { return RationalBezierSurface(hom_.pieceV(a, b), Unchecked{}); }
     RationalBezierSurface elevatedU(int times = 1) const { return RationalBezierSurface(hom_.elevatedU(times)); }
     RationalBezierSurface elevatedV(int times = 1) const { return RationalBezierSurface(hom_.elevatedV(times)); }
     RationalBezierSurface transposed() const { return RationalBezierSurface(hom_.transposed()); }
@@ -128,6 +135,9 @@ public:
     }
 
 private:
+    struct Unchecked {};
+    RationalBezierSurface(Homogeneous hom, Unchecked) : hom_(std::move(hom)) {}
+
     static HPoints homogeneousFrom(int m, int n, const Points& points, const Weights& weights)
     {
         const Eigen::Index expected = static_cast<Eigen::Index>(m + 1) * (n + 1);
