@@ -232,10 +232,12 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
     if (gapU > 0 || gapV > 0) g.bound += 2 * std::hypot(lu * gapU, lv * gapV);
     // A hole inside one cell would be a hole the cell walk cannot join to its cell: cut it. (The
     // outer loop, the one of the largest box, may lie in one cell.)
+    // (The parameter maps are monotone: a box's corners map onto the box of its points' images.)
     std::vector<Box<double, 2>> boxes;
     for (const std::vector<Eigen::Vector2d>& poly : ts.polygons()) {
-        Box<double, 2> bb;
-        for (const Eigen::Vector2d& p : poly) bb.extend(g.toS(p));
+        Box<double, 2> file, bb;
+        for (const Eigen::Vector2d& p : poly) file.extend(p);
+        if (!file.isEmpty()) bb.extend(g.toS(file.min())).extend(g.toS(file.max()));
         boxes.push_back(bb);
     }
     std::size_t outer = 0;
