@@ -309,4 +309,26 @@ TEST_CASE("closest point: never worse than brute force, exact near the boundary"
     CHECK(c.distance <= brute + 1e-12);
 }
 
+TEST_CASE("pieceU and pieceV equal the two splits they stand for, to the bit", "[surface]")
+{
+    // splitU(b).first, then splitU(a / b).second (each where it cuts): the same de Casteljau steps,
+    // so every coordinate equal, not just close; and the piece is the patch over [a, b].
+    for (int m = 1; m <= 5; ++m) {
+        const S3 s = randomSurface(m, 6 - m, 900u + static_cast<std::uint32_t>(m));
+        for (const auto& [a, b] : {std::pair{0.0, 0.41}, std::pair{0.27, 1.0}, std::pair{0.13, 0.86}, std::pair{0.0, 1.0}}) {
+            S3 u = s, v = s;
+            if (b < 1) u = u.splitU(b).first, v = v.splitV(b).first;
+            if (a > 0) u = u.splitU(a / b).second, v = v.splitV(a / b).second;
+            CAPTURE(m, a, b);
+            CHECK(s.pieceU(a, b).controlPoints() == u.controlPoints());
+            CHECK(s.pieceV(a, b).controlPoints() == v.controlPoints());
+            for (double x : {0.0, 0.3, 1.0})
+                for (double y : {0.0, 0.55, 1.0}) {
+                    CHECK((s.pieceU(a, b).evaluate(x, y) - s.evaluate(a + (b - a) * x, y)).norm() < 1e-14);
+                    CHECK((s.pieceV(a, b).evaluate(y, x) - s.evaluate(y, a + (b - a) * x)).norm() < 1e-14);
+                }
+        }
+    }
+}
+
 } // namespace test_bezier_surface

@@ -224,6 +224,29 @@ TEST_CASE("knot insertion (Boehm), refinement (Oslo), extraction, split and reve
         }
 }
 
+TEST_CASE("split keeps every control point away from the cut, exactly", "[nurbs]")
+{
+    // Boehm's insertion changes only the p - s - 1 points around the cut: the others are the
+    // curve's own, bit for bit (the left piece's first k - p + 1, the right piece's last ones), and
+    // the point at the cut, the curve's point there, ends the left piece and starts the right one.
+    for (int p = 1; p <= 7; ++p)
+        for (int variant = 0; variant < 2; ++variant) {
+            const auto c = randomCurve<3>(p, true, variant == 1, 7100u * p + variant);
+            const std::vector<double>& U = c.knots();
+            const double u = c.domainStart() + 0.43 * (c.domainEnd() - c.domainStart());
+            const int k = static_cast<int>(std::upper_bound(U.begin(), U.end(), u) - U.begin()) - 1;
+            const auto [left, right] = c.split(u);
+            CAPTURE(p, variant);
+            const auto& h = c.homogeneousPoints();
+            for (int i = 0; i <= k - p; ++i) CHECK(left.homogeneousPoints().col(i) == h.col(i));
+            const int n = c.controlCount(), rn = right.controlCount();
+            for (int i = k; i < n; ++i) CHECK(right.homogeneousPoints().col(rn - (n - i)) == h.col(i));
+            CHECK(left.homogeneousPoints().col(left.controlCount() - 1) == right.homogeneousPoints().col(0));
+            const double scale = c.controlPoints().cwiseAbs().maxCoeff();
+            CHECK(maxDiff(left.controlPoints().col(left.controlCount() - 1), c.evaluate(u)) <= 1e-13 * scale);
+        }
+}
+
 TEST_CASE("Bézier extraction of the clamped and open cubic C2 spline is the A-frame", "[nurbs][aframe]")
 {
     const auto d = randomPoints<double, 2>(7, 42);
