@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "freeform/surface/bezier_surface.h"
+#include "freeform/surface/rational_bezier_surface.h"
 #include "support/random.h"
 
 namespace test_bezier_surface {
@@ -329,6 +330,57 @@ TEST_CASE("pieceU and pieceV equal the two splits they stand for, to the bit", "
                 }
         }
     }
+}
+
+TEST_CASE("splitOff and pieceInto equal splitU, splitV, pieceU and pieceV to the bit, reusing a net", "[surface]")
+{
+    // The grid searches cut cells into nets they keep (no allocation per cell): the points must be
+    // the allocating calls' own, whatever the net held before (another degree, another patch).
+    S3 left = randomSurface(1, 1, 70u), piece = randomSurface(7, 2, 71u);
+    for (int m = 1; m <= 5; ++m) {
+        const S3 s = randomSurface(m, 6 - m, 950u + static_cast<std::uint32_t>(m));
+        for (double t : {0.0, 0.37, 0.5, 1.0}) {
+            CAPTURE(m, t);
+            const auto [lu, ru] = s.splitU(t);
+            S3 rest = s;
+            rest.splitOffU(t, left);
+            CHECK(left.degreeU() == m);
+            CHECK(left.degreeV() == 6 - m);
+            CHECK(left.controlPoints() == lu.controlPoints());
+            CHECK(rest.controlPoints() == ru.controlPoints());
+            const auto [lv, rv] = s.splitV(t);
+            rest = s;
+            rest.splitOffV(t, left);
+            CHECK(left.controlPoints() == lv.controlPoints());
+            CHECK(rest.controlPoints() == rv.controlPoints());
+        }
+        for (const auto& [a, b] : {std::pair{0.0, 0.41}, std::pair{0.27, 1.0}, std::pair{0.13, 0.86}}) {
+            CAPTURE(m, a, b);
+            s.pieceUInto(a, b, piece);
+            CHECK(piece.degreeU() == m);
+            CHECK(piece.controlPoints() == s.pieceU(a, b).controlPoints());
+            s.pieceVInto(a, b, piece);
+            CHECK(piece.controlPoints() == s.pieceV(a, b).controlPoints());
+        }
+    }
+    // The rational patch's forms cut its homogeneous net the same way.
+    using R3 = freeform::RationalBezierSurface<double, 3>;
+    const S3 net = randomSurface(2, 3, 990u);
+    Eigen::VectorXd weights(net.controlPoints().cols());
+    for (Eigen::Index i = 0; i < weights.size(); ++i) weights[i] = 0.5 + 0.25 * static_cast<double>(i % 5);
+    const R3 r(2, 3, net.controlPoints(), weights);
+    R3 rest = r, cut(net);
+    rest.splitOffU(0.3, cut);
+    CHECK(cut.homogeneous().controlPoints() == r.splitU(0.3).first.homogeneous().controlPoints());
+    CHECK(rest.homogeneous().controlPoints() == r.splitU(0.3).second.homogeneous().controlPoints());
+    rest = r;
+    rest.splitOffV(0.6, cut);
+    CHECK(cut.homogeneous().controlPoints() == r.splitV(0.6).first.homogeneous().controlPoints());
+    CHECK(rest.homogeneous().controlPoints() == r.splitV(0.6).second.homogeneous().controlPoints());
+    r.pieceUInto(0.2, 0.7, cut);
+    CHECK(cut.homogeneous().controlPoints() == r.pieceU(0.2, 0.7).homogeneous().controlPoints());
+    r.pieceVInto(0.1, 0.9, cut);
+    CHECK(cut.homogeneous().controlPoints() == r.pieceV(0.1, 0.9).homogeneous().controlPoints());
 }
 
 } // namespace test_bezier_surface

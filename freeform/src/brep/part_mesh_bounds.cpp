@@ -248,39 +248,40 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
         if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
         return bound;
     };
-    // The column i and (when general) its cell j, as the scan below cuts them.
+    // The column i and (when general) its cell j, as the scan below cuts them: split off the rest
+    // one after the other, in place (splitOffU: splitU's points, without an allocation per cell).
+    RationalPatch rest = p, column = p, restV = p, cell = p;
     auto columnOf = [&](int i) {
-        RationalPatch rest = p, column = p;
+        rest = p;
         for (int k = 0; k <= i; ++k) {
-            column = rest;
-            if (k + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - k));
+            if (k + 1 < nu) rest.splitOffU(1.0 / (nu - k), column);
+            else std::swap(column, rest);
         }
-        return column;
     };
-    auto cellOf = [&](const RationalPatch& column, int j) {
-        RationalPatch restV = column, cell = column;
+    auto cellOf = [&](int j) {
+        restV = column;
         for (int k = 0; k <= j; ++k) {
-            cell = restV;
-            if (k + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - k));
+            if (k + 1 < nv) restV.splitOffV(1.0 / (nv - k), cell);
+            else std::swap(cell, restV);
         }
-        return cell;
     };
     if (hint && hint->set && limit < kInf && !rowPart) {
         const int i = std::clamp(static_cast<int>(hint->u * nu), 0, nu - 1), j = std::clamp(static_cast<int>(hint->v * nv), 0, nv - 1);
-        const RationalPatch column = columnOf(i);
-        const double bound = cellBound(column, general ? cellOf(column, j) : column, i, j);
+        columnOf(i);
+        if (general) cellOf(j);
+        const double bound = cellBound(column, general ? cell : column, i, j);
         if (bound > limit) return bound;
     }
     double worst = 0;
-    RationalPatch rest = p;
+    rest = p;
     for (int i = 0; i < nu; ++i) {
-        RationalPatch column = rest;
-        if (i + 1 < nu) std::tie(column, rest) = rest.splitU(1.0 / (nu - i));
-        RationalPatch restV = column;
+        if (i + 1 < nu) rest.splitOffU(1.0 / (nu - i), column);
+        else std::swap(column, rest);
+        if (general) restV = column;
         for (int j = 0; j < nv; ++j) {
             if (general) {
-                RationalPatch cell = restV;
-                if (j + 1 < nv) std::tie(cell, restV) = restV.splitV(1.0 / (nv - j));
+                if (j + 1 < nv) restV.splitOffV(1.0 / (nv - j), cell);
+                else std::swap(cell, restV);
                 worst = std::max(worst, cellBound(column, cell, i, j));
             } else {
                 worst = std::max(worst, cellBound(column, column, i, j));
@@ -386,22 +387,19 @@ struct CentredNet {
     double rho = 0, wmin = kInf;
 };
 
-RationalPatch cut(const RationalPatch& q, double a, double b, bool u)
-{
-    return u ? q.pieceU(a, b) : q.pieceV(a, b);
-}
-
 /// The bound of the cell [u0, u1] x [v0, v1] of the patch, the column [u0, u1] already cut from it:
-/// the smallest of the cell's own (ownCellBound) and the ruled one.
+/// the smallest of the cell's own (ownCellBound) and the ruled one. `cell` holds the cell's net
+/// afterwards (kept from call to call: no allocation per cell).
 double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double u0, double u1, double v0, double v1,
-                    const TrimZones& zones, double enough = 0)
+                    const TrimZones& zones, RationalPatch& cell, double enough = 0)
 {
     const bool curves = !zones.meets(u0, u1, v0, v1);
-    double bound = ownCellBound(cut(column, v0, v1, false), curves, enough);
+    column.pieceVInto(v0, v1, cell);
+    double bound = ownCellBound(cell, curves, enough);
     if (ruledInV(p)) {
         bound = std::min(bound, ruledCellBound(column, v0, v1, curves));
     } else if (ruledInV(p.transposed())) {
-        bound = std::min(bound, ruledCellBound(cut(p.transposed(), v0, v1, true), u0, u1, curves));
+        bound = std::min(bound, ruledCellBound(p.transposed().pieceU(v0, v1), u0, u1, curves));
     }
     return bound;
 }
@@ -417,20 +415,22 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     // decides); the columns kept are bounded in full at the end.
     std::size_t hintPatch = patches.size();
     int hintRow = 0;
+    RationalPatch strip = *patches.front(), cell = strip; // the column's and the cell's nets, reused
     auto column = [&](double x0, double x1, bool probe = true) {
-        auto cellAt = [&](std::size_t b, const RationalPatch& strip, int j) {
-            return cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b],
+        auto cellAt = [&](std::size_t b, int j) {
+            return cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b], cell,
                                 probe ? target : 0);
         };
         if (hintPatch < patches.size()) {
-            const double bound = cellAt(hintPatch, cut(*patches[hintPatch], x0, x1, true), hintRow);
+            patches[hintPatch]->pieceUInto(x0, x1, strip);
+            const double bound = cellAt(hintPatch, hintRow);
             if (bound > target) return bound;
         }
         double worst = 0;
         for (std::size_t b = 0; b < patches.size(); ++b) {
-            const RationalPatch strip = cut(*patches[b], x0, x1, true);
+            patches[b]->pieceUInto(x0, x1, strip);
             for (int j = 0; j < rows[b]; ++j) {
-                worst = std::max(worst, cellAt(b, strip, j));
+                worst = std::max(worst, cellAt(b, j));
                 if (worst > target) {
                     hintPatch = b, hintRow = j;
                     return worst;

@@ -306,46 +306,16 @@ public:
 
     /// The patch split at u = t into the pieces over [0, t] and [t, 1] in u (each reparametrised
     /// to [0, 1]): every column (fixed j, a curve in u) split by de Casteljau.
-    std::pair<BezierSurface, BezierSurface> splitU(Scalar t) const
-    {
-        Points left(Dim, points_.cols()), right(Dim, points_.cols());
-        std::array<PointType, kMaxDegree + 1> w;
-        const Scalar s = Scalar(1) - t;
-        for (int j = 0; j <= n_; ++j) {
-            for (int i = 0; i <= m_; ++i) w[i] = points_.col(index(i, j));
-            left.col(index(0, j)) = w[0];
-            right.col(index(m_, j)) = w[m_];
-            for (int k = 1; k <= m_; ++k) {
-                for (int i = 0; i <= m_ - k; ++i) w[i] = s * w[i] + t * w[i + 1];
-                left.col(index(k, j)) = w[0];
-                right.col(index(m_ - k, j)) = w[m_ - k];
-            }
-        }
-        if (!(t >= Scalar(0) && t <= Scalar(1))) // extrapolated: the points may overflow
-            return {BezierSurface(m_, n_, std::move(left)), BezierSurface(m_, n_, std::move(right))};
-        return {BezierSurface(m_, n_, std::move(left), Unchecked{}), BezierSurface(m_, n_, std::move(right), Unchecked{})};
-    }
-
+    std::pair<BezierSurface, BezierSurface> splitU(Scalar t) const { return split(t, true); }
     /// The same in v: every row split at v = t.
-    std::pair<BezierSurface, BezierSurface> splitV(Scalar t) const
-    {
-        Points left(Dim, points_.cols()), right(Dim, points_.cols());
-        std::array<PointType, kMaxDegree + 1> w;
-        const Scalar s = Scalar(1) - t;
-        for (int i = 0; i <= m_; ++i) {
-            for (int j = 0; j <= n_; ++j) w[j] = points_.col(index(i, j));
-            left.col(index(i, 0)) = w[0];
-            right.col(index(i, n_)) = w[n_];
-            for (int k = 1; k <= n_; ++k) {
-                for (int j = 0; j <= n_ - k; ++j) w[j] = s * w[j] + t * w[j + 1];
-                left.col(index(i, k)) = w[0];
-                right.col(index(i, n_ - k)) = w[n_ - k];
-            }
-        }
-        if (!(t >= Scalar(0) && t <= Scalar(1))) // extrapolated: the points may overflow
-            return {BezierSurface(m_, n_, std::move(left)), BezierSurface(m_, n_, std::move(right))};
-        return {BezierSurface(m_, n_, std::move(left), Unchecked{}), BezierSurface(m_, n_, std::move(right), Unchecked{})};
-    }
+    std::pair<BezierSurface, BezierSurface> splitV(Scalar t) const { return split(t, false); }
+
+    /// splitU(t) for 0 <= t <= 1, its first piece written into `left` and this patch becoming the
+    /// second: the same points to the bit, without allocating where `left` already holds a net of
+    /// this size (a grid search cuts thousands of cells, one column after the other).
+    void splitOffU(Scalar t, BezierSurface& left) { splitOff(t, true, left); }
+    /// The same in v.
+    void splitOffV(Scalar t, BezierSurface& left) { splitOff(t, false, left); }
 
     /// The piece over [u0, u1] x [v0, v1] (0 <= u0 < u1 <= 1, the same in v), reparametrised.
     BezierSurface subPatch(Scalar u0, Scalar u1, Scalar v0, Scalar v1) const
@@ -361,6 +331,9 @@ public:
     BezierSurface pieceU(Scalar a, Scalar b) const { return piece(a, b, true); }
     /// The same in v.
     BezierSurface pieceV(Scalar a, Scalar b) const { return piece(a, b, false); }
+    /// pieceU and pieceV written into `out` (its storage kept where it has this net's size).
+    void pieceUInto(Scalar a, Scalar b, BezierSurface& out) const { pieceInto(a, b, true, out); }
+    void pieceVInto(Scalar a, Scalar b, BezierSurface& out) const { pieceInto(a, b, false, out); }
 
     /// The same surface with degree m + times in u (every column elevated).
     BezierSurface elevatedU(int times = 1) const
@@ -541,7 +514,16 @@ private:
     /// side of the de Casteljau triangle), then at a / b (keeping the right side).
     BezierSurface piece(Scalar a, Scalar b, bool alongU) const
     {
-        Points out(Dim, points_.cols());
+        BezierSurface out(m_, n_, Points(Dim, points_.cols()), Unchecked{});
+        pieceInto(a, b, alongU, out);
+        return out;
+    }
+    void pieceInto(Scalar a, Scalar b, bool alongU, BezierSurface& target) const
+    {
+        target.m_ = m_;
+        target.n_ = n_;
+        Points& out = target.points_;
+        out.resize(Dim, points_.cols());
         const int d = alongU ? m_ : n_, lines = alongU ? n_ : m_;
         std::array<PointType, kMaxDegree + 1> w, l;
         for (int line = 0; line <= lines; ++line) {
@@ -568,7 +550,39 @@ private:
                 for (int k = 0; k <= d; ++k) out.col(at(k)) = l[k];
             }
         }
-        return BezierSurface(m_, n_, std::move(out), Unchecked{});
+    }
+
+    /// splitU (alongU) or splitV.
+    std::pair<BezierSurface, BezierSurface> split(Scalar t, bool alongU) const
+    {
+        BezierSurface left(m_, n_, Points(Dim, points_.cols()), Unchecked{}), right = *this;
+        right.splitOff(t, alongU, left);
+        if (!(t >= Scalar(0) && t <= Scalar(1))) // extrapolated: the points may overflow
+            return {BezierSurface(m_, n_, std::move(left.points_)), BezierSurface(m_, n_, std::move(right.points_))};
+        return {std::move(left), std::move(right)};
+    }
+
+    /// splitOffU (alongU) or splitOffV: each line's de Casteljau triangle, its left side into
+    /// `left`, its right side back into this net (the line is read before it is written).
+    void splitOff(Scalar t, bool alongU, BezierSurface& left)
+    {
+        left.m_ = m_;
+        left.n_ = n_;
+        left.points_.resize(Dim, points_.cols());
+        const int d = alongU ? m_ : n_, lines = alongU ? n_ : m_;
+        std::array<PointType, kMaxDegree + 1> w;
+        const Scalar s = Scalar(1) - t;
+        for (int line = 0; line <= lines; ++line) {
+            auto at = [&](int k) { return alongU ? index(k, line) : index(line, k); };
+            for (int k = 0; k <= d; ++k) w[k] = points_.col(at(k));
+            left.points_.col(at(0)) = w[0];
+            points_.col(at(d)) = w[d];
+            for (int k = 1; k <= d; ++k) {
+                for (int i = 0; i <= d - k; ++i) w[i] = s * w[i] + t * w[i + 1];
+                left.points_.col(at(k)) = w[0];
+                points_.col(at(d - k)) = w[d - k];
+            }
+        }
     }
 
     /// Whether a computed value `value` of f_u x f_v (or a Taylor coefficient of it) counts as

@@ -121,6 +121,13 @@ public:
     /// BezierSurface::pieceU and pieceV on the homogeneous net (0 <= a < b <= 1, unchecked).
     RationalBezierSurface pieceU(Scalar a, Scalar b) const { return RationalBezierSurface(hom_.pieceU(a, b), Unchecked{}); }
     RationalBezierSurface pieceV(Scalar a, Scalar b) const { return RationalBezierSurface(hom_.pieceV(a, b), Unchecked{}); }
+    /// BezierSurface::splitOffU and splitOffV on the homogeneous net (0 <= t <= 1): splitU(t)'s
+    /// pieces to the bit, the first into `left` and the second in place of this patch.
+    void splitOffU(Scalar t, RationalBezierSurface& left) { hom_.splitOffU(t, left.hom_); }
+    void splitOffV(Scalar t, RationalBezierSurface& left) { hom_.splitOffV(t, left.hom_); }
+    /// pieceU and pieceV written into `out` (its storage kept where it has this net's size).
+    void pieceUInto(Scalar a, Scalar b, RationalBezierSurface& out) const { hom_.pieceUInto(a, b, out.hom_); }
+    void pieceVInto(Scalar a, Scalar b, RationalBezierSurface& out) const { hom_.pieceVInto(a, b, out.hom_); }
     RationalBezierSurface elevatedU(int times = 1) const { return RationalBezierSurface(hom_.elevatedU(times)); }
     RationalBezierSurface elevatedV(int times = 1) const { return RationalBezierSurface(hom_.elevatedV(times)); }
     RationalBezierSurface transposed() const { return RationalBezierSurface(hom_.transposed()); }
