@@ -442,27 +442,48 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     const double step = 1.0 / even;
     std::vector<double> breaks{0};
     bound = 0;
-    double x = 0;
+    double x = 0, last = 0; // last: the width of the column before
     while (x < 1) {
         // Only fewer columns than the even ones are kept: with `even - 1` so far (or more) none
         // can be; with `even - 2`, only a last one that reaches the end.
         const int columns = static_cast<int>(breaks.size()) - 1;
         if (columns >= even - 1) return {};
-        if (column(x, 1) <= target) {
-            breaks.push_back(1);
-            break;
+        // The column's end lies in [lo, hi): a column to lo passes (none yet where lo = x), one
+        // to hi does not (where hi < 1). The width of the column before is tried first, and a
+        // tenth of the even width more: columns side by side mostly allow about the same, and
+        // where the first passes and the second does not, the search is done.
+        double lo = x, hi = 1;
+        if (even >= 8 && last > 0 && x + last < 1) {
+            if (column(x, x + last) <= target) {
+                lo = x + last;
+                const double wider = lo + 0.1 * step;
+                if (wider < 1) {
+                    if (column(x, wider) > target) hi = wider;
+                    else lo = wider;
+                }
+            } else {
+                hi = x + last;
+            }
         }
-        if (columns >= even - 2) return {};
-        // A width that passes (from the even columns', halved while it does not), then doubled
-        // while it passes, then bisected to a tenth of the even width.
-        double w = step;
-        while (column(x, std::min(1.0, x + w)) > target) {
-            w *= 0.5;
-            if (w < 1e-3 * step) return {};
+        if (hi == 1) {
+            if (column(x, 1) <= target) {
+                breaks.push_back(1);
+                break;
+            }
         }
-        double lo = std::min(1.0, x + w), hi = 1;
-        while (lo < 1) {
-            const double t = std::min(1.0, x + 2 * (lo - x));
+        if (columns >= even - 2) return {}; // the rest does not fit in one column
+        // A width that passes (from the even columns', or half the failed one, halved while it
+        // does not), then doubled while it passes, then bisected to a tenth of the even width.
+        if (lo == x) {
+            double w = hi - x > step ? step : 0.5 * (hi - x);
+            while (column(x, x + w) > target) {
+                hi = x + w;
+                w *= 0.5;
+                if (w < 1e-3 * step) return {};
+            }
+            lo = x + w;
+        }
+        for (double t = x + 2 * (lo - x); t < hi; t = x + 2 * (lo - x)) {
             if (column(x, t) > target) {
                 hi = t;
                 break;
@@ -475,6 +496,7 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
             else hi = mid;
         }
         breaks.push_back(lo);
+        last = lo - x;
         x = lo;
     }
     for (std::size_t k = 0; k + 1 < breaks.size(); ++k) bound = std::max(bound, column(breaks[k], breaks[k + 1], false));
