@@ -471,13 +471,20 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
 void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVertex,
                      const std::vector<std::vector<std::size_t>>& useFace)
 {
-    // Each interior sample's edge and index (an edge's ends are the part's vertices, shared).
-    std::unordered_map<int, std::pair<std::size_t, int>> sampleOf;
+    // Each interior sample's edge and index, by mesh vertex (-1: none; an edge's ends are the
+    // part's vertices, shared). (Arrays by vertex, not hash maps: this pass was 4% of the mesh.)
+    const std::size_t vertices = out.positions.size();
+    std::vector<std::pair<int, int>> sampleOf(vertices, {-1, -1});
+    bool any = false;
     for (std::size_t e = 0; e < sampleVertex.size(); ++e)
         if (useFace[e].size() == 2 && useFace[e][0] != useFace[e][1])
-            for (std::size_t k = 1; k + 1 < sampleVertex[e].size(); ++k)
-                sampleOf.emplace(sampleVertex[e][k], std::make_pair(e, static_cast<int>(k)));
-    if (sampleOf.empty()) return;
+            for (std::size_t k = 1; k + 1 < sampleVertex[e].size(); ++k) {
+                std::pair<int, int>& at = sampleOf[static_cast<std::size_t>(sampleVertex[e][k])];
+                if (at.first < 0) at = {static_cast<int>(e), static_cast<int>(k)};
+                any = true;
+            }
+    if (!any) return;
+    auto isSample = [&](int v) { return sampleOf[static_cast<std::size_t>(v)].first >= 0; };
     auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
     auto sidesOf = [&](const std::array<int, 3>& t) {
         return std::array<std::pair<int, int>, 3>{key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])};
@@ -506,21 +513,29 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
         const std::vector<int>& ids = sampleVertex[e];
         if (v == ids.front()) return 0;
         if (v == ids.back()) return static_cast<int>(ids.size()) - 1;
-        const auto it = sampleOf.find(v);
-        return it != sampleOf.end() && it->second.first == e ? it->second.second : -1;
+        const std::pair<int, int>& at = sampleOf[static_cast<std::size_t>(v)];
+        return at.first == static_cast<int>(e) ? at.second : -1;
     };
-    std::unordered_map<int, std::vector<std::size_t>> byVertex;
-    for (std::size_t t = 0; t < out.triangles.size(); ++t)
-        for (int v : out.triangles[t])
-            if (sampleOf.count(v)) byVertex[v].push_back(t);
+    // The triangles at each sample, in order: byVertex[start[v] .. start[v + 1]).
+    std::vector<std::size_t> start(vertices + 1, 0), byVertex;
+    for (const auto& tri : out.triangles)
+        for (int v : tri)
+            if (isSample(v)) ++start[static_cast<std::size_t>(v) + 1];
+    for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+    byVertex.resize(start.back());
+    {
+        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t t = 0; t < out.triangles.size(); ++t)
+            for (int v : out.triangles[t])
+                if (isSample(v)) byVertex[fill[static_cast<std::size_t>(v)]++] = t;
+    }
     std::vector<char> drop(out.triangles.size(), 0);
     for (std::size_t u = 0; u < uses.size(); ++u) {
         const auto [side, count] = uses[u];
         if (count != 4) continue;
-        const auto a = sampleOf.find(side.first), b = sampleOf.find(side.second);
-        const auto& found = a != sampleOf.end() ? a : b;
-        if (found == sampleOf.end()) continue;
-        const std::size_t e = found->second.first;
+        const int found = isSample(side.first) ? side.first : side.second;
+        if (!isSample(found)) continue;
+        const std::size_t e = static_cast<std::size_t>(sampleOf[static_cast<std::size_t>(found)].first);
         int i = indexOn(side.first, e), j = indexOn(side.second, e);
         if (i < 0 || j < 0) continue;
         if (i > j) std::swap(i, j);
@@ -528,14 +543,17 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
         // Each face's triangles over samples i..j (all found through the run's inner samples).
         std::map<std::size_t, std::vector<std::size_t>> perFace;
         std::vector<std::size_t> seen;
-        for (int k = i + 1; k < j; ++k)
-            for (std::size_t t : byVertex[sampleVertex[e][static_cast<std::size_t>(k)]]) {
+        for (int k = i + 1; k < j; ++k) {
+            const std::size_t v = static_cast<std::size_t>(sampleVertex[e][static_cast<std::size_t>(k)]);
+            for (std::size_t x = start[v]; x < start[v + 1]; ++x) {
+                const std::size_t t = byVertex[x];
                 if (drop[t] || std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
                 seen.push_back(t);
                 const auto& tri = out.triangles[t];
-                if (std::all_of(tri.begin(), tri.end(), [&](int v) { const int x = indexOn(v, e); return x >= i && x <= j; }))
+                if (std::all_of(tri.begin(), tri.end(), [&](int w) { const int y = indexOn(w, e); return y >= i && y <= j; }))
                     perFace[static_cast<std::size_t>(out.triangleFace[t])].push_back(t);
             }
+        }
         const std::size_t need = static_cast<std::size_t>(j - i - 1);
         if (perFace.size() != 2 || perFace[useFace[e][0]].size() != need || perFace[useFace[e][1]].size() != need) continue;
         std::map<std::pair<int, int>, int> own;
