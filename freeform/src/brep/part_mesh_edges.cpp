@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <unordered_map>
@@ -290,13 +292,23 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
         double deviation;
         bool tightest;
     };
+    // (Hashes of the parameters' bits, mixed: std::hash<double> hashes their bytes one by one,
+    // 1.5% of screw.step's mesh. -0 is 0 first, as the maps compare them equal.)
+    struct ParameterHash {
+        std::size_t operator()(double t) const
+        {
+            std::uint64_t x = std::bit_cast<std::uint64_t>(t == 0 ? 0.0 : t);
+            x = (x ^ (x >> 31)) * 0x9E3779B97F4A7C15u;
+            return static_cast<std::size_t>(x ^ (x >> 29));
+        }
+    };
     struct SideHash {
         std::size_t operator()(const std::pair<double, double>& side) const
         {
-            return std::hash<double>()(side.first) * 1000003u ^ std::hash<double>()(side.second);
+            return ParameterHash()(side.first) * 1000003u ^ ParameterHash()(side.second);
         }
     };
-    std::vector<std::unordered_map<double, Eigen::Vector2d>> rawAt(uses.size());
+    std::vector<std::unordered_map<double, Eigen::Vector2d, ParameterHash>> rawAt(uses.size());
     std::vector<std::unordered_map<std::pair<double, double>, Kept, SideHash>> kept(uses.size());
     auto raw = [&](std::size_t u, double t) {
         const auto [it, fresh] = rawAt[u].try_emplace(t);
