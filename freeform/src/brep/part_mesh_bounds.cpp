@@ -193,18 +193,17 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, bool cu
 /// whole net's without the frame): the same answer.
 double ownCellBound(const RationalPatch& cell, bool curves, double enough = 0)
 {
+    // (revolutionCellBound asks for degree 2 along the circles: computed once, where it may apply.)
+    const double revolution = curves && cell.degreeU() == 2 ? revolutionCellBound(cell) : kInf;
     if (enough > 0) {
-        if (curves && cell.degreeU() == 2) {
-            const double revolution = revolutionCellBound(cell);
-            if (revolution <= enough) return revolution;
-        }
+        if (revolution <= enough) return revolution;
         const double whole = rationalWholeNetBound(cell, 1, 1);
         if (whole <= enough) return whole;
     }
     const double own = rationalTessellationErrorBound(cell, 1, 1);
     if (!curves) return own;
-    // (revolutionCellBound asks for degree 2 along the circles: the transposed copy only then.)
-    return std::min({own, revolutionCellBound(cell), cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
+    // (The transposed copy only where v has degree 2 too.)
+    return std::min({own, revolution, cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
 }
 
 /// Where a search's last grid failed: the centre of its first cell over the limit, in the patch's
