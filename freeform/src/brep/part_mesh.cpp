@@ -47,9 +47,29 @@ AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStar
     return a;
 }
 
-/// The grid of face f aimed at `target`; `least` (per axis, per knot span of the face's box) the
-/// fewest cells a span gets (alignGrids), in even columns or rows.
-FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std::array<std::vector<int>, 2>* least = nullptr)
+/// A trim's Bézier pieces and their breakpoints, computed once per part: the grids' trim zones, the
+/// edge uses and every meshing pass share them (a B-spline trim's pieces were 4% of hammer.iges's
+/// mesh, built twice per pass).
+struct TrimPieces {
+    std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces;
+    std::shared_ptr<const std::vector<double>> breaks;
+};
+/// Per face, its trims' pieces in the order of its loops and their curves.
+std::vector<std::vector<TrimPieces>> trimPiecesOf(const Part& part)
+{
+    std::vector<std::vector<TrimPieces>> out(part.faces.size());
+    for (std::size_t f = 0; f < part.faces.size(); ++f)
+        for (const TrimLoop& loop : part.faces[f].surface.loops())
+            for (const TrimCurve& c : loop.curves)
+                out[f].push_back({std::make_shared<const std::vector<RationalBezierCurve<double, 2>>>(c.curve.nurbs.bezierPieces()),
+                                  std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints())});
+    return out;
+}
+
+/// The grid of face f aimed at `target` (`trims`: its trimPiecesOf); `least` (per axis, per knot
+/// span of the face's box) the fewest cells a span gets (alignGrids), in even columns or rows.
+FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std::vector<TrimPieces>& trims,
+                  const std::array<std::vector<int>, 2>* least = nullptr)
 {
     const TrimmedSurface& ts = face.surface;
     const NurbsSurface<double, 3>& nurbs = ts.surface().nurbs;
@@ -86,15 +106,14 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
         auto onSide = [](double lo, double hi, double a, double b, double e) {
             return hi - lo <= e && (std::abs(lo - a) <= e || std::abs(hi - b) <= e);
         };
-        for (const TrimLoop& loop : ts.loops())
-            for (const TrimCurve& c : loop.curves)
-                for (const RationalBezierCurve<double, 2>& piece : c.curve.nurbs.bezierPieces()) {
-                    Eigen::AlignedBox2d box;
-                    for (int i = 0; i <= piece.degree(); ++i) box.extend(g.toS(piece.controlPoint(i)));
-                    if (onSide(box.min().x(), box.max().x(), su0, su1, eu) || onSide(box.min().y(), box.max().y(), sv0, sv1, ev))
-                        continue;
-                    trimBoxes.push_back(box);
-                }
+        for (const TrimPieces& trim : trims)
+            for (const RationalBezierCurve<double, 2>& piece : *trim.pieces) {
+                Eigen::AlignedBox2d box;
+                for (int i = 0; i <= piece.degree(); ++i) box.extend(g.toS(piece.controlPoint(i)));
+                if (onSide(box.min().x(), box.max().x(), su0, su1, eu) || onSide(box.min().y(), box.max().y(), sv0, sv1, ev))
+                    continue;
+                trimBoxes.push_back(box);
+            }
     }
     auto zonesOf = [&](std::size_t a, std::size_t b) {
         TrimZones z;
@@ -389,17 +408,18 @@ std::vector<std::array<std::vector<int>, 2>> alignGrids(const Part& part, const 
 
 /// One meshing of the part with the grid of face f aimed at cellTarget[f]; cellBound receives the
 /// grid bound e of each face.
-static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const std::vector<double>& cellTarget,
-                         const std::vector<double>& gapReserve, std::vector<double>& cellBound, std::vector<double>& faceGap)
+static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPieces>>& trims, const PartMeshOptions& options,
+                         const std::vector<double>& cellTarget, const std::vector<double>& gapReserve,
+                         std::vector<double>& cellBound, std::vector<double>& faceGap)
 {
     const double tol = options.tolerance;
     std::vector<FaceGrid> grids;
     grids.reserve(part.faces.size());
     long long estimate = 0;
-    for (std::size_t f = 0; f < part.faces.size(); ++f) grids.push_back(makeGrid(part.faces[f], f, cellTarget[f]));
+    for (std::size_t f = 0; f < part.faces.size(); ++f) grids.push_back(makeGrid(part.faces[f], f, cellTarget[f], trims[f]));
     const std::vector<std::array<std::vector<int>, 2>> least = alignGrids(part, grids);
     for (std::size_t f = 0; f < part.faces.size(); ++f) {
-        if (!least[f][0].empty()) grids[f] = makeGrid(part.faces[f], f, cellTarget[f], &least[f]);
+        if (!least[f][0].empty()) grids[f] = makeGrid(part.faces[f], f, cellTarget[f], trims[f], &least[f]);
         estimate += 2LL * static_cast<long long>(grids[f].gu.size() - 1) * static_cast<long long>(grids[f].gv.size() - 1);
     }
     if (options.maxTriangles > 0 && estimate > options.maxTriangles)
@@ -409,18 +429,19 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options, const
     // Edge samples, and the largest trim deviation of each face.
     std::vector<std::vector<EdgeUse>> uses(part.edges.size());
     std::vector<std::vector<std::size_t>> useFace(part.edges.size());
-    for (std::size_t f = 0; f < part.faces.size(); ++f)
+    for (std::size_t f = 0; f < part.faces.size(); ++f) {
+        std::size_t k = 0; // the trim's index in trims[f]
         for (const TrimLoop& loop : part.faces[f].surface.loops())
             for (const TrimCurve& c : loop.curves) {
+                const TrimPieces& pieces = trims[f][k++];
                 if (c.edge < 0 || static_cast<std::size_t>(c.edge) >= part.edges.size())
                     throw Error(faceName(f) + ": a trim curve names no edge of the part");
                 const PartEdge& e = part.edges[static_cast<std::size_t>(c.edge)];
                 uses[static_cast<std::size_t>(c.edge)].push_back(
-                    {&c, &grids[f], 0, e.first, e.last,
-                     std::make_shared<const std::vector<RationalBezierCurve<double, 2>>>(c.curve.nurbs.bezierPieces()),
-                     std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints()), invTanQuarterOf(c.curve.map)});
+                    {&c, &grids[f], 0, e.first, e.last, pieces.pieces, pieces.breaks, invTanQuarterOf(c.curve.map)});
                 useFace[static_cast<std::size_t>(c.edge)].push_back(f);
             }
+    }
     // The trims' share of each face's bound: what its grid and its vertex gaps leave, at least
     // kLeastTrimShare of the tolerance. The gaps (delta, measured at the mesh vertices once they are
     // known) are guessed from each trim's ends and the middles of its first four and last four
@@ -723,10 +744,11 @@ PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
     // the trims' sides cut into as many parts as their term asks for (2026-12-07; also hammer.iges
     // at 50 mm): 0.82: 932, 4,250, 1,012, 89,392; 0.84: 934, 4,170, 1,030, 88,818; 0.86: 912,
     // 4,200, 1,030, 88,896; 0.88: 918, 4,190, 1,030, 89,046; 0.9: 932, 4,246, 1,030, 89,122.
+    const std::vector<std::vector<TrimPieces>> trims = trimPiecesOf(part);
     std::vector<double> target(part.faces.size(), kGridAim * tol), reserve(part.faces.size(), 0), bound, gap;
     for (std::size_t f = 0; f < part.faces.size(); ++f)
         if (isoTrimmed(part.faces[f].surface)) target[f] = kIsoGridAim * tol;
-    PartMesh mesh = meshPart(part, options, target, reserve, bound, gap);
+    PartMesh mesh = meshPart(part, trims, options, target, reserve, bound, gap);
     for (int pass = 0; pass < 3 && !mesh.report.certified; ++pass) {
         bool again = false;
         for (std::size_t f = 0; f < part.faces.size(); ++f) {
@@ -742,7 +764,7 @@ PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
             }
         }
         if (!again) break;
-        mesh = meshPart(part, options, target, reserve, bound, gap);
+        mesh = meshPart(part, trims, options, target, reserve, bound, gap);
     }
     return mesh;
 }
