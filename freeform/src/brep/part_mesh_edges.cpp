@@ -47,7 +47,7 @@ struct CutPiece {
             level(k, t);
             left[static_cast<std::size_t>(k)] = h[0];
         }
-        h = left;
+        std::copy_n(left.begin(), p + 1, h.begin()); // (not all kMaxDegree + 1)
     }
 
 private:
