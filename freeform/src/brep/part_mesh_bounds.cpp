@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <tuple>
 
 #include "freeform/core/bernstein.h" // kMaxDegree
@@ -386,19 +387,32 @@ struct CentredNet {
     double rho = 0, wmin = kInf;
 };
 
-/// The bound of the cell [u0, u1] x [v0, v1] of the patch, the column [u0, u1] already cut from it:
-/// the smallest of the cell's own (ownCellBound) and the ruled one. `cell` holds the cell's net
-/// afterwards (kept from call to call: no allocation per cell).
-double cellOfColumn(const RationalPatch& p, const RationalPatch& column, double u0, double u1, double v0, double v1,
+/// How a patch is ruled, found once per patch (not per cell probed): in v, or in u (then its
+/// transposed copy, kept), or neither.
+struct RuledForm {
+    bool inV = false;
+    std::optional<RationalPatch> transposed; // ruled in u: the patch transposed
+    explicit RuledForm(const RationalPatch& p) : inV(ruledInV(p))
+    {
+        if (inV) return;
+        RationalPatch t = p.transposed();
+        if (ruledInV(t)) transposed = std::move(t);
+    }
+};
+
+/// The bound of the cell [u0, u1] x [v0, v1] of a patch (`ruled`: its RuledForm), the column
+/// [u0, u1] already cut from it: the smallest of the cell's own (ownCellBound) and the ruled one.
+/// `cell` holds the cell's net afterwards (kept from call to call: no allocation per cell).
+double cellOfColumn(const RuledForm& ruled, const RationalPatch& column, double u0, double u1, double v0, double v1,
                     const TrimZones& zones, RationalPatch& cell, double enough = 0)
 {
     const bool curves = !zones.meets(u0, u1, v0, v1);
     column.pieceVInto(v0, v1, cell);
     double bound = ownCellBound(cell, curves, enough);
-    if (ruledInV(p)) {
+    if (ruled.inV) {
         bound = std::min(bound, ruledCellBound(column, v0, v1, curves));
-    } else if (ruledInV(p.transposed())) {
-        bound = std::min(bound, ruledCellBound(p.transposed().pieceU(v0, v1), u0, u1, curves));
+    } else if (ruled.transposed) {
+        bound = std::min(bound, ruledCellBound(ruled.transposed->pieceU(v0, v1), u0, u1, curves));
     }
     return bound;
 }
@@ -415,9 +429,11 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     std::size_t hintPatch = patches.size();
     int hintRow = 0;
     RationalPatch strip = *patches.front(), cell = strip; // the column's and the cell's nets, reused
+    std::vector<RuledForm> ruled;
+    for (const RationalPatch* p : patches) ruled.emplace_back(*p);
     auto column = [&](double x0, double x1, bool probe = true) {
         auto cellAt = [&](std::size_t b, int j) {
-            return cellOfColumn(*patches[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b], cell,
+            return cellOfColumn(ruled[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b], cell,
                                 probe ? target : 0);
         };
         if (hintPatch < patches.size()) {
@@ -464,11 +480,9 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
                 hi = x + last;
             }
         }
-        if (hi == 1) {
-            if (column(x, 1) <= target) {
-                breaks.push_back(1);
-                break;
-            }
+        if (hi == 1 && column(x, 1) <= target) {
+            breaks.push_back(1);
+            break;
         }
         if (columns >= even - 2) return {}; // the rest does not fit in one column
         // A width that passes (from the even columns', or half the failed one, halved while it
