@@ -188,20 +188,42 @@ double ruledCellBound(const RationalPatch& column, double va, double vb, bool cu
     return curves ? std::min(ruled, conicalCellBound(column, va, vb)) : ruled;
 }
 
+/// Whether a search tries the whole net's bound alone before both of the net's bounds in one
+/// pass (rationalBounds): the first costs one pass more where the whole net's bound is over the
+/// target, the second the frame's share of the pass (on a fillet's degree (6, 10) cell about as
+/// much as the rest) where it is within. Kept per search, by what the whole net's bound did in
+/// the search's cells so far (within the target in half of linkrods.step's fillet cells, in one
+/// of ten of screw.step's). Either way the bound is the same.
+struct NetOdds {
+    int within = 1, over = 0;
+    bool wholeFirst() const { return within >= over; }
+};
+
 /// A cell's bound from its own sub-net, and where no trim runs through it (`curves`) the smaller of
 /// that and the bounds from its curves. A search that asks only whether the bound is within
 /// `enough` gets the first of the cheaper bounds that is (the revolution's where it applies, the
 /// whole net's without the frame): the same answer.
-double ownCellBound(const RationalPatch& cell, bool curves, double enough = 0)
+double ownCellBound(const RationalPatch& cell, bool curves, double enough = 0, NetOdds* odds = nullptr)
 {
     // (revolutionCellBound asks for degree 2 along the circles: computed once, where it may apply.)
     const double revolution = curves && cell.degreeU() == 2 ? revolutionCellBound(cell) : kInf;
+    double own = kInf;
     if (enough > 0) {
         if (revolution <= enough) return revolution;
-        const double whole = rationalWholeNetBound(cell, 1, 1);
-        if (whole <= enough) return whole;
+        NetOdds none;
+        NetOdds& o = odds ? *odds : none;
+        if (o.wholeFirst()) {
+            const double whole = rationalWholeNetBound(cell, 1, 1);
+            ++(whole <= enough ? o.within : o.over);
+            if (whole <= enough) return whole;
+        } else {
+            const RationalBounds net = rationalBounds(cell, 1, 1);
+            ++(net.wholeNet <= enough ? o.within : o.over);
+            if (net.wholeNet <= enough) return net.wholeNet;
+            own = net.framed;
+        }
     }
-    const double own = rationalTessellationErrorBound(cell, 1, 1);
+    if (own == kInf) own = rationalTessellationErrorBound(cell, 1, 1);
     if (!curves) return own;
     // (The transposed copy only where v has degree 2 too.)
     return std::min({own, revolution, cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
@@ -230,12 +252,12 @@ struct FailHint {
 /// splits as the scan's, so its bound is the scan's to the bit, and a grid over the limit is mostly
 /// found so at one cell. On screw.step, half the cells the searches bounded were in grids that failed.
 double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, bool general = true, double* rowPart = nullptr,
-                  double limit = kInf, FailHint* hint = nullptr)
+                  double limit = kInf, FailHint* hint = nullptr, NetOdds* odds = nullptr)
 {
     if (general && p.degreeU() == 1 && !ruledInV(p) && ruledInV(p.transposed())) {
         FailHint t;
         if (hint) t = {hint->set, hint->v, hint->u};
-        const double bound = cellsBound(p.transposed(), nv, nu, zones.transposed(), true, nullptr, limit, hint ? &t : nullptr);
+        const double bound = cellsBound(p.transposed(), nv, nu, zones.transposed(), true, nullptr, limit, hint ? &t : nullptr, odds);
         if (hint) *hint = {t.set, t.v, t.u};
         return bound;
     }
@@ -244,7 +266,7 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
     auto cellBound = [&](const RationalPatch& column, const RationalPatch& cell, int i, int j) {
         const bool curves = !zones.meets(double(i) / nu, double(i + 1) / nu, double(j) / nv, double(j + 1) / nv);
         // (With a limit, only whether each cell is within it counts.)
-        double bound = general ? ownCellBound(cell, curves, limit < kInf ? limit : 0) : kInf;
+        double bound = general ? ownCellBound(cell, curves, limit < kInf ? limit : 0, odds) : kInf;
         if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
         return bound;
     };
@@ -404,11 +426,11 @@ struct RuledForm {
 /// [u0, u1] already cut from it: the smallest of the cell's own (ownCellBound) and the ruled one.
 /// `cell` holds the cell's net afterwards (kept from call to call: no allocation per cell).
 double cellOfColumn(const RuledForm& ruled, const RationalPatch& column, double u0, double u1, double v0, double v1,
-                    const TrimZones& zones, RationalPatch& cell, double enough = 0)
+                    const TrimZones& zones, RationalPatch& cell, double enough = 0, NetOdds* odds = nullptr)
 {
     const bool curves = !zones.meets(u0, u1, v0, v1);
     column.pieceVInto(v0, v1, cell);
-    double bound = ownCellBound(cell, curves, enough);
+    double bound = ownCellBound(cell, curves, enough, odds);
     if (ruled.inV) {
         bound = std::min(bound, ruledCellBound(column, v0, v1, curves));
     } else if (ruled.transposed) {
@@ -430,11 +452,12 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     int hintRow = 0;
     RationalPatch strip = *patches.front(), cell = strip; // the column's and the cell's nets, reused
     std::vector<RuledForm> ruled;
+    NetOdds odds;
     for (const RationalPatch* p : patches) ruled.emplace_back(*p);
     auto column = [&](double x0, double x1, bool probe = true) {
         auto cellAt = [&](std::size_t b, int j) {
             return cellOfColumn(ruled[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b], cell,
-                                probe ? target : 0);
+                                probe ? target : 0, &odds);
         };
         if (hintPatch < patches.size()) {
             patches[hintPatch]->pieceUInto(x0, x1, strip);
@@ -692,8 +715,10 @@ std::array<int, 2> patchSegments(const RationalPatch& p, double target, const Tr
     const std::array<int, 2> upper = best;
     const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
     FailHint hint;
+    NetOdds odds;
     auto bound = [&](int na, int nb) {
-        return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target, &hint) : cellsBound(p, nb, na, zones, true, nullptr, target, &hint);
+        return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target, &hint, &odds)
+                      : cellsBound(p, nb, na, zones, true, nullptr, target, &hint, &odds);
     };
     for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
         // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].

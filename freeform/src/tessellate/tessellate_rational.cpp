@@ -99,6 +99,8 @@ public:
         weight_.muu *= su, weight_.mvv *= sv, weight_.muv *= suv;
         for (int x = 0; x < 3; ++x) axes_[static_cast<std::size_t>(x)] = {axisUU[x] * su, axisUV[x] * suv, axisVV[x] * sv};
     }
+    /// The bound from the whole net alone (the same number whether framed or not).
+    double wholeNet(int nu, int nv) const { return (numerator_.bound(nu, nv) + rho_ * weight_.bound(nu, nv)) / wmin_; }
     double operator()(int nu, int nv) const
     {
         const double ew = weight_.bound(nu, nv);
@@ -220,6 +222,13 @@ double rationalWholeNetBound(const RationalPatch& patch, int nu, int nv)
 {
     if (nu < 1 || nv < 1) throw Error("rationalWholeNetBound: segment counts must be at least 1");
     return RationalBound(patch, false)(nu, nv);
+}
+
+RationalBounds rationalBounds(const RationalPatch& patch, int nu, int nv)
+{
+    if (nu < 1 || nv < 1) throw Error("rationalBounds: segment counts must be at least 1");
+    const RationalBound bound(patch);
+    return {bound.wholeNet(nu, nv), bound(nu, nv)};
 }
 
 std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double tolerance, int maxSegments)

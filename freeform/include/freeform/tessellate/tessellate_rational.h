@@ -35,6 +35,14 @@ double rationalTessellationErrorBound(const RationalPatch& patch, int segmentsU,
 /// that asks only whether a bound is within its target.
 double rationalWholeNetBound(const RationalPatch& patch, int segmentsU, int segmentsV);
 
+/// Both of the above from one pass over the net (the whole net's bound the same number): for a
+/// search that takes the whole net's bound where that is within its target and the other where
+/// not, where the first is mostly over it.
+struct RationalBounds {
+    double wholeNet = 0, framed = 0;
+};
+RationalBounds rationalBounds(const RationalPatch& patch, int segmentsU, int segmentsV);
+
 /// The grid with the fewest cells whose rational bound is at most tolerance (each count at most
 /// maxSegments).
 std::array<int, 2> rationalAdaptiveSegments(const RationalPatch& patch, double tolerance, int maxSegments = 4096);
