@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -277,6 +276,104 @@ double crossingParameter(const EdgeUse& use, double ta, double tb, const Eigen::
     return 0.5 * (lo + hi);
 }
 
+/// A cache from a key (a parameter, or a side's two) to a value, for one edge's samples: open
+/// addressing in one array that the next edge reuses (clear() is one increment: a slot holds a
+/// value only if it carries the current generation). The keys compare with ==, as
+/// std::unordered_map's do (-0 and 0 alike: the hash takes -0 as 0). sampleEdge asked the
+/// allocator for a node per parameter and per side it cached, and a bucket array per use and edge:
+/// a quarter of bearing.iges's mesh was the allocator's.
+template <class Key, class Value, class Hash>
+class FlatCache {
+public:
+    void clear()
+    {
+        count_ = 0;
+        if (++generation_ == 0) { // (after 2^32 edges: wipe once)
+            for (Slot& s : slots_) s.generation = 0;
+            generation_ = 1;
+        }
+    }
+    /// The value for key, and whether it was just added (then the caller sets it).
+    std::pair<Value*, bool> tryEmplace(const Key& key)
+    {
+        if (2 * (count_ + 1) > slots_.size()) grow();
+        Slot* s = probe(key);
+        if (s->generation == generation_) return {&s->value, false};
+        s->key = key;
+        s->generation = generation_;
+        ++count_;
+        return {&s->value, true};
+    }
+    const Value* find(const Key& key) const
+    {
+        if (slots_.empty()) return nullptr;
+        const std::size_t mask = slots_.size() - 1;
+        for (std::size_t i = Hash()(key) & mask;; i = (i + 1) & mask) {
+            const Slot& s = slots_[i];
+            if (s.generation != generation_) return nullptr;
+            if (s.key == key) return &s.value;
+        }
+    }
+
+private:
+    struct Slot {
+        Key key{};
+        Value value;
+        std::uint32_t generation = 0;
+    };
+    Slot* probe(const Key& key)
+    {
+        const std::size_t mask = slots_.size() - 1;
+        for (std::size_t i = Hash()(key) & mask;; i = (i + 1) & mask) {
+            Slot& s = slots_[i];
+            if (s.generation != generation_ || s.key == key) return &s;
+        }
+    }
+    void grow()
+    {
+        std::vector<Slot> old;
+        old.swap(slots_);
+        slots_.resize(std::max<std::size_t>(16, 2 * old.size())); // (generation 0: empty)
+        count_ = 0;
+        for (Slot& s : old)
+            if (s.generation == generation_) {
+                *probe(s.key) = s;
+                ++count_;
+            }
+    }
+    std::vector<Slot> slots_;
+    std::size_t count_ = 0;
+    std::uint32_t generation_ = 1;
+};
+
+// (Hashes of the parameters' bits, mixed: std::hash<double> hashes their bytes one by one, 1.5% of
+// screw.step's mesh. -0 is 0 first, as == takes them equal.)
+struct ParameterHash {
+    std::size_t operator()(double t) const
+    {
+        std::uint64_t x = std::bit_cast<std::uint64_t>(t == 0 ? 0.0 : t);
+        x = (x ^ (x >> 31)) * 0x9E3779B97F4A7C15u;
+        return static_cast<std::size_t>(x ^ (x >> 29));
+    }
+};
+struct SideHash {
+    std::size_t operator()(const std::pair<double, double>& side) const
+    {
+        return ParameterHash()(side.first) * 1000003u ^ ParameterHash()(side.second);
+    }
+};
+
+/// What one use of an edge has found so far: its raw point at each sample, and the sides it kept
+/// after bounding their deviation (with the bound, and whether that is the tightest one).
+struct Kept {
+    double deviation = 0;
+    bool tightest = false;
+};
+struct UseCache {
+    FlatCache<double, Eigen::Vector2d, ParameterHash> rawAt;
+    FlatCache<std::pair<double, double>, Kept, SideHash> kept;
+};
+
 } // namespace
 
 std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, double last, int maxSamples,
@@ -284,51 +381,37 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
 {
     std::vector<double> ts{first, last};
     const double minStep = 1e-12 * std::max(1.0, std::abs(last - first));
-    // What each use has found so far: its raw point at each sample, and the sides it kept after
-    // bounding their deviation (with the bound, and whether that is the tightest one). Each round
-    // walks every side again after the other uses' cuts; a side kept stays kept, and only the
-    // new sides are bounded (on screw.step this halved the bounds computed).
-    struct Kept {
-        double deviation;
-        bool tightest;
-    };
-    // (Hashes of the parameters' bits, mixed: std::hash<double> hashes their bytes one by one,
-    // 1.5% of screw.step's mesh. -0 is 0 first, as the maps compare them equal.)
-    struct ParameterHash {
-        std::size_t operator()(double t) const
-        {
-            std::uint64_t x = std::bit_cast<std::uint64_t>(t == 0 ? 0.0 : t);
-            x = (x ^ (x >> 31)) * 0x9E3779B97F4A7C15u;
-            return static_cast<std::size_t>(x ^ (x >> 29));
-        }
-    };
-    struct SideHash {
-        std::size_t operator()(const std::pair<double, double>& side) const
-        {
-            return ParameterHash()(side.first) * 1000003u ^ ParameterHash()(side.second);
-        }
-    };
-    std::vector<std::unordered_map<double, Eigen::Vector2d, ParameterHash>> rawAt(uses.size());
-    std::vector<std::unordered_map<std::pair<double, double>, Kept, SideHash>> kept(uses.size());
+    // What each use has found so far (UseCache). Each round walks every side again after the other
+    // uses' cuts; a side kept stays kept, and only the new sides are bounded (on screw.step this
+    // halved the bounds computed). (The caches, the walk's stack and its output: one set per
+    // thread, reused from edge to edge.)
+    thread_local std::vector<UseCache> caches;
+    thread_local std::vector<std::pair<double, int>> stack;
+    thread_local std::vector<double> out;
+    if (caches.size() < uses.size()) caches.resize(uses.size());
+    for (std::size_t u = 0; u < uses.size(); ++u) {
+        caches[u].rawAt.clear();
+        caches[u].kept.clear();
+    }
     auto raw = [&](std::size_t u, double t) {
-        const auto [it, fresh] = rawAt[u].try_emplace(t);
-        if (fresh) it->second = uses[u].raw(t);
-        return it->second;
+        const auto [value, fresh] = caches[u].rawAt.tryEmplace(t);
+        if (fresh) *value = uses[u].raw(t);
+        return *value;
     };
     for (int round = 0; round < 16; ++round) {
         bool changed = false;
         for (std::size_t u = 0; u < uses.size(); ++u) {
             const EdgeUse& use = uses[u];
-            std::vector<double> out{ts.front()};
+            out.assign(1, ts.front());
             // Depth-first over the sides; each is cut at a crossing or in half until it passes.
             for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
-                std::vector<std::pair<double, int>> stack{{ts[k + 1], 0}};
+                stack.assign(1, {ts[k + 1], 0});
                 double ta = ts[k];
                 Eigen::Vector2d rawA = raw(u, ta), a = use.grid->snap(rawA); // at(ta), kept while ta is
                 while (!stack.empty()) {
                     const auto [tb, depth] = stack.back();
                     const Eigen::Vector2d rawB = raw(u, tb), b = use.grid->snap(rawB);
-                    if (kept[u].count({ta, tb})) {
+                    if (caches[u].kept.find({ta, tb})) {
                         out.push_back(tb);
                         ta = tb;
                         rawA = rawB;
@@ -368,7 +451,7 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                             parts = static_cast<int>(std::clamp(std::ceil(std::sqrt(ratio)), 2.0, 16.0));
                             cut = ta + (tb - ta) / parts;
                         } else {
-                            kept[u].emplace(std::make_pair(ta, tb), Kept{deviation, tightest});
+                            *caches[u].kept.tryEmplace({ta, tb}).first = Kept{deviation, tightest};
                         }
                     }
                     if (std::isnan(cut)) {
@@ -388,7 +471,7 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
                     }
                 }
             }
-            ts = std::move(out);
+            ts.swap(out);
         }
         if (!changed) break;
     }
@@ -426,8 +509,8 @@ std::vector<double> sampleEdge(const std::vector<EdgeUse>& uses, double first, d
     worst.assign(uses.size(), 0);
     for (std::size_t u = 0; u < uses.size(); ++u)
         for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
-            const auto it = kept[u].find({ts[k], ts[k + 1]});
-            const double deviation = it != kept[u].end() && it->second.tightest ? it->second.deviation : uses[u].deviation(ts[k], ts[k + 1]);
+            const Kept* it = caches[u].kept.find({ts[k], ts[k + 1]});
+            const double deviation = it && it->tightest ? it->deviation : uses[u].deviation(ts[k], ts[k + 1]);
             worst[u] = std::max(worst[u], deviation);
         }
     return ts;
