@@ -13,7 +13,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <memory>
 #include <numeric>
 #include <tuple>
 
@@ -47,38 +46,18 @@ AxisMap axisMap(const ParameterMap& map, double lo, double hi, double domainStar
     return a;
 }
 
-/// A trim's Bézier pieces and their breakpoints, computed once per part: the grids' trim zones, the
-/// edge uses and every meshing pass share them (a B-spline trim's pieces were 4% of hammer.iges's
-/// mesh, built twice per pass).
-struct TrimPieces {
-    std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces;
-    std::shared_ptr<const std::vector<double>> breaks;
-};
-/// Per face, its trims' pieces in the order of its loops and their curves.
-std::vector<std::vector<TrimPieces>> trimPiecesOf(const Part& part)
-{
-    std::vector<std::vector<TrimPieces>> out(part.faces.size());
-    for (std::size_t f = 0; f < part.faces.size(); ++f)
-        for (const TrimLoop& loop : part.faces[f].surface.loops())
-            for (const TrimCurve& c : loop.curves)
-                out[f].push_back({std::make_shared<const std::vector<RationalBezierCurve<double, 2>>>(c.curve.nurbs.bezierPieces()),
-                                  std::make_shared<const std::vector<double>>(c.curve.nurbs.breakpoints())});
-    return out;
-}
-
-/// The grid of face f aimed at `target` (`trims`: its trimPiecesOf); `least` (per axis, per knot
+/// The grid of face f aimed at `target`; `least` (per axis, per knot
 /// span of the face's box) the fewest cells a span gets (alignGrids), in even columns or rows.
-FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std::vector<TrimPieces>& trims,
+FaceGrid makeGrid(const PartFace& face, std::size_t f, double target,
                   const std::array<std::vector<int>, 2>* least = nullptr)
 {
     const TrimmedSurface& ts = face.surface;
     const NurbsSurface<double, 3>& nurbs = ts.surface().nurbs;
     const Box<double, 2>& dom = ts.domain();
     FaceGrid g;
-    g.mu = axisMap(ts.surface().mapU, dom.min().x(), dom.max().x(), nurbs.knotsU().breakpoints().front(),
-                   nurbs.knotsU().breakpoints().back(), f, "u");
-    g.mv = axisMap(ts.surface().mapV, dom.min().y(), dom.max().y(), nurbs.knotsV().breakpoints().front(),
-                   nurbs.knotsV().breakpoints().back(), f, "v");
+    const std::vector<double> ku = nurbs.knotsU().breakpoints(), kv = nurbs.knotsV().breakpoints();
+    g.mu = axisMap(ts.surface().mapU, dom.min().x(), dom.max().x(), ku.front(), ku.back(), f, "u");
+    g.mv = axisMap(ts.surface().mapV, dom.min().y(), dom.max().y(), kv.front(), kv.back(), f, "v");
     // The box ends a hair from a knot are moved onto it (the trims then snap onto the box): a cell
     // that thin would defeat the cell walk.
     auto onKnot = [](double x, const std::vector<double>& knots, double width) {
@@ -86,7 +65,6 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
             if (std::abs(k - x) <= 1e-9 * width) return k;
         return x;
     };
-    const std::vector<double> ku = nurbs.knotsU().breakpoints(), kv = nurbs.knotsV().breakpoints();
     double su0 = g.mu(dom.min().x()), su1 = g.mu(dom.max().x());
     double sv0 = g.mv(dom.min().y()), sv1 = g.mv(dom.max().y());
     if (!(su1 > su0) || !(sv1 > sv0)) throw Error(faceName(f) + ": its parameter box is empty");
@@ -106,13 +84,18 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target, const std:
         auto onSide = [](double lo, double hi, double a, double b, double e) {
             return hi - lo <= e && (std::abs(lo - a) <= e || std::abs(hi - b) <= e);
         };
-        for (const TrimPieces& trim : trims)
-            for (const RationalBezierCurve<double, 2>& piece : *trim.pieces) {
-                Eigen::AlignedBox2d box;
-                for (int i = 0; i <= piece.degree(); ++i) box.extend(g.toS(piece.controlPoint(i)));
-                if (onSide(box.min().x(), box.max().x(), su0, su1, eu) || onSide(box.min().y(), box.max().y(), sv0, sv1, ev))
-                    continue;
-                trimBoxes.push_back(box);
+        // (The pieces as the trim curves keep them: homogeneous, p + 1 columns each.)
+        for (const TrimLoop& loop : ts.loops())
+            for (const TrimCurve& trim : loop.curves) {
+                const auto& h = trim.curve.nurbs.homogeneousPieces();
+                const Eigen::Index n = trim.curve.nurbs.degree() + 1;
+                for (Eigen::Index k = 0; k < h.cols(); k += n) {
+                    Eigen::AlignedBox2d box;
+                    for (Eigen::Index i = k; i < k + n; ++i) box.extend(g.toS(Eigen::Vector2d(h.col(i).head<2>() / h(2, i))));
+                    if (onSide(box.min().x(), box.max().x(), su0, su1, eu) || onSide(box.min().y(), box.max().y(), sv0, sv1, ev))
+                        continue;
+                    trimBoxes.push_back(box);
+                }
             }
     }
     auto zonesOf = [&](std::size_t a, std::size_t b) {
@@ -408,7 +391,7 @@ std::vector<std::array<std::vector<int>, 2>> alignGrids(const Part& part, const 
 
 /// One meshing of the part with the grid of face f aimed at cellTarget[f]; cellBound receives the
 /// grid bound e of each face.
-static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPieces>>& trims, const PartMeshOptions& options,
+static PartMesh meshPart(const Part& part, const PartMeshOptions& options,
                          const std::vector<double>& cellTarget, const std::vector<double>& gapReserve,
                          std::vector<double>& cellBound, std::vector<double>& faceGap)
 {
@@ -416,10 +399,10 @@ static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPie
     std::vector<FaceGrid> grids;
     grids.reserve(part.faces.size());
     long long estimate = 0;
-    for (std::size_t f = 0; f < part.faces.size(); ++f) grids.push_back(makeGrid(part.faces[f], f, cellTarget[f], trims[f]));
+    for (std::size_t f = 0; f < part.faces.size(); ++f) grids.push_back(makeGrid(part.faces[f], f, cellTarget[f]));
     const std::vector<std::array<std::vector<int>, 2>> least = alignGrids(part, grids);
     for (std::size_t f = 0; f < part.faces.size(); ++f) {
-        if (!least[f][0].empty()) grids[f] = makeGrid(part.faces[f], f, cellTarget[f], trims[f], &least[f]);
+        if (!least[f][0].empty()) grids[f] = makeGrid(part.faces[f], f, cellTarget[f], &least[f]);
         estimate += 2LL * static_cast<long long>(grids[f].gu.size() - 1) * static_cast<long long>(grids[f].gv.size() - 1);
     }
     if (options.maxTriangles > 0 && estimate > options.maxTriangles)
@@ -430,15 +413,13 @@ static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPie
     std::vector<std::vector<EdgeUse>> uses(part.edges.size());
     std::vector<std::vector<std::size_t>> useFace(part.edges.size());
     for (std::size_t f = 0; f < part.faces.size(); ++f) {
-        std::size_t k = 0; // the trim's index in trims[f]
         for (const TrimLoop& loop : part.faces[f].surface.loops())
             for (const TrimCurve& c : loop.curves) {
-                const TrimPieces& pieces = trims[f][k++];
                 if (c.edge < 0 || static_cast<std::size_t>(c.edge) >= part.edges.size())
                     throw Error(faceName(f) + ": a trim curve names no edge of the part");
                 const PartEdge& e = part.edges[static_cast<std::size_t>(c.edge)];
                 uses[static_cast<std::size_t>(c.edge)].push_back(
-                    {&c, &grids[f], 0, e.first, e.last, pieces.pieces, pieces.breaks, invTanQuarterOf(c.curve.map)});
+                    {&c, &grids[f], 0, e.first, e.last, invTanQuarterOf(c.curve.map)});
                 useFace[static_cast<std::size_t>(c.edge)].push_back(f);
             }
     }
@@ -467,7 +448,7 @@ static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPie
             gapAt(edge.last, edge.end);
             // The pieces' middles in the edge's parameter (the trim's range mapped onto the edge's).
             const MappedCurve<2>& c = use.trim->curve;
-            const std::vector<double>& b = *use.breaks;
+            const std::vector<double>& b = c.nurbs.breakpoints();
             const std::size_t pieces = b.size() - 1, step = std::max<std::size_t>(1, pieces / 8);
             for (std::size_t k = 0; k < pieces; ++k) {
                 if (k >= 4 && k + 4 < pieces && k % step != 0) continue;
@@ -492,9 +473,12 @@ static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPie
     // The samples in each use's face parameters (at()), per edge and use, as the polygons take them.
     std::vector<std::vector<std::vector<Eigen::Vector2d>>> sampleAt(part.edges.size());
     auto place = [&](std::size_t e) {
-        sampleAt[e].assign(uses[e].size(), {});
-        for (std::size_t u = 0; u < uses[e].size(); ++u)
-            for (const double t : samples[e]) sampleAt[e][u].push_back(uses[e][u].at(t));
+        sampleAt[e].resize(uses[e].size());
+        for (std::size_t u = 0; u < uses[e].size(); ++u) {
+            std::vector<Eigen::Vector2d>& at = sampleAt[e][u];
+            at.resize(samples[e].size());
+            for (std::size_t k = 0; k < at.size(); ++k) at[k] = uses[e][u].at(samples[e][k]);
+        }
     };
     for (std::size_t e = 0; e < part.edges.size(); ++e) place(e);
     auto useOf = [&](const TrimCurve& c) {
@@ -504,21 +488,24 @@ static PartMesh meshPart(const Part& part, const std::vector<std::vector<TrimPie
         return u;
     };
     std::vector<char> check(part.faces.size(), 1); // faces whose samples changed since their last check
+    std::vector<std::vector<Eigen::Vector2d>> loops; // (reused from face to face)
+    std::vector<std::vector<int>> edgeOf;
     for (int round = 0; round < 6; ++round) {
         std::vector<char> refine(part.edges.size(), 0);
         for (std::size_t f = 0; f < part.faces.size(); ++f) {
             if (!check[f]) continue;
             check[f] = 0;
-            std::vector<std::vector<Eigen::Vector2d>> loops;
-            std::vector<std::vector<int>> edgeOf;
-            for (const TrimLoop& loop : part.faces[f].surface.loops()) {
-                loops.emplace_back();
-                edgeOf.emplace_back();
-                for (const TrimCurve& c : loop.curves) {
+            const std::vector<TrimLoop>& faceLoops = part.faces[f].surface.loops();
+            loops.resize(faceLoops.size());
+            edgeOf.resize(faceLoops.size());
+            for (std::size_t l = 0; l < faceLoops.size(); ++l) {
+                loops[l].clear();
+                edgeOf[l].clear();
+                for (const TrimCurve& c : faceLoops[l].curves) {
                     const std::vector<Eigen::Vector2d>& at = sampleAt[static_cast<std::size_t>(c.edge)][useOf(c)];
-                    if (c.reversed) loops.back().insert(loops.back().end(), at.rbegin(), at.rend());
-                    else loops.back().insert(loops.back().end(), at.begin(), at.end());
-                    edgeOf.back().resize(loops.back().size(), c.edge);
+                    if (c.reversed) loops[l].insert(loops[l].end(), at.rbegin(), at.rend());
+                    else loops[l].insert(loops[l].end(), at.begin(), at.end());
+                    edgeOf[l].resize(loops[l].size(), c.edge);
                 }
             }
             const std::vector<int> crossing = crossingEdges(grids[f], loops, edgeOf);
@@ -744,11 +731,10 @@ PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
     // the trims' sides cut into as many parts as their term asks for (2026-12-07; also hammer.iges
     // at 50 mm): 0.82: 932, 4,250, 1,012, 89,392; 0.84: 934, 4,170, 1,030, 88,818; 0.86: 912,
     // 4,200, 1,030, 88,896; 0.88: 918, 4,190, 1,030, 89,046; 0.9: 932, 4,246, 1,030, 89,122.
-    const std::vector<std::vector<TrimPieces>> trims = trimPiecesOf(part);
     std::vector<double> target(part.faces.size(), kGridAim * tol), reserve(part.faces.size(), 0), bound, gap;
     for (std::size_t f = 0; f < part.faces.size(); ++f)
         if (isoTrimmed(part.faces[f].surface)) target[f] = kIsoGridAim * tol;
-    PartMesh mesh = meshPart(part, trims, options, target, reserve, bound, gap);
+    PartMesh mesh = meshPart(part, options, target, reserve, bound, gap);
     for (int pass = 0; pass < 3 && !mesh.report.certified; ++pass) {
         bool again = false;
         for (std::size_t f = 0; f < part.faces.size(); ++f) {
@@ -764,7 +750,7 @@ PartMesh tessellatePart(const Part& part, const PartMeshOptions& options)
             }
         }
         if (!again) break;
-        mesh = meshPart(part, trims, options, target, reserve, bound, gap);
+        mesh = meshPart(part, options, target, reserve, bound, gap);
     }
     return mesh;
 }

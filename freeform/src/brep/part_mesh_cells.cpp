@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <numbers>
 #include <map>
-#include <unordered_map>
 
 #include "freeform/mesh/triangulate.h"
 #include "part_mesh_internal.h"
@@ -101,23 +100,31 @@ std::vector<int> crossingEdges(const FaceGrid& g, const std::vector<std::vector<
     const int K = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(sides.size()))), 1, 512);
     const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1e-300));
     auto bucket = [&](double x, double l, double w) { return std::clamp(static_cast<int>((x - l) / w * K), 0, K - 1); };
-    std::unordered_map<int, std::vector<std::size_t>> buckets;
-    for (std::size_t i = 0; i < sides.size(); ++i) {
-        const Side& s = sides[i];
+    // (In one array, bucket by bucket: counted, then filled. A hash map of vectors was an
+    // allocation per bucket.)
+    std::vector<std::size_t> start(static_cast<std::size_t>(K) * K + 1, 0), entries;
+    auto forBuckets = [&](const Side& s, auto&& take) {
         const int x0 = bucket(std::min(s.a.x(), s.b.x()), lo.x(), size.x()), x1 = bucket(std::max(s.a.x(), s.b.x()), lo.x(), size.x());
         const int y0 = bucket(std::min(s.a.y(), s.b.y()), lo.y(), size.y()), y1 = bucket(std::max(s.a.y(), s.b.y()), lo.y(), size.y());
         for (int x = x0; x <= x1; ++x)
-            for (int y = y0; y <= y1; ++y) buckets[x * K + y].push_back(i);
+            for (int y = y0; y <= y1; ++y) take(static_cast<std::size_t>(x * K + y));
+    };
+    for (const Side& s : sides) forBuckets(s, [&](std::size_t k) { ++start[k + 1]; });
+    for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+    entries.resize(start.back());
+    {
+        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < sides.size(); ++i) forBuckets(sides[i], [&](std::size_t k) { entries[fill[k]++] = i; });
     }
     auto orient = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
         const double v = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
         return (v > 0) - (v < 0);
     };
     std::vector<int> out;
-    for (const auto& [key, list] : buckets)
-        for (std::size_t x = 0; x < list.size(); ++x)
-            for (std::size_t y = x + 1; y < list.size(); ++y) {
-                const Side &s = sides[list[x]], &t = sides[list[y]];
+    for (std::size_t k = 0; k + 1 < start.size(); ++k)
+        for (std::size_t x = start[k]; x < start[k + 1]; ++x)
+            for (std::size_t y = x + 1; y < start[k + 1]; ++y) {
+                const Side &s = sides[entries[x]], &t = sides[entries[y]];
                 if (near(s, t)) continue;
                 // Sides that cross in both of their interiors (not at a shared point, not along a line).
                 if (orient(s.a, s.b, t.a) * orient(s.a, s.b, t.b) < 0 && orient(t.a, t.b, s.a) * orient(t.a, t.b, s.b) < 0)
@@ -261,7 +268,9 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
         return in(a) && in(b);
     };
     std::vector<std::vector<long long>> sideCell(loops.size());
-    std::unordered_map<long long, std::vector<std::pair<int, int>>> cellSides;
+    // The sides in each cell, in loop order (in one array, cell by cell: counted, then filled).
+    std::vector<std::size_t> cellStart(static_cast<std::size_t>(Nu) * static_cast<std::size_t>(Nv) + 1, 0);
+    std::vector<std::pair<int, int>> cellSides;
     for (std::size_t l = 0; l < loops.size(); ++l) {
         const auto& loop = loops[l];
         const std::size_t n = loop.size();
@@ -274,7 +283,15 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
             else if (holds(after, a.s, b.s)) sideCell[l][k] = after;
         }
         for (std::size_t k = 0; k < n; ++k)
-            if (sideCell[l][k] >= 0) cellSides[sideCell[l][k]].push_back({static_cast<int>(l), static_cast<int>(k)});
+            if (sideCell[l][k] >= 0) ++cellStart[static_cast<std::size_t>(sideCell[l][k]) + 1];
+    }
+    for (std::size_t c = 1; c < cellStart.size(); ++c) cellStart[c] += cellStart[c - 1];
+    cellSides.resize(cellStart.back());
+    {
+        std::vector<std::size_t> fill(cellStart.begin(), cellStart.end() - 1);
+        for (std::size_t l = 0; l < loops.size(); ++l)
+            for (std::size_t k = 0; k < loops[l].size(); ++k)
+                if (sideCell[l][k] >= 0) cellSides[fill[static_cast<std::size_t>(sideCell[l][k])]++] = {static_cast<int>(l), static_cast<int>(k)};
     }
 
     auto clip = [&](const std::vector<PolyPoint>& poly) {
@@ -326,6 +343,8 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
         if (signedArea(rest) > 0) clip(rest);
     };
 
+    std::vector<std::pair<double, PolyPoint>> rim; // (reused from cell to cell)
+    std::vector<PolyPoint> whole;
     for (int i = 0; i < Nu; ++i)
         for (int j = 0; j < Nv; ++j) {
             const double u0 = g.gu[static_cast<std::size_t>(i)], u1 = g.gu[static_cast<std::size_t>(i) + 1];
@@ -338,7 +357,7 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
                 return -1.0;
             };
             // The cell's boundary points: its corners and the polygon points on its sides.
-            std::vector<std::pair<double, PolyPoint>> rim{{0, {{u0, v0}, -2}}, {1, {{u1, v0}, -3}}, {2, {{u1, v1}, -4}}, {3, {{u0, v1}, -5}}};
+            rim.assign({{0, {{u0, v0}, -2}}, {1, {{u1, v0}, -3}}, {2, {{u1, v1}, -4}}, {3, {{u0, v1}, -5}}});
             auto addSide = [&](const std::vector<std::pair<double, int>>& l, double lo, double hi, bool vertical, double fixed) {
                 for (auto it = std::upper_bound(l.begin(), l.end(), std::make_pair(lo, std::numeric_limits<int>::max()));
                      it != l.end() && it->first < hi; ++it) {
@@ -358,12 +377,12 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
             };
 
             const long long cell = static_cast<long long>(i) * Nv + j;
-            const auto found = cellSides.find(cell);
-            if (found == cellSides.end()) {
+            const std::size_t first = cellStart[static_cast<std::size_t>(cell)], last = cellStart[static_cast<std::size_t>(cell) + 1];
+            if (first == last) {
                 if (!insideLoops(loops, {0.5 * (u0 + u1), 0.5 * (v0 + v1)})) continue;
-                std::vector<PolyPoint> poly;
-                for (const auto& r : rim) poly.push_back(vertexOf(r.second));
-                emit(poly);
+                whole.clear();
+                for (const auto& r : rim) whole.push_back(vertexOf(r.second));
+                emit(whole);
                 continue;
             }
             // Chains: maximal runs of consecutive sides in this cell.
@@ -372,7 +391,8 @@ double meshFace(const PartFace& face, std::size_t f, const FaceGrid& g, std::vec
                 double in = 0, out = 0;
             };
             std::vector<Chain> chains;
-            for (const auto& [l, k] : found->second) {
+            for (std::size_t side = first; side < last; ++side) {
+                const auto [l, k] = cellSides[side];
                 const auto& loop = loops[static_cast<std::size_t>(l)];
                 const int n = static_cast<int>(loop.size());
                 const auto& cells = sideCell[static_cast<std::size_t>(l)];

@@ -123,6 +123,7 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved, bo
 {
     if (tightest) *tightest = true;
     const MappedCurve<2>& c = trim->curve;
+    const auto& hom = c.nurbs.homogeneousPieces(); // p + 1 columns per Bézier piece
     const double ca = trimParameter(ta), cb = trimParameter(tb);
     const double lo = std::min(ca, cb), hi = std::max(ca, cb);
     // The trim's Bézier pieces over [lo, hi], cut by de Casteljau (no knot insertion: a cut a
@@ -132,17 +133,17 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved, bo
     thread_local std::vector<CutPiece> cut;
     cut.clear();
     auto addPiece = [&](double s0, double s1) {
-        const std::vector<double>& b = *breaks;
+        const std::vector<double>& b = c.nurbs.breakpoints();
         const std::size_t first = static_cast<std::size_t>(
             std::max<std::ptrdiff_t>(0, std::upper_bound(b.begin(), b.end(), s0) - b.begin() - 1));
         for (std::size_t k = first; k + 1 < b.size() && b[k] < s1; ++k) {
             const double w = b[k + 1] - b[k];
             const double a = std::clamp((s0 - b[k]) / w, 0.0, 1.0), e = std::clamp((s1 - b[k]) / w, 0.0, 1.0);
             if (!(e > a)) continue;
-            const auto& h = (*pieces)[k].homogeneous().controlPoints();
             CutPiece& piece = cut.emplace_back();
-            piece.p = static_cast<int>(h.cols()) - 1;
-            for (int i = 0; i <= piece.p; ++i) piece.h[static_cast<std::size_t>(i)] = h.col(i);
+            piece.p = c.nurbs.degree();
+            const Eigen::Index column = static_cast<Eigen::Index>(k) * (piece.p + 1);
+            for (int i = 0; i <= piece.p; ++i) piece.h[static_cast<std::size_t>(i)] = hom.col(column + i);
             if (a > 0) piece.keepAfter(a);
             const double e2 = a > 0 ? (e - a) / (1 - a) : e;
             if (e2 < 1) piece.keepBefore(e2);

@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -212,8 +211,6 @@ struct EdgeUse {
     const FaceGrid* grid;
     double deviationTarget; // what deviation() may reach on every side (the face's trim share)
     double edgeFirst, edgeLast;
-    std::shared_ptr<const std::vector<RationalBezierCurve<double, 2>>> pieces; // the trim's, once
-    std::shared_ptr<const std::vector<double>> breaks;
     double invTanQuarter = 0; // the trim's map: invTanQuarterOf, once
 
     double trimParameter(double t) const { return trimParameterOf(trim->curve, edgeFirst, edgeLast, t); }

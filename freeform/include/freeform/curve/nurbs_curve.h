@@ -14,8 +14,7 @@
 //   - insertKnot(): Boehm's algorithm, r times; refined(): the Oslo algorithm in blossom form
 //     (each new control point is the blossom of the old curve at p consecutive new knots);
 //   - split(): Boehm's insertion of the cut up to multiplicity p in one pass (A5.1), rest copied;
-//   - bezierPieces(): Bézier extraction, one rational Bézier piece per non-empty knot span, its
-//     points the blossom values at (a^(p-i), b^i);
+//   - bezierPieces(): one rational Bézier piece per non-empty span, points the blossoms at (a^(p-i), b^i);
 //   - evaluateMany()/evaluateManyWithDerivative(): the batch path; the spans' Bézier pieces are
 //     extracted once in the constructor and turned into Taylor coefficients about the span
 //     midpoint (|s - 1/2| <= 1/2 in the local parameter s, so the power form is well conditioned at
@@ -310,6 +309,8 @@ public:
             out.emplace_back(BezierCurve<Scalar, Dim + 1>(HPoints(pieces_.middleCols(static_cast<Eigen::Index>(k) * (p + 1), p + 1))));
         return out;
     }
+    /// bezierPieces()' homogeneous points as the curve keeps them (p + 1 columns per piece), no copy.
+    const HPoints& homogeneousPieces() const { return pieces_; }
     /// The distinct knots of the domain: piece k of bezierPieces() is the curve over
     /// [breakpoints()[k], breakpoints()[k+1]], reparametrised to [0, 1].
     const std::vector<Scalar>& breakpoints() const { return breaks_; }
