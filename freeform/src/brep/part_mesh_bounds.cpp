@@ -263,10 +263,13 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
     }
     const bool ruled = !general || ruledInV(p);
     if (rowPart) *rowPart = 0;
+    double worst = 0;
     auto cellBound = [&](const RationalPatch& column, const RationalPatch& cell, int i, int j) {
         const bool curves = !zones.meets(double(i) / nu, double(i + 1) / nu, double(j) / nv, double(j + 1) / nv);
-        // (With a limit, only whether each cell is within it counts.)
-        double bound = general ? ownCellBound(cell, curves, limit < kInf ? limit : 0, odds) : kInf;
+        // (With a limit, only whether each cell is within it counts; without, only whether it is
+        // over the largest so far, and by how much: a cheaper bound within that leaves the
+        // largest as it is, so the result is the same number.)
+        double bound = general ? ownCellBound(cell, curves, limit < kInf ? limit : worst, odds) : kInf;
         if (ruled) bound = std::min(bound, ruledCellBound(column, double(j) / nv, double(j + 1) / nv, curves, rowPart));
         return bound;
     };
@@ -294,7 +297,6 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
         const double bound = cellBound(column, general ? cell : column, i, j);
         if (bound > limit) return bound;
     }
-    double worst = 0;
     rest = p;
     for (int i = 0; i < nu; ++i) {
         if (i + 1 < nu) rest.splitOffU(1.0 / (nu - i), column);
@@ -452,19 +454,21 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     int hintRow = 0;
     RationalPatch strip = *patches.front(), cell = strip; // the column's and the cell's nets, reused
     std::vector<RuledForm> ruled;
-    NetOdds odds;
+    NetOdds odds, keptOdds; // (the probes', and the columns kept: their cells against other limits)
     for (const RationalPatch* p : patches) ruled.emplace_back(*p);
+    // (Not a probe: the largest bound of the columns kept, `bound`, so far. A cell's cheaper bound
+    // within the largest so far leaves it as it is, as in cellsBound.)
     auto column = [&](double x0, double x1, bool probe = true) {
+        double worst = 0;
         auto cellAt = [&](std::size_t b, int j) {
             return cellOfColumn(ruled[b], strip, x0, x1, double(j) / rows[b], double(j + 1) / rows[b], *zones[b], cell,
-                                probe ? target : 0, &odds);
+                                probe ? target : std::max(bound, worst), probe ? &odds : &keptOdds);
         };
         if (hintPatch < patches.size()) {
             patches[hintPatch]->pieceUInto(x0, x1, strip);
             const double bound = cellAt(hintPatch, hintRow);
             if (bound > target) return bound;
         }
-        double worst = 0;
         for (std::size_t b = 0; b < patches.size(); ++b) {
             patches[b]->pieceUInto(x0, x1, strip);
             for (int j = 0; j < rows[b]; ++j) {
@@ -689,7 +693,8 @@ double gridBound(const RationalPatch& p, int nu, int nv, bool local, const TrimZ
 {
     const double whole = rationalTessellationErrorBound(p, nu, nv);
     if (!local) return whole;
-    if (nu * nv <= 4096) return std::min(whole, cellsBound(p, nu, nv, zones));
+    NetOdds odds;
+    if (nu * nv <= 4096) return std::min(whole, cellsBound(p, nu, nv, zones, true, nullptr, kInf, nullptr, &odds));
     // A ruled patch's search may go past 4096 cells (fewestRuled): its rows of cells are few.
     if (nv <= 64 && ruledInV(p)) return std::min(whole, ruledGridBound(p, nu, nv, zones));
     if (nu <= 64 && ruledInV(p.transposed())) return std::min(whole, ruledGridBound(p.transposed(), nv, nu, zones.transposed()));
