@@ -281,6 +281,40 @@ TEST_CASE("rational patches: the bound per axis of the patch's frame is exact on
     }
 }
 
+TEST_CASE("rational patches: rationalBounds gives the whole net's bound and the framed one of one pass, to the bit")
+{
+    // On the parabola across a line above, the whole net's bound sums the two parts' norms,
+    // (k + c) / 4, where the frame's is their root sum of squares.
+    const double k = 0.3, c = 1.7;
+    PointMatrix<double, 3> points(3, 9);
+    const double xs[3] = {0, 0.5, 1 + k}, ys[3] = {0, 0.5, 1}, zs[3] = {0, 0, c};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) points.col(i * 3 + j) = Eigen::Vector3d(xs[j], ys[i], zs[i]);
+    const RationalPatch parabola(2, 2, points, Eigen::VectorXd::Ones(9));
+    CHECK(std::abs(rationalWholeNetBound(parabola, 1, 1) - (k + c) / 4) <= 1e-12);
+    // A patch of degree (3, 4) with weights from 0.5 to 2 and points in no plane: both bounds of
+    // rationalBounds are the numbers the two separate functions give, bit for bit (the part
+    // mesher's searches take either, and the meshes must not depend on which).
+    PointMatrix<double, 3> net(3, 20);
+    Eigen::VectorXd weights(20);
+    for (int i = 0; i <= 3; ++i)
+        for (int j = 0; j <= 4; ++j) {
+            const int x = i * 5 + j;
+            net.col(x) = Eigen::Vector3d(i + 0.1 * std::sin(3.0 * x), j + 0.2 * std::cos(5.0 * x), 0.3 * i * j - 0.7 * std::sin(x));
+            weights[x] = 1.25 + 0.75 * std::sin(7.0 * x);
+        }
+    const RationalPatch patch(3, 4, net, weights);
+    for (const RationalPatch* p : {&parabola, &patch})
+        for (const auto& [nu, nv] : {std::pair{1, 1}, std::pair{2, 3}, std::pair{7, 1}}) {
+            const RationalBounds both = rationalBounds(*p, nu, nv);
+            CHECK(both.wholeNet == rationalWholeNetBound(*p, nu, nv));
+            CHECK(both.framed == rationalTessellationErrorBound(*p, nu, nv));
+            CHECK(both.framed <= both.wholeNet);
+        }
+    CHECK(rationalBounds(parabola, 1, 1).framed == Approx(std::hypot(k, c) / 4).epsilon(1e-12)); // the frame's, not the whole net's
+    CHECK_THROWS_AS(rationalBounds(patch, 0, 1), Error);
+}
+
 TEST_CASE("rational document: freeform eval in process, exit statuses")
 {
     const std::string path = tmp("rational_eval.json");

@@ -103,9 +103,9 @@ public:
     double wholeNet(int nu, int nv) const { return (numerator_.bound(nu, nv) + rho_ * weight_.bound(nu, nv)) / wmin_; }
     double operator()(int nu, int nv) const
     {
-        const double ew = weight_.bound(nu, nv);
-        const double whole = (numerator_.bound(nu, nv) + rho_ * ew) / wmin_;
+        const double whole = wholeNet(nu, nv);
         if (!framed_) return whole;
+        const double ew = weight_.bound(nu, nv);
         double sum = 0;
         for (std::size_t x = 0; x < 3; ++x) {
             const double e = (axes_[x].bound(nu, nv) + axisRho_[static_cast<Eigen::Index>(x)] * ew) / wmin_;
