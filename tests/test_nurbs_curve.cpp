@@ -208,6 +208,20 @@ TEST_CASE("knot insertion (Boehm), refinement (Oslo), extraction, split and reve
             const auto pieces = c.bezierPieces();
             const auto& br = c.breakpoints();
             REQUIRE(pieces.size() + 1 == br.size());
+            // The pieces as the curve keeps them (homogeneousPieces, which the part mesher reads
+            // in place of bezierPieces' copies): piece k in columns k (p + 1) .. k (p + 1) + p, the
+            // same bits, and their homogeneous de Casteljau point over its span is the curve's.
+            const auto& kept = c.homogeneousPieces();
+            REQUIRE(kept.cols() == static_cast<Eigen::Index>(pieces.size()) * (p + 1));
+            for (std::size_t k = 0; k < pieces.size(); ++k) {
+                const auto piece = kept.middleCols(static_cast<Eigen::Index>(k) * (p + 1), p + 1);
+                CHECK(piece == pieces[k].homogeneous().controlPoints());
+                const double t = 0.37, u = br[k] + t * (br[k + 1] - br[k]);
+                Eigen::MatrixXd h = piece;
+                for (int level = 1; level <= p; ++level)
+                    for (int i = 0; i + level <= p; ++i) h.col(i) = (1 - t) * h.col(i) + t * h.col(i + 1);
+                CHECK(maxDiff(Eigen::Vector3d(h.col(0).head<3>() / h(3, 0)), c.evaluate(u)) <= 1e-13 * scale);
+            }
             const auto [left, right] = c.split(u1);
             const auto rev = c.reversed();
             for (int s = 0; s <= 100; ++s) {
