@@ -25,11 +25,7 @@ Json convert(const ConvertOptions& o)
             throw UsageError("option -o: a part is written as STEP, IGES, BRep (.step .stp .iges .igs .brep) or a document (.json)");
         if (!partIn && lowerExtension(o.positional[0]) != ".json")
             throw UsageError("option -o: STEP and IGES are written from a part: a STEP or IGES file or a document (.json)");
-#ifdef FREEFORM_HAVE_CAD
         return partConvert(o.positional[0], o.output, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt);
-#else
-        refusePartFile(partIn ? o.positional[0] : o.output);
-#endif
     }
     if (given(o.toGiven)) return convertKind(o);
     if (given(o.endGiven)) throw UsageError("option --end: goes with --to deboor_spline only");

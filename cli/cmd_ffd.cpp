@@ -98,14 +98,9 @@ Json ffdPart(const FfdOptions& o, const DocumentObject& object, const Lattice& l
         throw UsageError("option -o: a part is written as STEP, IGES, BRep (.step .stp .iges .igs .brep) or a document (.json)");
     if (given(o.normalsGiven)) throw UsageError("option --normals: applies to meshes only, not to a part");
     if (given(o.toleranceGiven) && !(o.tolerance > 0)) throw UsageError("option --tolerance: must be positive");
-#ifdef FREEFORM_HAVE_CAD
     Json j = partFfd(input, o.output, object.name, lattice, o.strength, o.tolerance, o.threads);
     if (reportPath) writeFileAtomically(*reportPath, j.dump(2) + "\n");
     return j;
-#else
-    (void)object, (void)lattice, (void)reportPath;
-    refusePartFile(input);
-#endif
 }
 
 Json ffd(const FfdOptions& o)

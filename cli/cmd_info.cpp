@@ -43,20 +43,7 @@ Json info(const InfoOptions& o)
 {
     expectPositional(o.positional, 1, "the mesh file (freeform info MESH)");
     const std::string& path = o.positional[0];
-    if (lowerExtension(path) == ".json") { // a document's part
-#ifdef FREEFORM_HAVE_CAD
-        return partInfo(path, o.details);
-#else
-        refusePartFile(path);
-#endif
-    }
-    if (isPartFileName(path)) {
-#ifdef FREEFORM_HAVE_CAD
-        return partInfo(path, o.details);
-#else
-        refusePartFile(path);
-#endif
-    }
+    if (lowerExtension(path) == ".json" || isPartFileName(path)) return partInfo(path, o.details); // a document's part, or a CAD file's
     const PolygonMesh mesh = readPolygonMesh(path);
     MeshReport r;
     try {

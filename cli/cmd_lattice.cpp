@@ -48,11 +48,7 @@ Json lattice(const LatticeOptions& o)
     Lattice::Points positions;
     long long vertices = 0;
     if (isPartFileName(meshPath)) {
-#ifdef FREEFORM_HAVE_CAD
         positions = partBoxCorners(meshPath, vertices);
-#else
-        refusePartFile(meshPath);
-#endif
     } else {
         PolygonMesh mesh = readPolygonMesh(meshPath);
         vertices = mesh.vertexCount();

@@ -79,11 +79,7 @@ Json partCommand(const TessellateOptions& o)
     if (given(o.segmentsGiven) || given(o.objectGiven) || o.outward || o.refinement != "local" || o.measure != "parametric")
         throw UsageError("a part takes only --tolerance and --max-triangles");
     if (o.maxTriangles < 0) throw UsageError("option --max-triangles: must be 0 (no limit) or positive");
-#ifdef FREEFORM_HAVE_CAD
     return partTessellate(input, o.output, o.tolerance, o.maxTriangles);
-#else
-    refusePartFile(input);
-#endif
 }
 
 Json tessellateCommand(const TessellateOptions& o)
@@ -127,15 +123,11 @@ Json tessellateCommand(const TessellateOptions& o)
             if (!given(o.toleranceGiven)) throw UsageError("a part needs --tolerance E (the certified distance bound)");
             if (o.outward || o.refinement != "local" || o.measure != "parametric")
                 throw UsageError("a part takes only --tolerance and --max-triangles");
-#ifdef FREEFORM_HAVE_CAD
             std::string name;
             const Part part = documentPart(input, object->name(), name);
             Json out = partMeshCommand(part, output, o.tolerance, o.maxTriangles);
             out["object"] = name;
             return out;
-#else
-            refusePartFile(input);
-#endif
         }
         result = tessellateDocument(doc, object, options); // the document layer (document/operations.h)
     }

@@ -109,8 +109,6 @@ Json interpolateNurbsCommand(const PointColumns& points, const std::vector<doubl
 
 /// The file's extension in lower case, with its dot (".json"), or empty; commands.cpp.
 std::string lowerExtension(const std::string& path);
-/// The error for a part file in a build without Open CASCADE.
-[[noreturn]] void refusePartFile(const std::string& path);
 
 /// The counts `info` and `convert` print for a part, in their order: faces, edges, vertices,
 /// shells, solids, closed, units (info_part.cpp).

@@ -33,11 +33,6 @@ std::string lowerExtension(const std::string& path)
     return ext;
 }
 
-void refusePartFile(const std::string& path)
-{
-    throw Error(path + ": this freeform was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF); it reads no STEP or IGES");
-}
-
 Evaluator evaluatorFor(const KindInfo& kind)
 {
     if (!kind.supports(KindOperation::Evaluate)) return nullptr;

@@ -1,7 +1,7 @@
 # Type stubs of the freeform Python module (docs/python.md). Arrays are NumPy arrays: points
 # (N, 3) float64 or float32 C-contiguous are used without a copy; other layouts are converted once.
 # Checked against the built module by mypy.stubtest and by argument name (python/tests/test_module.py).
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, TypeAlias, Union, overload
+from typing import Any, ClassVar, Dict, List, Literal, Optional, Sequence, Tuple, TypeAlias, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -369,6 +369,7 @@ class RationalLattice(metaclass=_Pybind11Type):
     def deform_curve(self, curve: Union[BezierCurve, RationalBezierCurve, NurbsCurve]) -> Union[RationalBezierCurve, NurbsCurve]: ...
 
 class Part(metaclass=_Pybind11Type):
+    formats: ClassVar[Tuple[str, ...]]
     @staticmethod
     def load(path: str) -> "Part": ...
     @property

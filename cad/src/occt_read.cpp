@@ -212,6 +212,8 @@ Part partFromShape(const TopoDS_Shape& shape, const std::string& units)
 
 bool isCadFile(const std::string& path) { return isPartFileName(path); }
 
+bool cadFilesSupported() { return true; }
+
 Part readCadFile(const std::string& path, std::vector<std::string>* warnings)
 {
     // Open CASCADE's messages of a read that fails go into the error; of one that succeeds, to the

@@ -20,9 +20,7 @@
 #include "freeform/io/part_file.h"
 #include "freeform/surface/patch_complex.h"
 #include "freeform/tessellate/tessellate.h"
-#ifdef FREEFORM_HAVE_CAD
 #include "freeform/cad/cad_file.h"
-#endif
 #include "scene/json_read.h"
 #include "scene/scene_internal.h"
 
@@ -46,14 +44,10 @@ bool isMeshFile(const std::string& ext)
 
 /// The part of a STEP or IGES file as one document object named after the file. Open CASCADE's
 /// warnings go to freeform::warn (the status line shows them). A build without Open CASCADE
-/// refuses the file.
+/// refuses the file (readCadFile's error).
 DocumentObject cadObject(const std::string& path)
 {
-#ifdef FREEFORM_HAVE_CAD
     return {fs::path(path).stem().string(), toData(readCadFile(path)), ""};
-#else
-    throw Error(path + ": this editor was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF): it reads no STEP or IGES file");
-#endif
 }
 
 /// 1/1000 of the diagonal of the box of a part's control points: the tessellation tolerance a part
@@ -398,11 +392,7 @@ std::string Scene::approximationText(const PartDeformReport& report)
 {
     const std::size_t faces = report.approximatedFaces.size();
     if (faces + static_cast<std::size_t>(report.approximatedEdges) == 0) return {};
-#ifdef FREEFORM_HAVE_CAD
-    const int cap = cadMaxDegree();
-#else
-    const int cap = report.maxDegree; // (no writer caps a degree in this build)
-#endif
+    const int cap = cadFilesSupported() ? cadMaxDegree() : report.maxDegree; // (no writer caps a degree without one)
     char error[32];
     std::snprintf(error, sizeof error, "%.2g", report.maxApproximationError);
     return ", " + std::to_string(faces) + " faces and " + std::to_string(report.approximatedEdges) + " edges approximated at degree " +
@@ -414,7 +404,8 @@ Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattic
     const SceneItem& it = item(i);
     if (!isPartFileName(path))
         throw Error(path + ": a part is written as STEP (.step .stp), IGES (.iges .igs) or BRep (.brep); File > Save writes the document");
-#ifdef FREEFORM_HAVE_CAD
+    // Refused before any deformation where this build writes no STEP, IGES or BRep.
+    if (!cadFilesSupported()) writeCadFile(Part{}, path);
     // The document layer's part of the object (a trimmed surface: a part of one face).
     std::optional<Part> part = objectPart(typedObject(i));
     if (!part) throw Error("\"" + it.name + "\" is a " + it.type + ", not a part or trimmed_surface");
@@ -443,10 +434,6 @@ Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattic
     out.faces = static_cast<int>(part->faces.size());
     out.valid = writeCadFile(*part, path).valid;
     return out;
-#else
-    (void)lattice, (void)strength;
-    throw Error("\"" + it.name + "\": this editor was built without Open CASCADE (FREEFORM_BUILD_CAD=OFF): it writes no STEP or IGES file");
-#endif
 }
 
 Scene Scene::recover(const std::string& autosavePath, const std::string& originalPath, double aspect)

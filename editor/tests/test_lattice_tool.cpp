@@ -21,9 +21,7 @@
 #include <vector>
 
 #include "freeform/io/geometry_data.h"
-#ifdef FREEFORM_HAVE_CAD
 #include "freeform/cad/cad_file.h"
-#endif
 #include "interaction/picking.h"
 #include "support/process.h"
 #include "support/sanitizers.h"
@@ -302,10 +300,13 @@ TEST_CASE("Scene: the part to export is the selected one, else the document's on
     CHECK(Scene::approximationText(r) == ", 2 faces and 3 edges approximated at degree 25 (certified error <= 2.5e-07)");
 }
 
-#ifdef FREEFORM_HAVE_CAD
 TEST_CASE("Tools: a STEP part imported, a lattice fitted (L) previews on its mesh; apply composes it exactly; export writes STEP",
           "[tools][ffd][cad]")
 {
+    if (!freeform::cadFilesSupported()) {
+        WARN("this build has no Open CASCADE: no STEP part to import");
+        return;
+    }
     const std::string step = "/usr/share/opencascade/data/step/screw.step";
     Bench b{Scene()};
     // mm: a screw of 10 faces in about 2,000 triangles; under the sanitizers 0.5 mm (the exact
@@ -436,6 +437,5 @@ TEST_CASE("Scene: a STEP file opens as a document of one part; bad files change 
     CHECK_THROWS_WITH(scene.exportPart(0, kTmp + "/x.json"), Catch::Contains("a part is written as STEP"));
     CHECK_FALSE(std::filesystem::exists(kTmp + "/x.json"));
 }
-#endif
 
 } // namespace test_lattice_tool

@@ -16,9 +16,7 @@ void bindLatticeWeights(pybind11::module_& m);
 void bindGeometry(pybind11::module_& m);
 void bindNurbs(pybind11::module_& m);
 void bindNurbsSurfaces(pybind11::module_& m);
-#ifdef FREEFORM_HAVE_CAD
 void bindPart(pybind11::module_& m);
-#endif
 } // namespace ffpy
 
 namespace {
@@ -83,9 +81,7 @@ PYBIND11_MODULE(freeform, m)
     ffpy::bindGeometry(m);
     ffpy::bindNurbs(m);
     ffpy::bindNurbsSurfaces(m); // after bindNurbs and bindLattice: adds Lattice.deform_curve
-#ifdef FREEFORM_HAVE_CAD
     ffpy::bindPart(m); // after bindNurbs and bindNurbsSurfaces: returns their classes
-#endif
     // For the tests of docs/python.md "Arrays": the array Lattice.bind, report and the other point
     // calls read for their points (ffpy::rows): the argument itself for float64/float32
     // C-contiguous (N, 3) arrays, a float64 copy made once otherwise. (deform, det_j and

@@ -220,18 +220,14 @@ freeform::NurbsCurve<double, D> keepPolynomial(const freeform::NurbsCurve<double
 
 // ---------------------------------------------------------------- document bridge
 
-#ifdef FREEFORM_HAVE_CAD
 py::object partObject(const freeform::Part& part);                          // part.cpp
 py::object trimmedSurfaceObject(const freeform::TrimmedSurface& surface);   // part.cpp
 std::optional<freeform::ObjectData> partData(py::handle h);                 // part.cpp
-#endif
 
 py::object geometryObject(const freeform::TypedDocument& doc, const freeform::TypedObject& object)
 {
-#ifdef FREEFORM_HAVE_CAD
     if (const auto* part = std::get_if<freeform::Part>(&object.geometry())) return partObject(*part);
     if (const auto* t = std::get_if<freeform::TrimmedSurface>(&object.geometry())) return trimmedSurfaceObject(*t);
-#endif
     py::object o = fromGeometry(object.geometry());
     if (o.is_none())
         throw freeform::Error(doc.what(object) + ": a " + object.type() +
@@ -252,9 +248,7 @@ freeform::ObjectData objectData(py::handle h)
     if (py::isinstance<PyNurbsCurve>(h)) return std::visit(data, h.cast<const PyNurbsCurve&>().c);
     if (py::isinstance<PyRationalSurface>(h)) return data(h.cast<const PyRationalSurface&>().s);
     if (py::isinstance<PyNurbsSurface>(h)) return data(h.cast<const PyNurbsSurface&>().s);
-#ifdef FREEFORM_HAVE_CAD
     if (auto part = partData(h)) return std::move(*part);
-#endif
     throw py::type_error("expected a freeform geometry object (BezierCurve, Spline, Patch, Lattice, RationalBezierCurve, "
                          "NurbsCurve, RationalBezierSurface, NurbsSurface, Part, TrimmedSurface), got " +
                          std::string(py::str(py::type::handle_of(h).attr("__name__"))));

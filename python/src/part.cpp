@@ -195,9 +195,21 @@ std::optional<freeform::ObjectData> partData(py::handle h)
 void bindPart(py::module_& m)
 {
     py::class_<PyPart>(m, "Part", R"doc(
-A CAD part read from a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file through Open CASCADE (docs/cad.md):
-faces (trimmed NURBS surfaces in their exact forms), edges, vertices, shells and solids, in the
-file's length unit. Faces and edges are numbered as Open CASCADE numbers them, from 0.)doc")
+A CAD part read from a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file through Open CASCADE (docs/cad.md),
+or from a document's part object (.json): faces (trimmed NURBS surfaces in their exact forms), edges, vertices,
+shells and solids, in the file's length unit. Faces and edges are numbered as Open CASCADE numbers them, from 0.
+A module built without Open CASCADE has parts too, from documents and trimmed surfaces: Part.formats says
+which files load and save take.)doc")
+        .def_property_readonly_static(
+            "formats",
+            [](const py::object&) {
+                py::tuple all = freeform::cadFilesSupported() ? py::make_tuple(".step", ".stp", ".iges", ".igs", ".brep", ".json")
+                                                              : py::make_tuple(".json");
+                return all;
+            },
+            "The file extensions load and save take: ('.step', '.stp', '.iges', '.igs', '.brep', '.json'), or "
+            "('.json',) in a module built without Open CASCADE (FREEFORM_BUILD_CAD=OFF), whose load and save raise "
+            "freeform.Error naming any other file.")
         .def_static(
             "load",
             [](const std::string& path) {

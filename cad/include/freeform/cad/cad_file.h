@@ -14,6 +14,11 @@
 
 namespace freeform {
 
+/// Whether this build reads and writes STEP, IGES and BRep files: false where freeform_cad was
+/// built without Open CASCADE (FREEFORM_BUILD_CAD=OFF), whose readCadFile and writeCadFile throw
+/// freeform::Error naming the file.
+bool cadFilesSupported();
+
 /// Whether the path names a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file (by its
 /// extension, in any case): io/part_file.h's isPartFileName.
 bool isCadFile(const std::string& path);
