@@ -319,6 +319,39 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
     return worst;
 }
 
+/// The fewest columns n in [1, cap] for which `probe(n)` (the grid's bound, or over the target a
+/// cell's bound over it) is within `target`, where the grids pass from some n on (the bound falls
+/// as the columns narrow) and n = `failed` fails: the answer doubling and bisection give, from
+/// fewer probes. A column's bound falls about as the square of its width (a circle's chords), so a
+/// probe's bound b at n puts the answer near n sqrt(b / target): the next probe is there, but at
+/// least a quarter of the open range on (no crawl where a share of the bound does not shrink), and
+/// after a failed probe with no pass yet at most four times as far (a grid that passes is scanned
+/// whole). The answer is
+/// confirmed as bisection confirms it: n passes and n - 1 fails. Returns cap + 1 where none passes.
+/// On screw.step it takes the ruled searches from 1.25 M instructions to 0.74 M.
+template <class Probe>
+int fewestColumns(int cap, double target, int failed, double failedBound, Probe&& probe)
+{
+    auto estimate = [&](int n, double b) {
+        const double e = std::ceil(n * std::sqrt(b / target));
+        return e < cap ? static_cast<int>(e) : cap + 1;
+    };
+    int lo = failed, hi = cap + 1; // lo failed; hi passed (cap + 1: none yet)
+    int next = estimate(failed, failedBound);
+    while (hi - lo > 1) {
+        const int n = std::clamp(next, lo + 1, hi - 1);
+        const double b = probe(n);
+        if (b <= target) {
+            hi = n;
+            next = std::min(estimate(n, b), hi - std::max(1, (hi - lo) / 4));
+        } else {
+            lo = n;
+            next = hi > cap ? std::min(std::max(estimate(n, b), n + 1), 4 * n) : std::max(estimate(n, b), lo + (hi - lo) / 4);
+        }
+    }
+    return hi;
+}
+
 /// cellsBound on a patch ruled in v with the ruled bound alone.
 double ruledGridBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones, double* rowPart = nullptr, double limit = kInf)
 {
@@ -328,9 +361,8 @@ double ruledGridBound(const RationalPatch& p, int nu, int nv, const TrimZones& z
 /// On a patch ruled in v, the grid with the fewest cells whose ruled bounds are within target,
 /// if it has fewer cells than `best` (else `best`): per count along v (up to 8: the height enters
 /// only through the differences' spread, which the cells' own bounds handle better where it
-/// dominates), the fewest along u, found by doubling (a ruled face needs a circle's chords, few)
-/// and then bisection. Where the rows alone are over the target at the most columns allowed, no
-/// count along v helps and the search stops.
+/// dominates), the fewest along u (fewestColumns). Where the rows alone are over the target at
+/// the most columns allowed, no count along v helps and the search stops.
 std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best, const TrimZones& zones)
 {
     long bestCells = static_cast<long>(best[0]) * best[1];
@@ -346,21 +378,17 @@ std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array
             if (rowPart > target) break;
             continue;
         }
-        int hi = 1;
-        bool passes = ruledGridBound(p, hi, nv, zones, &rowPart) <= target;
-        while (!passes && hi < cap) {
-            hi = std::min(cap, 2 * hi);
-            passes = ruledGridBound(p, hi, nv, zones, &rowPart) <= target;
-        }
-        if (!passes) {
+        // One column first (a ruled face needs a circle's chords, few), then from its bound.
+        const double one = ruledGridBound(p, 1, nv, zones, &rowPart);
+        FailHint hint;
+        const int hi = one <= target ? 1 : fewestColumns(cap, target, 1, one, [&](int n) {
+            return cellsBound(p, n, nv, zones, false, nullptr, target, &hint);
+        });
+        if (hi > cap) {
+            // Whether the rows alone are over the target at the most columns: from its whole scan.
+            if (cap > 1) ruledGridBound(p, cap, nv, zones, &rowPart);
             if (rowPart > target) break;
             continue;
-        }
-        int lo = hi == 1 ? 1 : hi / 2 + 1; // hi / 2 did not pass
-        while (lo < hi) {
-            const int mid = lo + (hi - lo) / 2;
-            if (ruledGridBound(p, mid, nv, zones) <= target) hi = mid;
-            else lo = mid + 1;
         }
         if (static_cast<long>(hi) * nv < bestCells) {
             bestCells = static_cast<long>(hi) * nv;
