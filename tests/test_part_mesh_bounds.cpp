@@ -242,3 +242,55 @@ TEST_CASE("uneven columns are narrow only where a trim holds cells to their para
 }
 
 } // namespace test_part_mesh_bounds
+
+namespace test_part_mesh_bounds {
+
+TEST_CASE("a grid search that starts from a like patch's answers finds the grid a fresh search finds", "[part_mesh]")
+{
+    using namespace freeform::part_mesh;
+    // A torus's 16 patches (four kinds, each four times along the turn), a sphere's and a cone's,
+    // and nine copies of a torus patch flattened in part (its control points moved a tenth, two
+    // tenths, ..., nine tenths of the way to the bilinear patch of its corners): their corners and
+    // weights are those of a patch seen before, so they look alike and start from answers over
+    // their own.
+    std::vector<RationalPatch> patches = patchesOf(circle(Eigen::Vector3d(4, 0, 0), 1, 0, 2 * M_PI));
+    const RationalPatch first = patches.front();
+    const int m = first.degreeU(), n = first.degreeV();
+    auto flattened = [&](double lambda) {
+        RationalPatch::Points points(3, (m + 1) * (n + 1));
+        RationalPatch::Weights weights((m + 1) * (n + 1));
+        for (int i = 0; i <= m; ++i)
+            for (int j = 0; j <= n; ++j) {
+                const double s = double(i) / m, t = double(j) / n;
+                const Eigen::Vector3d flat = (1 - s) * (1 - t) * first.controlPoint(0, 0) + s * (1 - t) * first.controlPoint(m, 0) +
+                                             (1 - s) * t * first.controlPoint(0, n) + s * t * first.controlPoint(m, n);
+                points.col(i * (n + 1) + j) = first.controlPoint(i, j) + lambda * (flat - first.controlPoint(i, j));
+                weights[i * (n + 1) + j] = first.weight(i, j);
+            }
+        return RationalPatch(m, n, points, weights);
+    };
+    const std::size_t torus = patches.size();
+    for (const RationalPatch& p : patchesOf(circle(Eigen::Vector3d::Zero(), 2, -M_PI / 2, M_PI / 2))) patches.push_back(p);
+    for (const RationalPatch& p : patchesOf(freeform::exactLine<3>(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 0, 5), 0, 1)))
+        patches.push_back(p);
+    const std::size_t alikeFrom = patches.size();
+    for (int tenths = 1; tenths <= 9; ++tenths) patches.push_back(flattened(0.1 * tenths));
+    REQUIRE(torus == 16);
+    TrimZones none, slot;
+    slot.boxes.emplace_back(Eigen::Vector2d(0.45, 0.2), Eigen::Vector2d(0.5, 0.8));
+    for (const double target : {0.05, 0.01, 0.002})
+        for (const TrimZones* zones : {&none, &slot}) {
+            SearchHints hints;
+            int alike = 0;
+            for (std::size_t k = 0; k < patches.size(); ++k) {
+                const bool seen = hints.like(patches[k]) != nullptr;
+                if (k < torus) alike += seen;
+                if (k >= alikeFrom) CHECK(seen);
+                INFO("target " << target << ", patch " << k);
+                CHECK(patchSegments(patches[k], target, *zones, &hints) == patchSegments(patches[k], target, *zones));
+            }
+            CHECK(alike == 12);
+        }
+}
+
+} // namespace test_part_mesh_bounds

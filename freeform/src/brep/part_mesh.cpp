@@ -112,9 +112,10 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target,
     for (std::size_t a = 0; a + 1 < bu.size(); ++a)
         for (std::size_t b = 0; b < cols; ++b) zones.push_back(zonesOf(a, b));
     std::vector<int> nu(bu.size() - 1, 1), nv(cols, 1);
+    SearchHints hints;
     for (std::size_t a = 0; a + 1 < bu.size(); ++a)
         for (std::size_t b = 0; b < cols; ++b) {
-            const std::array<int, 2> n = patchSegments(patches[a * cols + b], target, zones[a * cols + b]);
+            const std::array<int, 2> n = patchSegments(patches[a * cols + b], target, zones[a * cols + b], &hints);
             nu[a] = std::max(nu[a], n[0]);
             nv[b] = std::max(nv[b], n[1]);
         }

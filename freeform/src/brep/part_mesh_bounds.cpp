@@ -1,7 +1,7 @@
 // The bounds of the part tessellation's grids (brep/part_mesh.h, docs/cad.md "Tessellation"): a
-// rational patch's slopes, its cells' certified bounds (their own sub-nets; ruled patches without
-// their height; cones and surfaces of revolution from their curves), and the search for the grid
-// with the fewest cells within a target.
+// rational patch's cells' certified bounds (their own sub-nets; ruled patches without their height;
+// cones and surfaces of revolution from their curves), and the search for the grid with the fewest
+// cells within a target. (A grid's cells and the slopes over them: part_mesh_grid.cpp.)
 
 #include <algorithm>
 #include <array>
@@ -329,25 +329,30 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
 /// whole). The answer is
 /// confirmed as bisection confirms it: n passes and n - 1 fails. Returns cap + 1 where none passes.
 /// On screw.step it takes the ruled searches from 1.25 M instructions to 0.74 M.
+/// `guess` > 0 (a like patch's answer, SearchHints): the first probe, and the next one beside it.
 template <class Probe>
-int fewestColumns(int cap, double target, int failed, double failedBound, Probe&& probe)
+int fewestColumns(int cap, double target, int failed, double failedBound, int guess, Probe&& probe)
 {
     auto estimate = [&](int n, double b) {
         const double e = std::ceil(n * std::sqrt(b / target));
         return e < cap ? static_cast<int>(e) : cap + 1;
     };
     int lo = failed, hi = cap + 1; // lo failed; hi passed (cap + 1: none yet)
-    int next = estimate(failed, failedBound);
+    bool guessed = guess > failed && guess <= cap;
+    int next = guessed ? guess : estimate(failed, failedBound);
     while (hi - lo > 1) {
         const int n = std::clamp(next, lo + 1, hi - 1);
         const double b = probe(n);
         if (b <= target) {
             hi = n;
-            next = std::min(estimate(n, b), hi - std::max(1, (hi - lo) / 4));
+            next = guessed ? n - 1 : std::min(estimate(n, b), hi - std::max(1, (hi - lo) / 4));
         } else {
             lo = n;
-            next = hi > cap ? std::min(std::max(estimate(n, b), n + 1), 4 * n) : std::max(estimate(n, b), lo + (hi - lo) / 4);
+            next = guessed                 ? n + 1
+                   : hi > cap ? std::min(std::max(estimate(n, b), n + 1), 4 * n)
+                              : std::max(estimate(n, b), lo + (hi - lo) / 4);
         }
+        guessed = false;
     }
     return hi;
 }
@@ -363,10 +368,13 @@ double ruledGridBound(const RationalPatch& p, int nu, int nv, const TrimZones& z
 /// only through the differences' spread, which the cells' own bounds handle better where it
 /// dominates), the fewest along u (fewestColumns). Where the rows alone are over the target at
 /// the most columns allowed, no count along v helps and the search stops.
-std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best, const TrimZones& zones)
+/// `prior`: a like patch's answers per count of rows (SearchHints); `found` receives this one's.
+std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array<int, 2> best, const TrimZones& zones,
+                               const std::vector<int>* prior = nullptr, std::vector<int>* found = nullptr)
 {
     long bestCells = static_cast<long>(best[0]) * best[1];
     for (int nv = 1; nv <= 8 && nv < bestCells; ++nv) {
+        if (found) found->resize(static_cast<std::size_t>(nv) + 1, 0);
         const int cap = static_cast<int>(std::min<long>(4096, (bestCells - 1) / nv));
         if (cap < 1) break;
         // After one row, the most columns allowed first (fewer than one row needed, mostly): where
@@ -381,9 +389,11 @@ std::array<int, 2> fewestRuled(const RationalPatch& p, double target, std::array
         // One column first (a ruled face needs a circle's chords, few), then from its bound.
         const double one = ruledGridBound(p, 1, nv, zones, &rowPart);
         FailHint hint;
-        const int hi = one <= target ? 1 : fewestColumns(cap, target, 1, one, [&](int n) {
+        const int guess = prior && static_cast<std::size_t>(nv) < prior->size() ? (*prior)[static_cast<std::size_t>(nv)] : 0;
+        const int hi = one <= target ? 1 : fewestColumns(cap, target, 1, one, guess, [&](int n) {
             return cellsBound(p, n, nv, zones, false, nullptr, target, &hint);
         });
+        if (found && hi <= cap) (*found)[static_cast<std::size_t>(nv)] = hi;
         if (hi > cap) {
             // Whether the rows alone are over the target at the most columns: from its whole scan.
             if (cap > 1) ruledGridBound(p, cap, nv, zones, &rowPart);
@@ -416,28 +426,6 @@ TrimZones TrimZones::transposed() const
 }
 
 namespace {
-
-/// A rational patch's homogeneous points (h, w) moved so that the centre c of its control box is
-/// the origin: (h - c w, w). With rho the box's half diagonal (|S - c| <= rho) and wmin the least
-/// weight, a derivative of S is (h'_d - (S - c) w_d) / w, bounded by the differences of these.
-struct CentredNet {
-    explicit CentredNet(const RationalPatch& p) : h(p.homogeneous())
-    {
-        const Box<double, 3> box = p.controlBox();
-        centre = box.center();
-        rho = 0.5 * box.diagonal().norm();
-        for (int i = 0; i <= p.degreeU(); ++i)
-            for (int j = 0; j <= p.degreeV(); ++j) wmin = std::min(wmin, h.controlPoint(i, j)[3]);
-    }
-    Eigen::Vector4d operator()(int i, int j) const
-    {
-        const Eigen::Vector4d q = h.controlPoint(i, j);
-        return {q[0] - q[3] * centre.x(), q[1] - q[3] * centre.y(), q[2] - q[3] * centre.z(), q[3]};
-    }
-    const RationalPatch::Homogeneous& h;
-    Eigen::Vector3d centre;
-    double rho = 0, wmin = kInf;
-};
 
 /// How a patch is ruled, found once per patch (not per cell probed): in v, or in u (then its
 /// transposed copy, kept), or neither.
@@ -571,140 +559,6 @@ std::vector<double> unevenColumns(const std::vector<const RationalPatch*>& patch
     return breaks;
 }
 
-/// Bound on |S_u| and |S_v| of a rational patch over [0, 1]^2: S_u = (h'_u - (S - c) w_u) / w with
-/// h' = h - c w, c the centre and rho the half diagonal of the control box.
-std::pair<double, double> patchSlopes(const RationalPatch& patch)
-{
-    const int m = patch.degreeU(), n = patch.degreeV();
-    const CentredNet net(patch);
-    double hu = 0, wu = 0, hv = 0, wv = 0;
-    for (int i = 0; i < m; ++i)
-        for (int j = 0; j <= n; ++j) {
-            const Eigen::Vector4d d = m * (net(i + 1, j) - net(i, j));
-            hu = std::max(hu, d.head<3>().norm());
-            wu = std::max(wu, std::abs(d[3]));
-        }
-    for (int i = 0; i <= m; ++i)
-        for (int j = 0; j < n; ++j) {
-            const Eigen::Vector4d d = n * (net(i, j + 1) - net(i, j));
-            hv = std::max(hv, d.head<3>().norm());
-            wv = std::max(wv, std::abs(d[3]));
-        }
-    return {(hu + net.rho * wu) / net.wmin, (hv + net.rho * wv) / net.wmin};
-}
-
-FaceGrid::Cell& FaceGrid::cell(std::size_t i, std::size_t j) const
-{
-    const long long key = static_cast<long long>(i) * static_cast<long long>(gv.size()) + static_cast<long long>(j);
-    if (const auto it = cells_.find(key); it != cells_.end()) return it->second;
-    // The knot span holding the cell (a cell across a merged knot, or of no width: the face's).
-    Cell c;
-    c.slopes = {slopeU, slopeV};
-    const double u0 = gu[i], u1 = gu[i + 1], v0 = gv[j], v1 = gv[j + 1];
-    const std::size_t a = static_cast<std::size_t>(
-        std::clamp<std::ptrdiff_t>(std::upper_bound(bu.begin(), bu.end(), 0.5 * (u0 + u1)) - bu.begin() - 1, 0,
-                                   static_cast<std::ptrdiff_t>(bu.size()) - 2));
-    const std::size_t b = static_cast<std::size_t>(
-        std::clamp<std::ptrdiff_t>(std::upper_bound(bv.begin(), bv.end(), 0.5 * (v0 + v1)) - bv.begin() - 1, 0,
-                                   static_cast<std::ptrdiff_t>(bv.size()) - 2));
-    const double du = bu[a + 1] - bu[a], dv = bv[b + 1] - bv[b];
-    if (u1 > u0 && v1 > v0 && u0 >= bu[a] && u1 <= bu[a + 1] && v0 >= bv[b] && v1 <= bv[b + 1]) {
-        const double a0 = (u0 - bu[a]) / du, a1 = (u1 - bu[a]) / du, b0 = (v0 - bv[b]) / dv, b1 = (v1 - bv[b]) / dv;
-        RationalPatch q = patches[a * (bv.size() - 1) + b].pieceU(a0, a1).pieceV(b0, b1);
-        const auto [su, sv] = patchSlopes(q);
-        // The sub-net's slopes are per its own [0, 1]; the face's bound caps them (a split in
-        // floating point is a hair off the exact sub-net).
-        c.slopes = {std::min(slopeU, su / (u1 - u0)), std::min(slopeV, sv / (v1 - v0))};
-        c.width = u1 - u0;
-        c.height = v1 - v0;
-        c.net = std::move(q);
-    }
-    return cells_.emplace(key, std::move(c)).first->second;
-}
-
-namespace {
-
-/// What slopeAlong needs of a cell with its own net, computed once.
-void prepareAlong(FaceGrid::Cell& c)
-{
-    if (!c.net || !c.alongU.empty()) return;
-    // For slopeAlong: D_n S = (D_n h' - (S - c) D_n w) / w with h' = h - c w (c the control
-    // box's centre, |S - c| <= rho), and D_n h' = n_u h'_u + n_v h'_v with both raised to
-    // degree (m, n): its Bézier coefficients are n_u m [(i/m) (h'_ij - h'_i-1,j) + (1 - i/m)
-    // (h'_i+1,j - h'_ij)] / width plus the same along v, and it lies in their hull.
-    const RationalPatch& q = *c.net;
-    const int m = q.degreeU(), k = q.degreeV();
-    const CentredNet net(q);
-    for (int a = 0; a <= m; ++a)
-        for (int b = 0; b <= k; ++b) {
-            Eigen::Vector4d du = Eigen::Vector4d::Zero(), dv = Eigen::Vector4d::Zero();
-            if (a > 0) du += a * (net(a, b) - net(a - 1, b));
-            if (a < m) du += (m - a) * (net(a + 1, b) - net(a, b));
-            if (b > 0) dv += b * (net(a, b) - net(a, b - 1));
-            if (b < k) dv += (k - b) * (net(a, b + 1) - net(a, b));
-            c.alongU.push_back(du / c.width);
-            c.alongV.push_back(dv / c.height);
-        }
-    c.overW = 1 / net.wmin;
-    c.rhoOverW = net.rho / net.wmin;
-}
-
-} // namespace
-
-bool FaceGrid::cellsOf(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::size_t& i0, std::size_t& i1, std::size_t& j0,
-                       std::size_t& j1) const
-{
-    if (!(hi.x() >= lo.x()) || !(hi.y() >= lo.y())) return false;
-    auto range = [](const std::vector<double>& l, double x0, double x1, std::size_t& first, std::size_t& end) {
-        const std::ptrdiff_t last = static_cast<std::ptrdiff_t>(l.size()) - 2;
-        const std::ptrdiff_t f = std::clamp<std::ptrdiff_t>(std::upper_bound(l.begin(), l.end(), x0) - l.begin() - 1, 0, last);
-        first = static_cast<std::size_t>(f);
-        end = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(std::lower_bound(l.begin(), l.end(), x1) - l.begin() - 1, f, last));
-    };
-    range(gu, lo.x(), hi.x(), i0, i1);
-    range(gv, lo.y(), hi.y(), j0, j1);
-    return (i1 - i0 + 1) * (j1 - j0 + 1) <= 4;
-}
-
-std::pair<double, double> FaceGrid::slopesOver(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) const
-{
-    std::size_t i0, i1, j0, j1;
-    if (!cellsOf(lo, hi, i0, i1, j0, j1)) return {slopeU, slopeV};
-    std::pair<double, double> s{0, 0};
-    for (std::size_t i = i0; i <= i1; ++i)
-        for (std::size_t j = j0; j <= j1; ++j) {
-            const auto [su, sv] = cell(i, j).slopes;
-            s = {std::max(s.first, su), std::max(s.second, sv)};
-        }
-    return s;
-}
-
-double FaceGrid::slopeAlong(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Eigen::Vector2d& n) const
-{
-    std::size_t i0, i1, j0, j1;
-    const double plain = std::abs(n.x()) * slopeU + std::abs(n.y()) * slopeV;
-    if (!cellsOf(lo, hi, i0, i1, j0, j1)) return plain;
-    double worst = 0;
-    for (std::size_t i = i0; i <= i1; ++i)
-        for (std::size_t j = j0; j <= j1; ++j) {
-            Cell& c = cell(i, j);
-            prepareAlong(c);
-            const double fromSlopes = std::abs(n.x()) * c.slopes.first + std::abs(n.y()) * c.slopes.second;
-            if (!c.net) {
-                worst = std::max(worst, fromSlopes);
-                continue;
-            }
-            double dh = 0, dw = 0;
-            for (std::size_t x = 0; x < c.alongU.size(); ++x) {
-                const Eigen::Vector4d d = n.x() * c.alongU[x] + n.y() * c.alongV[x];
-                dh = std::max(dh, d.head<3>().squaredNorm());
-                dw = std::max(dw, std::abs(d[3]));
-            }
-            worst = std::max(worst, std::min(fromSlopes, std::sqrt(dh) * c.overW + dw * c.rhoOverW));
-        }
-    return worst;
-}
-
 /// A patch whose weights differ (where the cells' own bounds beat the whole net's).
 bool weighted(const RationalPatch& p)
 {
@@ -729,45 +583,102 @@ double gridBound(const RationalPatch& p, int nu, int nv, bool local, const TrimZ
     return whole;
 }
 
+std::array<double, 6> SearchHints::cornerDistances(const RationalPatch& p)
+{
+    const int m = p.degreeU(), n = p.degreeV();
+    const Eigen::Vector3d c[4] = {p.controlPoint(0, 0), p.controlPoint(m, 0), p.controlPoint(0, n), p.controlPoint(m, n)};
+    return {(c[0] - c[1]).norm(), (c[0] - c[2]).norm(), (c[0] - c[3]).norm(),
+            (c[1] - c[2]).norm(), (c[1] - c[3]).norm(), (c[2] - c[3]).norm()};
+}
+
+const SearchHints::Answers* SearchHints::like(const RationalPatch& p) const
+{
+    const std::array<double, 6> d = cornerDistances(p);
+    const double size = *std::max_element(d.begin(), d.end());
+    for (const Seen& s : seen_) {
+        if (s.degreeU != p.degreeU() || s.degreeV != p.degreeV()) continue;
+        bool same = true;
+        for (std::size_t k = 0; k < d.size() && same; ++k) same = std::abs(d[k] - s.corners[k]) <= 1e-9 * size;
+        for (int i = 0, x = 0; i <= p.degreeU() && same; ++i)
+            for (int j = 0; j <= p.degreeV() && same; ++j, ++x)
+                same = std::abs(p.weight(i, j) - s.weights[static_cast<std::size_t>(x)]) <= 1e-12 * s.weights[static_cast<std::size_t>(x)];
+        if (same) return &s.answers;
+    }
+    return nullptr;
+}
+
+void SearchHints::add(const RationalPatch& p, Answers answers)
+{
+    Seen s{p.degreeU(), p.degreeV(), {}, cornerDistances(p), std::move(answers)};
+    for (int i = 0; i <= p.degreeU(); ++i)
+        for (int j = 0; j <= p.degreeV(); ++j) s.weights.push_back(p.weight(i, j));
+    seen_.push_back(std::move(s));
+}
+
 /// The grid with the fewest cells whose bound is at most target: from the whole net's bound
 /// (rationalAdaptiveSegments), then, on a weighted patch of at most 1024 such cells, the fewest
 /// cells whose own bounds are within it.
-std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones)
+std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones, SearchHints* hints)
 {
     std::array<int, 2> best = rationalAdaptiveSegments(p, target);
     if (!weighted(p)) return best;
+    const SearchHints::Answers* prior = hints ? hints->like(p) : nullptr;
+    SearchHints::Answers found;
     if (ruledInV(p)) {
-        best = fewestRuled(p, target, best, zones);
+        best = fewestRuled(p, target, best, zones, prior ? &prior->ruled : nullptr, &found.ruled);
     } else if (ruledInV(p.transposed())) {
-        const std::array<int, 2> t = fewestRuled(p.transposed(), target, {best[1], best[0]}, zones.transposed());
+        const std::array<int, 2> t =
+            fewestRuled(p.transposed(), target, {best[1], best[0]}, zones.transposed(), prior ? &prior->ruled : nullptr, &found.ruled);
         best = {t[1], t[0]};
     }
-    if (best[0] * best[1] > 1024) return best;
-    // Per count along the shorter side, the fewest cells along the other by bisection (the cells'
-    // bound falls as they narrow).
-    const std::array<int, 2> upper = best;
-    const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
-    FailHint hint;
-    NetOdds odds;
-    auto bound = [&](int na, int nb) {
-        return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target, &hint, &odds)
-                      : cellsBound(p, nb, na, zones, true, nullptr, target, &hint, &odds);
-    };
-    for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
-        // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
-        const int cap = std::min(upper[b], (best[0] * best[1] - 1) / na);
-        if (bound(na, cap) > target) continue;
-        int lo = 1, hi = cap;
-        while (lo < hi) {
-            const int mid = lo + (hi - lo) / 2;
-            if (bound(na, mid) <= target) hi = mid;
-            else lo = mid + 1;
-        }
-        if (na * lo < best[0] * best[1]) {
-            best[static_cast<std::size_t>(a)] = na;
-            best[static_cast<std::size_t>(b)] = lo;
+    if (best[0] * best[1] <= 1024) {
+        // Per count along the shorter side, the fewest cells along the other by bisection (the cells'
+        // bound falls as they narrow).
+        const std::array<int, 2> upper = best;
+        const int a = upper[0] <= upper[1] ? 0 : 1, b = 1 - a; // a: the axis with fewer cells
+        FailHint hint;
+        NetOdds odds;
+        auto bound = [&](int na, int nb) {
+            return a == 0 ? cellsBound(p, na, nb, zones, true, nullptr, target, &hint, &odds)
+                          : cellsBound(p, nb, na, zones, true, nullptr, target, &hint, &odds);
+        };
+        for (int na = 1; na <= upper[a] && na < best[0] * best[1]; ++na) {
+            // Only nb <= cap can beat the best so far: the same result as searching up to upper[b].
+            const int cap = std::min(upper[b], (best[0] * best[1] - 1) / na);
+            int lo = 1, hi = cap;
+            // A like patch's answer first: where it passes and one fewer fails, two probes are the
+            // search (and the grid of cap cells, which passes where fewer do, is not scanned);
+            // otherwise bisection goes on from what they showed.
+            const std::size_t k = static_cast<std::size_t>(na);
+            bool passes = false; // whether hi is known to pass
+            if (const int g = prior && k < prior->sides.size() ? prior->sides[k] : 0; g >= lo && g < hi) {
+                if (bound(na, g) <= target) {
+                    hi = g;
+                    passes = true;
+                    if (g > lo) {
+                        if (bound(na, g - 1) > target) lo = g;
+                        else hi = g - 1;
+                    }
+                } else {
+                    lo = g + 1;
+                }
+            }
+            if (!passes && bound(na, cap) > target) continue;
+            while (lo < hi) {
+                const int mid = lo + (hi - lo) / 2;
+                if (bound(na, mid) <= target) hi = mid;
+                else lo = mid + 1;
+            }
+            if (found.sides.size() <= k) found.sides.resize(k + 1, 0);
+            found.sides[k] = lo;
+            if (na * lo < best[0] * best[1]) {
+                best[static_cast<std::size_t>(a)] = na;
+                best[static_cast<std::size_t>(b)] = lo;
+            }
         }
     }
+    // The first patch of its kind gives the start for those like it.
+    if (hints && !prior) hints->add(p, std::move(found));
     return best;
 }
 

@@ -290,8 +290,32 @@ struct TrimZones {
 /// The certified bound of the patch's nu x nv grid: the smaller of the whole net's bound and the
 /// cells' own (`local`: on a weighted patch).
 double gridBound(const RationalPatch& p, int nu, int nv, bool local, const TrimZones& zones);
-/// The grid with the fewest cells whose bound is at most target.
-std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones);
+/// Where the grid searches of one face start on a patch like one searched before (the patches of
+/// a surface of revolution repeat along its turn): per patch searched, its shape (degrees, weights,
+/// the distances between its corners) and the answers its searches confirmed. Only a start: each
+/// answer is confirmed as bisection confirms it (it passes, one fewer fails), so a patch that only
+/// looks alike costs a probe or two, never a different grid.
+struct SearchHints {
+    struct Answers {
+        std::vector<int> ruled; // fewestRuled: the fewest columns per count of rows (0: none)
+        std::vector<int> sides; // patchSegments: the fewest along the longer side per count along the shorter
+    };
+    /// The answers of a patch like p, or nullptr.
+    const Answers* like(const RationalPatch& p) const;
+    void add(const RationalPatch& p, Answers answers);
+
+private:
+    struct Seen {
+        int degreeU, degreeV;
+        std::vector<double> weights;
+        std::array<double, 6> corners; // the six distances between the control net's corners
+        Answers answers;
+    };
+    static std::array<double, 6> cornerDistances(const RationalPatch& p);
+    std::vector<Seen> seen_;
+};
+/// The grid with the fewest cells whose bound is at most target (`hints`: the face's searches so far).
+std::array<int, 2> patchSegments(const RationalPatch& p, double target, const TrimZones& zones, SearchHints* hints = nullptr);
 /// Columns of uneven widths across one knot span in u (its patches, one per span in v, each cut
 /// into rows[b] even rows), each as wide as its cells' bounds allow within target, from left to
 /// right: narrow beside a trim that keeps a cell to its parametric bound, wide elsewhere. The
