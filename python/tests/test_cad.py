@@ -12,6 +12,7 @@ import pytest
 
 import freeform as ff
 from test_nurbs import cox_de_boor
+from test_part_document import edge_counts, mesh_volume
 
 DATA = pathlib.Path("/usr/share/opencascade/data")
 SCREW = DATA / "step" / "screw.step"
@@ -149,29 +150,15 @@ def test_bad_parts_raise_freeform_errors(tmp_path):
         part.faces[0].boundary(5)
 
 
-def _edge_counts(F):
-    """Undirected edge -> number of triangles, and directed edges seen twice (orientation clashes)."""
-    directed = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
-    undirected = np.sort(directed, axis=1)
-    _, counts = np.unique(undirected, axis=0, return_counts=True)
-    _, directed_counts = np.unique(directed, axis=0, return_counts=True)
-    return counts, int(np.sum(directed_counts > 1))
-
-
-def _volume(V, F):
-    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
-    return float(np.sum(np.einsum("ij,ij->i", a, np.cross(b, c)))) / 6
-
-
 def test_tessellate_gives_a_closed_mesh_whose_volume_holds_across_tolerances():
     part = ff.Part.load(str(SCREW))
     V, F = part.tessellate(0.5)
     assert V.shape[1] == 3 and F.shape[1] == 3 and F.dtype == np.int32
     assert F.min() == 0 and F.max() == len(V) - 1
-    counts, clashes = _edge_counts(F)
+    counts, clashes = edge_counts(F)
     assert np.all(counts == 2) and clashes == 0  # closed and consistently oriented
     V2, F2, report = part.tessellate(0.05, report=True)
-    counts2, clashes2 = _edge_counts(F2)
+    counts2, clashes2 = edge_counts(F2)
     assert np.all(counts2 == 2) and clashes2 == 0
     assert report["watertight"] and report["certified"] and report["error_bound"] <= 0.05
     assert report["triangles"] == len(F2) > len(F)
@@ -180,8 +167,8 @@ def test_tessellate_gives_a_closed_mesh_whose_volume_holds_across_tolerances():
     # Both meshes lie within their bounds of the part's surface: their volumes differ by at most
     # the two bounds times the part's area (Green's theorem over the trims, Part.area).
     _, _, coarse = part.tessellate(0.5, report=True)
-    assert _volume(V, F) > 0 and _volume(V2, F2) > 0  # outward
-    assert abs(_volume(V, F) - _volume(V2, F2)) <= (coarse["error_bound"] + report["error_bound"]) * part.area
+    assert mesh_volume(V, F) > 0 and mesh_volume(V2, F2) > 0  # outward
+    assert abs(mesh_volume(V, F) - mesh_volume(V2, F2)) <= (coarse["error_bound"] + report["error_bound"]) * part.area
 
 
 def test_tessellate_refuses_a_bad_tolerance_and_a_mesh_over_the_limit():

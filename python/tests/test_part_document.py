@@ -15,18 +15,19 @@ PLATE = ROOT / "data" / "parts" / "plate.json"
 CAD = (".step", ".stp", ".iges", ".igs", ".brep")
 
 
-def _volume(V, F):
+def mesh_volume(V, F):
+    """The volume a closed, outward mesh encloses (the divergence theorem over its triangles)."""
     a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
     return float(np.sum(np.einsum("ij,ij->i", a, np.cross(b, c)))) / 6
 
 
-def _edge_uses(F):
-    # How many triangles use each undirected edge, and how many directed edges occur twice (a
-    # consistently oriented closed mesh has every edge twice and no directed edge twice).
+def edge_counts(F):
+    """Undirected edge -> number of triangles, and directed edges seen twice (orientation clashes):
+    a consistently oriented closed mesh has every edge in two triangles and no clash."""
     directed = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     _, counts = np.unique(np.sort(directed, axis=1), axis=0, return_counts=True)
-    _, dcounts = np.unique(directed, axis=0, return_counts=True)
-    return counts, int(np.sum(dcounts > 1))
+    _, directed_counts = np.unique(directed, axis=0, return_counts=True)
+    return counts, int(np.sum(directed_counts > 1))
 
 
 def test_formats_say_what_load_and_save_take(tmp_path):
@@ -63,12 +64,12 @@ def test_the_plate_of_a_document_has_its_hand_computed_area_and_volume():
     volume = 40 * 30 * 10 - math.pi * 36 * 10
     for tolerance in (0.1, 0.01):
         V, F, r = part.tessellate(tolerance, report=True)
-        counts, clashes = _edge_uses(F)
+        counts, clashes = edge_counts(F)
         assert np.all(counts == 2) and clashes == 0
         assert r["watertight"] and r["certified"] and r["error_bound"] <= tolerance
         # Every mesh point within error_bound of the surface: the volumes differ by at most that
         # times the area.
-        assert abs(_volume(V, F) - volume) <= r["error_bound"] * area
+        assert abs(mesh_volume(V, F) - volume) <= r["error_bound"] * area
 
 
 def test_a_part_goes_through_a_document_file_unchanged(tmp_path):
