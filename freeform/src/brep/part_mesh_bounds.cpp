@@ -326,10 +326,10 @@ double cellsBound(const RationalPatch& p, int nu, int nv, const TrimZones& zones
 /// probe's bound b at n puts the answer near n sqrt(b / target): the next probe is there, but at
 /// least a quarter of the open range on (no crawl where a share of the bound does not shrink), and
 /// after a failed probe with no pass yet at most four times as far (a grid that passes is scanned
-/// whole). The answer is
-/// confirmed as bisection confirms it: n passes and n - 1 fails. Returns cap + 1 where none passes.
-/// On screw.step it takes the ruled searches from 1.25 M instructions to 0.74 M.
-/// `guess` > 0 (a like patch's answer, SearchHints): the first probe, and the next one beside it.
+/// whole). `guess` > 0 (a like patch's answer, SearchHints): the first probe, and the next one
+/// beside it. The answer is confirmed as bisection confirms it: n passes and n - 1 fails. Returns
+/// cap + 1 where none passes. On screw.step it takes the ruled searches from 1.25 M instructions
+/// to 0.74 M.
 template <class Probe>
 int fewestColumns(int cap, double target, int failed, double failedBound, int guess, Probe&& probe)
 {
