@@ -1,15 +1,18 @@
 // `freeform info`: the report of OBJ files with known topology (exact JSON, key order), the genus
-// note, --details, and bad input (missing, malformed, unknown format, no argument).
+// note, --details, and bad input (missing, malformed, unknown format, no argument); a document's
+// part in every build, and CAD files refused by name in a build without Open CASCADE.
 
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <freeform/cad/cad_file.h>
 #include <freeform/core/warning.h>
 #include <freeform/io/mesh_io.h>
 
@@ -228,6 +231,33 @@ TEST_CASE("info on a file the reader accepts with a warning: one warning line on
     CHECK(seen.empty()); // the run had its own handler
     freeform::warn("after the run");
     CHECK(seen == std::vector<std::string>{"after the run"});
+}
+
+TEST_CASE("a document's part in every build; without Open CASCADE a CAD file refused by name, nothing written", "[cli]")
+{
+    using freeform::test::shellQuote;
+    // data/parts/plate.json: a 40 x 30 x 10 plate with a through hole (docs/cad.md, "Documents").
+    const std::string plate = std::string(FREEFORM_SOURCE_DIR) + "/data/parts/plate.json";
+    const auto r = cli("info " + shellQuote(plate));
+    REQUIRE(r.status == 0);
+    const Json j = Json::parse(r.out);
+    CHECK(j["faces"] == 7);
+    CHECK(j["edges"] == 15);
+    CHECK(j["vertices"] == 10);
+    CHECK(j["closed"] == true);
+    const std::string step = tmp("plate.step");
+    std::filesystem::remove(step);
+    const auto c = cli("convert " + shellQuote(plate) + " -o " + shellQuote(step));
+    if (freeform::cadFilesSupported()) {
+        REQUIRE(c.status == 0);
+        const auto back = cli("info " + shellQuote(step));
+        REQUIRE(back.status == 0);
+        CHECK(Json::parse(back.out)["faces"] == 7);
+    } else {
+        requireError(c, 1, "plate.step: this freeform was built without Open CASCADE");
+        CHECK_FALSE(std::filesystem::exists(step));
+        requireError(cli("info " + shellQuote(step)), 1, "without Open CASCADE");
+    }
 }
 
 } // namespace test_cli_info

@@ -22,6 +22,8 @@ namespace {
 
 bool cadFilesSupported() { return false; }
 
+void requireCadFiles(const std::string& path) { refuse(path); }
+
 bool isCadFile(const std::string& path) { return isPartFileName(path); }
 
 Part readCadFile(const std::string& path, std::vector<std::string>*) { refuse(path); }

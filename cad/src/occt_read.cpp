@@ -214,6 +214,8 @@ bool isCadFile(const std::string& path) { return isPartFileName(path); }
 
 bool cadFilesSupported() { return true; }
 
+void requireCadFiles(const std::string&) {}
+
 Part readCadFile(const std::string& path, std::vector<std::string>* warnings)
 {
     // Open CASCADE's messages of a read that fails go into the error; of one that succeeds, to the

@@ -404,8 +404,7 @@ Scene::PartExport Scene::exportPart(int i, const std::string& path, const Lattic
     const SceneItem& it = item(i);
     if (!isPartFileName(path))
         throw Error(path + ": a part is written as STEP (.step .stp), IGES (.iges .igs) or BRep (.brep); File > Save writes the document");
-    // Refused before any deformation where this build writes no STEP, IGES or BRep.
-    if (!cadFilesSupported()) writeCadFile(Part{}, path);
+    requireCadFiles(path); // (before any deformation, where this build writes no STEP, IGES or BRep)
     // The document layer's part of the object (a trimmed surface: a part of one face).
     std::optional<Part> part = objectPart(typedObject(i));
     if (!part) throw Error("\"" + it.name + "\" is a " + it.type + ", not a part or trimmed_surface");

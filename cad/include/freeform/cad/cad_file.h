@@ -18,6 +18,9 @@ namespace freeform {
 /// built without Open CASCADE (FREEFORM_BUILD_CAD=OFF), whose readCadFile and writeCadFile throw
 /// freeform::Error naming the file.
 bool cadFilesSupported();
+/// Throws that error for `path` in a build without Open CASCADE; nothing in one with it (for a
+/// front end that refuses before work that would end in writing the file).
+void requireCadFiles(const std::string& path);
 
 /// Whether the path names a STEP (.step .stp), IGES (.iges .igs) or BRep (.brep) file (by its
 /// extension, in any case): io/part_file.h's isPartFileName.
