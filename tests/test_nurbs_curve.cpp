@@ -208,13 +208,12 @@ TEST_CASE("knot insertion (Boehm), refinement (Oslo), extraction, split and reve
             const auto pieces = c.bezierPieces();
             const auto& br = c.breakpoints();
             REQUIRE(pieces.size() + 1 == br.size());
-            // The pieces as the curve keeps them (homogeneousPieces, which the part mesher reads
-            // in place of bezierPieces' copies): piece k in columns k (p + 1) .. k (p + 1) + p, the
-            // same bits, and their homogeneous de Casteljau point over its span is the curve's.
-            const auto& kept = c.homogeneousPieces();
-            REQUIRE(kept.cols() == static_cast<Eigen::Index>(pieces.size()) * (p + 1));
+            // The pieces as the curve keeps them (homogeneousPiece, which the part mesher reads
+            // in place of bezierPieces' copies): p + 1 points each, the same bits, and their
+            // homogeneous de Casteljau point over its span is the curve's.
             for (std::size_t k = 0; k < pieces.size(); ++k) {
-                const auto piece = kept.middleCols(static_cast<Eigen::Index>(k) * (p + 1), p + 1);
+                const auto piece = c.homogeneousPiece(k);
+                REQUIRE(piece.cols() == p + 1);
                 CHECK(piece == pieces[k].homogeneous().controlPoints());
                 const double t = 0.37, u = br[k] + t * (br[k + 1] - br[k]);
                 Eigen::MatrixXd h = piece;

@@ -84,19 +84,17 @@ FaceGrid makeGrid(const PartFace& face, std::size_t f, double target,
         auto onSide = [](double lo, double hi, double a, double b, double e) {
             return hi - lo <= e && (std::abs(lo - a) <= e || std::abs(hi - b) <= e);
         };
-        // (The pieces as the trim curves keep them: homogeneous, p + 1 columns each.)
+        // (The pieces as the trim curves keep them, homogeneous.)
         for (const TrimLoop& loop : ts.loops())
-            for (const TrimCurve& trim : loop.curves) {
-                const auto& h = trim.curve.nurbs.homogeneousPieces();
-                const Eigen::Index n = trim.curve.nurbs.degree() + 1;
-                for (Eigen::Index k = 0; k < h.cols(); k += n) {
+            for (const TrimCurve& trim : loop.curves)
+                for (std::size_t k = 0; k + 1 < trim.curve.nurbs.breakpoints().size(); ++k) {
+                    const auto h = trim.curve.nurbs.homogeneousPiece(k);
                     Eigen::AlignedBox2d box;
-                    for (Eigen::Index i = k; i < k + n; ++i) box.extend(g.toS(Eigen::Vector2d(h.col(i).head<2>() / h(2, i))));
+                    for (Eigen::Index i = 0; i < h.cols(); ++i) box.extend(g.toS(Eigen::Vector2d(h.col(i).head<2>() / h(2, i))));
                     if (onSide(box.min().x(), box.max().x(), su0, su1, eu) || onSide(box.min().y(), box.max().y(), sv0, sv1, ev))
                         continue;
                     trimBoxes.push_back(box);
                 }
-            }
     }
     auto zonesOf = [&](std::size_t a, std::size_t b) {
         TrimZones z;

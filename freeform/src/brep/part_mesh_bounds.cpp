@@ -207,7 +207,7 @@ double ownCellBound(const RationalPatch& cell, bool curves, double enough = 0, N
 {
     // (revolutionCellBound asks for degree 2 along the circles: computed once, where it may apply.)
     const double revolution = curves && cell.degreeU() == 2 ? revolutionCellBound(cell) : kInf;
-    double own = kInf;
+    std::optional<double> own; // the net's full bound, where the search below computed it
     if (enough > 0) {
         if (revolution <= enough) return revolution;
         NetOdds none;
@@ -223,10 +223,10 @@ double ownCellBound(const RationalPatch& cell, bool curves, double enough = 0, N
             own = net.framed;
         }
     }
-    if (own == kInf) own = rationalTessellationErrorBound(cell, 1, 1);
-    if (!curves) return own;
+    const double net = own ? *own : rationalTessellationErrorBound(cell, 1, 1);
+    if (!curves) return net;
     // (The transposed copy only where v has degree 2 too.)
-    return std::min({own, revolution, cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
+    return std::min({net, revolution, cell.degreeV() == 2 ? revolutionCellBound(cell.transposed()) : kInf});
 }
 
 /// Where a search's last grid failed: the centre of its first cell over the limit, in the patch's

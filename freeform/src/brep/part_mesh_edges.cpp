@@ -123,7 +123,6 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved, bo
 {
     if (tightest) *tightest = true;
     const MappedCurve<2>& c = trim->curve;
-    const auto& hom = c.nurbs.homogeneousPieces(); // p + 1 columns per Bézier piece
     const double ca = trimParameter(ta), cb = trimParameter(tb);
     const double lo = std::min(ca, cb), hi = std::max(ca, cb);
     // The trim's Bézier pieces over [lo, hi], cut by de Casteljau (no knot insertion: a cut a
@@ -142,8 +141,8 @@ double EdgeUse::deviation(double ta, double tb, double enough, double* moved, bo
             if (!(e > a)) continue;
             CutPiece& piece = cut.emplace_back();
             piece.p = c.nurbs.degree();
-            const Eigen::Index column = static_cast<Eigen::Index>(k) * (piece.p + 1);
-            for (int i = 0; i <= piece.p; ++i) piece.h[static_cast<std::size_t>(i)] = hom.col(column + i);
+            const auto hom = c.nurbs.homogeneousPiece(k); // (in place)
+            for (int i = 0; i <= piece.p; ++i) piece.h[static_cast<std::size_t>(i)] = hom.col(i);
             if (a > 0) piece.keepAfter(a);
             const double e2 = a > 0 ? (e - a) / (1 - a) : e;
             if (e2 < 1) piece.keepBefore(e2);

@@ -304,13 +304,11 @@ public:
     std::vector<Piece> bezierPieces() const
     {
         std::vector<Piece> out;
-        const int p = degree();
-        for (std::size_t k = 0; k + 1 < breaks_.size(); ++k)
-            out.emplace_back(BezierCurve<Scalar, Dim + 1>(HPoints(pieces_.middleCols(static_cast<Eigen::Index>(k) * (p + 1), p + 1))));
+        for (std::size_t k = 0; k + 1 < breaks_.size(); ++k) out.emplace_back(BezierCurve<Scalar, Dim + 1>(HPoints(homogeneousPiece(k))));
         return out;
     }
-    /// bezierPieces()' homogeneous points as the curve keeps them (p + 1 columns per piece), no copy.
-    const HPoints& homogeneousPieces() const { return pieces_; }
+    /// Piece k of bezierPieces() as the curve keeps it: its p + 1 homogeneous points, in place.
+    auto homogeneousPiece(std::size_t k) const { return pieces_.middleCols(static_cast<Eigen::Index>(k) * (degree() + 1), degree() + 1); }
     /// The distinct knots of the domain: piece k of bezierPieces() is the curve over
     /// [breakpoints()[k], breakpoints()[k+1]], reparametrised to [0, 1].
     const std::vector<Scalar>& breakpoints() const { return breaks_; }
