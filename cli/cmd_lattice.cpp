@@ -29,8 +29,9 @@ std::array<int, 3> parseDegrees(const std::string& text, const std::string& opti
 namespace {
 
 struct LatticeOptions {
-    std::string fit, degree = "3,3,3", outside = "clamp", name = "lattice", output;
+    std::string fit, degree = "3,3,3", outside = "clamp", name = "lattice", output, object;
     double margin = 0.05;
+    const CLI::Option* objectGiven = nullptr;
 };
 
 Json lattice(const LatticeOptions& o)
@@ -44,11 +45,14 @@ Json lattice(const LatticeOptions& o)
     const std::string& name = o.name;
     if (name.empty()) throw UsageError("option --name: the name must not be empty");
 
-    // A part's box is the box of its faces' control nets and vertices (it holds the part).
+    // A part's box is the box of its faces' control nets and vertices (it holds the part). A
+    // document (.json) is fitted around its part, as `info` reads it.
+    const bool document = lowerExtension(meshPath) == ".json";
+    if (given(o.objectGiven) && !document) throw UsageError("option --object applies to a document's part (.json)");
     Lattice::Points positions;
     long long vertices = 0;
-    if (isPartFileName(meshPath)) {
-        positions = partBoxCorners(meshPath, vertices);
+    if (isPartFileName(meshPath) || document) {
+        positions = partBoxCorners(meshPath, given(o.objectGiven) ? std::optional<std::string>(o.object) : std::nullopt, vertices);
     } else {
         PolygonMesh mesh = readPolygonMesh(meshPath);
         vertices = mesh.vertexCount();
@@ -78,13 +82,14 @@ Action defineLattice(CLI::App& app)
     auto o = std::make_shared<LatticeOptions>();
     app.footer("Writes a document with one lattice object: the identity (rest) lattice of degrees\n"
                "(L, M, N) around the axis-aligned bounding box of the mesh's vertices (of a part's\n"
-               "faces and vertices for a STEP or IGES part).\n"
+               "faces and vertices for a STEP or IGES part, or a document's part).\n"
                "\n"
                "Prints {\"output\", \"object\", \"vertices\", \"degree\", \"origin\", \"axes\"}.\n"
                "Exit status: 0 ok, 1 bad input (mesh file), 2 bad usage.");
-    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb) or part (.step .stp .iges .igs .brep)")
+    app.add_option("--fit", o->fit, "the mesh (.obj .ply .stl .off .gltf .glb) or part (.step .stp .iges .igs .brep, or a document's part: .json)")
         ->type_name("MESH")
         ->required();
+    o->objectGiven = app.add_option("--object", o->object, "the document's part to fit (default: its only part)")->type_name("NAME");
     app.add_option("--degree", o->degree, "degrees in s, t, u (3,3,3: 4 x 4 x 4 control points)")
         ->type_name("L,M,N")
         ->capture_default_str();

@@ -131,8 +131,9 @@ Json partMeshCommand(const Part& part, const std::string& output, double toleran
 /// as STEP or IGES; or, to OUT.json, composed exactly (no cap) into a document of one part object.
 Json partFfd(const std::string& path, const std::string& output, const std::string& latticeName,
              const Lattice& lattice, double strength, double tolerance, int threads);
-/// The two corners of a part's box (Part::bounds), and its vertex count (ffd_part.cpp).
-Lattice::Points partBoxCorners(const std::string& path, long long& vertices);
+/// The two corners of a part's box (Part::bounds), and its vertex count (ffd_part.cpp): a STEP,
+/// IGES or BRep file, or a document's part (the object `object`, or its only part).
+Lattice::Points partBoxCorners(const std::string& path, const std::optional<std::string>& object, long long& vertices);
 /// `freeform convert` of a part (ffd_part.cpp): a STEP or IGES file to STEP, IGES or a document
 /// (one part object named after the file), or a document's part (`object`, or its only one) to
 /// STEP or IGES.

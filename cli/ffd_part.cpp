@@ -92,9 +92,10 @@ Json partFfd(const std::string& path, const std::string& output, const std::stri
     return j;
 }
 
-Lattice::Points partBoxCorners(const std::string& path, long long& vertices)
+Lattice::Points partBoxCorners(const std::string& path, const std::optional<std::string>& object, long long& vertices)
 {
-    const Part part = readCadFile(path);
+    std::string name;
+    const Part part = isJson(path) ? documentPart(path, object, name) : readCadFile(path);
     vertices = static_cast<long long>(part.vertices.size());
     const Box<double, 3> box = part.bounds();
     Lattice::Points corners(3, 2);

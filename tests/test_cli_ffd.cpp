@@ -89,6 +89,27 @@ TEST_CASE("lattice --fit writes the identity lattice around the mesh", "[cli]")
     for (int a = 0; a < 3; ++a) CHECK(last[a].get<double>() == Approx(hi[a] + pad).epsilon(1e-15));
 }
 
+TEST_CASE("lattice --fit takes a document's part, in every build", "[cli]")
+{
+    // data/parts/plate.json: the plate [0, 40] x [0, 30] x [0, 10] with a hole through it, ten
+    // vertices. The default margin pushes each side out by 0.05 x 40 = 2.
+    const std::string plate = std::string(FREEFORM_SOURCE_DIR) + "/data/parts/plate.json";
+    const std::string out = tmp("plate_lattice.json");
+    const auto r = cli("lattice --fit '" + plate + "' --degree 1,1,1 -o '" + out + "'");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const Json report = Json::parse(r.out);
+    CHECK(report["vertices"] == 10);
+    CHECK(report["origin"] == Json::array({-2.0, -2.0, -2.0}));
+    CHECK(report["axes"] == Json::array({Json::array({44.0, 0.0, 0.0}), Json::array({0.0, 34.0, 0.0}), Json::array({0.0, 0.0, 14.0})}));
+    CHECK(Json::parse(slurp(out))["objects"][0]["points"][7] == Json::array({42.0, 32.0, 12.0}));
+    // --object names the part; a name the document lacks is bad input, --object with a mesh bad usage.
+    CHECK(cli("lattice --fit '" + plate + "' --object plate -o '" + out + "'").status == 0);
+    requireError(cli("lattice --fit '" + plate + "' --object hull -o '" + tmp("none.json") + "'"), 1, "hull");
+    CHECK_FALSE(exists(tmp("none.json")));
+    requireError(cli("lattice --fit '" + sample("cube.obj") + "' --object plate -o x.json"), 2, "--object");
+}
+
 TEST_CASE("identity FFD round trips keep every file byte for byte", "[cli]")
 {
     for (const std::string name : {"sphere.obj", "sphere.ply", "sphere.off", "sphere.stl", "cube.obj"}) {
