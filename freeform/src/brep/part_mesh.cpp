@@ -9,6 +9,7 @@
 #include "freeform/brep/part_mesh.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -653,22 +654,24 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options,
         ++report.closedShells;
         for (int f : part.shells[s].faces) shellOf[static_cast<std::size_t>(f)] = static_cast<int>(s);
     }
-    std::vector<std::array<int, 3>> meshEdges; // (shell, lower vertex, higher vertex) per triangle side
-    meshEdges.reserve(3 * out.triangles.size());
+    // Per closed shell, its triangles' sides as packed keys (lower vertex, higher vertex), sorted.
+    std::vector<std::vector<std::uint64_t>> meshEdges(part.shells.size());
     for (std::size_t t = 0; t < out.triangles.size(); ++t) {
         const int s = shellOf[static_cast<std::size_t>(out.triangleFace[t])];
         if (s < 0) continue;
         for (int k = 0; k < 3; ++k) {
             const int a = out.triangles[t][static_cast<std::size_t>(k)], b = out.triangles[t][static_cast<std::size_t>((k + 1) % 3)];
-            meshEdges.push_back({s, std::min(a, b), std::max(a, b)});
+            meshEdges[static_cast<std::size_t>(s)].push_back(static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b)));
         }
     }
-    std::sort(meshEdges.begin(), meshEdges.end());
-    for (std::size_t k = 0; k < meshEdges.size();) {
-        std::size_t end = k;
-        while (end < meshEdges.size() && meshEdges[end] == meshEdges[k]) ++end;
-        report.openMeshEdges += end - k != 2 ? 1 : 0;
-        k = end;
+    for (std::vector<std::uint64_t>& sides : meshEdges) {
+        std::sort(sides.begin(), sides.end());
+        for (std::size_t k = 0; k < sides.size();) {
+            std::size_t end = k;
+            while (end < sides.size() && sides[end] == sides[k]) ++end;
+            report.openMeshEdges += end - k != 2 ? 1 : 0;
+            k = end;
+        }
     }
     report.watertight = report.closedShells > 0 && report.openMeshEdges == 0;
 

@@ -5,6 +5,7 @@
 // Also the whole mesh's cleanup along the edges (dropEdgePockets).
 
 #include <algorithm>
+#include <cstdint>
 #include <numbers>
 #include <map>
 
@@ -509,24 +510,29 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
     auto sidesOf = [&](const std::array<int, 3>& t) {
         return std::array<std::pair<int, int>, 3>{key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])};
     };
-    // Each mesh edge and its triangles' count, sorted (as a map would be, without its nodes).
-    std::vector<std::pair<std::pair<int, int>, int>> uses;
-    uses.reserve(3 * out.triangles.size());
+    // Each mesh edge and its triangles' count, sorted (as a map would be, without its nodes): the
+    // edges as packed keys (lower vertex, higher vertex), which sort faster than pairs.
+    auto packed = [](const std::pair<int, int>& side) {
+        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(side.first)) << 32 | static_cast<std::uint32_t>(side.second);
+    };
+    std::vector<std::uint64_t> edgeKeys;
+    edgeKeys.reserve(3 * out.triangles.size());
     for (const auto& t : out.triangles)
-        for (const auto& side : sidesOf(t)) uses.push_back({side, 1});
-    std::sort(uses.begin(), uses.end());
-    {
-        std::size_t n = 0;
-        for (std::size_t k = 0; k < uses.size(); ++k) {
-            if (n > 0 && uses[n - 1].first == uses[k].first) ++uses[n - 1].second;
-            else uses[n++] = uses[k];
+        for (const auto& side : sidesOf(t)) edgeKeys.push_back(packed(side));
+    std::sort(edgeKeys.begin(), edgeKeys.end());
+    std::vector<std::pair<std::pair<int, int>, int>> uses; // uses[u] the edge of key edgeKeys[u]
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < edgeKeys.size(); ++k) {
+        if (n > 0 && edgeKeys[n - 1] == edgeKeys[k]) {
+            ++uses.back().second;
+            continue;
         }
-        uses.resize(n);
+        edgeKeys[n++] = edgeKeys[k];
+        uses.push_back({{static_cast<int>(edgeKeys[k] >> 32), static_cast<int>(edgeKeys[k] & 0xffffffffu)}, 1});
     }
+    edgeKeys.resize(n);
     auto usesOf = [&](const std::pair<int, int>& side) -> int& {
-        return std::lower_bound(uses.begin(), uses.end(), std::make_pair(side, 0),
-                                [](const auto& a, const auto& b) { return a.first < b.first; })
-            ->second;
+        return uses[static_cast<std::size_t>(std::lower_bound(edgeKeys.begin(), edgeKeys.end(), packed(side)) - edgeKeys.begin())].second;
     };
     // The index of vertex v among edge e's samples, -1 when it is none of them.
     auto indexOn = [&](int v, std::size_t e) {
