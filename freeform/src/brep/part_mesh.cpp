@@ -661,7 +661,7 @@ static PartMesh meshPart(const Part& part, const PartMeshOptions& options,
         if (s < 0) continue;
         for (int k = 0; k < 3; ++k) {
             const int a = out.triangles[t][static_cast<std::size_t>(k)], b = out.triangles[t][static_cast<std::size_t>((k + 1) % 3)];
-            meshEdges[static_cast<std::size_t>(s)].push_back(static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b)));
+            meshEdges[static_cast<std::size_t>(s)].push_back(edgeKey(a, b));
         }
     }
     for (std::vector<std::uint64_t>& sides : meshEdges) {

@@ -511,10 +511,8 @@ void dropEdgePockets(Builder& out, const std::vector<std::vector<int>>& sampleVe
         return std::array<std::pair<int, int>, 3>{key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])};
     };
     // Each mesh edge and its triangles' count, sorted (as a map would be, without its nodes): the
-    // edges as packed keys (lower vertex, higher vertex), which sort faster than pairs.
-    auto packed = [](const std::pair<int, int>& side) {
-        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(side.first)) << 32 | static_cast<std::uint32_t>(side.second);
-    };
+    // edges as packed keys (edgeKey), which sort faster than pairs.
+    auto packed = [](const std::pair<int, int>& side) { return edgeKey(side.first, side.second); };
     std::vector<std::uint64_t> edgeKeys;
     edgeKeys.reserve(3 * out.triangles.size());
     for (const auto& t : out.triangles)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -19,6 +20,13 @@
 namespace freeform::part_mesh {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A mesh edge between vertices a and b (either order) as one key that sorts fast: the lower
+/// vertex in the high 32 bits.
+inline std::uint64_t edgeKey(int a, int b)
+{
+    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32 | static_cast<std::uint32_t>(std::max(a, b));
+}
 
 /// Face f as errors name it: counted from 1, as Open CASCADE and the reader, the writer and the
 /// deformation count them (docs/cad.md, "The model").
